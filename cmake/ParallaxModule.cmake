@@ -1,0 +1,27 @@
+# parallax_module(NAME DEPS <parallax modules> PRIVATE_LIBS <third-party targets>)
+# Builds src/parallax/NAME/*.cpp (except *_test.cpp) into parallax_NAME and every
+# NAME/*_test.cpp into one GoogleTest executable parallax_NAME_test registered with CTest.
+function(parallax_module name)
+  cmake_parse_arguments(PM "" "" "DEPS;PRIVATE_LIBS;TEST_LIBS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*.cpp")
+  file(GLOB tests CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*_test.cpp")
+  list(REMOVE_ITEM sources ${tests} "${CMAKE_CURRENT_SOURCE_DIR}/main.cpp")
+  set(dep_targets "")
+  foreach(dep ${PM_DEPS})
+    list(APPEND dep_targets parallax_${dep})
+  endforeach()
+  add_library(parallax_${name} STATIC ${sources})
+  target_include_directories(parallax_${name} PUBLIC "${CMAKE_SOURCE_DIR}/src")
+  target_link_libraries(parallax_${name} PUBLIC ${dep_targets} PRIVATE ${PM_PRIVATE_LIBS})
+  target_compile_definitions(parallax_${name} PRIVATE
+    PARALLAX_VERSION="${PROJECT_VERSION}")
+  if(tests)
+    add_executable(parallax_${name}_test ${tests})
+    target_link_libraries(parallax_${name}_test PRIVATE parallax_${name} ${PM_PRIVATE_LIBS}
+      ${PM_TEST_LIBS} GTest::gtest GTest::gtest_main)
+    target_compile_definitions(parallax_${name}_test PRIVATE
+      PARALLAX_DATA_DIR="${PARALLAX_DATA_DIR}" PARALLAX_SOURCE_DIR="${PARALLAX_SOURCE_DIR}")
+    gtest_discover_tests(parallax_${name}_test DISCOVERY_TIMEOUT 60
+      PROPERTIES ENVIRONMENT "PARALLAX_DATA_DIR=${PARALLAX_DATA_DIR}")
+  endif()
+endfunction()

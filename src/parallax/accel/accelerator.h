@@ -1,0 +1,104 @@
+// Ray queries against a scene: the only module that talks to Embree. One Accelerator owns the
+// Embree device, its error callback and the committed scene. All queries are thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "parallax/core/math.h"
+#include "parallax/core/ray.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax {
+
+inline constexpr uint32_t kNoHit = 0xffffffffu;
+
+// What a hit refers to in the Scene.
+struct SurfaceRef {
+  enum class Kind { Mesh, Sphere };
+  Kind kind = Kind::Mesh;
+  uint32_t index = 0;  // into Scene::meshes or Scene::spheres
+};
+
+struct Hit {
+  float t = 0.0f;
+  uint32_t geometry = kNoHit;  // pass to Accelerator::surface(); kNoHit if the ray escaped
+  uint32_t primitive = 0;      // triangle index within the mesh
+  float u = 0.0f, v = 0.0f;    // barycentrics of vertices 1 and 2 (triangles)
+  Vec3f geometricNormal;       // unnormalised; for triangles cross(p1 - p0, p2 - p0)
+
+  bool valid() const { return geometry != kNoHit; }
+};
+
+// Sixteen rays in structure-of-arrays form (Embree's RTCRay16 layout, not its type).
+struct alignas(64) RayPacket16 {
+  static constexpr int kSize = 16;
+  float ox[16], oy[16], oz[16];
+  float dx[16], dy[16], dz[16];
+  float tMin[16], tMax[16];
+  int32_t active[16];  // -1 = trace this lane, 0 = ignore it
+
+  void set(int lane, const Ray& ray) {
+    ox[lane] = ray.origin.x, oy[lane] = ray.origin.y, oz[lane] = ray.origin.z;
+    dx[lane] = ray.direction.x, dy[lane] = ray.direction.y, dz[lane] = ray.direction.z;
+    tMin[lane] = ray.tMin, tMax[lane] = ray.tMax;
+    active[lane] = -1;
+  }
+  void deactivate(int lane) { active[lane] = 0; }
+  Ray ray(int lane) const {
+    return {{ox[lane], oy[lane], oz[lane]}, {dx[lane], dy[lane], dz[lane]}, tMin[lane], tMax[lane]};
+  }
+};
+
+struct alignas(64) HitPacket16 {
+  float t[16];
+  uint32_t geometry[16];
+  uint32_t primitive[16];
+  float u[16], v[16];
+  float ngx[16], ngy[16], ngz[16];
+
+  Hit hit(int lane) const {
+    return {t[lane], geometry[lane], primitive[lane], u[lane], v[lane],
+            {ngx[lane], ngy[lane], ngz[lane]}};
+  }
+};
+
+// Pinhole rays for the raw limit: pixel (x, y) sample s has its origin at `eye` and passes
+// through pixel00 + (x + jx) * pixelDx + (y + jy) * pixelDy, (jx, jy) on a stratified
+// sqrt(spp) x sqrt(spp) grid (spp rounded down to a square).
+struct PinholeGrid {
+  Vec3f eye, pixel00, pixelDx, pixelDy;
+  int width = 0, height = 0, samplesPerPixel = 1;
+};
+
+class Accelerator {
+ public:
+  // Builds the Embree scene from every mesh and sphere. Throws std::runtime_error with Embree's
+  // message if the device or the build fails.
+  explicit Accelerator(const Scene& scene);
+  ~Accelerator();
+  Accelerator(const Accelerator&) = delete;
+  Accelerator& operator=(const Accelerator&) = delete;
+
+  Hit intersect(const Ray& ray) const;
+  bool occluded(const Ray& ray) const;
+  // Packet forms: inactive lanes are left untouched (hits get geometry = kNoHit).
+  void intersect16(const RayPacket16& rays, HitPacket16& hits) const;
+  // occludedOut[lane] is true if something lies within (tMin, tMax) of an active lane.
+  void occluded16(const RayPacket16& rays, bool occludedOut[16]) const;
+
+  SurfaceRef surface(uint32_t geometry) const;
+
+  // The raw Embree limit for benchmarks: for image rows [rowBegin, rowEnd) of `grid`, traces
+  // 4x4-pixel packets of coherent pinhole rays with rtcIntersect16 (one packet per sample
+  // index), then one shadow ray per hit toward `lightPosition` with rtcOccluded16; no shading.
+  // Returns the number of rays traced (primary + shadow). Callers parallelise over rows.
+  uint64_t traceRawLimit(const PinholeGrid& grid, int rowBegin, int rowEnd,
+                         const Vec3f& lightPosition) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace parallax

@@ -1,0 +1,44 @@
+// An RGB image in linear light, float per channel, row 0 at the top.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "parallax/core/math.h"
+
+namespace parallax {
+
+class Image {
+ public:
+  Image() = default;
+  Image(int width, int height, Vec3f fill = Vec3f(0.0f))
+      : width_(width), height_(height), pixels_(size_t(width) * size_t(height), fill) {}
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool empty() const { return pixels_.empty(); }
+
+  Vec3f& at(int x, int y) { return pixels_[size_t(y) * size_t(width_) + size_t(x)]; }
+  const Vec3f& at(int x, int y) const { return pixels_[size_t(y) * size_t(width_) + size_t(x)]; }
+  const std::vector<Vec3f>& pixels() const { return pixels_; }
+  std::vector<Vec3f>& pixels() { return pixels_; }
+
+  // Bilinear lookup at texture coordinates (u, v) in [0,1) with wrap-around; v = 0 is the
+  // bottom row, as in OBJ and glTF-flipped UVs (see docs/scene-format.md).
+  Vec3f sampleBilinear(float u, float v) const;
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<Vec3f> pixels_;
+};
+
+// The sRGB transfer function (IEC 61966-2-1), per channel.
+float srgbToLinear(float encoded);
+float linearToSrgb(float linear);
+// Linear [0,1] value to an 8-bit sRGB code with rounding; values outside [0,1] are clamped.
+uint8_t linearToSrgb8(float linear);
+// Table-based decode of 8-bit sRGB codes.
+float srgb8ToLinear(uint8_t code);
+
+}  // namespace parallax

@@ -1,0 +1,21 @@
+// Scene files: the JSON format of docs/scene-format.md, or a bare mesh file which is framed
+// automatically and lit by a default light.
+#pragma once
+
+#include <string>
+
+#include "parallax/scene/scene.h"
+
+namespace parallax {
+
+// Loads a .json scene or a bare mesh file (see isMeshFile). Throws InputError with the file
+// and the JSON pointer of the offending key: "scene.json: /objects/3/material/color: expected
+// 3 numbers". Unknown keys are errors.
+Scene loadScene(const std::string& path);
+
+// Wraps a bare mesh file in a scene: a grey diffuse material unless the file has its own, a
+// key light and ambient fill, the display placed at the mesh's centre facing +z, scaled to
+// the mesh's width, and a camera framing it.
+Scene sceneFromMesh(const std::string& path);
+
+}  // namespace parallax

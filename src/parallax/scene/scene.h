@@ -1,0 +1,118 @@
+// The scene as the renderer reads it: plain structs, all geometry already in world space.
+// Loaders (io) fill it; the accelerator (accel) and shading (render) read it.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "parallax/core/math.h"
+#include "parallax/image/image.h"
+
+namespace parallax {
+
+// A texture is either a constant, a checkerboard, or an image looked up through mesh UVs.
+struct Texture {
+  enum class Kind { Constant, Checker, Image };
+  Kind kind = Kind::Constant;
+  Vec3f color{0.8f};                 // Constant; the first checker colour
+  Vec3f color2{0.2f};                // the second checker colour
+  float checkerSize = 1.0f;          // Checker: edge of one square, in world units
+  int image = -1;                    // Image: index into Scene::images
+};
+
+struct Material {
+  std::string name;
+  Vec3f diffuse{0.8f};      // albedo (linear), multiplied with the texture if there is one
+  int diffuseTexture = -1;  // index into Scene::textures, or -1
+  Vec3f mirror{0.0f};       // perfect specular reflectance; the diffuse part gets the rest
+  Vec3f emission{0.0f};     // emitted radiance (linear); emissive meshes become area lights
+};
+
+// A triangle mesh in world space with one material. Normals and UVs are per vertex and
+// optional (empty, or the same size as `positions`).
+struct TriangleMesh {
+  std::string name;
+  uint32_t material = 0;
+  std::vector<Vec3f> positions;
+  std::vector<Vec3f> normals;
+  std::vector<Vec2f> uvs;
+  std::vector<uint32_t> indices;  // three per triangle
+
+  size_t triangleCount() const { return indices.size() / 3; }
+};
+
+struct Sphere {
+  std::string name;
+  uint32_t material = 0;
+  Vec3f center;
+  float radius = 1.0f;
+};
+
+struct Light {
+  enum class Kind { Point, Directional, Quad, Mesh };
+  Kind kind = Kind::Point;
+  Vec3f intensity{1.0f};  // Point: W/sr per channel; Directional: irradiance; Quad/Mesh: radiance
+  Vec3f position;         // Point
+  Vec3f direction{0, -1, 0};  // Directional: the direction light travels (unit)
+  Vec3f corner, edgeU, edgeV;  // Quad: emits from the side of cross(edgeU, edgeV)
+  bool twoSided = false;       // Quad/Mesh: emit from both faces
+  int mesh = -1;               // Mesh: index into Scene::meshes (its material's emission)
+  int samples = 1;             // shadow rays per shading point for area lights
+};
+
+// Where the physical display sits in the scene. The display's width (in mm, from the display
+// description) maps onto `width` scene units; `normal` points from the display toward the
+// viewer, `up` is the display's +y. Scene content on the viewer's side of the plane appears in
+// front of the display (pops out), content behind it appears behind the screen.
+struct DisplayPlacement {
+  Vec3f center{0.0f};
+  Vec3f normal{0, 0, 1};
+  Vec3f up{0, 1, 0};
+  float width = 1.0f;
+};
+
+// An ordinary pinhole camera for `parallax view`.
+struct CameraSpec {
+  Vec3f eye{0, 0, 5};
+  Vec3f lookAt{0.0f};
+  Vec3f up{0, 1, 0};
+  float fovDegrees = 40.0f;  // vertical field of view
+};
+
+struct Scene {
+  std::string source;  // file it came from, or "<built-in>"
+  std::vector<TriangleMesh> meshes;
+  std::vector<Sphere> spheres;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Image> images;  // linear RGB texture images
+  std::vector<Light> lights;
+  Vec3f ambient{0.0f};     // uniform ambient radiance reaching every surface (unshadowed)
+  Vec3f background{0.0f};  // radiance of rays that escape
+  int maxDepth = 4;        // mirror bounces
+  DisplayPlacement display;
+  std::optional<CameraSpec> camera;
+  std::vector<std::string> warnings;
+
+  size_t triangleCount() const;
+  Bounds3f bounds() const;
+};
+
+// Appends an axis-aligned box [lo, hi] as a 12-triangle mesh, outward facing.
+void addBox(Scene& scene, const std::string& name, const Vec3f& lo, const Vec3f& hi,
+            uint32_t material);
+// Appends a parallelogram corner + s*edgeU + t*edgeV, s,t in [0,1], as two triangles with UVs
+// (s, t); its front face is the side of cross(edgeU, edgeV).
+void addQuad(Scene& scene, const std::string& name, const Vec3f& corner, const Vec3f& edgeU,
+             const Vec3f& edgeV, uint32_t material);
+
+// The paper's scene: a box levitating above a checkerboard floor, lit so that it casts a
+// clearly visible soft shadow, placed in front of a display of width 1 scene unit per 100 mm.
+Scene defaultScene();
+
+// A camera that frames the whole scene from the viewer's side of the display.
+CameraSpec frameScene(const Scene& scene, float fovDegrees = 40.0f);
+
+}  // namespace parallax
