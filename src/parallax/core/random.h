@@ -17,6 +17,7 @@ constexpr uint64_t mix64(uint64_t z) {
 // PCG32 (O'Neill 2014): small state, good statistics, cheap to seed per sample.
 class Rng {
  public:
+  Rng() : Rng(0) {}
   explicit Rng(uint64_t seed, uint64_t stream = 0) : state_(0), inc_((stream << 1u) | 1u) {
     next();
     state_ += mix64(seed);

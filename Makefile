@@ -1,0 +1,46 @@
+# The two commands of README.md: `make run` and `make test`. Everything else is a step of them.
+BUILD ?= build
+BUILD_ASAN ?= build-asan
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?=
+
+.PHONY: all deps data build run test test-release test-asan bench format clean
+
+all: build
+
+deps:
+	@tools/install-deps
+
+data: deps
+	@tools/fetch-data data
+
+$(BUILD)/build.ninja: CMakeLists.txt | deps
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+
+build: deps $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS)
+
+# Renders the built-in scene with the built-in display into out/.
+run: build
+	./$(BUILD)/parallax view -o out/view.png
+
+test: test-release test-asan
+
+test-release: data build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The same suite under AddressSanitizer and UBSan (debug-optimised, no -march=native).
+test-asan: data deps
+	cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DPARALLAX_SANITIZE=ON -DPARALLAX_NATIVE=OFF $(CMAKE_FLAGS)
+	cmake --build $(BUILD_ASAN) -j $(JOBS)
+	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	./$(BUILD)/parallax bench
+
+format:
+	clang-format -i $$(git ls-files 'src/*.cpp' 'src/*.h')
+
+clean:
+	rm -rf $(BUILD) $(BUILD_ASAN)

@@ -1,0 +1,87 @@
+// `parallax bench`: our rays per second against raw Embree on the same rays, in one run.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <memory>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/app/cli_support.h"
+#include "parallax/app/commands.h"
+#include "parallax/core/memory.h"
+#include "parallax/io/json_writer.h"
+#include "parallax/render/bench.h"
+
+namespace parallax::app {
+
+namespace {
+
+struct BenchOptions {
+  std::string camera = "pinhole";
+  std::string scene;
+  std::string size = "1920x1080";
+  int spp = 16;
+  int repeats = 2;
+  int threads = 0;
+  bool json = false;
+};
+
+void runBench(const BenchOptions& o) {
+  int width = 0, height = 0;
+  parseSize("--size", o.size, width, height);
+  if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
+  if (o.camera != "pinhole")
+    throw InputError("command line", "--camera", "unknown camera '" + o.camera + "' (pinhole)");
+  const Scene scene = loadSceneOrDefault(o.scene);
+  const CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
+  const PinholeCamera camera(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
+  const Accelerator accelerator(scene);
+  const BenchResult r = benchmarkPinhole(scene, accelerator, camera, o.spp, o.repeats, o.threads);
+  const double peak = peakResidentMiB();
+  if (o.json) {
+    JsonWriter json;
+    json.set("/camera", o.camera);
+    json.set("/scene", scene.source);
+    json.set("/triangles", uint64_t(scene.triangleCount()));
+    json.set("/width", width);
+    json.set("/height", height);
+    json.set("/spp", o.spp);
+    json.set("/rays", r.rays);
+    json.set("/seconds", r.seconds);
+    json.set("/rays_per_second", r.raysPerSecond());
+    json.set("/limit_rays", r.limitRays);
+    json.set("/limit_seconds", r.limitSeconds);
+    json.set("/limit_rays_per_second", r.limitRaysPerSecond());
+    json.set("/ratio", r.ratio());
+    json.set("/peak_rss_mb", peak);
+    std::printf("%s\n", json.dump().c_str());
+    return;
+  }
+  std::printf("scene        %s (%zu triangles), %s camera, %dx%d, %d spp\n",
+              scene.source.c_str(), scene.triangleCount(), o.camera.c_str(), width, height, o.spp);
+  std::printf("parallax     %12llu rays in %.3f s  %s\n", (unsigned long long)r.rays, r.seconds,
+              formatRate(r.raysPerSecond()).c_str());
+  std::printf("raw Embree   %12llu rays in %.3f s  %s (rtcIntersect16 + rtcOccluded16)\n",
+              (unsigned long long)r.limitRays, r.limitSeconds,
+              formatRate(r.limitRaysPerSecond()).c_str());
+  std::printf("ratio        %.2f\npeak memory  %.0f MiB\n", r.ratio(), peak);
+}
+
+}  // namespace
+
+void registerBenchCommand(CLI::App& cli) {
+  auto options = std::make_shared<BenchOptions>();
+  CLI::App* cmd = cli.add_subcommand(
+      "bench", "Measure rays per second against raw Embree on the same rays");
+  cmd->add_option("--camera", options->camera, "Camera to measure: pinhole")
+      ->capture_default_str();
+  cmd->add_option("--scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
+  cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--spp", options->spp, "Rays per pixel")->capture_default_str();
+  cmd->add_option("--repeats", options->repeats, "Alternating runs; the fastest of each counts")
+      ->capture_default_str();
+  cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)");
+  cmd->add_flag("--json", options->json, "Print one JSON object");
+  cmd->callback([options] { runBench(*options); });
+}
+
+}  // namespace parallax::app

@@ -1,0 +1,73 @@
+#include "parallax/app/cli_support.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <sstream>
+
+#include "parallax/core/error.h"
+#include "parallax/io/scene_file.h"
+
+namespace parallax::app {
+
+Vec3f parseVec3(const std::string& option, const std::string& text) {
+  Vec3f v;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+      !isFinite(v))
+    throw InputError("command line", option, "expected X,Y,Z, got '" + text + "'");
+  return v;
+}
+
+void parseSize(const std::string& option, const std::string& text, int& width, int& height) {
+  char x = 0;
+  std::istringstream in(text);
+  int w = 0, h = 0;
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w <= 0 || h <= 0 ||
+      w > 65536 || h > 65536)
+    throw InputError("command line", option, "expected WIDTHxHEIGHT, got '" + text + "'");
+  width = w;
+  height = h;
+}
+
+Scene loadSceneOrDefault(const std::string& path) {
+  return path.empty() ? defaultScene() : loadScene(path);
+}
+
+ProgressBar::ProgressBar(std::string label)
+    : label_(std::move(label)),
+      enabled_(isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()),
+      lastDraw_(start_) {}
+
+ProgressBar::~ProgressBar() {
+  if (drawn_) std::fputs("\r\033[K", stderr);
+}
+
+void ProgressBar::update(int done, int total) {
+  if (!enabled_ || total <= 0) return;
+  const std::lock_guard lock(mutex_);
+  const auto now = std::chrono::steady_clock::now();
+  if (done < total && now - lastDraw_ < std::chrono::milliseconds(100)) return;
+  lastDraw_ = now;
+  drawn_ = true;
+  const double fraction = double(done) / double(total);
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double remaining = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
+  constexpr int kWidth = 30;
+  const int filled = int(fraction * kWidth);
+  std::string bar(size_t(filled), '#');
+  bar.append(size_t(kWidth - filled), '-');
+  std::fprintf(stderr, "\r%s [%s] %3d%%  %.1fs left\033[K", label_.c_str(), bar.c_str(),
+               int(fraction * 100), remaining);
+  std::fflush(stderr);
+}
+
+std::string formatRate(double raysPerSecond) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f M rays/s", raysPerSecond / 1e6);
+  return text;
+}
+
+}  // namespace parallax::app

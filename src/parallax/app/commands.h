@@ -1,0 +1,15 @@
+// The subcommands of `parallax`. Each registers its options on the CLI and its action runs
+// after parsing; actions throw InputError for bad input (main turns it into exit code 2).
+#pragma once
+
+namespace CLI {
+class App;
+}
+
+namespace parallax::app {
+
+void registerViewCommand(CLI::App& cli);
+void registerInfoCommand(CLI::App& cli);
+void registerBenchCommand(CLI::App& cli);
+
+}  // namespace parallax::app

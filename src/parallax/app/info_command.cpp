@@ -1,0 +1,103 @@
+// `parallax info`: what a scene file holds, for people (text) and scripts (--json).
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <memory>
+
+#include "parallax/app/cli_support.h"
+#include "parallax/app/commands.h"
+#include "parallax/io/json_writer.h"
+
+namespace parallax::app {
+
+namespace {
+
+const char* lightKindName(Light::Kind kind) {
+  switch (kind) {
+    case Light::Kind::Point: return "point";
+    case Light::Kind::Directional: return "directional";
+    case Light::Kind::Quad: return "quad";
+    case Light::Kind::Mesh: return "mesh";
+  }
+  return "?";
+}
+
+void printJson(const Scene& scene) {
+  JsonWriter json;
+  json.set("/source", scene.source);
+  json.set("/triangles", uint64_t(scene.triangleCount()));
+  json.set("/spheres", uint64_t(scene.spheres.size()));
+  const Bounds3f b = scene.bounds();
+  json.set("/bounds/min", b.empty() ? Vec3f(0.0f) : b.lo);
+  json.set("/bounds/max", b.empty() ? Vec3f(0.0f) : b.hi);
+  json.setEmptyArray("/objects");
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const std::string at = "/objects/" + std::to_string(i);
+    json.set(at + "/name", scene.meshes[i].name);
+    json.set(at + "/type", "mesh");
+    json.set(at + "/triangles", uint64_t(scene.meshes[i].triangleCount()));
+    json.set(at + "/material", scene.materials[scene.meshes[i].material].name);
+  }
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    const std::string at = "/objects/" + std::to_string(scene.meshes.size() + i);
+    json.set(at + "/name", scene.spheres[i].name);
+    json.set(at + "/type", "sphere");
+    json.set(at + "/material", scene.materials[scene.spheres[i].material].name);
+  }
+  json.setEmptyArray("/materials");
+  for (size_t i = 0; i < scene.materials.size(); ++i)
+    json.set("/materials/" + std::to_string(i), scene.materials[i].name);
+  json.setEmptyArray("/lights");
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    json.set("/lights/" + std::to_string(i) + "/type", lightKindName(scene.lights[i].kind));
+  json.set("/display/center", scene.display.center);
+  json.set("/display/normal", scene.display.normal);
+  json.set("/display/up", scene.display.up);
+  json.set("/display/width", double(scene.display.width));
+  json.set("/warnings", scene.warnings);
+  std::printf("%s\n", json.dump().c_str());
+}
+
+void printText(const Scene& scene) {
+  std::printf("scene     %s\n", scene.source.c_str());
+  std::printf("triangles %zu in %zu meshes, %zu spheres\n", scene.triangleCount(),
+              scene.meshes.size(), scene.spheres.size());
+  const Bounds3f b = scene.bounds();
+  if (!b.empty())
+    std::printf("bounds    (%g, %g, %g) to (%g, %g, %g)\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x,
+                b.hi.y, b.hi.z);
+  std::printf("objects:\n");
+  for (const auto& m : scene.meshes)
+    std::printf("  %-28s mesh, %zu triangles, material %s\n", m.name.c_str(), m.triangleCount(),
+                scene.materials[m.material].name.c_str());
+  for (const auto& s : scene.spheres)
+    std::printf("  %-28s sphere r=%g, material %s\n", s.name.c_str(), s.radius,
+                scene.materials[s.material].name.c_str());
+  std::printf("materials %zu, textures %zu, images %zu\n", scene.materials.size(),
+              scene.textures.size(), scene.images.size());
+  std::printf("lights:\n");
+  for (const auto& l : scene.lights) std::printf("  %s\n", lightKindName(l.kind));
+  const auto& d = scene.display;
+  std::printf("display   centre (%g, %g, %g), normal (%g, %g, %g), width %g\n", d.center.x,
+              d.center.y, d.center.z, d.normal.x, d.normal.y, d.normal.z, d.width);
+  for (const auto& w : scene.warnings) std::printf("warning: %s\n", w.c_str());
+}
+
+}  // namespace
+
+void registerInfoCommand(CLI::App& cli) {
+  struct Options {
+    std::string scene;
+    bool json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* cmd = cli.add_subcommand("info", "Print what a scene holds");
+  cmd->add_option("scene", options->scene, "Scene or mesh file; the built-in scene if omitted");
+  cmd->add_flag("--json", options->json, "Print one JSON object");
+  cmd->callback([options] {
+    const Scene scene = loadSceneOrDefault(options->scene);
+    options->json ? printJson(scene) : printText(scene);
+  });
+}
+
+}  // namespace parallax::app

@@ -1,0 +1,48 @@
+// Cameras turn a position on the film into a ray. The render loop asks for rays in packets of
+// sixteen so that a camera can lay out coherent rays; the default does it lane by lane.
+#pragma once
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/core/ray.h"
+
+namespace parallax {
+
+// A point on the film in continuous pixel coordinates: (0, 0) is the top-left corner of the
+// top-left pixel, (width, height) the bottom-right corner. `aperture` is a second 2-D sample
+// in [0,1)^2 for cameras that integrate over an aperture (the display camera's slit cell).
+struct FilmSample {
+  float x = 0.5f, y = 0.5f;
+  float apertureU = 0.5f, apertureV = 0.5f;
+};
+
+class Camera {
+ public:
+  virtual ~Camera() = default;
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+  virtual Ray generateRay(const FilmSample& sample) const = 0;
+};
+
+// An ideal pinhole camera looking from `eye` at `lookAt`, with a vertical field of view.
+class PinholeCamera final : public Camera {
+ public:
+  PinholeCamera(const Vec3f& eye, const Vec3f& lookAt, const Vec3f& up, float fovDegrees,
+                int width, int height);
+
+  int width() const override { return width_; }
+  int height() const override { return height_; }
+  Ray generateRay(const FilmSample& sample) const override {
+    const Vec3f direction = pixel00_ + pixelDx_ * sample.x + pixelDy_ * sample.y;
+    return {eye_, direction};
+  }
+
+  // The film, as a point and two steps: the ray through film (x, y) has direction
+  // pixel00 + x * pixelDx + y * pixelDy (unnormalised). Used by the benchmark's raw limit.
+  PinholeGrid grid(int samplesPerPixel) const;
+
+ private:
+  Vec3f eye_, pixel00_, pixelDx_, pixelDy_;
+  int width_, height_;
+};
+
+}  // namespace parallax

@@ -1,0 +1,29 @@
+#include <cmath>
+#include <stdexcept>
+
+#include "parallax/camera/camera.h"
+
+namespace parallax {
+
+PinholeCamera::PinholeCamera(const Vec3f& eye, const Vec3f& lookAt, const Vec3f& up,
+                             float fovDegrees, int width, int height)
+    : eye_(eye), width_(width), height_(height) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("camera size must be positive");
+  if (!(fovDegrees > 0.0f && fovDegrees < 180.0f))
+    throw std::invalid_argument("field of view must be in (0, 180) degrees");
+  const Vec3f forward = normalize(lookAt - eye);
+  const Vec3f right = normalize(cross(forward, up));
+  const Vec3f trueUp = cross(right, forward);
+  // The film sits at unit distance; its half height is tan(fov / 2).
+  const float halfHeight = std::tan(0.5f * fovDegrees * kPi / 180.0f);
+  const float halfWidth = halfHeight * float(width) / float(height);
+  pixelDx_ = right * (2.0f * halfWidth / float(width));
+  pixelDy_ = trueUp * (-2.0f * halfHeight / float(height));
+  pixel00_ = forward - right * halfWidth + trueUp * halfHeight;
+}
+
+PinholeGrid PinholeCamera::grid(int samplesPerPixel) const {
+  return {eye_, pixel00_, pixelDx_, pixelDy_, width_, height_, samplesPerPixel};
+}
+
+}  // namespace parallax

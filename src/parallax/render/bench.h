@@ -1,0 +1,28 @@
+// The benchmark: our renderer against raw Embree on the same rays, measured in one run.
+#pragma once
+
+#include <cstdint>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/camera/camera.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax {
+
+struct BenchResult {
+  uint64_t rays = 0;  // ours: primary + shadow + secondary
+  double seconds = 0.0;
+  uint64_t limitRays = 0;  // raw Embree: primary + one shadow ray per hit
+  double limitSeconds = 0.0;
+  double raysPerSecond() const { return seconds > 0 ? double(rays) / seconds : 0.0; }
+  double limitRaysPerSecond() const { return limitSeconds > 0 ? double(limitRays) / limitSeconds : 0.0; }
+  double ratio() const { return limitRaysPerSecond() > 0 ? raysPerSecond() / limitRaysPerSecond() : 0.0; }
+};
+
+// Renders `camera` at `samplesPerPixel` and traces the raw Embree limit for the same pinhole
+// rays, alternating `repeats` times and keeping the fastest of each (the machines are noisy).
+BenchResult benchmarkPinhole(const Scene& scene, const Accelerator& accelerator,
+                             const PinholeCamera& camera, int samplesPerPixel, int repeats = 2,
+                             int threads = 0);
+
+}  // namespace parallax

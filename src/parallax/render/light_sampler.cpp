@@ -1,0 +1,107 @@
+#include "parallax/render/light_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace parallax {
+
+namespace {
+constexpr float kShadowShorten = 1.0f - 1e-4f;  // stop shadow rays just before the light
+}
+
+LightSampler::LightSampler(const Scene& scene) {
+  for (const Light& light : scene.lights) {
+    Entry e;
+    e.light = light;
+    e.samples = std::max(1, light.samples);
+    auto addTriangle = [&e](const Vec3f& a, const Vec3f& b, const Vec3f& c) {
+      const Vec3f n = cross(b - a, c - a);
+      const float area = 0.5f * length(n);
+      if (!(area > 0.0f)) return;
+      e.triangles.push_back({a, b - a, c - a, n / (2.0f * area), area});
+      e.totalArea += area;
+      e.cdf.push_back(e.totalArea);
+    };
+    if (light.kind == Light::Kind::Quad) {
+      const Vec3f c = light.corner, u = light.edgeU, v = light.edgeV;
+      addTriangle(c, c + u, c + u + v);
+      addTriangle(c, c + u + v, c + v);
+    } else if (light.kind == Light::Kind::Mesh && light.mesh >= 0 &&
+               size_t(light.mesh) < scene.meshes.size()) {
+      const TriangleMesh& m = scene.meshes[size_t(light.mesh)];
+      for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
+        addTriangle(m.positions[m.indices[t]], m.positions[m.indices[t + 1]],
+                    m.positions[m.indices[t + 2]]);
+      e.light.intensity = scene.materials[m.material].emission;
+    }
+    const bool isArea = light.kind == Light::Kind::Quad || light.kind == Light::Kind::Mesh;
+    if (isArea && e.triangles.empty()) continue;  // nothing to emit from
+    lights_.push_back(std::move(e));
+  }
+}
+
+LightSample LightSampler::sample(size_t index, const Vec3f& p, const Vec3f& n, float u1,
+                                 float u2, float u3) const {
+  const Entry& e = lights_[index];
+  LightSample s;
+  switch (e.light.kind) {
+    case Light::Kind::Point: {
+      // E = I cos(theta) / r^2
+      s.toLight = e.light.position - p;
+      const float r2 = dot(s.toLight, s.toLight);
+      const float cosTheta = dot(n, s.toLight) / std::sqrt(r2);
+      if (!(cosTheta > 0.0f)) return s;
+      s.irradiance = e.light.intensity * (cosTheta / r2);
+      s.tMax = kShadowShorten;
+      break;
+    }
+    case Light::Kind::Directional: {
+      s.toLight = -e.light.direction;
+      const float cosTheta = dot(n, s.toLight);
+      if (!(cosTheta > 0.0f)) return s;
+      s.irradiance = e.light.intensity * cosTheta;
+      s.tMax = std::numeric_limits<float>::infinity();
+      break;
+    }
+    case Light::Kind::Quad:
+    case Light::Kind::Mesh: {
+      // Area sampling, pdf = 1 / A: E = L cos(theta) cos(theta_light) A / r^2.
+      const float target = u1 * e.totalArea;
+      const size_t t = size_t(std::upper_bound(e.cdf.begin(), e.cdf.end(), target) - e.cdf.begin());
+      const Triangle& tri = e.triangles[std::min(t, e.triangles.size() - 1)];
+      // Uniform point on a triangle (Osada et al. 2002).
+      const float su = std::sqrt(u2);
+      const Vec3f q = tri.p0 + tri.e1 * (su * (1.0f - u3)) + tri.e2 * (su * u3);
+      s.toLight = q - p;
+      const float r2 = dot(s.toLight, s.toLight);
+      const float r = std::sqrt(r2);
+      const float cosTheta = dot(n, s.toLight) / r;
+      float cosLight = -dot(tri.normal, s.toLight) / r;
+      if (e.light.twoSided) cosLight = std::abs(cosLight);
+      if (!(cosTheta > 0.0f) || !(cosLight > 0.0f)) return s;
+      s.irradiance = e.light.intensity * (cosTheta * cosLight * e.totalArea / r2);
+      s.tMax = kShadowShorten;
+      break;
+    }
+  }
+  s.valid = true;
+  return s;
+}
+
+Vec3f LightSampler::representativePoint(const Vec3f& fallback) const {
+  if (lights_.empty()) return fallback;
+  const Entry& e = lights_.front();
+  switch (e.light.kind) {
+    case Light::Kind::Point:
+      return e.light.position;
+    case Light::Kind::Directional:
+      return fallback - e.light.direction * 1e4f;
+    default: {
+      const Triangle& t = e.triangles.front();
+      return t.p0 + (t.e1 + t.e2) * (1.0f / 3.0f);
+    }
+  }
+}
+
+}  // namespace parallax

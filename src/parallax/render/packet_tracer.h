@@ -1,0 +1,31 @@
+// Traces 16 camera rays as one packet: closest hits, direct light through packets of shadow
+// rays, and mirror bounces as further packets. Radiance is linear.
+#pragma once
+
+#include <array>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/core/random.h"
+#include "parallax/render/light_sampler.h"
+#include "parallax/render/render.h"
+
+namespace parallax {
+
+class PacketTracer {
+ public:
+  PacketTracer(const Scene& scene, const Accelerator& accelerator, const LightSampler& lights)
+      : scene_(scene), accelerator_(accelerator), lights_(lights) {}
+
+  // Adds weight[lane] * radiance(ray[lane]) to radiance[lane] for the active lanes. Each lane
+  // draws its random numbers from its own generator, so results do not depend on packing.
+  void trace(const RayPacket16& rays, const std::array<Vec3f, 16>& weight,
+             std::array<Rng, 16>& rngs, std::array<Vec3f, 16>& radiance, int depth,
+             RenderStats& stats) const;
+
+ private:
+  const Scene& scene_;
+  const Accelerator& accelerator_;
+  const LightSampler& lights_;
+};
+
+}  // namespace parallax

@@ -1,0 +1,37 @@
+// The render loop: tiles in parallel (oneTBB), 16-ray packets within a tile, deterministic
+// per-sample random streams, shading in linear light.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/camera/camera.h"
+#include "parallax/image/image.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax {
+
+struct RenderSettings {
+  int samplesPerPixel = 1;  // a square n*n is stratified; 1 casts exactly the pixel centre
+  uint64_t seed = 0;        // varies the jitter pattern; the same seed gives the same image
+  int threads = 0;          // 0: all cores. The image does not depend on it.
+};
+
+struct RenderStats {
+  uint64_t cameraRays = 0;     // primary rays
+  uint64_t shadowRays = 0;
+  uint64_t secondaryRays = 0;  // mirror bounces
+  double seconds = 0.0;
+
+  uint64_t totalRays() const { return cameraRays + shadowRays + secondaryRays; }
+};
+
+// Called from worker threads with the number of finished and total tiles.
+using ProgressCallback = std::function<void(int done, int total)>;
+
+Image render(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
+             const RenderSettings& settings, RenderStats* stats = nullptr,
+             const ProgressCallback& progress = {});
+
+}  // namespace parallax

@@ -1,0 +1,194 @@
+// The renderer against closed forms: Lambertian radiance under directional, point and area
+// light, shadows from a sphere, mirrors, ambient, and thread-count independence.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "parallax/render/render.h"
+
+namespace parallax {
+namespace {
+
+Scene planeScene(float albedo) {
+  Scene scene;
+  Material m;
+  m.diffuse = Vec3f(albedo);
+  scene.materials.push_back(m);
+  // A 200 x 200 square in the plane y = 0, facing +y.
+  addQuad(scene, "plane", {-100, 0, 100}, {200, 0, 0}, {0, 0, -200}, 0);
+  return scene;
+}
+
+// A camera high above the origin looking straight down.
+PinholeCamera downCamera(int size, float height = 10.0f, float fov = 60.0f) {
+  return PinholeCamera({0, height, 0}, {0, 0, 0}, {0, 0, -1}, fov, size, size);
+}
+
+Vec3f hitOnGround(const Ray& ray) { return ray.at(-ray.origin.y / ray.direction.y); }
+
+TEST(Render, DirectionalLightGivesAlbedoTimesIrradianceOverPi) {
+  Scene scene = planeScene(0.5f);
+  Light sun;
+  sun.kind = Light::Kind::Directional;
+  const float tilt = 30.0f * kPi / 180.0f;
+  sun.direction = {std::sin(tilt), -std::cos(tilt), 0.0f};
+  sun.intensity = Vec3f(2.0f);
+  scene.lights.push_back(sun);
+  const Accelerator accel(scene);
+  const Image img = render(scene, accel, downCamera(16), {});
+  const float expected = 0.5f * 2.0f * std::cos(tilt) / kPi;
+  for (const Vec3f& p : img.pixels()) EXPECT_NEAR(p.y, expected, 1e-5f);
+}
+
+TEST(Render, PointLightFallsOffAsCosineOverDistanceSquared) {
+  Scene scene = planeScene(0.8f);
+  Light bulb;
+  bulb.kind = Light::Kind::Point;
+  bulb.position = {1.0f, 2.0f, 0.5f};
+  bulb.intensity = Vec3f(10.0f);
+  scene.lights.push_back(bulb);
+  const Accelerator accel(scene);
+  const PinholeCamera camera = downCamera(24);
+  const Image img = render(scene, accel, camera, {});
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x) {
+      const Vec3f p = hitOnGround(camera.generateRay({x + 0.5f, y + 0.5f}));
+      const Vec3f toLight = bulb.position - p;
+      const float r = length(toLight);
+      const float expected = 0.8f / kPi * 10.0f * (toLight.y / r) / (r * r);
+      EXPECT_NEAR(img.at(x, y).x, expected, 1e-4f * expected) << x << "," << y;
+    }
+}
+
+TEST(Render, SphereCastsTheShadowThatGeometryPredicts) {
+  Scene scene = planeScene(1.0f);
+  Light bulb;
+  bulb.kind = Light::Kind::Point;
+  bulb.position = {0.0f, 6.0f, 0.0f};
+  bulb.intensity = Vec3f(36.0f);
+  scene.lights.push_back(bulb);
+  const Vec3f centre{0.5f, 3.0f, 0.0f};
+  const float radius = 1.0f;
+  scene.spheres.push_back({"ball", 0, centre, radius});
+  const Accelerator accel(scene);
+  // The camera sits beside the light so that it sees the ground around the sphere.
+  const PinholeCamera camera({3.0f, 9.0f, 0.0f}, {0, 0, 0}, {0, 0, -1}, 70.0f, 48, 48);
+  const Image img = render(scene, accel, camera, {});
+  int shadowed = 0, checked = 0;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 48; ++x) {
+      const Ray ray = camera.generateRay({x + 0.5f, y + 0.5f});
+      // Skip pixels that see the sphere itself.
+      const Vec3f oc = ray.origin - centre;
+      const Vec3f d = normalize(ray.direction);
+      const float b = dot(oc, d), c = dot(oc, oc) - radius * radius;
+      if (b * b - c > -1e-3f) continue;
+      // The ground point is lit iff the segment to the light misses the sphere (by margin).
+      const Vec3f p = hitOnGround(ray);
+      const Vec3f toLight = bulb.position - p;
+      const Vec3f l = normalize(toLight);
+      const Vec3f pc = p - centre;
+      const float bl = dot(pc, l), cl = dot(pc, pc) - radius * radius;
+      const float disc = bl * bl - cl;
+      if (std::abs(disc) < 1e-2f) continue;  // too close to the shadow's edge to call
+      const bool inShadow = disc > 0 && -bl - std::sqrt(disc) > 0;
+      ++checked;
+      if (inShadow) {
+        ++shadowed;
+        EXPECT_EQ(img.at(x, y).x, 0.0f) << x << "," << y;
+      } else {
+        EXPECT_GT(img.at(x, y).x, 0.01f) << x << "," << y;
+      }
+    }
+  EXPECT_GT(shadowed, 20);
+  EXPECT_GT(checked, 1000);
+}
+
+// Irradiance below the corner of a w x h rectangle of radiance L at height d (the
+// differential-area-to-parallel-rectangle form factor times pi L).
+double cornerIrradiance(double w, double h, double d, double radiance) {
+  const double a = w / d, b = h / d;
+  const double sa = std::sqrt(1 + a * a), sb = std::sqrt(1 + b * b);
+  const double formFactor =
+      (a / sa * std::atan(b / sa) + b / sb * std::atan(a / sb)) / (2.0 * 3.14159265358979);
+  return 3.14159265358979 * radiance * formFactor;
+}
+
+TEST(Render, QuadLightMatchesTheRectangleFormFactor) {
+  Scene scene = planeScene(1.0f);
+  Light panel;
+  panel.kind = Light::Kind::Quad;
+  panel.corner = {-1.0f, 2.0f, -1.0f};
+  panel.edgeU = {2.0f, 0.0f, 0.0f};
+  panel.edgeV = {0.0f, 0.0f, 2.0f};  // cross(u, v) = -y: faces the ground
+  panel.intensity = Vec3f(3.0f);
+  panel.samples = 16;
+  scene.lights.push_back(panel);
+  const Accelerator accel(scene);
+  // A narrow camera from below the light's plane sees only the patch under the centre.
+  const PinholeCamera camera({0, 1.5f, 0}, {0, 0, 0}, {0, 0, -1}, 0.5f, 4, 4);
+  RenderSettings settings;
+  settings.samplesPerPixel = 256;
+  const Image img = render(scene, accel, camera, settings);
+  // Four 1 x 1 quadrants meet above the centre at height 2.
+  const double expected = 4.0 * cornerIrradiance(1.0, 1.0, 2.0, 3.0) / 3.14159265358979;
+  double mean = 0;
+  for (const Vec3f& p : img.pixels()) mean += p.x / 16.0;
+  EXPECT_NEAR(mean, expected, 0.01 * expected);
+}
+
+TEST(Render, MirrorReflectsALitCeiling) {
+  // A grey ceiling under uniform ambient light, seen in a floor mirror of reflectance 0.7
+  // whose remaining 0.3 is diffuse white.
+  Scene scene;
+  Material mirror, ceiling;
+  mirror.diffuse = Vec3f(1.0f);
+  mirror.mirror = Vec3f(0.7f);
+  ceiling.diffuse = Vec3f(0.6f);
+  scene.materials = {mirror, ceiling};
+  addQuad(scene, "mirror", {-100, 0, 100}, {200, 0, 0}, {0, 0, -200}, 0);
+  addQuad(scene, "ceiling", {-100, 20, -100}, {200, 0, 0}, {0, 0, 200}, 1);
+  scene.ambient = Vec3f(1.0f);
+  const Accelerator accel(scene);
+  const Image img = render(scene, accel, downCamera(8, 10.0f, 20.0f), {});
+  const float expected = 0.3f * 1.0f + 0.7f * 0.6f;
+  for (const Vec3f& p : img.pixels()) EXPECT_NEAR(p.x, expected, 1e-5f);
+  // Without bounces only the diffuse part is left.
+  scene.maxDepth = 0;
+  for (const Vec3f& p : render(scene, accel, downCamera(8, 10.0f, 20.0f), {}).pixels())
+    EXPECT_NEAR(p.x, 0.3f, 1e-5f);
+}
+
+TEST(Render, AmbientAndBackground) {
+  Scene scene = planeScene(0.25f);
+  scene.ambient = Vec3f(0.8f);
+  scene.background = {0.1f, 0.2f, 0.3f};
+  const Accelerator accel(scene);
+  const Image ground = render(scene, accel, downCamera(4), {});
+  for (const Vec3f& p : ground.pixels()) EXPECT_NEAR(p.x, 0.25f * 0.8f, 1e-6f);
+  const PinholeCamera up({0, 1, 0}, {0, 5, 0}, {0, 0, -1}, 40.0f, 4, 4);
+  for (const Vec3f& p : render(scene, accel, up, {}).pixels()) EXPECT_EQ(p, scene.background);
+}
+
+TEST(Render, SameImageForAnyThreadCount) {
+  const Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  const CameraSpec& c = *scene.camera;
+  const PinholeCamera camera(c.eye, c.lookAt, c.up, c.fovDegrees, 61, 37);
+  RenderSettings one, many;
+  one.samplesPerPixel = many.samplesPerPixel = 4;
+  one.threads = 1;
+  many.threads = 2;
+  RenderStats stats;
+  const Image a = render(scene, accel, camera, one, &stats);
+  const Image b = render(scene, accel, camera, many);
+  EXPECT_EQ(a.pixels(), b.pixels());
+  EXPECT_EQ(stats.cameraRays, 61u * 37u * 4u);
+  EXPECT_GT(stats.shadowRays, stats.cameraRays / 4);
+  // A different seed moves the jitter, so some pixel must change.
+  many.seed = 7;
+  EXPECT_NE(a.pixels(), render(scene, accel, camera, many).pixels());
+}
+
+}  // namespace
+}  // namespace parallax

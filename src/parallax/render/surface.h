@@ -1,0 +1,33 @@
+// What a hit means for shading: position, normals facing the incoming ray, and the material's
+// terms at that point (textures evaluated).
+#pragma once
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax {
+
+struct SurfacePoint {
+  Vec3f position;
+  Vec3f geometricNormal;  // unit, on the side the ray came from
+  Vec3f shadingNormal;    // unit, interpolated vertex normal, same side as geometricNormal
+  Vec3f diffuse{0.0f};    // albedo times (1 - mirror)
+  Vec3f mirror{0.0f};
+  Vec3f emission{0.0f};   // only if the ray hit the emitting (front) face
+};
+
+SurfacePoint evaluateSurface(const Scene& scene, const Accelerator& accelerator, const Ray& ray,
+                             const Hit& hit);
+
+// The texture's colour at a world position with surface coordinates uv.
+Vec3f evaluateTexture(const Scene& scene, const Texture& texture, const Vec3f& position,
+                      const Vec2f& uv);
+
+// A point just off the surface on the side of `normal`, far enough to avoid self-hits at the
+// magnitude of `p` (floating-point error grows with it).
+inline Vec3f offsetAlong(const Vec3f& p, const Vec3f& normal) {
+  const float scale = 1.0f + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
+  return p + normal * (2e-4f * scale);
+}
+
+}  // namespace parallax
