@@ -3,6 +3,8 @@
 # Run as: cmake -DSOURCE_DIR=<repo> -P CheckModuleDependencies.cmake
 # The rule is written out in docs/architecture.md.
 
+cmake_minimum_required(VERSION 3.25)
+
 set(allowed_core "")
 set(allowed_image core)
 set(allowed_display core)

@@ -1,5 +1,6 @@
 // Ray queries against a scene: the only module that talks to Embree. One Accelerator owns the
 // Embree device, its error callback and the committed scene. All queries are thread-safe.
+// The geometry is copied into Embree's own buffers, so the Scene need not outlive it.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +26,9 @@ struct Hit {
   uint32_t geometry = kNoHit;  // pass to Accelerator::surface(); kNoHit if the ray escaped
   uint32_t primitive = 0;      // triangle index within the mesh
   float u = 0.0f, v = 0.0f;    // barycentrics of vertices 1 and 2 (triangles)
-  Vec3f geometricNormal;       // unnormalised; for triangles cross(p1 - p0, p2 - p0)
+  // Unnormalised. Triangles: cross(p1 - p0, p2 - p0), whichever side the ray came from.
+  // Spheres: hit point minus centre (length = radius), outward even when the ray starts inside.
+  Vec3f geometricNormal;
 
   bool valid() const { return geometry != kNoHit; }
 };
@@ -58,8 +61,8 @@ struct alignas(64) HitPacket16 {
   float ngx[16], ngy[16], ngz[16];
 
   Hit hit(int lane) const {
-    return {t[lane], geometry[lane], primitive[lane], u[lane], v[lane],
-            {ngx[lane], ngy[lane], ngz[lane]}};
+    const Vec3f normal{ngx[lane], ngy[lane], ngz[lane]};
+    return {t[lane], geometry[lane], primitive[lane], u[lane], v[lane], normal};
   }
 };
 
@@ -73,8 +76,9 @@ struct PinholeGrid {
 
 class Accelerator {
  public:
-  // Builds the Embree scene from every mesh and sphere. Throws std::runtime_error with Embree's
-  // message if the device or the build fails.
+  // Builds the Embree scene from every mesh and sphere: geometry IDs 0..M-1 are the meshes,
+  // M..M+S-1 the spheres. Throws std::runtime_error with Embree's message if the device or the
+  // build fails, or naming the mesh if one has an index out of range or a ragged index list.
   explicit Accelerator(const Scene& scene);
   ~Accelerator();
   Accelerator(const Accelerator&) = delete;
@@ -82,11 +86,12 @@ class Accelerator {
 
   Hit intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
-  // Packet forms: inactive lanes are left untouched (hits get geometry = kNoHit).
+  // Packet forms: inactive lanes are not traced; their hits read as misses (a default Hit).
   void intersect16(const RayPacket16& rays, HitPacket16& hits) const;
   // occludedOut[lane] is true if something lies within (tMin, tMax) of an active lane.
   void occluded16(const RayPacket16& rays, bool occludedOut[16]) const;
 
+  // Throws std::out_of_range for an ID that is not in the scene (including kNoHit).
   SurfaceRef surface(uint32_t geometry) const;
 
   // The raw Embree limit for benchmarks: for image rows [rowBegin, rowEnd) of `grid`, traces

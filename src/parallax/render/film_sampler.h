@@ -1,7 +1,9 @@
 // Where the samples of one pixel fall: spp = n*n is stratified n x n with a uniform jitter in
 // each stratum; any other count is uniformly jittered; spp = 1 is the exact pixel centre (the
-// un-anti-aliased baseline). The aperture dimensions are stratified the same way, shuffled
-// against the pixel strata so that both stay stratified (Latin-square-style pairing).
+// un-anti-aliased baseline). The aperture dimensions are stratified so that the pairs that
+// span the two-plane ray space, (x, apertureU) and (y, apertureV), are each jointly n x n
+// stratified, as the paper's Fig. 8 draws them: sample i has x stratum i mod n and apertureU
+// stratum i div n (and y stratum i div n, apertureV stratum i mod n).
 #pragma once
 
 #include <cmath>
@@ -26,11 +28,8 @@ inline FilmSample filmSample(int x, int y, int index, int samplesPerPixel, int s
     const float inv = 1.0f / float(n);
     s.x = float(x) + (float(index % n) + rng.uniform()) * inv;
     s.y = float(y) + (float(index / n) + rng.uniform()) * inv;
-    // Aperture strata: a fixed permutation of the pixel strata (index * (n+1) mod n*n walks
-    // a different row and column for every sample when n > 1).
-    const int a = (index * (n + 1) + index / n) % (n * n);
-    s.apertureU = (float(a % n) + rng.uniform()) * inv;
-    s.apertureV = (float(a / n) + rng.uniform()) * inv;
+    s.apertureU = (float(index / n) + rng.uniform()) * inv;
+    s.apertureV = (float(index % n) + rng.uniform()) * inv;
   } else {
     s.x = float(x) + rng.uniform();
     s.y = float(y) + rng.uniform();

@@ -1,0 +1,81 @@
+#include "parallax/display/barrier_rays.h"
+
+#include <cmath>
+
+namespace parallax {
+
+BarrierRayGenerator::BarrierRayGenerator(const DisplayDesign& design)
+    : design_(design),
+      mask_(design),
+      subpixels_(design.spec.imagePanel.subpixels != SubpixelOrder::None),
+      filmWidth_(design.spec.imagePanel.width * (subpixels_ ? 3 : 1)),
+      zImage_(design.imageLayerZ()),
+      zMask_(design.maskLayerZ()),
+      eyeX_(design.spec.viewZoneCenterXMm),
+      eyeY_(design.spec.viewZoneHeightMm),
+      distance_(design.viewDistanceMm),
+      virtualDistance_(design.virtualDistanceMm) {
+  const bool imageInFront = design.spec.order == LayerOrder::BarrierBack;
+  zImageVirtual_ = imageInFront ? 0.0 : -design.virtualGapMm;
+  zMaskVirtual_ = imageInFront ? -design.virtualGapMm : 0.0;
+  maskFromImage_ = (distance_ - zMask_) / (distance_ - zImage_);
+  virtualMaskFromImage_ = std::isinf(virtualDistance_)
+                              ? 1.0
+                              : (virtualDistance_ - zMaskVirtual_) /
+                                    (virtualDistance_ - zImageVirtual_);
+}
+
+int BarrierRayGenerator::channelOfColumn(int column) const {
+  const int c = column % 3;
+  return design_.spec.imagePanel.subpixels == SubpixelOrder::BGR ? 2 - c : c;
+}
+
+Vec3d BarrierRayGenerator::imagePoint(double filmX, double filmY) const {
+  const Panel& p = design_.spec.imagePanel;
+  const double columnWidth = p.pitchMm / (subpixels_ ? 3.0 : 1.0);
+  return {-0.5 * p.widthMm() + filmX * columnWidth, 0.5 * p.heightMm() - filmY * p.pitchMm,
+          zImage_};
+}
+
+BarrierRay BarrierRayGenerator::ray(double filmX, double filmY, double u, double v) const {
+  BarrierRay r;
+  // 1. Association, at the pixel's centre: the aperture nearest to the line from the
+  //    view-zone centre through the pixel, where that line crosses the mask.
+  const Vec3d centre = imagePoint(std::floor(filmX) + 0.5, std::floor(filmY) + 0.5);
+  const Vec3d sample = imagePoint(filmX, filmY);
+  const double s = maskFromImage_;
+  const double centreMaskY = eyeY_ + (centre.y - eyeY_) * s;
+  r.aperture = mask_.nearestAperture(eyeX_ + (centre.x - eyeX_) * s, centreMaskY);
+  r.apertureRow = mask_.nearestRow(centreMaskY);
+  // 2. The group centre: that aperture, at the sample's height on the mask (slanted and
+  //    wiggling slits move with y), projected back onto the image layer.
+  const double maskY = eyeY_ + (sample.y - eyeY_) * s;
+  const double groupX = eyeX_ + (mask_.apertureCenterX(r.aperture, maskY) - eyeX_) / s;
+  const double groupY = eyeY_ + (mask_.rowCenterY(r.apertureRow) - eyeY_) / s;
+  // 3. The virtual aperture (section 2.3): the group centre projected toward the virtual
+  //    view-zone centre onto the virtual mask plane, v'_k = e_c + (c_k - e_c) D'/(D' + g')
+  //    for barrier-back, and jittered across one virtual aperture period.
+  const double sv = virtualMaskFromImage_;
+  const double periodX = design_.screenPeriodMm * sv;
+  const double apertureX = eyeX_ + (groupX - eyeX_) * sv + (u - 0.5) * periodX;
+  const double dz = zMaskVirtual_ - zImageVirtual_;
+  const double slopeX = (apertureX - sample.x) / dz;
+  double slopeY = 0.0;
+  if (mask_.isPinholeGrid()) {
+    const double periodY = mask_.verticalPeriodMm() / s * sv;
+    const double apertureY = eyeY_ + (groupY - eyeY_) * sv + (v - 0.5) * periodY;
+    slopeY = (apertureY - sample.y) / dz;
+  } else if (!std::isinf(virtualDistance_)) {
+    // One-axis perspective: every ray meets the view line y = y_e at z = D' (section 2.2).
+    slopeY = (eyeY_ - sample.y) / (virtualDistance_ - zImageVirtual_);
+  }
+  r.imagePoint = {sample.x, sample.y, zImageVirtual_};
+  r.aperturePoint = {sample.x + slopeX * dz, sample.y + slopeY * dz, zMaskVirtual_};
+  const double originZ = std::isinf(virtualDistance_) ? distance_ : virtualDistance_;
+  const double t = originZ - zImageVirtual_;
+  r.origin = {sample.x + slopeX * t, sample.y + slopeY * t, originZ};
+  r.direction = {-slopeX, -slopeY, -1.0};
+  return r;
+}
+
+}  // namespace parallax

@@ -1,0 +1,61 @@
+// The display camera's geometry in display millimetres (docs/display-geometry.md, "The ray of
+// one pair"): which aperture serves an image-layer sample, and the ray through both.
+#pragma once
+
+#include <cstdint>
+
+#include "parallax/display/display.h"
+#include "parallax/display/mask.h"
+
+namespace parallax {
+
+struct Vec3d {
+  double x = 0, y = 0, z = 0;
+};
+
+struct BarrierRay {
+  Vec3d origin;     // on the viewer's side: at z = D' (or z = D when D' is infinite)
+  Vec3d direction;  // toward the display, normalised to direction.z = -1
+  Vec3d imagePoint;   // where the ray crosses the (virtual) image layer
+  Vec3d aperturePoint;  // where it crosses the (virtual) mask layer
+  int64_t aperture = 0;  // index of the serving aperture (column)
+  int64_t apertureRow = 0;  // pinhole row (0 for slits)
+};
+
+class BarrierRayGenerator {
+ public:
+  explicit BarrierRayGenerator(const DisplayDesign& design);
+
+  // Film columns: the image layer's pixels, or three per pixel in subpixel mode.
+  int filmWidth() const { return filmWidth_; }
+  int filmHeight() const { return design_.spec.imagePanel.height; }
+  bool subpixelMode() const { return subpixels_; }
+  // Colour channel (0 R, 1 G, 2 B) that film column `column` carries in subpixel mode.
+  int channelOfColumn(int column) const;
+
+  // The ray for a sample at film position (x, y) (continuous film pixels, y down) and
+  // aperture-cell position (u, v) in [0, 1)^2. The pixel is assigned to an aperture by
+  // projecting apertures from the view-zone centre onto the image layer, using the centre of
+  // the film column (so every sample of a pixel uses the same aperture). u, v = 0.5 is the
+  // aperture's centre line.
+  BarrierRay ray(double filmX, double filmY, double u, double v) const;
+
+  // The image-layer point (mm) of a film position.
+  Vec3d imagePoint(double filmX, double filmY) const;
+
+  const DisplayDesign& design() const { return design_; }
+  const MaskGeometry& mask() const { return mask_; }
+
+ private:
+  DisplayDesign design_;
+  MaskGeometry mask_;
+  bool subpixels_;
+  int filmWidth_;
+  double zImage_, zMask_;               // physical layers
+  double zImageVirtual_, zMaskVirtual_;  // the camera's layers (g')
+  double eyeX_, eyeY_, distance_, virtualDistance_;
+  double maskFromImage_;                // (D - zM) / (D - zI): projection scale from the eye
+  double virtualMaskFromImage_;         // the same with g', D' (1 for D' infinite)
+};
+
+}  // namespace parallax

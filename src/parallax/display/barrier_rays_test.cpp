@@ -1,0 +1,166 @@
+// The display camera's rays against the geometry they must satisfy (docs/display-geometry.md).
+#include "parallax/display/barrier_rays.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+namespace parallax {
+namespace {
+
+DisplaySpec narrowDisplay(LayerOrder order = LayerOrder::BarrierBack) {
+  DisplaySpec s = defaultDisplaySpec();
+  s.order = order;
+  s.imagePanel.subpixels = SubpixelOrder::None;
+  s.imagePanel.width = s.maskPanel.width = 180;
+  s.imagePanel.height = s.maskPanel.height = 40;
+  s.viewZoneHeightMm = 30.0;
+  return s;
+}
+
+// x and y where a ray crosses the plane z.
+std::pair<double, double> at(const BarrierRay& r, double z) {
+  const double t = (z - r.origin.z) / r.direction.z;
+  return {r.origin.x + t * r.direction.x, r.origin.y + t * r.direction.y};
+}
+
+TEST(BarrierRays, CentralRayPassesPixelApertureAndViewLine) {
+  for (LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+    const BarrierRayGenerator gen(designDisplay(narrowDisplay(order)));
+    const DisplayDesign& d = gen.design();
+    for (int y = 0; y < 40; y += 7)
+      for (int x = 0; x < 180; ++x) {
+        const BarrierRay r = gen.ray(x + 0.5, y + 0.5, 0.5, 0.5);
+        const Vec3d pixel = gen.imagePoint(x + 0.5, y + 0.5);
+        const auto [ix, iy] = at(r, d.imageLayerZ());
+        EXPECT_NEAR(ix, pixel.x, 1e-9);
+        EXPECT_NEAR(iy, pixel.y, 1e-9);
+        const auto [mx, my] = at(r, d.maskLayerZ());
+        EXPECT_NEAR(mx, gen.mask().apertureCenterX(r.aperture, my), 1e-9);
+        const auto [vx, vy] = at(r, d.viewDistanceMm);
+        EXPECT_NEAR(vy, d.spec.viewZoneHeightMm, 1e-9);
+        // The serving aperture is the one whose group holds the pixel.
+        EXPECT_LE(std::abs(vx - d.spec.viewZoneCenterXMm), 0.5 * d.viewZoneWidthMm + 1e-6);
+      }
+  }
+}
+
+TEST(BarrierRays, RaysOfOneViewMeetInOnePointAtTheDesignDistance) {
+  for (LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+    const BarrierRayGenerator gen(designDisplay(narrowDisplay(order)));
+    const DisplayDesign& d = gen.design();
+    // Group boundaries fall on pixel boundaries: the view index is the offset in the group.
+    std::map<int64_t, std::vector<double>> hitsByView;
+    for (int x = 0; x < 180; ++x) {
+      const BarrierRay r = gen.ray(x + 0.5, 20.5, 0.5, 0.5);
+      const Vec3d pixel = gen.imagePoint(x + 0.5, 20.5);
+      const double groupCentre = d.spec.viewZoneCenterXMm +
+                                 (gen.mask().apertureCenterX(r.aperture, 0) - 0) *
+                                     (d.viewDistanceMm - d.imageLayerZ()) /
+                                     (d.viewDistanceMm - d.maskLayerZ());
+      const double offset = (pixel.x - groupCentre) / d.spec.imagePanel.pitchMm;
+      const int64_t view = std::llround(offset + 4.0);
+      ASSERT_NEAR(offset + 4.0, double(view), 1e-6) << "pixel centres must sit on view slots";
+      hitsByView[view].push_back(at(r, d.viewDistanceMm).first);
+    }
+    ASSERT_EQ(hitsByView.size(), 9u);
+    double previous = NAN;
+    for (const auto& [view, xs] : hitsByView) {
+      for (double x : xs) EXPECT_NEAR(x, xs.front(), 1e-6) << "view " << view;
+      // Neighbouring views are one view width S / N apart (G2).
+      if (!std::isnan(previous)) {
+        EXPECT_NEAR(std::abs(xs.front() - previous), d.viewWidthMm, 1e-6);
+      }
+      previous = xs.front();
+    }
+  }
+}
+
+TEST(BarrierRays, InfiniteVirtualDistanceGivesParallelViews) {
+  DisplaySpec s = narrowDisplay();
+  s.virtualDistanceMm = kInfinity;
+  const BarrierRayGenerator gen(designDisplay(s));
+  std::map<int, std::pair<double, double>> slopes;
+  for (int x = 0; x < 180; ++x) {
+    const BarrierRay r = gen.ray(x + 0.5, 3.5, 0.5, 0.5);
+    EXPECT_EQ(r.direction.y, 0.0);
+    const auto [it, inserted] = slopes.emplace(x % 9, std::pair{r.direction.x, r.direction.y});
+    if (!inserted) {
+      EXPECT_NEAR(r.direction.x, it->second.first, 1e-12) << x;
+    }
+  }
+}
+
+TEST(BarrierRays, VirtualGapScalesTheAngularSpan) {
+  const auto span = [](double virtualGap) {
+    DisplaySpec s = narrowDisplay();
+    s.virtualGapMm = virtualGap;
+    s.virtualDistanceMm = kInfinity;  // parallel views: the span is a slope difference
+    const BarrierRayGenerator gen(designDisplay(s));
+    double lo = 1e9, hi = -1e9;
+    for (int x = 81; x < 90; ++x) {  // one whole group
+      const double slope = gen.ray(x + 0.5, 20.5, 0.5, 0.5).direction.x;
+      lo = std::min(lo, slope), hi = std::max(hi, slope);
+    }
+    return hi - lo;
+  };
+  EXPECT_NEAR(span(6.0) / span(3.0), 3.0 / 6.0, 1e-9);
+  EXPECT_NEAR(span(1.5) / span(3.0), 2.0, 1e-9);
+}
+
+TEST(BarrierRays, SubpixelsGetTheirOwnRays) {
+  DisplaySpec s = narrowDisplay();
+  s.imagePanel.subpixels = SubpixelOrder::BGR;
+  const BarrierRayGenerator gen(designDisplay(s));
+  EXPECT_EQ(gen.filmWidth(), 540);
+  EXPECT_EQ(gen.channelOfColumn(0), 2);
+  EXPECT_EQ(gen.channelOfColumn(4), 1);
+  // Subpixels of one pixel sit dx/3 apart, so (within a group) their rays differ in slope by
+  // (dx / 3) / g: three times the views.
+  const double dx = s.imagePanel.pitchMm;
+  const BarrierRay a = gen.ray(3 * 85 + 0.5, 10.5, 0.5, 0.5), b = gen.ray(3 * 85 + 1.5, 10.5, 0.5, 0.5);
+  ASSERT_EQ(a.aperture, b.aperture);
+  EXPECT_NEAR(std::abs(a.direction.x - b.direction.x), dx / 3.0 / s.gapMm, 1e-12);
+  EXPECT_NEAR(b.imagePoint.x - a.imagePoint.x, dx / 3.0, 1e-12);
+}
+
+TEST(BarrierRays, JitterSpansOnePixelAndOneApertureCell) {
+  const BarrierRayGenerator gen(designDisplay(narrowDisplay()));
+  const DisplayDesign& d = gen.design();
+  const BarrierRay lo = gen.ray(85.0, 20.5, 0.0, 0.5), hi = gen.ray(85.999999, 20.5, 1.0, 0.5);
+  EXPECT_EQ(lo.aperture, hi.aperture);
+  EXPECT_NEAR(hi.imagePoint.x - lo.imagePoint.x, d.spec.imagePanel.pitchMm, 1e-5);
+  EXPECT_NEAR(hi.aperturePoint.x - lo.aperturePoint.x, d.slitPeriodMm, 1e-5);
+}
+
+TEST(BarrierRays, PinholesGiveFullParallax) {
+  DisplaySpec s = narrowDisplay();
+  s.mask.kind = MaskKind::Pinholes;
+  s.mask.verticalPeriodPx = 9.045;
+  const BarrierRayGenerator gen(designDisplay(s));
+  const DisplayDesign& d = gen.design();
+  for (int y = 0; y < 40; y += 3)
+    for (int x = 0; x < 180; x += 5) {
+      const BarrierRay r = gen.ray(x + 0.5, y + 0.5, 0.5, 0.5);
+      const auto [mx, my] = at(r, d.maskLayerZ());
+      EXPECT_NEAR(mx, gen.mask().apertureCenterX(r.aperture, my), 1e-9);
+      EXPECT_NEAR(my, gen.mask().rowCenterY(r.apertureRow), 1e-9);
+    }
+}
+
+TEST(BarrierRays, SlantedSlitsAreFollowedAtTheCrossingHeight) {
+  DisplaySpec s = narrowDisplay();
+  s.mask.kind = MaskKind::Slanted;
+  s.mask.slantDegrees = 18.0;
+  const BarrierRayGenerator gen(designDisplay(s));
+  for (double fy : {0.1, 0.5, 0.9})
+    for (int x = 0; x < 180; x += 7) {
+      const BarrierRay r = gen.ray(x + 0.5, 12 + fy, 0.5, 0.5);
+      const auto [mx, my] = at(r, gen.design().maskLayerZ());
+      EXPECT_NEAR(mx, gen.mask().apertureCenterX(r.aperture, my), 1e-9);
+    }
+}
+
+}  // namespace
+}  // namespace parallax

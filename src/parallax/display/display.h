@@ -1,0 +1,96 @@
+// A two-layer parallax-barrier display: what the user describes (DisplaySpec) and what follows
+// from it (DisplayDesign), in the frame of docs/display-geometry.md: millimetres, x right,
+// y up, z toward the viewer, the front layer at z = 0 and the rear layer at z = -gap.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace parallax {
+
+enum class SubpixelOrder { RGB, BGR, None };
+// BarrierFront: the mask in front, the image behind (the paper's Fig. 3).
+// BarrierBack: the image in front, the mask behind as a patterned backlight ("parallax
+// illumination", the paper's prototype).
+enum class LayerOrder { BarrierFront, BarrierBack };
+enum class MaskKind { Slits, Slanted, Wiggling, Jittered, Pinholes };
+
+struct Panel {
+  int width = 1920, height = 1080;  // pixels
+  double pitchMm = 0.2745;          // pixel pitch, square pixels
+  SubpixelOrder subpixels = SubpixelOrder::RGB;
+
+  double widthMm() const { return width * pitchMm; }
+  double heightMm() const { return height * pitchMm; }
+};
+
+struct MaskSpec {
+  MaskKind kind = MaskKind::Slits;
+  double dutyCycle = 1.0 / 9.0;   // aperture width / slit period (and height / period, pinholes)
+  double phasePx = 0.0;           // shift of the whole mask, in mask pixels
+  double slantDegrees = 0.0;      // Slanted: angle from vertical, positive leans right going up
+  double wiggleAmplitudeMm = 0.0; // Wiggling: x offset A sin(2 pi y / wavelength)
+  double wiggleWavelengthMm = 0.0;
+  double jitterAmplitude = 0.0;   // Jittered: max offset of each slit, in slit periods (< 0.5)
+  uint64_t jitterSeed = 1;
+  double verticalPeriodPx = 0.0;  // Pinholes: vertical pinhole period in mask pixels
+};
+
+// What the user knows. Exactly one of: views (with distance), viewZoneWidthMm (with distance),
+// or the two measured periods (screenPeriodPx and slitPeriodPx; the distance then follows).
+struct DisplaySpec {
+  std::string source = "<built-in>";
+  Panel imagePanel, maskPanel;
+  LayerOrder order = LayerOrder::BarrierBack;
+  double gapMm = 3.0;
+  std::optional<double> viewDistanceMm = 600.0;
+  double viewZoneCenterXMm = 0.0;
+  double viewZoneHeightMm = 0.0;  // y of the view line (HPO) at the view distance
+  std::optional<double> views = 9.0;  // pixels per group on the image layer
+  std::optional<double> viewZoneWidthMm;
+  std::optional<double> screenPeriodPx, slitPeriodPx;
+  MaskSpec mask;
+  // Camera only (section 2.3): the virtual gap g' and distance D' (infinity: orthographic).
+  std::optional<double> virtualGapMm, virtualDistanceMm;
+};
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct DisplayDesign {
+  DisplaySpec spec;
+  double gapMm = 0, viewDistanceMm = 0;
+  double screenPeriodMm = 0, screenPeriodPx = 0;  // Tx, on the image layer
+  double slitPeriodMm = 0, slitPeriodPx = 0;      // Tv, on the mask layer
+  double views = 0;                               // Tx / dx
+  double viewZoneWidthMm = 0;                     // S
+  double viewWidthMm = 0;                         // S / views
+  double aperturesAcross = 0, aperturesDown = 1;
+  double apertureSpanMm = 0;                      // Sv = (N - 1) Tv
+  double depthOfFieldMm = 0;                      // G4: g Tv / dx either side of the mask
+  double farthestConsistentDistanceMm = kInfinity;  // the paper's D S / (Sv - S)
+  double virtualGapMm = 0, virtualDistanceMm = 0;
+  // x of aperture 0 on the mask layer (before the mask's phase): the projection, from the
+  // view-zone centre, of the centre of the group nearest x = 0, with groups laid from the
+  // image layer's left edge so that group boundaries fall on pixel boundaries.
+  double apertureOriginMm = 0;
+
+  double imageLayerZ() const;  // 0 or -gap
+  double maskLayerZ() const;
+  double frontWidthMm() const;
+  double frontHeightMm() const;
+  // Disparity between adjacent views, on the aperture plane, for a point at depth z (mm,
+  // positive toward the viewer), in mm: (S / views) |z| / (D - z).
+  double adjacentViewDisparityMm(double depthMm) const;
+};
+
+// The paper's prototype: two 1920x1080 panels of 0.2745 mm pixels, g = 3 mm, 9 views,
+// D = 600 mm, barrier-back.
+DisplaySpec defaultDisplaySpec();
+
+// Derives the design (G1-G4) and checks it. Throws InputError naming `spec.source` and the key
+// with the broken relation ("/gap_mm: must be positive", "/slit_period_px: ...").
+DisplayDesign designDisplay(const DisplaySpec& spec);
+
+}  // namespace parallax
