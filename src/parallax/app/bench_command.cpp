@@ -6,6 +6,7 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
+#include "parallax/core/error.h"
 #include "parallax/app/commands.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/json_writer.h"

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "parallax/core/error.h"
+#include "parallax/io/display_file.h"
 #include "parallax/io/scene_file.h"
 
 namespace parallax::app {
@@ -33,6 +34,10 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
 
 Scene loadSceneOrDefault(const std::string& path) {
   return path.empty() ? defaultScene() : loadScene(path);
+}
+
+DisplayDesign loadDesignOrDefault(const std::string& path) {
+  return designDisplay(path.empty() ? defaultDisplaySpec() : loadDisplayFile(path));
 }
 
 ProgressBar::ProgressBar(std::string label)

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "parallax/core/math.h"
+#include "parallax/display/display.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax::app {
@@ -20,6 +21,9 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
 
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
 Scene loadSceneOrDefault(const std::string& path);
+
+// The built-in display when `path` is empty, otherwise the display file; checked (G1-G4).
+DisplayDesign loadDesignOrDefault(const std::string& path);
 
 // A progress bar on stderr, drawn only when stderr is a terminal; thread-safe and throttled.
 class ProgressBar {

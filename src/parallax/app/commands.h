@@ -11,5 +11,7 @@ namespace parallax::app {
 void registerViewCommand(CLI::App& cli);
 void registerInfoCommand(CLI::App& cli);
 void registerBenchCommand(CLI::App& cli);
+void registerDesignCommand(CLI::App& cli);
+void registerRenderCommand(CLI::App& cli);
 
 }  // namespace parallax::app

@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   CLI::App cli{"parallax: ray tracing for two-layer parallax-barrier 3-D displays"};
   cli.set_version_flag("--version", std::string("parallax ") + PARALLAX_VERSION_STRING);
   cli.require_subcommand(1);
+  parallax::app::registerDesignCommand(cli);
+  parallax::app::registerRenderCommand(cli);
   parallax::app::registerViewCommand(cli);
   parallax::app::registerInfoCommand(cli);
   parallax::app::registerBenchCommand(cli);

@@ -6,6 +6,8 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
+#include "parallax/core/error.h"
+#include "parallax/camera/display_camera.h"
 #include "parallax/app/commands.h"
 #include "parallax/io/image_file.h"
 #include "parallax/render/render.h"
@@ -16,7 +18,8 @@ namespace {
 
 struct ViewOptions {
   std::string scene;
-  std::string eye, lookAt, up, size = "960x540";
+  std::string eye, lookAt, up, size;
+  std::string displayEye, display;
   float fov = 0.0f;
   int spp = 16;
   int threads = 0;
@@ -24,12 +27,23 @@ struct ViewOptions {
   std::string output = "out/view.png";
 };
 
-void runView(const ViewOptions& o) {
-  int width = 0, height = 0;
-  parseSize("--size", o.size, width, height);
-  if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
-  Scene scene = loadSceneOrDefault(o.scene);
-  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+// The camera of `view`: an ordinary pinhole camera, or with --display-eye the ideal window
+// view of the display from that eye.
+std::unique_ptr<Camera> makeCamera(const ViewOptions& o, const Scene& scene) {
+  int width = 960, height = 540;
+  if (!o.displayEye.empty()) {
+    const DisplayDesign design = loadDesignOrDefault(o.display);
+    const Panel& front = design.spec.order == LayerOrder::BarrierBack ? design.spec.imagePanel
+                                                                       : design.spec.maskPanel;
+    width = front.width, height = front.height;
+    if (!o.size.empty()) parseSize("--size", o.size, width, height);
+    const Vec3f eye = parseVec3("--display-eye", o.displayEye);
+    if (!(eye.z > 0))
+      throw InputError("command line", "--display-eye", "the eye must be in front (z > 0 mm)");
+    return std::make_unique<WindowCamera>(Vec3d{eye.x, eye.y, eye.z}, design, scene.display,
+                                          width, height);
+  }
+  if (!o.size.empty()) parseSize("--size", o.size, width, height);
   CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
   if (!o.eye.empty()) spec.eye = parseVec3("--eye", o.eye);
   if (!o.lookAt.empty()) spec.lookAt = parseVec3("--look-at", o.lookAt);
@@ -41,8 +55,16 @@ void runView(const ViewOptions& o) {
   }
   if (length(cross(spec.lookAt - spec.eye, spec.up)) == 0.0f)
     throw InputError("command line", "--up", "must not be parallel to the view direction");
+  return std::make_unique<PinholeCamera>(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width,
+                                         height);
+}
+
+void runView(const ViewOptions& o) {
+  if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
+  Scene scene = loadSceneOrDefault(o.scene);
+  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const std::unique_ptr<Camera> camera = makeCamera(o, scene);
   const Accelerator accelerator(scene);
-  const PinholeCamera camera(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
   RenderSettings settings;
   settings.samplesPerPixel = o.spp;
   settings.threads = o.threads;
@@ -51,11 +73,12 @@ void runView(const ViewOptions& o) {
   Image image;
   {
     ProgressBar bar("view");
-    image = render(scene, accelerator, camera, settings, &stats,
+    image = render(scene, accelerator, *camera, settings, &stats,
                    [&bar](int done, int total) { bar.update(done, total); });
   }
   writeImage(o.output, image);
-  std::printf("wrote %s (%dx%d, %d spp) in %.2f s, %s\n", o.output.c_str(), width, height, o.spp,
+  std::printf("wrote %s (%dx%d, %d spp) in %.2f s, %s\n", o.output.c_str(), camera->width(),
+              camera->height(), o.spp,
               stats.seconds, formatRate(double(stats.totalRays()) / stats.seconds).c_str());
 }
 
@@ -71,7 +94,12 @@ void registerViewCommand(CLI::App& cli) {
   cmd->add_option("--look-at", options->lookAt, "Point the camera looks at, X,Y,Z");
   cmd->add_option("--up", options->up, "Up direction X,Y,Z");
   cmd->add_option("--fov", options->fov, "Vertical field of view in degrees");
-  cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--size", options->size,
+                  "Image size WIDTHxHEIGHT (960x540; the front layer's with --display-eye)");
+  cmd->add_option("--display-eye", options->displayEye,
+                  "Ideal view through the display window from this eye X,Y,Z (display mm, "
+                  "origin at the front layer's centre, z toward the viewer)");
+  cmd->add_option("--display", options->display, "Display file for --display-eye");
   cmd->add_option("--spp", options->spp, "Samples per pixel (n*n is stratified)")
       ->capture_default_str();
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)");

@@ -21,6 +21,9 @@ class Camera {
   virtual int width() const = 0;
   virtual int height() const = 0;
   virtual Ray generateRay(const FilmSample& sample) const = 0;
+  // Film columns this far apart carry nearly parallel rays; the render loop packs them into
+  // one packet so that Embree traverses coherent rays (1: neighbouring pixels).
+  virtual int packetStride() const { return 1; }
 };
 
 // An ideal pinhole camera looking from `eye` at `lookAt`, with a vertical field of view.

@@ -7,7 +7,7 @@ namespace parallax {
 BarrierRayGenerator::BarrierRayGenerator(const DisplayDesign& design)
     : design_(design),
       mask_(design),
-      subpixels_(design.spec.imagePanel.subpixels != SubpixelOrder::None),
+      subpixels_(design.spec.subpixelRays),
       filmWidth_(design.spec.imagePanel.width * (subpixels_ ? 3 : 1)),
       zImage_(design.imageLayerZ()),
       zMask_(design.maskLayerZ()),

@@ -12,7 +12,6 @@ namespace {
 DisplaySpec narrowDisplay(LayerOrder order = LayerOrder::BarrierBack) {
   DisplaySpec s = defaultDisplaySpec();
   s.order = order;
-  s.imagePanel.subpixels = SubpixelOrder::None;
   s.imagePanel.width = s.maskPanel.width = 180;
   s.imagePanel.height = s.maskPanel.height = 40;
   s.viewZoneHeightMm = 30.0;
@@ -112,6 +111,7 @@ TEST(BarrierRays, VirtualGapScalesTheAngularSpan) {
 TEST(BarrierRays, SubpixelsGetTheirOwnRays) {
   DisplaySpec s = narrowDisplay();
   s.imagePanel.subpixels = SubpixelOrder::BGR;
+  s.subpixelRays = true;
   const BarrierRayGenerator gen(designDisplay(s));
   EXPECT_EQ(gen.filmWidth(), 540);
   EXPECT_EQ(gen.channelOfColumn(0), 2);

@@ -161,6 +161,8 @@ DisplayDesign designDisplay(const DisplaySpec& spec) {
     d.apertureOriginMm =
         e + (groupCentre - e) * (D - d.maskLayerZ()) / (D - d.imageLayerZ());
   }
+  if (spec.subpixelRays && spec.imagePanel.subpixels == SubpixelOrder::None)
+    throw fail("/subpixel_rays", "needs an image layer whose subpixels are RGB or BGR");
   d.virtualGapMm = spec.virtualGapMm.value_or(g);
   d.virtualDistanceMm = spec.virtualDistanceMm.value_or(d.viewDistanceMm);
   if (!(d.virtualGapMm > 0) || !std::isfinite(d.virtualGapMm))

@@ -52,6 +52,9 @@ struct DisplaySpec {
   std::optional<double> viewZoneWidthMm;
   std::optional<double> screenPeriodPx, slitPeriodPx;
   MaskSpec mask;
+  // Camera only: trace one ray per R, G, B subpixel of the image layer (three times the views)
+  // instead of one per pixel; needs an image layer with an RGB or BGR subpixel order.
+  bool subpixelRays = false;
   // Camera only (section 2.3): the virtual gap g' and distance D' (infinity: orthographic).
   std::optional<double> virtualGapMm, virtualDistanceMm;
 };

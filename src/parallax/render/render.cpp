@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <vector>
 
 #include "parallax/render/film_sampler.h"
 #include "parallax/render/packet_tracer.h"
@@ -16,53 +17,70 @@ namespace parallax {
 
 namespace {
 
-constexpr int kTileSize = 16;  // pixels; a tile is a grid of 4x4-pixel packets
+constexpr int kTileRows = 16;
 
+// A tile is kTileRows high and 4 * stride * repeats columns wide. Its packets take four rows
+// and four columns `stride` apart: neighbouring pixels for a pinhole camera (4x4 blocks), the
+// same view index in four neighbouring groups for the display camera, whose rays are nearly
+// parallel and so traverse the same nodes of the Embree BVH.
 struct TileGrid {
-  int columns, rows;
+  int stride, repeats, width, columns, rows;
+
+  TileGrid(const Camera& camera)
+      : stride(camera.packetStride()),
+        repeats(std::max(1, (4 + stride - 1) / stride)),
+        width(4 * stride * repeats),
+        columns((camera.width() + width - 1) / width),
+        rows((camera.height() + kTileRows - 1) / kTileRows) {}
   int count() const { return columns * rows; }
 };
 
-// Renders one tile: for every sample index, every 4x4 block of pixels becomes one packet of
-// sixteen rays, which keeps neighbouring, nearly parallel rays together.
 void renderTile(int tile, const TileGrid& grid, const Camera& camera, const PacketTracer& tracer,
                 const RenderSettings& settings, Image& image, RenderStats& stats) {
-  const int x0 = (tile % grid.columns) * kTileSize, y0 = (tile / grid.columns) * kTileSize;
-  const int x1 = std::min(x0 + kTileSize, camera.width());
-  const int y1 = std::min(y0 + kTileSize, camera.height());
+  const int x0 = (tile % grid.columns) * grid.width, y0 = (tile / grid.columns) * kTileRows;
+  const int x1 = std::min(x0 + grid.width, camera.width());
+  const int y1 = std::min(y0 + kTileRows, camera.height());
   const int spp = settings.samplesPerPixel;
   const int strata = stratificationOrder(spp);
-  Vec3f sums[kTileSize][kTileSize] = {};
+  std::vector<Vec3f> sums(size_t(grid.width) * kTileRows, Vec3f(0.0f));
 
   RayPacket16 packet;
   std::array<Rng, 16> rngs;
   std::array<Vec3f, 16> radiance;
   std::array<Vec3f, 16> weight;
   weight.fill(Vec3f(1.0f));
+  std::array<int, 16> laneX, laneY;
   for (int sample = 0; sample < spp; ++sample) {
     for (int by = y0; by < y1; by += 4) {
-      for (int bx = x0; bx < x1; bx += 4) {
-        for (int lane = 0; lane < 16; ++lane) {
-          const int x = bx + (lane & 3), y = by + (lane >> 2);
-          radiance[size_t(lane)] = Vec3f(0.0f);
-          if (x >= x1 || y >= y1) {
-            packet.deactivate(lane);
-            continue;
+      for (int repeat = 0; repeat < grid.repeats; ++repeat) {
+        for (int offset = 0; offset < grid.stride; ++offset) {
+          for (int lane = 0; lane < 16; ++lane) {
+            const int x = x0 + repeat * 4 * grid.stride + offset + (lane & 3) * grid.stride;
+            const int y = by + (lane >> 2);
+            laneX[size_t(lane)] = x - x0, laneY[size_t(lane)] = y - y0;
+            radiance[size_t(lane)] = Vec3f(0.0f);
+            if (x >= x1 || y >= y1) {
+              packet.deactivate(lane);
+              continue;
+            }
+            Rng& rng = rngs[size_t(lane)] =
+                Rng::forSample(uint32_t(x), uint32_t(y), uint32_t(sample), settings.seed);
+            packet.set(lane, camera.generateRay(filmSample(x, y, sample, spp, strata, rng)));
+            ++stats.cameraRays;
           }
-          Rng& rng = rngs[size_t(lane)] =
-              Rng::forSample(uint32_t(x), uint32_t(y), uint32_t(sample), settings.seed);
-          packet.set(lane, camera.generateRay(filmSample(x, y, sample, spp, strata, rng)));
-          ++stats.cameraRays;
+          tracer.trace(packet, weight, rngs, radiance, 0, stats);
+          for (int lane = 0; lane < 16; ++lane)
+            if (packet.active[lane])
+              sums[size_t(laneY[size_t(lane)]) * size_t(grid.width) + size_t(laneX[size_t(lane)])] +=
+                  radiance[size_t(lane)];
         }
-        tracer.trace(packet, weight, rngs, radiance, 0, stats);
-        for (int lane = 0; lane < 16; ++lane)
-          if (packet.active[lane]) sums[by - y0 + (lane >> 2)][bx - x0 + (lane & 3)] += radiance[size_t(lane)];
       }
     }
   }
   const float inv = 1.0f / float(spp);
   for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) image.at(x, y) = sums[y - y0][x - x0] * inv;
+    for (int x = x0; x < x1; ++x)
+      image.at(x, y) = sums[size_t(y - y0) * size_t(grid.width) + size_t(x - x0)] * inv;
 }
 
 }  // namespace
@@ -74,8 +92,7 @@ Image render(const Scene& scene, const Accelerator& accelerator, const Camera& c
   Image image(camera.width(), camera.height());
   const LightSampler lights(scene);
   const PacketTracer tracer(scene, accelerator, lights);
-  const TileGrid grid{(camera.width() + kTileSize - 1) / kTileSize,
-                      (camera.height() + kTileSize - 1) / kTileSize};
+  const TileGrid grid(camera);
   RenderSettings checked = settings;
   checked.samplesPerPixel = std::max(1, settings.samplesPerPixel);
 

@@ -109,9 +109,9 @@ Scene defaultScene() {
   // A square area light above and to the left, facing down: soft but clearly visible shadows.
   Light light;
   light.kind = Light::Kind::Quad;
-  light.corner = {-2.2f, 3.2f, 1.2f};
+  light.corner = {-2.2f, 3.2f, 0.4f};
   light.edgeU = {0.8f, 0, 0};
-  light.edgeV = {0, 0, -0.8f};  // cross(edgeU, edgeV) = -y: emits downward
+  light.edgeV = {0, 0, 0.8f};  // cross(edgeU, edgeV) = -y: emits downward
   light.intensity = lamp.emission;
   addQuad(scene, "lamp", light.corner, light.edgeU, light.edgeV, 2);
   light.mesh = int(scene.meshes.size()) - 1;

@@ -1,0 +1,61 @@
+#include "parallax/camera/display_camera.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace parallax {
+
+namespace {
+Vec3f toFloat(const Vec3d& v) { return {float(v.x), float(v.y), float(v.z)}; }
+}  // namespace
+
+Transform worldFromDisplay(const DisplayPlacement& placement, double frontWidthMm) {
+  const Vec3f normal = normalize(placement.normal);
+  const Vec3f right = normalize(cross(placement.up, normal));
+  const Vec3f up = cross(normal, right);
+  Mat4 m = Mat4::identity();
+  const float scale = float(placement.width / frontWidthMm);
+  for (int i = 0; i < 3; ++i) {
+    m.m[i][0] = right[i] * scale;
+    m.m[i][1] = up[i] * scale;
+    m.m[i][2] = normal[i] * scale;
+    m.m[i][3] = placement.center[i];
+  }
+  return Transform(m);
+}
+
+DisplayCamera::DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement)
+    : rays_(design), worldFromDisplay_(worldFromDisplay(placement, design.frontWidthMm())) {}
+
+Ray DisplayCamera::generateRay(const FilmSample& s) const {
+  const BarrierRay r = rays_.ray(s.x, s.y, s.apertureU, s.apertureV);
+  return {worldFromDisplay_.point(toFloat(r.origin)),
+          worldFromDisplay_.vector(toFloat(r.direction))};
+}
+
+int DisplayCamera::packetStride() const {
+  // Pixels one screen period apart show the same view through neighbouring apertures.
+  const double columnsPerGroup =
+      rays_.design().screenPeriodPx * (rays_.subpixelMode() ? 3.0 : 1.0);
+  return std::max(1, int(std::lround(columnsPerGroup)));
+}
+
+WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design,
+                           const DisplayPlacement& placement, int width, int height)
+    : width_(width), height_(height) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("camera size must be positive");
+  if (!(eyeMm.z > 0)) throw std::invalid_argument("the eye must be in front of the display (z > 0)");
+  const Transform world = worldFromDisplay(placement, design.frontWidthMm());
+  const float w = float(design.frontWidthMm()), h = float(design.frontHeightMm());
+  eye_ = world.point(toFloat(eyeMm));
+  corner_ = world.point({-0.5f * w, 0.5f * h, 0.0f});
+  stepX_ = world.vector({w / float(width), 0.0f, 0.0f});
+  stepY_ = world.vector({0.0f, -h / float(height), 0.0f});
+}
+
+Ray WindowCamera::generateRay(const FilmSample& s) const {
+  const Vec3f target = corner_ + stepX_ * s.x + stepY_ * s.y;
+  return {eye_, target - eye_};
+}
+
+}  // namespace parallax

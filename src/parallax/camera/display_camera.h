@@ -1,0 +1,51 @@
+// Cameras tied to the display: the parallax-barrier camera that renders the image layer, and
+// the ideal off-axis view through the display's window from one eye (`view --display-eye`).
+#pragma once
+
+#include "parallax/camera/camera.h"
+#include "parallax/core/transform.h"
+#include "parallax/display/barrier_rays.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax {
+
+// Display millimetres (docs/display-geometry.md) to scene units: the front layer's centre goes
+// to placement.center, x to right = up x normal, y to up, z to normal, and the front layer's
+// width in mm to placement.width scene units.
+Transform worldFromDisplay(const DisplayPlacement& placement, double frontWidthMm);
+
+// One ray per image-layer film column (pixel, or subpixel in subpixel mode) through its
+// aperture; see BarrierRayGenerator for the geometry.
+class DisplayCamera final : public Camera {
+ public:
+  DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement);
+
+  int width() const override { return rays_.filmWidth(); }
+  int height() const override { return rays_.filmHeight(); }
+  Ray generateRay(const FilmSample& sample) const override;
+  int packetStride() const override;
+
+  const BarrierRayGenerator& rays() const { return rays_; }
+
+ private:
+  BarrierRayGenerator rays_;
+  Transform worldFromDisplay_;
+};
+
+// An off-axis pinhole camera at `eyeMm` (display frame) whose film is the front layer's
+// rectangle: the picture an ideal window would show that eye.
+class WindowCamera final : public Camera {
+ public:
+  WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design, const DisplayPlacement& placement,
+               int width, int height);
+
+  int width() const override { return width_; }
+  int height() const override { return height_; }
+  Ray generateRay(const FilmSample& sample) const override;
+
+ private:
+  Vec3f eye_, corner_, stepX_, stepY_;
+  int width_, height_;
+};
+
+}  // namespace parallax

@@ -1,0 +1,26 @@
+// Rendering for the display: the image layer through the parallax-barrier camera, and the
+// mask layer's raster.
+#pragma once
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/display/display.h"
+#include "parallax/image/image.h"
+#include "parallax/render/render.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax {
+
+struct DisplayLayers {
+  Image image;  // the interleaved picture, linear RGB, at the image layer's resolution
+  Image mask;   // each mask pixel's open fraction by area (grey, linear transmittance)
+  RenderStats stats;
+};
+
+DisplayLayers renderDisplay(const Scene& scene, const Accelerator& accelerator,
+                            const DisplayDesign& design, const RenderSettings& settings,
+                            const ProgressCallback& progress = {});
+
+// The mask layer as a grey image of transmittances.
+Image maskLayerImage(const DisplayDesign& design);
+
+}  // namespace parallax
