@@ -41,6 +41,24 @@ LightSampler::LightSampler(const Scene& scene) {
   }
 }
 
+// A point q on an area light (uniformly chosen, pdf 1 / A) as seen from p with normal n:
+// E = L cos(theta) cos(theta_light) A / r^2.
+LightSample LightSampler::areaSample(const Entry& e, const Vec3f& p, const Vec3f& n,
+                                     const Vec3f& q, const Vec3f& lightNormal) {
+  LightSample s;
+  s.toLight = q - p;
+  const float r2 = dot(s.toLight, s.toLight);
+  const float invR = 1.0f / std::sqrt(r2);
+  const float cosTheta = dot(n, s.toLight) * invR;
+  float cosLight = -dot(lightNormal, s.toLight) * invR;
+  if (e.light.twoSided) cosLight = std::abs(cosLight);
+  if (!(cosTheta > 0.0f) || !(cosLight > 0.0f)) return s;
+  s.irradiance = e.light.intensity * (cosTheta * cosLight * e.totalArea / r2);
+  s.tMax = kShadowShorten;
+  s.valid = true;
+  return s;
+}
+
 LightSample LightSampler::sample(size_t index, const Vec3f& p, const Vec3f& n, float u1,
                                  float u2, float u3) const {
   const Entry& e = lights_[index];
@@ -64,7 +82,12 @@ LightSample LightSampler::sample(size_t index, const Vec3f& p, const Vec3f& n, f
       s.tMax = std::numeric_limits<float>::infinity();
       break;
     }
-    case Light::Kind::Quad:
+    case Light::Kind::Quad: {
+      // Uniform on the parallelogram, pdf = 1 / A: E = L cos(theta) cos(theta_light) A / r^2.
+      const Vec3f q = e.light.corner + e.light.edgeU * u1 + e.light.edgeV * u2;
+      (void)u3;
+      return areaSample(e, p, n, q, e.triangles.front().normal);
+    }
     case Light::Kind::Mesh: {
       // Area sampling, pdf = 1 / A: E = L cos(theta) cos(theta_light) A / r^2.
       const float target = u1 * e.totalArea;
@@ -72,17 +95,8 @@ LightSample LightSampler::sample(size_t index, const Vec3f& p, const Vec3f& n, f
       const Triangle& tri = e.triangles[std::min(t, e.triangles.size() - 1)];
       // Uniform point on a triangle (Osada et al. 2002).
       const float su = std::sqrt(u2);
-      const Vec3f q = tri.p0 + tri.e1 * (su * (1.0f - u3)) + tri.e2 * (su * u3);
-      s.toLight = q - p;
-      const float r2 = dot(s.toLight, s.toLight);
-      const float r = std::sqrt(r2);
-      const float cosTheta = dot(n, s.toLight) / r;
-      float cosLight = -dot(tri.normal, s.toLight) / r;
-      if (e.light.twoSided) cosLight = std::abs(cosLight);
-      if (!(cosTheta > 0.0f) || !(cosLight > 0.0f)) return s;
-      s.irradiance = e.light.intensity * (cosTheta * cosLight * e.totalArea / r2);
-      s.tMax = kShadowShorten;
-      break;
+      return areaSample(e, p, n, tri.p0 + tri.e1 * (su * (1.0f - u3)) + tri.e2 * (su * u3),
+                        tri.normal);
     }
   }
   s.valid = true;

@@ -42,6 +42,8 @@ class LightSampler {
     std::vector<float> cdf;           // cumulative area
     float totalArea = 0.0f;
   };
+  static LightSample areaSample(const Entry& e, const Vec3f& p, const Vec3f& n, const Vec3f& q,
+                                const Vec3f& lightNormal);
   std::vector<Entry> lights_;
 };
 

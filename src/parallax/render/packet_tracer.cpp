@@ -19,7 +19,7 @@ void PacketTracer::trace(const RayPacket16& rays, const std::array<Vec3f, 16>& w
       continue;
     }
     const SurfacePoint& sp = surfaces[size_t(lane)] =
-        evaluateSurface(scene_, accelerator_, rays.ray(lane), hits.hit(lane));
+        surfaces_.evaluate(rays.ray(lane), hits.hit(lane));
     // Emission seen directly, plus the ambient term: a uniform radiance L_a over the
     // hemisphere reflects albedo * L_a from a Lambertian surface.
     radiance[size_t(lane)] +=

@@ -8,13 +8,14 @@
 #include "parallax/core/random.h"
 #include "parallax/render/light_sampler.h"
 #include "parallax/render/render.h"
+#include "parallax/render/surface.h"
 
 namespace parallax {
 
 class PacketTracer {
  public:
   PacketTracer(const Scene& scene, const Accelerator& accelerator, const LightSampler& lights)
-      : scene_(scene), accelerator_(accelerator), lights_(lights) {}
+      : scene_(scene), accelerator_(accelerator), lights_(lights), surfaces_(scene, accelerator) {}
 
   // Adds weight[lane] * radiance(ray[lane]) to radiance[lane] for the active lanes. Each lane
   // draws its random numbers from its own generator, so results do not depend on packing.
@@ -26,6 +27,7 @@ class PacketTracer {
   const Scene& scene_;
   const Accelerator& accelerator_;
   const LightSampler& lights_;
+  SurfaceShader surfaces_;
 };
 
 }  // namespace parallax

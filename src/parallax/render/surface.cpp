@@ -24,37 +24,50 @@ Vec3f evaluateTexture(const Scene& scene, const Texture& texture, const Vec3f& p
   return Vec3f(1.0f);
 }
 
-SurfacePoint evaluateSurface(const Scene& scene, const Accelerator& accelerator, const Ray& ray,
-                             const Hit& hit) {
+SurfaceShader::SurfaceShader(const Scene& scene, const Accelerator& accelerator) : scene_(scene) {
+  const size_t count = scene.meshes.size() + scene.spheres.size();
+  geometries_.resize(count);
+  for (uint32_t id = 0; id < count; ++id) {
+    Geometry& g = geometries_[id];
+    const SurfaceRef ref = accelerator.surface(id);
+    if (ref.kind == SurfaceRef::Kind::Mesh) {
+      g.mesh = &scene.meshes[ref.index];
+      g.material = &scene.materials[g.mesh->material];
+    } else {
+      g.sphere = &scene.spheres[ref.index];
+      g.material = &scene.materials[g.sphere->material];
+    }
+    if (g.material->diffuseTexture >= 0)
+      g.texture = &scene.textures[size_t(g.material->diffuseTexture)];
+  }
+}
+
+SurfacePoint SurfaceShader::evaluate(const Ray& ray, const Hit& hit) const {
+  const Geometry& g = geometries_[hit.geometry];
   SurfacePoint sp;
   sp.position = ray.at(hit.t);
   Vec3f ng = normalize(hit.geometricNormal);
   Vec3f ns = ng;
   Vec2f uv{hit.u, hit.v};
-  const SurfaceRef ref = accelerator.surface(hit.geometry);
-  const Material* material = nullptr;
-  if (ref.kind == SurfaceRef::Kind::Mesh) {
-    const TriangleMesh& mesh = scene.meshes[ref.index];
-    material = &scene.materials[mesh.material];
+  if (g.mesh) {
+    const TriangleMesh& mesh = *g.mesh;
     const uint32_t* tri = &mesh.indices[size_t(hit.primitive) * 3];
     const float w0 = 1.0f - hit.u - hit.v;
     if (!mesh.normals.empty()) {
       const Vec3f n = mesh.normals[tri[0]] * w0 + mesh.normals[tri[1]] * hit.u +
                       mesh.normals[tri[2]] * hit.v;
-      const float len = length(n);
-      if (len > 0.0f) ns = n / len;
+      const float len2 = dot(n, n);
+      if (len2 > 0.0f) ns = n * (1.0f / std::sqrt(len2));
     }
-    if (!mesh.uvs.empty()) {
+    if (!mesh.uvs.empty() && g.texture) {
       const Vec2f a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
       uv = {a.x * w0 + b.x * hit.u + c.x * hit.v, a.y * w0 + b.y * hit.u + c.y * hit.v};
     }
   } else {
-    const Sphere& sphere = scene.spheres[ref.index];
-    material = &scene.materials[sphere.material];
-    ng = normalize(sp.position - sphere.center);
+    ng = normalize(sp.position - g.sphere->center);
     ns = ng;
     // Spherical coordinates as texture coordinates.
-    uv = {0.5f + std::atan2(ng.z, ng.x) / (2.0f * kPi), 0.5f + std::asin(ng.y) / kPi};
+    if (g.texture) uv = {0.5f + std::atan2(ng.z, ng.x) / (2.0f * kPi), 0.5f + std::asin(ng.y) / kPi};
   }
   const bool frontFace = dot(ng, ray.direction) < 0.0f;
   if (!frontFace) ng = -ng;
@@ -62,13 +75,12 @@ SurfacePoint evaluateSurface(const Scene& scene, const Accelerator& accelerator,
   sp.geometricNormal = ng;
   sp.shadingNormal = ns;
 
-  Vec3f albedo = material->diffuse;
-  if (material->diffuseTexture >= 0)
-    albedo = albedo * evaluateTexture(scene, scene.textures[size_t(material->diffuseTexture)],
-                                      sp.position, uv);
-  sp.mirror = material->mirror;
-  sp.diffuse = albedo * (Vec3f(1.0f) - material->mirror);
-  if (frontFace) sp.emission = material->emission;
+  const Material& material = *g.material;
+  Vec3f albedo = material.diffuse;
+  if (g.texture) albedo = albedo * evaluateTexture(scene_, *g.texture, sp.position, uv);
+  sp.mirror = material.mirror;
+  sp.diffuse = albedo * (Vec3f(1.0f) - material.mirror);
+  if (frontFace) sp.emission = material.emission;
   return sp;
 }
 

@@ -2,6 +2,8 @@
 // terms at that point (textures evaluated).
 #pragma once
 
+#include <vector>
+
 #include "parallax/accel/accelerator.h"
 #include "parallax/scene/scene.h"
 
@@ -16,8 +18,23 @@ struct SurfacePoint {
   Vec3f emission{0.0f};   // only if the ray hit the emitting (front) face
 };
 
-SurfacePoint evaluateSurface(const Scene& scene, const Accelerator& accelerator, const Ray& ray,
-                             const Hit& hit);
+// Turns hits into surface points. Built once per render: it resolves every Embree geometry to
+// its mesh or sphere, material and texture up front, so that shading a hit is a table lookup.
+class SurfaceShader {
+ public:
+  SurfaceShader(const Scene& scene, const Accelerator& accelerator);
+  SurfacePoint evaluate(const Ray& ray, const Hit& hit) const;
+
+ private:
+  struct Geometry {
+    const TriangleMesh* mesh = nullptr;
+    const Sphere* sphere = nullptr;
+    const Material* material = nullptr;
+    const Texture* texture = nullptr;
+  };
+  const Scene& scene_;
+  std::vector<Geometry> geometries_;
+};
 
 // The texture's colour at a world position with surface coordinates uv.
 Vec3f evaluateTexture(const Scene& scene, const Texture& texture, const Vec3f& position,

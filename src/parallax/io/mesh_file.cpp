@@ -1,0 +1,378 @@
+// loadMeshFile: picks the reader by extension, then does what all formats share: validation,
+// the move to world space, dropping degenerate triangles, and appending meshes, materials,
+// textures and images to the scene.
+#include "parallax/io/mesh_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "parallax/io/mesh_formats.h"
+
+namespace parallax {
+namespace meshio {
+
+std::string readFileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open the file");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) fail(path, "error while reading the file");
+  return std::move(bytes).str();
+}
+
+void TextTokens::skipSpace() {
+  while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {
+    if (text_[pos_] == '\n') ++line_;
+    ++pos_;
+  }
+}
+
+std::string_view TextTokens::next() {
+  skipSpace();
+  tokenLine_ = line_;
+  const size_t begin = pos_;
+  while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+  return text_.substr(begin, pos_ - begin);
+}
+
+void TextTokens::skipLine() {
+  while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+}
+
+bool TextTokens::atEnd() {
+  skipSpace();
+  return pos_ >= text_.size();
+}
+
+bool parseNumber(std::string_view token, double& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (token.empty()) return false;
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  if (ptr != end) return false;
+  if (ec == std::errc::result_out_of_range) {
+    // from_chars leaves the value alone on overflow and underflow; strtod gives +-inf or 0.
+    value = std::strtod(std::string(token).c_str(), nullptr);
+    return true;
+  }
+  return ec == std::errc();
+}
+
+bool parseInteger(std::string_view token, int64_t& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  return !token.empty() && ptr == end && ec == std::errc();
+}
+
+namespace {
+
+// Twice the signed area of the 2-D triangle (a, b, c); positive if it turns counter-clockwise.
+float orient(const Vec2f& a, const Vec2f& b, const Vec2f& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+bool inTriangle(const Vec2f& p, const Vec2f& a, const Vec2f& b, const Vec2f& c) {
+  return orient(a, b, p) >= 0 && orient(b, c, p) >= 0 && orient(c, a, p) >= 0;
+}
+
+}  // namespace
+
+void triangulatePolygon(const std::vector<Vec3f>& positions, const std::vector<uint32_t>& corners,
+                        std::vector<uint32_t>& out) {
+  const size_t n = corners.size();
+  auto emit = [&](size_t a, size_t b, size_t c) {
+    out.insert(out.end(), {corners[a], corners[b], corners[c]});
+  };
+  auto fan = [&](const std::vector<size_t>& ring) {
+    for (size_t k = 1; k + 1 < ring.size(); ++k) emit(ring[0], ring[k], ring[k + 1]);
+  };
+  std::vector<size_t> ring(n);
+  for (size_t i = 0; i < n; ++i) ring[i] = i;
+  if (n <= 3) return fan(ring);
+
+  // Newell's method gives the normal of a concave or slightly non-planar polygon. Projecting
+  // along its dominant axis onto the two cyclically following axes keeps the polygon
+  // counter-clockwise when that component is positive; flip v when it is negative.
+  Vec3f normal(0.0f);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3f& p = positions[corners[i]];
+    const Vec3f& q = positions[corners[(i + 1) % n]];
+    normal +=
+        Vec3f((p.y - q.y) * (p.z + q.z), (p.z - q.z) * (p.x + q.x), (p.x - q.x) * (p.y + q.y));
+  }
+  int drop = 0;
+  for (int axis = 1; axis < 3; ++axis)
+    if (std::abs(normal[axis]) > std::abs(normal[drop])) drop = axis;
+  if (!(std::abs(normal[drop]) > 0)) return fan(ring);  // no area (or NaN): nothing to clip
+  const float flip = normal[drop] < 0 ? -1.0f : 1.0f;
+  std::vector<Vec2f> p(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3f& q = positions[corners[i]];
+    p[i] = {q[(drop + 1) % 3], flip * q[(drop + 2) % 3]};
+  }
+
+  bool convex = true;
+  for (size_t i = 0; i < n && convex; ++i)
+    convex = orient(p[(i + n - 1) % n], p[i], p[(i + 1) % n]) >= 0;
+  if (convex) {
+    auto q = [&](size_t i) -> const Vec3f& { return positions[corners[i]]; };
+    if (n == 4 && length(q(3) - q(1)) < length(q(2) - q(0))) {
+      emit(0, 1, 3);
+      emit(1, 2, 3);
+      return;
+    }
+    return fan(ring);
+  }
+
+  // Ear clipping (Eberly, "Triangulation by Ear Clipping"): cut off a convex corner whose
+  // triangle contains no other corner, until a triangle is left.
+  while (ring.size() > 3) {
+    const size_t m = ring.size();
+    bool clipped = false;
+    for (size_t k = 0; k < m && !clipped; ++k) {
+      const size_t a = ring[(k + m - 1) % m], b = ring[k], c = ring[(k + 1) % m];
+      if (orient(p[a], p[b], p[c]) <= 0) continue;
+      bool empty = true;
+      for (size_t j : ring) {
+        const bool corner = j == a || j == b || j == c;
+        const bool sharesPosition = positions[corners[j]] == positions[corners[a]] ||
+                                    positions[corners[j]] == positions[corners[b]] ||
+                                    positions[corners[j]] == positions[corners[c]];
+        if (!corner && !sharesPosition && inTriangle(p[j], p[a], p[b], p[c])) empty = false;
+      }
+      if (!empty) continue;
+      emit(a, b, c);
+      ring.erase(ring.begin() + std::ptrdiff_t(k));
+      clipped = true;
+    }
+    if (!clipped) break;  // self-intersecting: fan what is left
+  }
+  fan(ring);
+}
+
+}  // namespace meshio
+
+namespace {
+
+using meshio::fail;
+using meshio::FileContents;
+using meshio::FilePart;
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+std::string describe(float value) {
+  return std::isnan(value) ? "NaN" : "infinite";
+}
+
+std::string where(const FilePart& part) {
+  return part.context.empty() ? "" : part.context + ": ";
+}
+
+// Throws for anything a renderer cannot use: non-finite numbers and indices out of range.
+void validate(const std::string& path, const FilePart& part) {
+  for (size_t i = 0; i < part.positions.size(); ++i)
+    for (int axis = 0; axis < 3; ++axis)
+      if (!std::isfinite(part.positions[i][axis]))
+        fail(path, where(part) + "vertex " + std::to_string(i) + ": coordinate is " +
+                       describe(part.positions[i][axis]));
+  for (size_t i = 0; i < part.normals.size(); ++i)
+    if (!isFinite(part.normals[i]))
+      fail(path, where(part) + "vertex " + std::to_string(i) + ": normal is not finite");
+  for (size_t i = 0; i < part.uvs.size(); ++i)
+    if (!std::isfinite(part.uvs[i].x) || !std::isfinite(part.uvs[i].y))
+      fail(path,
+           where(part) + "vertex " + std::to_string(i) + ": texture coordinate is not finite");
+  for (size_t i = 0; i < part.indices.size(); ++i)
+    if (part.indices[i] >= part.positions.size())
+      fail(path, where(part) + "triangle " + std::to_string(i / 3) + ": vertex index " +
+                     std::to_string(part.indices[i]) + " is out of range (" +
+                     std::to_string(part.positions.size()) + " vertices)");
+}
+
+// A triangle is degenerate if it repeats a vertex or has exactly zero area; such triangles
+// cannot be hit and only cost time in the accelerator.
+bool isDegenerate(const Vec3f& a, const Vec3f& b, const Vec3f& c) {
+  return cross(b - a, c - a) == Vec3f(0.0f);
+}
+
+// Collects the world-space meshes of one file, one per scene material, and creates the
+// scene materials, textures and images the first time a kept triangle needs them.
+class SceneAppender {
+ public:
+  SceneAppender(const std::string& path, const MeshLoadOptions& options, FileContents& contents,
+                Scene& scene)
+      : path_(path), options_(options), contents_(contents), scene_(scene) {
+    prefix_ = options.name.empty() ? std::filesystem::path(path).stem().string() : options.name;
+  }
+
+  // `part` must have passed validate().
+  void add(FilePart& part) {
+    const Transform worldFromPart = options_.worldFromFile * part.fileFromPart;
+    for (Vec3f& p : part.positions) p = worldFromPart.point(p);
+    transformNormals(worldFromPart, part);
+    const bool flip = worldFromPart.swapsHandedness();
+
+    TriangleMesh* mesh = nullptr;
+    std::vector<uint32_t> remap(part.positions.size(), kUnused);
+    for (size_t t = 0; t + 2 < part.indices.size(); t += 3) {
+      uint32_t corner[3] = {part.indices[t], part.indices[t + 1], part.indices[t + 2]};
+      if (isDegenerate(part.positions[corner[0]], part.positions[corner[1]],
+                       part.positions[corner[2]])) {
+        ++dropped_;
+        continue;
+      }
+      if (flip) std::swap(corner[1], corner[2]);
+      if (!mesh) mesh = &meshFor(part);
+      for (uint32_t v : corner) {
+        if (remap[v] == kUnused) {
+          remap[v] = uint32_t(mesh->positions.size());
+          mesh->positions.push_back(part.positions[v]);
+          if (!part.normals.empty()) mesh->normals.push_back(part.normals[v]);
+          if (!part.uvs.empty()) mesh->uvs.push_back(part.uvs[v]);
+        }
+        mesh->indices.push_back(remap[v]);
+      }
+    }
+  }
+
+  void finish() {
+    for (auto& [material, mesh] : meshes_) {
+      // Parts with and without normals (or UVs) may share a material; the mesh then keeps
+      // only what every vertex has.
+      if (mesh.normals.size() != mesh.positions.size()) mesh.normals.clear();
+      if (mesh.uvs.size() != mesh.positions.size()) mesh.uvs.clear();
+      scene_.meshes.push_back(std::move(mesh));
+    }
+    const size_t dropped = dropped_ + contents_.droppedDegenerate;
+    if (dropped > 0)
+      scene_.warnings.push_back(path_ + ": dropped " + std::to_string(dropped) +
+                                " degenerate triangle" + (dropped == 1 ? "" : "s"));
+    if (meshes_.empty()) scene_.warnings.push_back(path_ + ": contains no triangles");
+  }
+
+ private:
+  static constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
+
+  void transformNormals(const Transform& worldFromPart, FilePart& part) {
+    for (Vec3f& n : part.normals) {
+      n = worldFromPart.normal(n);
+      const float len = length(n);
+      if (!(len > 0.0f) || !std::isfinite(len)) {
+        scene_.warnings.push_back(path_ + ": " + where(part) +
+                                  "zero-length vertex normals; using flat shading");
+        part.normals.clear();
+        return;
+      }
+      n = n / len;
+    }
+  }
+
+  TriangleMesh& meshFor(const FilePart& part) {
+    const uint32_t material = sceneMaterial(part.material);
+    auto [it, inserted] = meshes_.try_emplace(material);
+    if (inserted) {
+      it->second.material = material;
+      const bool named = !options_.materialOverride && part.material >= 0;
+      it->second.name = named ? prefix_ + "/" + scene_.materials[material].name : prefix_;
+    }
+    return it->second;
+  }
+
+  uint32_t sceneMaterial(int fileMaterial) {
+    if (options_.materialOverride) return *options_.materialOverride;
+    auto found = materials_.find(fileMaterial);
+    if (found != materials_.end()) return found->second;
+    Material material;
+    if (fileMaterial < 0) {
+      material.name = prefix_ + "/default";
+      material.diffuse = Vec3f(0.7f);
+    } else {
+      const meshio::FileMaterial& source = contents_.materials[size_t(fileMaterial)];
+      material = source.material;
+      material.diffuseTexture = source.image >= 0 ? sceneTexture(source.image) : -1;
+    }
+    scene_.materials.push_back(std::move(material));
+    const auto index = uint32_t(scene_.materials.size() - 1);
+    materials_[fileMaterial] = index;
+    return index;
+  }
+
+  int sceneTexture(int fileImage) {
+    auto found = textures_.find(fileImage);
+    if (found != textures_.end()) return found->second;
+    scene_.images.push_back(std::move(contents_.images[size_t(fileImage)]));
+    Texture texture;
+    texture.kind = Texture::Kind::Image;
+    texture.image = int(scene_.images.size()) - 1;
+    scene_.textures.push_back(texture);
+    const int index = int(scene_.textures.size()) - 1;
+    textures_[fileImage] = index;
+    return index;
+  }
+
+  const std::string& path_;
+  const MeshLoadOptions& options_;
+  FileContents& contents_;
+  Scene& scene_;
+  std::string prefix_;
+  std::map<uint32_t, TriangleMesh> meshes_;  // by scene material, in a stable order
+  std::map<int, uint32_t> materials_;        // file material -> scene material
+  std::map<int, int> textures_;              // file image -> scene texture
+  size_t dropped_ = 0;
+};
+
+}  // namespace
+
+bool isMeshFile(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
+}
+
+void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene& scene) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) fail(path, "file not found");
+  if (!std::filesystem::is_regular_file(path, error)) fail(path, "not a regular file");
+  if (std::filesystem::file_size(path, error) == 0) fail(path, "file is empty");
+  if (options.materialOverride && *options.materialOverride >= scene.materials.size())
+    throw std::invalid_argument("loadMeshFile: material override " +
+                                std::to_string(*options.materialOverride) +
+                                " is not a scene material");
+
+  const std::string ext = lowerExtension(path);
+  FileContents contents;
+  if (ext == ".obj") {
+    contents = meshio::readObj(path);
+  } else if (ext == ".ply") {
+    contents = meshio::readPly(path);
+  } else if (ext == ".stl") {
+    contents = meshio::readStl(path);
+  } else if (ext == ".gltf" || ext == ".glb") {
+    contents = meshio::readGltf(path);
+  } else {
+    fail(path, "unknown mesh format '" + ext + "' (expected .obj, .ply, .stl, .gltf or .glb)");
+  }
+
+  // Validate everything before touching the scene, so a bad file leaves it unchanged.
+  for (const FilePart& part : contents.parts) validate(path, part);
+  SceneAppender appender(path, options, contents, scene);
+  for (const std::string& warning : contents.warnings)
+    scene.warnings.push_back(path + ": " + warning);
+  for (FilePart& part : contents.parts) appender.add(part);
+  appender.finish();
+}
+
+}  // namespace parallax

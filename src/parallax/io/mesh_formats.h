@@ -1,0 +1,87 @@
+// Private to the io module: the common shape every mesh format reader produces, and small
+// text helpers the readers share. loadMeshFile (mesh_file.cpp) validates what the readers
+// return, moves it into world space, drops degenerate triangles and appends it to the scene,
+// so the readers only decode their format.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "parallax/core/error.h"
+#include "parallax/core/transform.h"
+#include "parallax/image/image.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax::meshio {
+
+// Triangles with one material, in the file's own space.
+struct FilePart {
+  std::string context;     // where in the file, for messages ("mesh 'wheel' primitive 0")
+  int material = -1;       // index into FileContents::materials; -1: the default material
+  Transform fileFromPart;  // glTF node transform; identity for the other formats
+  std::vector<Vec3f> positions;
+  std::vector<Vec3f> normals;     // empty or one per position
+  std::vector<Vec2f> uvs;         // empty or one per position; v = 0 is the image's bottom row
+  std::vector<uint32_t> indices;  // three per triangle, not yet range-checked
+};
+
+struct FileMaterial {
+  Material material;  // diffuseTexture is ignored; `image` names the texture
+  int image = -1;     // index into FileContents::images, or -1
+};
+
+struct FileContents {
+  std::vector<FilePart> parts;
+  std::vector<FileMaterial> materials;
+  std::vector<Image> images;          // linear RGB
+  std::vector<std::string> warnings;  // without the file name; loadMeshFile adds it
+  size_t droppedDegenerate = 0;       // faces a reader dropped itself (fewer than 3 corners)
+};
+
+FileContents readObj(const std::string& path);
+FileContents readPly(const std::string& path);
+FileContents readStl(const std::string& path);
+FileContents readGltf(const std::string& path);
+
+// Splits the polygon `corners` (indices into `positions`, in order) into triangles appended
+// to `out`, keeping its winding: a convex polygon as a fan (a quad along its shorter
+// diagonal), a concave one by ear clipping. Fewer than 3 corners give nothing.
+void triangulatePolygon(const std::vector<Vec3f>& positions, const std::vector<uint32_t>& corners,
+                        std::vector<uint32_t>& out);
+
+[[noreturn]] inline void fail(const std::string& path, const std::string& message) {
+  throw InputError(path, "", message);
+}
+
+// The whole file; throws InputError if it cannot be opened or read.
+std::string readFileBytes(const std::string& path);
+
+// Whitespace-separated tokens of a text, with the line each one is on (for messages).
+class TextTokens {
+ public:
+  explicit TextTokens(std::string_view text, size_t line = 1) : text_(text), line_(line) {}
+
+  // The next token, or an empty view at the end of the text.
+  std::string_view next();
+  // Skips what is left of the current line (e.g. an STL solid's name).
+  void skipLine();
+  bool atEnd();
+  // Line of the token last returned by next().
+  size_t line() const { return tokenLine_; }
+
+ private:
+  void skipSpace();
+  std::string_view text_;
+  size_t pos_ = 0;
+  size_t line_;
+  size_t tokenLine_ = 0;
+};
+
+// Parses a whole token as a number; false if the token is not one. "nan" and "inf" parse, so
+// that loadMeshFile can report them as such.
+bool parseNumber(std::string_view token, double& value);
+bool parseInteger(std::string_view token, int64_t& value);
+
+}  // namespace parallax::meshio

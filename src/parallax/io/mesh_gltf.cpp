@@ -1,0 +1,405 @@
+// glTF 2.0 (.gltf with its buffers and images, or .glb) through tinygltf, which parses the
+// JSON, loads buffers and decodes images. We walk the node tree of the scene ourselves
+// (glTF 2.0 specification, "Transformations": a node's matrix, or T * R * S, applies to its
+// children too), expanding a mesh once per node that uses it, and read accessors with our own
+// bounds checks (specification, "Accessors") since the file may be malformed.
+#include <tiny_gltf.h>
+
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "parallax/io/mesh_formats.h"
+
+namespace parallax::meshio {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
+
+// Extensions in extensionsRequired that we honour (or that need nothing from us).
+bool isSupportedExtension(const std::string& name) {
+  return name == "KHR_materials_emissive_strength" || name == "KHR_mesh_quantization";
+}
+
+// A glTF matrix is column-major; Mat4 is row-major.
+Mat4 nodeMatrix(const tinygltf::Node& node) {
+  Mat4 m = Mat4::identity();
+  if (node.matrix.size() == 16) {
+    for (int row = 0; row < 4; ++row)
+      for (int col = 0; col < 4; ++col) m.m[row][col] = float(node.matrix[size_t(col * 4 + row)]);
+    return m;
+  }
+  // T * R * S, with R from the unit quaternion (x, y, z, w).
+  double x = 0, y = 0, z = 0, w = 1;
+  if (node.rotation.size() == 4) {
+    x = node.rotation[0], y = node.rotation[1], z = node.rotation[2], w = node.rotation[3];
+    const double norm = std::sqrt(x * x + y * y + z * z + w * w);
+    if (norm > 0) x /= norm, y /= norm, z /= norm, w /= norm;
+  }
+  const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                          {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                          {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      const double s = node.scale.size() == 3 ? node.scale[size_t(col)] : 1.0;
+      m.m[row][col] = float(r[row][col] * s);
+    }
+    if (node.translation.size() == 3) m.m[row][3] = float(node.translation[size_t(row)]);
+  }
+  return m;
+}
+
+// Converts a decoded glTF image (8 or 16 bits per channel, sRGB-encoded as the spec requires
+// for base colour textures) to linear RGB.
+Image linearImage(const tinygltf::Image& source) {
+  const size_t channels = size_t(source.component);
+  const size_t bytesPerChannel = source.bits == 16 ? 2 : 1;
+  Image image(source.width, source.height);
+  for (size_t i = 0; i < image.pixels().size(); ++i) {
+    float rgb[3];
+    for (size_t c = 0; c < 3; ++c) {
+      const size_t channel = channels >= 3 ? c : 0;  // grey images repeat their one value
+      const size_t offset = (i * channels + channel) * bytesPerChannel;
+      if (bytesPerChannel == 1) {
+        rgb[c] = srgb8ToLinear(source.image[offset]);
+      } else {
+        uint16_t value;
+        std::memcpy(&value, &source.image[offset], 2);
+        rgb[c] = srgbToLinear(float(value) / 65535.0f);
+      }
+    }
+    image.pixels()[i] = {rgb[0], rgb[1], rgb[2]};
+  }
+  return image;
+}
+
+class GltfReader {
+ public:
+  GltfReader(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {}
+
+  FileContents read() {
+    if (model_.asset.version.empty() || model_.asset.version[0] != '2')
+      fail(path_, "glTF version '" + model_.asset.version + "' is not supported (only 2.x)");
+    for (const std::string& name : model_.extensionsRequired)
+      if (!isSupportedExtension(name)) fail(path_, "requires the unsupported extension " + name);
+    readMaterials();
+    onPath_.assign(model_.nodes.size(), false);
+    for (int root : rootNodes()) visit(root, Mat4::identity());
+    if (skippedPrimitives_ > 0)
+      contents_.warnings.push_back("skipped " + std::to_string(skippedPrimitives_) +
+                                   " point or line primitives");
+    return std::move(contents_);
+  }
+
+ private:
+  struct AccessorView {
+    const unsigned char* data = nullptr;
+    size_t stride = 0, count = 0;
+    int componentType = 0, componentSize = 0, components = 0;
+    bool normalized = false;
+  };
+
+  std::vector<int> rootNodes() {
+    const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+    if (size_t(sceneIndex) < model_.scenes.size()) return model_.scenes[size_t(sceneIndex)].nodes;
+    if (model_.defaultScene >= 0)
+      contents_.warnings.push_back("the default scene " + std::to_string(model_.defaultScene) +
+                                   " does not exist; using every root node");
+    // No usable scene: every node that is nobody's child.
+    std::vector<bool> isChild(model_.nodes.size(), false);
+    for (const tinygltf::Node& node : model_.nodes)
+      for (int child : node.children)
+        if (child >= 0 && size_t(child) < isChild.size()) isChild[size_t(child)] = true;
+    std::vector<int> roots;
+    for (size_t i = 0; i < isChild.size(); ++i)
+      if (!isChild[i]) roots.push_back(int(i));
+    return roots;
+  }
+
+  void visit(int nodeIndex, const Mat4& fileFromParent) {
+    if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size())
+      fail(path_, "node index " + std::to_string(nodeIndex) + " does not exist");
+    if (onPath_[size_t(nodeIndex)])
+      fail(path_, "node " + std::to_string(nodeIndex) + " is its own ancestor");
+    onPath_[size_t(nodeIndex)] = true;
+    const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
+    const Mat4 fileFromNode = fileFromParent * nodeMatrix(node);
+    if (node.mesh >= 0) addMesh(node.mesh, fileFromNode);
+    for (int child : node.children) visit(child, fileFromNode);
+    onPath_[size_t(nodeIndex)] = false;
+  }
+
+  void addMesh(int meshIndex, const Mat4& fileFromNode) {
+    if (size_t(meshIndex) >= model_.meshes.size())
+      fail(path_, "mesh index " + std::to_string(meshIndex) + " does not exist");
+    const tinygltf::Mesh& mesh = model_.meshes[size_t(meshIndex)];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const std::string context =
+          "mesh " + (mesh.name.empty() ? std::to_string(meshIndex) : "'" + mesh.name + "'") +
+          " primitive " + std::to_string(p);
+      FilePart part = readPrimitive(mesh.primitives[p], context);
+      if (part.indices.empty()) continue;
+      try {
+        part.fileFromPart = Transform(fileFromNode);
+      } catch (const std::invalid_argument&) {
+        // A zero scale (used to hide nodes) flattens every triangle.
+        contents_.droppedDegenerate += part.indices.size() / 3;
+        continue;
+      }
+      contents_.parts.push_back(std::move(part));
+    }
+  }
+
+  FilePart readPrimitive(const tinygltf::Primitive& primitive, const std::string& context) {
+    FilePart part;
+    part.context = context;
+    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      ++skippedPrimitives_;
+      return part;
+    }
+    if (primitive.material >= 0) {
+      if (size_t(primitive.material) >= contents_.materials.size())
+        fail(path_,
+             context + ": material " + std::to_string(primitive.material) + " does not exist");
+      part.material = primitive.material;
+    }
+    const auto position = primitive.attributes.find("POSITION");
+    if (position == primitive.attributes.end()) fail(path_, context + ": no POSITION attribute");
+    const AccessorView positions =
+        view(position->second, TINYGLTF_TYPE_VEC3, context + ": POSITION");
+    part.positions.resize(positions.count);
+    for (size_t i = 0; i < positions.count; ++i)
+      for (int a = 0; a < 3; ++a) part.positions[i][a] = float(value(positions, i, a));
+
+    if (const auto normal = primitive.attributes.find("NORMAL");
+        normal != primitive.attributes.end()) {
+      const AccessorView normals = view(normal->second, TINYGLTF_TYPE_VEC3, context + ": NORMAL");
+      requireCount(normals, positions.count, context + ": NORMAL");
+      part.normals.resize(normals.count);
+      for (size_t i = 0; i < normals.count; ++i)
+        for (int a = 0; a < 3; ++a) part.normals[i][a] = float(value(normals, i, a));
+    }
+    const int uvSet = part.material >= 0 ? uvSets_[size_t(part.material)] : 0;
+    const std::string uvName = "TEXCOORD_" + std::to_string(uvSet);
+    if (const auto uv = primitive.attributes.find(uvName); uv != primitive.attributes.end()) {
+      const AccessorView uvs = view(uv->second, TINYGLTF_TYPE_VEC2, context + ": " + uvName);
+      requireCount(uvs, positions.count, context + ": " + uvName);
+      part.uvs.resize(uvs.count);
+      // glTF puts v = 0 at the top of the image, Image::sampleBilinear at the bottom.
+      for (size_t i = 0; i < uvs.count; ++i)
+        part.uvs[i] = {float(value(uvs, i, 0)), 1.0f - float(value(uvs, i, 1))};
+    }
+
+    std::vector<uint32_t> corners;
+    if (primitive.indices >= 0) {
+      const AccessorView indices =
+          view(primitive.indices, TINYGLTF_TYPE_SCALAR, context + ": indices");
+      if (indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+          indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+          indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        fail(path_, context + ": indices must be unsigned integers");
+      corners.resize(indices.count);
+      for (size_t i = 0; i < indices.count; ++i) corners[i] = uint32_t(value(indices, i, 0));
+    } else {
+      corners.resize(positions.count);
+      for (size_t i = 0; i < corners.size(); ++i) corners[i] = uint32_t(i);
+    }
+    assemble(mode, corners, context, part.indices);
+    return part;
+  }
+
+  // Specification, "Topology Types": triangle i of a strip is (i, i+1+i%2, i+2-i%2), of a fan
+  // (i+1, i+2, 0).
+  void assemble(int mode, const std::vector<uint32_t>& v, const std::string& context,
+                std::vector<uint32_t>& out) {
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      if (v.size() % 3 != 0)
+        fail(path_, context + ": " + std::to_string(v.size()) +
+                        " triangle corners is not a multiple of 3");
+      out = v;
+      return;
+    }
+    for (size_t i = 0; i + 2 < v.size(); ++i) {
+      if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+        out.insert(out.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+      else
+        out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+    }
+  }
+
+  void requireCount(const AccessorView& a, size_t count, const std::string& what) {
+    if (a.count != count)
+      fail(path_, what + ": has " + std::to_string(a.count) + " elements but POSITION has " +
+                      std::to_string(count));
+  }
+
+  AccessorView view(int index, int type, const std::string& what) {
+    if (index < 0 || size_t(index) >= model_.accessors.size())
+      fail(path_, what + ": accessor " + std::to_string(index) + " does not exist");
+    const tinygltf::Accessor& accessor = model_.accessors[size_t(index)];
+    if (accessor.type != type) fail(path_, what + ": accessor has the wrong type");
+    if (accessor.sparse.isSparse) fail(path_, what + ": sparse accessors are not supported");
+    if (accessor.bufferView < 0 || size_t(accessor.bufferView) >= model_.bufferViews.size())
+      fail(path_, what + ": accessor has no valid buffer view");
+    const tinygltf::BufferView& bufferView = model_.bufferViews[size_t(accessor.bufferView)];
+    if (bufferView.buffer < 0 || size_t(bufferView.buffer) >= model_.buffers.size())
+      fail(path_, what + ": buffer view has no valid buffer");
+    const std::vector<unsigned char>& buffer = model_.buffers[size_t(bufferView.buffer)].data;
+
+    AccessorView result;
+    result.count = accessor.count;
+    result.componentType = accessor.componentType;
+    result.componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType));
+    result.components = tinygltf::GetNumComponentsInType(uint32_t(accessor.type));
+    result.normalized = accessor.normalized;
+    const int stride = accessor.ByteStride(bufferView);
+    if (result.componentSize <= 0 || result.components <= 0 || stride <= 0)
+      fail(path_, what + ": invalid component type or stride");
+    result.stride = size_t(stride);
+    if (bufferView.byteOffset > buffer.size() ||
+        bufferView.byteLength > buffer.size() - bufferView.byteOffset)
+      fail(path_, what + ": buffer view extends past the end of its buffer (truncated?)");
+    if (result.count > 0) {
+      const size_t element = size_t(result.componentSize * result.components);
+      const size_t length = bufferView.byteLength;
+      const bool fits =
+          accessor.byteOffset <= length && element <= length - accessor.byteOffset &&
+          (result.count - 1) <= (length - accessor.byteOffset - element) / result.stride;
+      if (!fits)
+        fail(path_, what + ": accessor reads past the end of its buffer view (truncated?)");
+    }
+    result.data = buffer.data() + bufferView.byteOffset + accessor.byteOffset;
+    return result;
+  }
+
+  // Component c of element i as a number; normalised integers map to [0,1] or [-1,1]
+  // (specification, "Animations": f = max(c / 127, -1) for signed bytes, c / 255 unsigned...).
+  static double value(const AccessorView& a, size_t i, int c) {
+    const unsigned char* p = a.data + i * a.stride + size_t(c * a.componentSize);
+    auto load = [p]<typename T>(T) {
+      T v;
+      std::memcpy(&v, p, sizeof(T));
+      return v;
+    };
+    switch (a.componentType) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT:
+        return double(load(float{}));
+      case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        const double v = load(int8_t{});
+        return a.normalized ? std::max(v / 127.0, -1.0) : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+        const double v = load(uint8_t{});
+        return a.normalized ? v / 255.0 : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        const double v = load(int16_t{});
+        return a.normalized ? std::max(v / 32767.0, -1.0) : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        const double v = load(uint16_t{});
+        return a.normalized ? v / 65535.0 : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        return double(load(uint32_t{}));
+      case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+        return load(double{});
+      default:
+        return 0;
+    }
+  }
+
+  void readMaterials() {
+    std::map<int, int> imageIndex;  // glTF image -> FileContents::images
+    for (size_t m = 0; m < model_.materials.size(); ++m) {
+      const tinygltf::Material& source = model_.materials[m];
+      FileMaterial material;
+      material.material.name = source.name.empty() ? "material " + std::to_string(m) : source.name;
+      const std::vector<double>& base = source.pbrMetallicRoughness.baseColorFactor;
+      if (base.size() >= 3)
+        material.material.diffuse = {float(base[0]), float(base[1]), float(base[2])};
+      double strength = 1.0;
+      if (auto ext = source.extensions.find("KHR_materials_emissive_strength");
+          ext != source.extensions.end() && ext->second.Has("emissiveStrength"))
+        strength = ext->second.Get("emissiveStrength").GetNumberAsDouble();
+      if (source.emissiveFactor.size() == 3)
+        material.material.emission = {float(source.emissiveFactor[0] * strength),
+                                      float(source.emissiveFactor[1] * strength),
+                                      float(source.emissiveFactor[2] * strength)};
+      const tinygltf::TextureInfo& texture = source.pbrMetallicRoughness.baseColorTexture;
+      uvSets_.push_back(texture.index >= 0 ? texture.texCoord : 0);
+      if (texture.index >= 0)
+        material.image = image(texture.index, material.material.name, imageIndex);
+      contents_.materials.push_back(std::move(material));
+    }
+  }
+
+  int image(int textureIndex, const std::string& materialName, std::map<int, int>& imageIndex) {
+    const std::string where = "material '" + materialName + "': ";
+    if (size_t(textureIndex) >= model_.textures.size())
+      fail(path_, where + "texture " + std::to_string(textureIndex) + " does not exist");
+    const int source = model_.textures[size_t(textureIndex)].source;
+    if (source < 0 || size_t(source) >= model_.images.size()) {
+      contents_.warnings.push_back(where + "texture has no image we can read; ignoring it");
+      return -1;
+    }
+    auto [it, inserted] = imageIndex.try_emplace(source, -1);
+    if (!inserted) return it->second;
+    const tinygltf::Image& image = model_.images[size_t(source)];
+    const size_t bytes = size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) *
+                         size_t(std::max(image.component, 0)) * (image.bits == 16 ? 2 : 1);
+    if (image.image.empty() || bytes == 0 || image.image.size() < bytes ||
+        (image.bits != 8 && image.bits != 16)) {
+      contents_.warnings.push_back(where + "image " + std::to_string(source) +
+                                   " could not be decoded; ignoring it");
+      return -1;
+    }
+    contents_.images.push_back(linearImage(image));
+    it->second = int(contents_.images.size()) - 1;
+    return it->second;
+  }
+
+  const std::string& path_;
+  const tinygltf::Model& model_;
+  FileContents contents_;
+  std::vector<int> uvSets_;   // TEXCOORD set of each material's base colour texture
+  std::vector<bool> onPath_;  // nodes between the root and the one being visited
+  size_t skippedPrimitives_ = 0;
+};
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> result;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) result.push_back(line);
+  return result;
+}
+
+}  // namespace
+
+FileContents readGltf(const std::string& path) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error, warning;
+  // A .glb starts with the magic "glTF" (specification, "GLB File Format"); anything else is
+  // read as JSON.
+  char magic[4] = {};
+  std::ifstream(path, std::ios::binary).read(magic, sizeof magic);
+  const bool binary = std::string_view(magic, sizeof magic) == "glTF";
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
+                         : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  if (!ok) {
+    std::string message;
+    for (const std::string& line : lines(error)) message += (message.empty() ? "" : "; ") + line;
+    fail(path, message.empty() ? "cannot parse the glTF file" : message);
+  }
+  FileContents contents = GltfReader(path, model).read();
+  for (const std::string& line : lines(warning)) contents.warnings.push_back(line);
+  return contents;
+}
+
+}  // namespace parallax::meshio

@@ -1,0 +1,593 @@
+// The JSON scene format; docs/scene-format.md documents every key this file reads.
+#include "parallax/io/scene_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "parallax/core/error.h"
+#include "parallax/core/transform.h"
+#include "parallax/io/image_file.h"
+#include "parallax/io/json_reader.h"
+#include "parallax/io/mesh_file.h"
+
+namespace parallax {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kFormatVersion = 1;
+const Vec3f kDefaultAlbedo{0.8f};
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+// The "up" used when none is given for something facing `normal`: world +y, or -z when the
+// normal is (nearly) vertical, so that a floor's v axis points away from the viewer.
+Vec3f defaultUp(const Vec3f& normal) {
+  return std::abs(normal.y) > 0.999f ? Vec3f(0, 0, -1) : Vec3f(0, 1, 0);
+}
+
+// `up` made perpendicular to the unit `normal` (Gram-Schmidt), or nullopt if they are parallel.
+std::optional<Vec3f> perpendicularUp(const Vec3f& up, const Vec3f& normal) {
+  const Vec3f v = up - normal * dot(up, normal);
+  if (!(length(v) > 1e-4f * length(up))) return std::nullopt;
+  return normalize(v);
+}
+
+void transformMesh(TriangleMesh& mesh, const Transform& worldFromObject) {
+  for (Vec3f& p : mesh.positions) p = worldFromObject.point(p);
+  for (Vec3f& n : mesh.normals) n = normalize(worldFromObject.normal(n));
+  // A mirroring transform turns the triangles' winding around; swap two corners so that the
+  // winding agrees with the (correctly transformed) normals again.
+  if (worldFromObject.swapsHandedness())
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+      std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+}
+
+// The factor s if the linear part of `t` is s times a rotation or reflection (a similarity),
+// the only transforms that keep a sphere a sphere.
+std::optional<float> uniformScale(const Transform& t) {
+  const Vec3f c[3] = {t.vector({1, 0, 0}), t.vector({0, 1, 0}), t.vector({0, 0, 1})};
+  const float s = length(c[0]);
+  constexpr float kTolerance = 1e-4f;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(length(c[i]) - s) > kTolerance * s) return std::nullopt;
+    if (std::abs(dot(c[i], c[(i + 1) % 3])) > kTolerance * s * s) return std::nullopt;
+  }
+  return s;
+}
+
+// Extent of `bounds` along the unit direction `axis`.
+float extentAlong(const Bounds3f& bounds, const Vec3f& axis) {
+  const Vec3f d = bounds.diagonal();
+  return std::abs(axis.x) * d.x + std::abs(axis.y) * d.y + std::abs(axis.z) * d.z;
+}
+
+// Where the display goes when the file does not say: at the centre of `bounds`, facing +z,
+// as wide as the bounds are along the display's horizontal axis.
+DisplayPlacement placeDisplay(const Bounds3f& bounds, const Vec3f& normal, const Vec3f& up) {
+  DisplayPlacement display;
+  display.normal = normal;
+  display.up = up;
+  if (bounds.empty()) return display;
+  display.center = bounds.center();
+  const float width = extentAlong(bounds, normalize(cross(up, normal)));
+  const float largest = maxComponent(bounds.diagonal());
+  display.width = width > 0 ? width : (largest > 0 ? largest : 1.0f);
+  return display;
+}
+
+std::string listOrNone(const std::map<std::string, int>& named, const char* what) {
+  if (named.empty()) return std::string("no ") + what + " are defined";
+  std::string list;
+  for (const auto& [name, index] : named) list += (list.empty() ? "" : ", ") + name;
+  return "defined: " + list;
+}
+
+[[noreturn]] void failUnknownName(const JsonReader& at, const std::string& name,
+                                  const std::map<std::string, int>& named, const char* kind,
+                                  const char* plural) {
+  std::vector<std::string> names;
+  for (const auto& [n, index] : named) names.push_back(n);
+  const std::string suggestion = closestMatch(name, names);
+  at.fail("unknown " + std::string(kind) + " '" + name + "' (" +
+          (suggestion.empty() ? listOrNone(named, plural) : "did you mean '" + suggestion + "'?") +
+          ")");
+}
+
+Transform readMatrix(const JsonReader& value) {
+  const std::vector<JsonReader> items = value.elements();
+  Mat4 m;
+  if (items.size() == 16) {
+    for (size_t i = 0; i < 16; ++i) m.m[i / 4][i % 4] = float(items[i].number());
+  } else if (items.size() == 4) {
+    for (size_t row = 0; row < 4; ++row) {
+      const std::vector<JsonReader> cells = items[row].elements();
+      if (cells.size() != 4) items[row].fail("expected a row of 4 numbers");
+      for (size_t col = 0; col < 4; ++col) m.m[row][col] = float(cells[col].number());
+    }
+  } else {
+    value.fail("expected 16 numbers (row-major) or 4 rows of 4 numbers");
+  }
+  if (m.m[3] != std::array<float, 4>{0, 0, 0, 1})
+    value.fail("the last row must be [0, 0, 0, 1] (only affine transforms are allowed)");
+  Mat4 inverse;
+  if (!invert(m, inverse)) value.fail("singular transform (it flattens the object)");
+  return {m, inverse};
+}
+
+Transform readStep(const JsonReader& step) {
+  step.expectObject({"translate", "rotate", "scale", "matrix"});
+  if (step.size() != 1) step.fail("a step has exactly one of translate, rotate, scale, matrix");
+  const auto [kind, value] = step.members().front();
+  if (kind == "translate") return Transform::translate(value.vec3());
+  if (kind == "rotate") {
+    value.expectObject({"angle", "axis"});
+    return Transform::rotate(float(value["angle"].number()), value["axis"].direction());
+  }
+  if (kind == "scale") {
+    if (!value.isNumber() && !value.isArray())
+      value.fail("expected a number or 3 numbers [x, y, z], found " + value.typeName());
+    const Vec3f s = value.isNumber() ? Vec3f(float(value.number())) : value.vec3();
+    if (s.x == 0 || s.y == 0 || s.z == 0) value.fail("singular transform: scale by zero");
+    return Transform::scale(s);
+  }
+  return readMatrix(value);
+}
+
+// Either {"matrix": ...} or a list of steps. Steps apply in list order to the object: the
+// first step acts on the object as written, the next on that result, so the overall
+// world-from-object transform is the product of the steps in reverse order.
+Transform readTransform(const JsonReader& value) {
+  if (value.isObject()) {
+    value.expectObject({"matrix"});
+    return readMatrix(value["matrix"]);
+  }
+  if (!value.isArray())
+    value.fail(
+        "expected a list of steps like [{\"scale\": 2}, {\"translate\": [0, 1, 0]}] or "
+        "{\"matrix\": [...]}");
+  Transform worldFromObject;
+  for (const JsonReader& step : value.elements())
+    worldFromObject = readStep(step) * worldFromObject;
+  return worldFromObject;
+}
+
+// A reflectance: a colour with every channel in [0, 1].
+Vec3f reflectance(const JsonReader& value) {
+  const Vec3f c = value.color();
+  if (maxComponent(c) > 1) value.fail("a reflectance must be at most 1 in every channel");
+  return c;
+}
+
+Vec3f positiveSize(const JsonReader& value) {
+  if (value.isNumber()) return Vec3f(value.positive());
+  const Vec3f s = value.vec3();
+  if (!(s.x > 0 && s.y > 0 && s.z > 0)) value.fail("every size must be positive");
+  return s;
+}
+
+class SceneFileLoader {
+ public:
+  explicit SceneFileLoader(const std::string& path)
+      : path_(path), folder_(fs::path(path).parent_path()) {}
+
+  Scene load() {
+    const JsonDocument document = JsonDocument::parseFile(path_);
+    const JsonReader root = document.root();
+    root.expectObject({"version", "objects", "materials", "textures", "lights", "ambient",
+                       "background", "max_depth", "camera", "display"});
+    if (const auto version = root.find("version"))
+      if (version->integer(0, INT_MAX) != kFormatVersion)
+        version->fail("unsupported version " + version->dump() + " (this build reads version " +
+                      std::to_string(kFormatVersion) + ")");
+    scene_.source = path_;
+    scene_.ambient = root.color("ambient", Vec3f(0.0f));
+    scene_.background = root.color("background", Vec3f(0.0f));
+    scene_.maxDepth = root.integer("max_depth", scene_.maxDepth, 0, 64);
+    if (const auto textures = root.find("textures"))
+      for (const auto& [name, texture] : textures->members()) {
+        scene_.textures.push_back(readTexture(texture));
+        namedTextures_[name] = int(scene_.textures.size()) - 1;
+      }
+    if (const auto materials = root.find("materials"))
+      for (const auto& [name, material] : materials->members()) {
+        scene_.materials.push_back(readMaterial(material, name));
+        namedMaterials_[name] = int(scene_.materials.size()) - 1;
+      }
+    if (const auto objects = root.find("objects")) {
+      const auto list = objects->elements();
+      for (size_t i = 0; i < list.size(); ++i) readObject(list[i], i);
+    }
+    if (scene_.meshes.empty() && scene_.spheres.empty())
+      scene_.warnings.push_back(path_ + ": the scene has no objects");
+    const Bounds3f objectBounds = scene_.bounds();  // before light quads are added
+    if (const auto lights = root.find("lights"))
+      for (const JsonReader& light : lights->elements()) readLight(light);
+    addMeshLights();
+    readDisplay(root.find("display"), objectBounds);
+    if (const auto camera = root.find("camera"))
+      scene_.camera = readCamera(*camera);
+    else
+      scene_.camera = frameScene(scene_);
+    return std::move(scene_);
+  }
+
+ private:
+  struct EmitterOptions {
+    int samples = 1;
+    bool twoSided = false;
+  };
+
+  std::string resolve(const std::string& file) const {
+    const fs::path p(file);
+    return (p.is_absolute() ? p : folder_ / p).lexically_normal().string();
+  }
+
+  int loadImage(const JsonReader& fileKey) {
+    const std::string file = resolve(fileKey.string());
+    if (const auto it = images_.find(file); it != images_.end()) return it->second;
+    if (!fs::exists(file)) fileKey.fail("image file not found: " + file);
+    try {
+      scene_.images.push_back(readImage(file));
+    } catch (const InputError& e) {
+      fileKey.fail(e.what());
+    }
+    return images_[file] = int(scene_.images.size()) - 1;
+  }
+
+  Texture readTexture(const JsonReader& value) {
+    const std::string type = value["type"].string();
+    Texture texture;
+    if (type == "checker") {
+      value.expectObject({"type", "color1", "color2", "size"});
+      texture.kind = Texture::Kind::Checker;
+      if (const auto c = value.find("color1")) texture.color = reflectance(*c);
+      if (const auto c = value.find("color2")) texture.color2 = reflectance(*c);
+      texture.checkerSize = value.positive("size", texture.checkerSize);
+    } else if (type == "image") {
+      value.expectObject({"type", "file"});
+      texture.kind = Texture::Kind::Image;
+      texture.image = loadImage(value["file"]);
+    } else {
+      value["type"].fail("unknown texture type '" + type + "' (expected checker or image)");
+    }
+    return texture;
+  }
+
+  // A texture reference: the name of one in "textures", or an inline texture object.
+  int textureFor(const JsonReader& value) {
+    if (value.isObject()) {
+      scene_.textures.push_back(readTexture(value));
+      return int(scene_.textures.size()) - 1;
+    }
+    if (!value.isString()) value.fail("expected a texture name or a texture object");
+    const std::string name = value.string();
+    const auto it = namedTextures_.find(name);
+    if (it == namedTextures_.end())
+      failUnknownName(value, name, namedTextures_, "texture", "textures");
+    return it->second;
+  }
+
+  Material readMaterial(const JsonReader& value, const std::string& name) {
+    value.expectObject({"color", "diffuse", "texture", "mirror", "emission", "emission_strength"});
+    Material material;
+    material.name = name;
+    if (value.has("color") && value.has("diffuse"))
+      value["diffuse"].fail("give either 'color' or 'diffuse' (they mean the same)");
+    if (const auto texture = value.find("texture")) material.diffuseTexture = textureFor(*texture);
+    // The texture is multiplied by the diffuse colour, which therefore defaults to white.
+    material.diffuse = material.diffuseTexture >= 0 ? Vec3f(1.0f) : kDefaultAlbedo;
+    if (const auto c = value.find("color")) material.diffuse = reflectance(*c);
+    if (const auto c = value.find("diffuse")) material.diffuse = reflectance(*c);
+    if (const auto c = value.find("mirror")) material.mirror = reflectance(*c);
+    const auto strength = value.find("emission_strength");
+    material.emission = value.color("emission", Vec3f(strength ? 1.0f : 0.0f));
+    if (strength) material.emission *= strength->nonNegative();
+    return material;
+  }
+
+  uint32_t defaultMaterial() {
+    if (!defaultMaterial_) {
+      Material material;
+      material.name = "default";
+      material.diffuse = kDefaultAlbedo;
+      scene_.materials.push_back(material);
+      defaultMaterial_ = uint32_t(scene_.materials.size() - 1);
+    }
+    return *defaultMaterial_;
+  }
+
+  // A material reference: the name of one in "materials", or an inline material object.
+  uint32_t materialFor(const JsonReader& value, const std::string& objectName) {
+    if (value.isObject()) {
+      scene_.materials.push_back(readMaterial(value, objectName));
+      return uint32_t(scene_.materials.size() - 1);
+    }
+    if (!value.isString()) value.fail("expected a material name or a material object");
+    const std::string name = value.string();
+    const auto it = namedMaterials_.find(name);
+    if (it == namedMaterials_.end())
+      failUnknownName(value, name, namedMaterials_, "material", "materials");
+    return uint32_t(it->second);
+  }
+
+  void readObject(const JsonReader& object, size_t index) {
+    static const std::vector<std::string> common = {
+        "name", "shape", "material", "transform", "light_samples", "light_two_sided"};
+    static const std::map<std::string, std::vector<std::string>> shapeKeys = {
+        {"sphere", {"center", "radius"}},
+        {"box", {"min", "max", "size", "center"}},
+        {"quad", {"corner", "edge_u", "edge_v"}},
+        {"plane", {"center", "normal", "up", "size"}},
+        {"mesh", {"file"}}};
+    std::vector<std::string> allowed = common;
+    if (!object.has("shape")) {  // a misspelt "shape" is better reported as unknown key
+      for (const auto& [shape, keys] : shapeKeys)
+        allowed.insert(allowed.end(), keys.begin(), keys.end());
+      object.expectObject(allowed);
+    }
+    const JsonReader shapeKey = object["shape"];
+    const std::string shape = shapeKey.string();
+    const auto keys = shapeKeys.find(shape);
+    if (keys == shapeKeys.end()) {
+      std::vector<std::string> shapes;
+      for (const auto& [s, k] : shapeKeys) shapes.push_back(s);
+      const std::string hint = closestMatch(shape, shapes);
+      shapeKey.fail("unknown shape '" + shape + "' (" +
+                    (hint.empty() ? "expected sphere, box, quad, plane or mesh"
+                                  : "did you mean '" + hint + "'?") +
+                    ")");
+    }
+    allowed.insert(allowed.end(), keys->second.begin(), keys->second.end());
+    object.expectObject(allowed);
+
+    const std::string name = object.string("name", shape + " " + std::to_string(index));
+    const auto transformKey = object.find("transform");
+    const Transform worldFromObject = transformKey ? readTransform(*transformKey) : Transform();
+    std::optional<uint32_t> material;
+    if (const auto m = object.find("material"))
+      material = materialFor(*m, name);
+    else if (shape != "mesh")  // meshes keep the materials of their file
+      material = defaultMaterial();
+
+    const EmitterOptions emitter{object.integer("light_samples", 1, 1, 4096),
+                                 object.boolean("light_two_sided", false)};
+    const size_t firstMesh = scene_.meshes.size();
+    if (shape == "sphere") {
+      Sphere sphere;
+      sphere.name = name;
+      sphere.material = *material;
+      sphere.center = worldFromObject.point(object.vec3("center", Vec3f(0.0f)));
+      const std::optional<float> scale = uniformScale(worldFromObject);
+      if (!scale)
+        transformKey->fail(
+            "a sphere can only be moved, rotated, mirrored and scaled uniformly; "
+            "this transform scales unevenly or shears (use a mesh for ellipsoids)");
+      sphere.radius = object["radius"].positive() * *scale;
+      if (maxComponent(scene_.materials[*material].emission) > 0)
+        scene_.warnings.push_back(path_ + ": " + object.pointer() +
+                                  ": emissive spheres glow "
+                                  "but do not light the scene (use a mesh or a quad light)");
+      scene_.spheres.push_back(sphere);
+    } else if (shape == "mesh") {
+      addMeshFile(object["file"], name, worldFromObject, material);
+    } else {
+      addFlatShape(object, shape, name, *material);
+      transformMesh(scene_.meshes.back(), worldFromObject);
+    }
+    for (size_t i = firstMesh; i < scene_.meshes.size(); ++i) emitters_[i] = emitter;
+  }
+
+  void addFlatShape(const JsonReader& object, const std::string& shape, const std::string& name,
+                    uint32_t material) {
+    if (shape == "box") {
+      Vec3f lo, hi;
+      if (object.has("size")) {
+        if (object.has("min") || object.has("max"))
+          object["size"].fail("give either 'size' (and 'center') or 'min' and 'max'");
+        const Vec3f half = positiveSize(object["size"]) * 0.5f;
+        const Vec3f center = object.vec3("center", Vec3f(0.0f));
+        lo = center - half;
+        hi = center + half;
+      } else {
+        if (object.has("center")) object["center"].fail("'center' goes with 'size'");
+        if (!object.has("min") || !object.has("max"))
+          object.fail("a box needs 'min' and 'max', or 'size'");
+        lo = object["min"].vec3();
+        hi = object["max"].vec3();
+        if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+          object["max"].fail("'max' must exceed 'min' on every axis");
+      }
+      addBox(scene_, name, lo, hi, material);
+    } else if (shape == "quad") {
+      const Vec3f corner = object["corner"].vec3();
+      const Vec3f u = object["edge_u"].vec3(), v = object["edge_v"].vec3();
+      if (!(length(cross(u, v)) > 0))
+        object.fail("zero-area quad (edge_u and edge_v are zero or parallel)");
+      addQuad(scene_, name, corner, u, v, material);
+    } else {  // plane: a finite square or rectangle around `center`
+      const Vec3f center = object.vec3("center", Vec3f(0.0f));
+      const Vec3f normal = object.direction("normal", {0, 1, 0});
+      const auto upKey = object.find("up");
+      const std::optional<Vec3f> v =
+          perpendicularUp(upKey ? upKey->direction() : defaultUp(normal), normal);
+      if (!v) upKey->fail("'up' is parallel to the normal");
+      const Vec3f u = cross(*v, normal);
+      const JsonReader sizeKey = object["size"];
+      Vec2f size;
+      if (sizeKey.isNumber()) {
+        size.x = size.y = sizeKey.positive();
+      } else {
+        const auto wh = sizeKey.elements();
+        if (wh.size() != 2) sizeKey.fail("expected a number or 2 numbers [width, height]");
+        size = {wh[0].positive(), wh[1].positive()};
+      }
+      const Vec3f edgeU = u * size.x, edgeV = *v * size.y;
+      addQuad(scene_, name, center - edgeU * 0.5f - edgeV * 0.5f, edgeU, edgeV, material);
+    }
+  }
+
+  void addMeshFile(const JsonReader& fileKey, const std::string& name,
+                   const Transform& worldFromObject, std::optional<uint32_t> material) {
+    const std::string file = resolve(fileKey.string());
+    if (!fs::exists(file)) fileKey.fail("mesh file not found: " + file);
+    if (!isMeshFile(file))
+      fileKey.fail("not a mesh file this build reads (.obj, .ply, .stl, .gltf, .glb): " + file);
+    MeshLoadOptions options;
+    options.worldFromFile = worldFromObject;
+    options.materialOverride = material;
+    options.name = name;
+    const size_t firstMesh = scene_.meshes.size();
+    loadMeshFile(file, options, scene_);
+    for (size_t i = firstMesh; i < scene_.meshes.size(); ++i)
+      if (scene_.meshes[i].material >= scene_.materials.size())
+        scene_.meshes[i].material = defaultMaterial();
+  }
+
+  void readLight(const JsonReader& value) {
+    const JsonReader typeKey = value["type"];
+    const std::string type = typeKey.string();
+    Light light;
+    if (type == "point") {
+      value.expectObject({"type", "name", "position", "intensity"});
+      light.kind = Light::Kind::Point;
+      light.position = value["position"].vec3();
+      light.intensity = value["intensity"].color();
+    } else if (type == "directional") {
+      value.expectObject({"type", "name", "direction", "irradiance"});
+      light.kind = Light::Kind::Directional;
+      light.direction = value["direction"].direction();
+      light.intensity = value["irradiance"].color();
+    } else if (type == "quad") {
+      value.expectObject(
+          {"type", "name", "corner", "edge_u", "edge_v", "radiance", "samples", "two_sided"});
+      light.kind = Light::Kind::Quad;
+      light.corner = value["corner"].vec3();
+      light.edgeU = value["edge_u"].vec3();
+      light.edgeV = value["edge_v"].vec3();
+      if (!(length(cross(light.edgeU, light.edgeV)) > 0))
+        value.fail("zero-area quad light (edge_u and edge_v are zero or parallel)");
+      light.intensity = value["radiance"].color();
+      light.samples = value.integer("samples", light.samples, 1, 4096);
+      light.twoSided = value.boolean("two_sided", false);
+      // The light is also a visible surface: an emissive quad that cameras and mirrors see.
+      Material lamp;
+      lamp.name = value.string("name", "quad light " + std::to_string(scene_.lights.size()));
+      lamp.diffuse = Vec3f(0.0f);
+      lamp.emission = light.intensity;
+      scene_.materials.push_back(lamp);
+      addQuad(scene_, lamp.name, light.corner, light.edgeU, light.edgeV,
+              uint32_t(scene_.materials.size() - 1));
+      light.mesh = int(scene_.meshes.size()) - 1;
+    } else {
+      typeKey.fail("unknown light type '" + type + "' (expected point, directional or quad)");
+    }
+    scene_.lights.push_back(light);
+  }
+
+  // Every mesh with an emissive material that is not already a quad light's surface.
+  void addMeshLights() {
+    std::vector<bool> isLight(scene_.meshes.size(), false);
+    for (const Light& light : scene_.lights)
+      if (light.mesh >= 0) isLight[size_t(light.mesh)] = true;
+    for (size_t i = 0; i < scene_.meshes.size(); ++i) {
+      const Vec3f emission = scene_.materials[scene_.meshes[i].material].emission;
+      if (isLight[i] || !(maxComponent(emission) > 0)) continue;
+      Light light;
+      light.kind = Light::Kind::Mesh;
+      light.intensity = emission;
+      light.mesh = int(i);
+      light.samples = emitters_[i].samples;
+      light.twoSided = emitters_[i].twoSided;
+      scene_.lights.push_back(light);
+    }
+  }
+
+  void readDisplay(const std::optional<JsonReader>& value, const Bounds3f& bounds) {
+    if (value) value->expectObject({"center", "normal", "up", "width"});
+    const Vec3f normal = value ? value->direction("normal", {0, 0, 1}) : Vec3f(0, 0, 1);
+    const auto upKey = value ? value->find("up") : std::nullopt;
+    const std::optional<Vec3f> up =
+        perpendicularUp(upKey ? upKey->direction() : defaultUp(normal), normal);
+    if (!up) upKey->fail("'up' is parallel to the display normal");
+    scene_.display = placeDisplay(bounds, normal, *up);
+    if (!value) return;
+    scene_.display.center = value->vec3("center", scene_.display.center);
+    scene_.display.width = value->positive("width", scene_.display.width);
+  }
+
+  CameraSpec readCamera(const JsonReader& value) const {
+    value.expectObject({"eye", "look_at", "up", "fov"});
+    CameraSpec camera;
+    camera.eye = value["eye"].vec3();
+    camera.lookAt = value["look_at"].vec3();
+    if (!(length(camera.lookAt - camera.eye) > 0)) value["look_at"].fail("'look_at' equals 'eye'");
+    camera.up = value.direction("up", camera.up);
+    if (!perpendicularUp(camera.up, normalize(camera.lookAt - camera.eye)))
+      (value.has("up") ? value["up"] : value)
+          .fail("'up' is parallel to the viewing direction (give an 'up' across it)");
+    if (const auto fov = value.find("fov")) {
+      camera.fovDegrees = float(fov->number());
+      if (!(camera.fovDegrees > 0 && camera.fovDegrees < 180))
+        fov->fail("expected a vertical field of view between 0 and 180 degrees");
+    }
+    return camera;
+  }
+
+  std::string path_;
+  fs::path folder_;
+  Scene scene_;
+  std::map<std::string, int> namedTextures_, namedMaterials_, images_;
+  std::optional<uint32_t> defaultMaterial_;
+  std::map<size_t, EmitterOptions> emitters_;  // by mesh index
+};
+
+}  // namespace
+
+Scene sceneFromMesh(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "", "file not found");
+  Scene scene;
+  scene.source = path;
+  loadMeshFile(path, MeshLoadOptions{}, scene);
+  if (scene.materials.empty()) {
+    Material grey;
+    grey.name = "default";
+    grey.diffuse = kDefaultAlbedo;
+    scene.materials.push_back(grey);
+  }
+  for (TriangleMesh& mesh : scene.meshes)
+    if (mesh.material >= scene.materials.size()) mesh.material = 0;
+  const Bounds3f bounds = scene.bounds();
+  if (bounds.empty()) throw InputError(path, "", "the file has no triangles");
+  // A key light from above, front and left: directional, so it needs no scale; the ambient
+  // fill keeps the sides it misses readable. A white surface facing the key shows 0.8/pi*2.5
+  // + 0.8*0.15, about 0.76.
+  Light key;
+  key.kind = Light::Kind::Directional;
+  key.direction = normalize(Vec3f(0.4f, -1.0f, -0.6f));
+  key.intensity = Vec3f(2.5f);
+  scene.lights.push_back(key);
+  scene.ambient = Vec3f(0.15f);
+  scene.background = Vec3f(0.02f);
+  scene.display = placeDisplay(bounds, {0, 0, 1}, {0, 1, 0});
+  scene.camera = frameScene(scene);
+  return scene;
+}
+
+Scene loadScene(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "", "file not found");
+  if (lowerExtension(path) == ".json") return SceneFileLoader(path).load();
+  if (isMeshFile(path)) return sceneFromMesh(path);
+  throw InputError(path, "", "unknown scene format (expected a .json scene or a mesh file)");
+}
+
+}  // namespace parallax
