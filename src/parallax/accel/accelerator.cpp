@@ -218,6 +218,7 @@ bool Accelerator::occluded(const Ray& ray) const {
 void Accelerator::intersect16(const RayPacket16& rays, HitPacket16& hits) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRayHit16 rayHit;
   fillRays(rays, rayHit.ray);
   for (int lane = 0; lane < 16; ++lane) {
@@ -243,6 +244,7 @@ void Accelerator::intersect16(const RayPacket16& rays, HitPacket16& hits) const 
 void Accelerator::occluded16(const RayPacket16& rays, bool occludedOut[16]) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRay16 shadow;
   fillRays(rays, shadow);
   rtcOccluded16(rays.active, impl_->scene, &context, &shadow);

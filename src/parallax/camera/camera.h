@@ -15,12 +15,23 @@ struct FilmSample {
   float apertureU = 0.5f, apertureV = 0.5f;
 };
 
+// Sixteen film samples, structure of arrays.
+struct alignas(64) FilmSamples16 {
+  float x[16], y[16], apertureU[16], apertureV[16];
+  FilmSample at(int lane) const { return {x[lane], y[lane], apertureU[lane], apertureV[lane]}; }
+};
+
 class Camera {
  public:
   virtual ~Camera() = default;
   virtual int width() const = 0;
   virtual int height() const = 0;
   virtual Ray generateRay(const FilmSample& sample) const = 0;
+  // The rays of the active lanes of `out` (whose `active` flags the caller has set).
+  virtual void generateRays16(const FilmSamples16& samples, RayPacket16& out) const {
+    for (int lane = 0; lane < 16; ++lane)
+      if (out.active[lane]) out.set(lane, generateRay(samples.at(lane)));
+  }
   // Film columns this far apart carry nearly parallel rays; the render loop packs them into
   // one packet so that Embree traverses coherent rays (1: neighbouring pixels).
   virtual int packetStride() const { return 1; }
@@ -38,6 +49,7 @@ class PinholeCamera final : public Camera {
     const Vec3f direction = pixel00_ + pixelDx_ * sample.x + pixelDy_ * sample.y;
     return {eye_, direction};
   }
+  void generateRays16(const FilmSamples16& samples, RayPacket16& out) const override;
 
   // The film, as a point and two steps: the ray through film (x, y) has direction
   // pixel00 + x * pixelDx + y * pixelDy (unnormalised). Used by the benchmark's raw limit.

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "parallax/camera/camera.h"
@@ -22,8 +23,20 @@ PinholeCamera::PinholeCamera(const Vec3f& eye, const Vec3f& lookAt, const Vec3f&
   pixel00_ = forward - right * halfWidth + trueUp * halfHeight;
 }
 
+void PinholeCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
+  for (int i = 0; i < 16; ++i) {
+    out.ox[i] = eye_.x, out.oy[i] = eye_.y, out.oz[i] = eye_.z;
+    out.dx[i] = pixel00_.x + pixelDx_.x * s.x[i] + pixelDy_.x * s.y[i];
+    out.dy[i] = pixel00_.y + pixelDx_.y * s.x[i] + pixelDy_.y * s.y[i];
+    out.dz[i] = pixel00_.z + pixelDx_.z * s.x[i] + pixelDy_.z * s.y[i];
+    out.tMin[i] = 0.0f;
+    out.tMax[i] = std::numeric_limits<float>::infinity();
+  }
+}
+
 PinholeGrid PinholeCamera::grid(int samplesPerPixel) const {
-  return {eye_, pixel00_, pixelDx_, pixelDy_, width_, height_, samplesPerPixel};
+  // PinholeGrid holds the film as points; the camera keeps it as directions from the eye.
+  return {eye_, eye_ + pixel00_, pixelDx_, pixelDy_, width_, height_, samplesPerPixel};
 }
 
 }  // namespace parallax

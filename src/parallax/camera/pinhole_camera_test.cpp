@@ -53,3 +53,22 @@ TEST(PinholeCamera, RejectsImpossibleSettings) {
 
 }  // namespace
 }  // namespace parallax
+
+namespace parallax {
+namespace {
+
+TEST(PinholeCamera, GridDescribesTheSameRays) {
+  const PinholeCamera camera({1, 2, 3}, {0, 0, -4}, {0, 1, 0}, 45.0f, 32, 24);
+  const PinholeGrid grid = camera.grid(4);
+  for (float y : {0.5f, 7.25f, 23.5f})
+    for (float x : {0.5f, 13.75f, 31.5f}) {
+      const Vec3f through = grid.pixel00 + grid.pixelDx * x + grid.pixelDy * y;
+      const Vec3f expected = normalize(camera.generateRay({x, y}).direction);
+      const Vec3f actual = normalize(through - grid.eye);
+      EXPECT_NEAR(dot(expected, actual), 1.0f, 1e-6f);
+    }
+  EXPECT_EQ(grid.eye, Vec3f(1, 2, 3));
+}
+
+}  // namespace
+}  // namespace parallax

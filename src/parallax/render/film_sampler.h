@@ -8,35 +8,12 @@
 
 #include <cmath>
 
-#include "parallax/camera/camera.h"
-#include "parallax/core/random.h"
 
 namespace parallax {
 
 inline int stratificationOrder(int samplesPerPixel) {
   const int n = int(std::lround(std::sqrt(double(samplesPerPixel))));
   return n * n == samplesPerPixel ? n : 0;
-}
-
-// Sample `index` of pixel (x, y); draws its jitter from `rng` (seeded for this sample).
-inline FilmSample filmSample(int x, int y, int index, int samplesPerPixel, int strataOrder,
-                             Rng& rng) {
-  if (samplesPerPixel == 1) return {float(x) + 0.5f, float(y) + 0.5f, 0.5f, 0.5f};
-  FilmSample s;
-  if (strataOrder > 0) {
-    const int n = strataOrder;
-    const float inv = 1.0f / float(n);
-    s.x = float(x) + (float(index % n) + rng.uniform()) * inv;
-    s.y = float(y) + (float(index / n) + rng.uniform()) * inv;
-    s.apertureU = (float(index / n) + rng.uniform()) * inv;
-    s.apertureV = (float(index % n) + rng.uniform()) * inv;
-  } else {
-    s.x = float(x) + rng.uniform();
-    s.y = float(y) + rng.uniform();
-    s.apertureU = rng.uniform();
-    s.apertureV = rng.uniform();
-  }
-  return s;
 }
 
 }  // namespace parallax

@@ -103,6 +103,47 @@ LightSample LightSampler::sample(size_t index, const Vec3f& p, const Vec3f& n, f
   return s;
 }
 
+void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float u1[16],
+                            const float u2[16], const float u3[16], LightPacket16& out) const {
+  const Entry& e = lights_[index];
+  const Light& light = e.light;
+  if (light.kind == Light::Kind::Quad) {
+    // The common case, written as straight-line lane loops that compile to SIMD: a uniform
+    // point on the parallelogram, E = L cos(theta) cos(theta_light) A / r^2.
+    const Vec3f c = light.corner, eu = light.edgeU, ev = light.edgeV;
+    const Vec3f ln = e.triangles.front().normal;
+    for (int i = 0; i < 16; ++i) {
+      const float tx = c.x + eu.x * u1[i] + ev.x * u2[i] - sp.px[i];
+      const float ty = c.y + eu.y * u1[i] + ev.y * u2[i] - sp.py[i];
+      const float tz = c.z + eu.z * u1[i] + ev.z * u2[i] - sp.pz[i];
+      const float r2 = tx * tx + ty * ty + tz * tz;
+      const float invR = 1.0f / std::sqrt(r2);
+      const float cosTheta = (sp.nx[i] * tx + sp.ny[i] * ty + sp.nz[i] * tz) * invR;
+      float cosLight = -(ln.x * tx + ln.y * ty + ln.z * tz) * invR;
+      if (light.twoSided) cosLight = std::abs(cosLight);
+      const bool valid = sp.shade[i] && cosTheta > 0.0f && cosLight > 0.0f;
+      const float scale = valid ? cosTheta * cosLight * e.totalArea / r2 : 0.0f;
+      out.tx[i] = tx, out.ty[i] = ty, out.tz[i] = tz;
+      out.tMax[i] = kShadowShorten;
+      out.irradiance.r[i] = light.intensity.x * scale;
+      out.irradiance.g[i] = light.intensity.y * scale;
+      out.irradiance.b[i] = light.intensity.z * scale;
+      out.valid[i] = valid;
+    }
+    return;
+  }
+  for (int i = 0; i < 16; ++i) {
+    out.valid[i] = 0;
+    if (!sp.shade[i]) continue;
+    const LightSample s = sample(index, {sp.px[i], sp.py[i], sp.pz[i]},
+                                 {sp.nx[i], sp.ny[i], sp.nz[i]}, u1[i], u2[i], u3[i]);
+    out.tx[i] = s.toLight.x, out.ty[i] = s.toLight.y, out.tz[i] = s.toLight.z;
+    out.tMax[i] = s.tMax;
+    out.irradiance.set(i, s.irradiance);
+    out.valid[i] = s.valid;
+  }
+}
+
 Vec3f LightSampler::representativePoint(const Vec3f& fallback) const {
   if (lights_.empty()) return fallback;
   const Entry& e = lights_.front();

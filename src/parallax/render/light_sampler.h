@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "parallax/core/math.h"
+#include "parallax/render/packet_types.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax {
@@ -27,6 +28,9 @@ class LightSampler {
   // A sample of `light` for the point `p` with unit normal `n`; (u1, u2, u3) uniform in [0,1).
   LightSample sample(size_t light, const Vec3f& p, const Vec3f& n, float u1, float u2,
                      float u3) const;
+  // Samples of `light` for the shading lanes of a packet, with uniform numbers u1..u3 per lane.
+  void sample16(size_t light, const SurfacePacket16& surfaces, const float u1[16],
+                const float u2[16], const float u3[16], LightPacket16& out) const;
   // A representative point of the first light (for the benchmark's raw limit).
   Vec3f representativePoint(const Vec3f& fallback) const;
 

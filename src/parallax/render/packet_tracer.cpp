@@ -1,84 +1,116 @@
 #include "parallax/render/packet_tracer.h"
 
-#include "parallax/render/surface.h"
-
 namespace parallax {
 
-void PacketTracer::trace(const RayPacket16& rays, const std::array<Vec3f, 16>& weight,
-                         std::array<Rng, 16>& rngs, std::array<Vec3f, 16>& radiance, int depth,
+namespace {
+
+// A point just off the surface, as offsetAlong() in surface.h, for all lanes.
+inline float offsetScale(float x, float y, float z) {
+  return 2e-4f * (1.0f + std::max(std::abs(x), std::max(std::abs(y), std::abs(z))));
+}
+
+}  // namespace
+
+void PacketTracer::trace(const RayPacket16& rays, const Color16& weight,
+                         std::array<Rng, 16>& rngs, Color16& radiance, int depth,
                          RenderStats& stats) const {
   HitPacket16 hits;
   accelerator_.intersect16(rays, hits);
+  SurfacePacket16 sp;
+  Color16 emitted;
+  emitted.fill(0.0f);
+  surfaces_.evaluate16(rays, hits, sp, emitted);
 
-  std::array<SurfacePoint, 16> surfaces;
-  bool shaded[16] = {};
-  for (int lane = 0; lane < 16; ++lane) {
-    if (!rays.active[lane]) continue;
-    if (!hits.hit(lane).valid()) {
-      radiance[size_t(lane)] += weight[size_t(lane)] * scene_.background;
-      continue;
-    }
-    const SurfacePoint& sp = surfaces[size_t(lane)] =
-        surfaces_.evaluate(rays.ray(lane), hits.hit(lane));
-    // Emission seen directly, plus the ambient term: a uniform radiance L_a over the
-    // hemisphere reflects albedo * L_a from a Lambertian surface.
-    radiance[size_t(lane)] +=
-        weight[size_t(lane)] * (sp.emission + sp.diffuse * scene_.ambient);
-    shaded[lane] = maxComponent(sp.diffuse) > 0.0f;
+  // Escaped rays see the background; hits add what they emit and the ambient term (a uniform
+  // radiance L_a over the hemisphere reflects albedo * L_a from a Lambertian surface).
+  const Vec3f bg = scene_.background, amb = scene_.ambient;
+  for (int i = 0; i < 16; ++i) {
+    const bool active = rays.active[i] != 0;
+    const float r = sp.hit[i] ? emitted.r[i] + sp.diffuse.r[i] * amb.x : (active ? bg.x : 0.f);
+    const float g = sp.hit[i] ? emitted.g[i] + sp.diffuse.g[i] * amb.y : (active ? bg.y : 0.f);
+    const float b = sp.hit[i] ? emitted.b[i] + sp.diffuse.b[i] * amb.z : (active ? bg.z : 0.f);
+    radiance.r[i] += weight.r[i] * r;
+    radiance.g[i] += weight.g[i] * g;
+    radiance.b[i] += weight.b[i] * b;
   }
 
-  // Direct light: one packet of shadow rays per light sample. Lambertian BRDF albedo / pi.
-  RayPacket16 shadow;
-  std::array<Vec3f, 16> contribution;
-  for (size_t light = 0; light < lights_.lightCount(); ++light) {
-    const int samples = lights_.samplesFor(light);
-    const float perSample = 1.0f / (kPi * float(samples));
-    for (int s = 0; s < samples; ++s) {
-      bool any = false;
-      for (int lane = 0; lane < 16; ++lane) {
-        shadow.deactivate(lane);
-        if (!shaded[lane]) continue;
-        Rng& rng = rngs[size_t(lane)];
-        const SurfacePoint& sp = surfaces[size_t(lane)];
-        const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
-        const LightSample ls = lights_.sample(light, sp.position, sp.shadingNormal, u1, u2, u3);
-        // A light below the geometric surface cannot be seen even if the shading normal
-        // faces it: skip it instead of letting the shadow ray start inside the object.
-        if (!ls.valid || dot(ls.toLight, sp.geometricNormal) <= 0.0f) continue;
-        const Vec3f origin = offsetAlong(sp.position, sp.geometricNormal);
-        shadow.set(lane, {origin, ls.toLight + (sp.position - origin), 0.0f, ls.tMax});
-        contribution[size_t(lane)] = weight[size_t(lane)] * sp.diffuse * ls.irradiance * perSample;
-        any = true;
-      }
-      if (!any) continue;
-      bool occluded[16];
-      accelerator_.occluded16(shadow, occluded);
-      for (int lane = 0; lane < 16; ++lane) {
-        if (!shadow.active[lane]) continue;
-        ++stats.shadowRays;
-        if (!occluded[lane]) radiance[size_t(lane)] += contribution[size_t(lane)];
-      }
-    }
-  }
+  addDirectLight(sp, weight, rngs, radiance, stats);
 
   // Mirror bounces, still as a packet: neighbouring rays reflect off neighbouring points.
   if (depth >= scene_.maxDepth) return;
   RayPacket16 bounce;
-  std::array<Vec3f, 16> bounceWeight;
+  Color16 bounceWeight;
   bool any = false;
   for (int lane = 0; lane < 16; ++lane) {
     bounce.deactivate(lane);
-    if (!rays.active[lane] || !hits.hit(lane).valid()) continue;
-    const SurfacePoint& sp = surfaces[size_t(lane)];
-    if (!(maxComponent(sp.mirror) > 0.0f)) continue;
+    if (!sp.hit[lane]) continue;
+    const Vec3f mirror = sp.mirror.at(lane);
+    if (!(maxComponent(mirror) > 0.0f)) continue;
+    const Vec3f n{sp.nx[lane], sp.ny[lane], sp.nz[lane]};
+    const Vec3f g{sp.gx[lane], sp.gy[lane], sp.gz[lane]};
+    const Vec3f p{sp.px[lane], sp.py[lane], sp.pz[lane]};
     const Vec3f d = normalize(rays.ray(lane).direction);
-    const Vec3f reflected = d - sp.shadingNormal * (2.0f * dot(d, sp.shadingNormal));
-    bounce.set(lane, {offsetAlong(sp.position, sp.geometricNormal), reflected});
-    bounceWeight[size_t(lane)] = weight[size_t(lane)] * sp.mirror;
+    const Vec3f reflected = d - n * (2.0f * dot(d, n));
+    bounce.set(lane, {offsetAlong(p, g), reflected});
+    bounceWeight.set(lane, weight.at(lane) * mirror);
     ++stats.secondaryRays;
     any = true;
   }
   if (any) trace(bounce, bounceWeight, rngs, radiance, depth + 1, stats);
+}
+
+// Direct light: one packet of shadow rays per light sample; Lambertian BRDF albedo / pi.
+void PacketTracer::addDirectLight(const SurfacePacket16& sp, const Color16& weight,
+                                  std::array<Rng, 16>& rngs, Color16& radiance,
+                                  RenderStats& stats) const {
+  int shading = 0;
+  for (int i = 0; i < 16; ++i) shading += sp.shade[i];
+  if (shading == 0) return;
+  alignas(64) float u1[16], u2[16], u3[16];
+  LightPacket16 light;
+  RayPacket16 shadow;
+  for (size_t index = 0; index < lights_.lightCount(); ++index) {
+    const int samples = lights_.samplesFor(index);
+    const float perSample = 1.0f / (kPi * float(samples));
+    for (int s = 0; s < samples; ++s) {
+      for (int i = 0; i < 16; ++i) {
+        u1[i] = rngs[size_t(i)].uniform();
+        u2[i] = rngs[size_t(i)].uniform();
+        u3[i] = rngs[size_t(i)].uniform();
+      }
+      lights_.sample16(index, sp, u1, u2, u3, light);
+      int count = 0;
+      for (int i = 0; i < 16; ++i) {
+        // A light below the geometric surface cannot be seen even if the shading normal
+        // faces it: skip it rather than start the shadow ray inside the object.
+        const bool above = sp.gx[i] * light.tx[i] + sp.gy[i] * light.ty[i] +
+                               sp.gz[i] * light.tz[i] > 0.0f;
+        const bool trace = light.valid[i] && above;
+        const float o = offsetScale(sp.px[i], sp.py[i], sp.pz[i]);
+        // Origin lifted off the surface; the direction still ends on the light point.
+        shadow.ox[i] = sp.px[i] + sp.gx[i] * o;
+        shadow.oy[i] = sp.py[i] + sp.gy[i] * o;
+        shadow.oz[i] = sp.pz[i] + sp.gz[i] * o;
+        shadow.dx[i] = light.tx[i] - sp.gx[i] * o;
+        shadow.dy[i] = light.ty[i] - sp.gy[i] * o;
+        shadow.dz[i] = light.tz[i] - sp.gz[i] * o;
+        shadow.tMin[i] = 0.0f;
+        shadow.tMax[i] = light.tMax[i];
+        shadow.active[i] = trace ? -1 : 0;
+        count += trace;
+      }
+      if (count == 0) continue;
+      bool occluded[16];
+      accelerator_.occluded16(shadow, occluded);
+      stats.shadowRays += uint64_t(count);
+      for (int i = 0; i < 16; ++i) {
+        const bool lit = shadow.active[i] && !occluded[i];
+        radiance.r[i] += lit ? weight.r[i] * sp.diffuse.r[i] * light.irradiance.r[i] * perSample : 0.0f;
+        radiance.g[i] += lit ? weight.g[i] * sp.diffuse.g[i] * light.irradiance.g[i] * perSample : 0.0f;
+        radiance.b[i] += lit ? weight.b[i] * sp.diffuse.b[i] * light.irradiance.b[i] * perSample : 0.0f;
+      }
+    }
+  }
 }
 
 }  // namespace parallax

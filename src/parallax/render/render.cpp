@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "parallax/render/film_sampler.h"
+#include "parallax/render/packet_types.h"
 #include "parallax/render/packet_tracer.h"
 
 namespace parallax {
@@ -45,42 +46,61 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
   std::vector<Vec3f> sums(size_t(grid.width) * kTileRows, Vec3f(0.0f));
 
   RayPacket16 packet;
+  FilmSamples16 film;
   std::array<Rng, 16> rngs;
-  std::array<Vec3f, 16> radiance;
-  std::array<Vec3f, 16> weight;
-  weight.fill(Vec3f(1.0f));
-  std::array<int, 16> laneX, laneY;
+  Color16 radiance, weight;
+  weight.fill(1.0f);
+  alignas(64) int laneX[16], laneY[16];
+  const float inv = strata > 0 ? 1.0f / float(strata) : 1.0f;
   for (int sample = 0; sample < spp; ++sample) {
+    // Stratum of this sample index (film_sampler.h): x and apertureV by index mod n, y and
+    // apertureU by index div n.
+    const float sx = strata > 0 ? float(sample % strata) : 0.0f;
+    const float sy = strata > 0 ? float(sample / strata) : 0.0f;
     for (int by = y0; by < y1; by += 4) {
       for (int repeat = 0; repeat < grid.repeats; ++repeat) {
         for (int offset = 0; offset < grid.stride; ++offset) {
+          const int bx = x0 + repeat * 4 * grid.stride + offset;
+          int active = 0;
           for (int lane = 0; lane < 16; ++lane) {
-            const int x = x0 + repeat * 4 * grid.stride + offset + (lane & 3) * grid.stride;
-            const int y = by + (lane >> 2);
-            laneX[size_t(lane)] = x - x0, laneY[size_t(lane)] = y - y0;
-            radiance[size_t(lane)] = Vec3f(0.0f);
-            if (x >= x1 || y >= y1) {
-              packet.deactivate(lane);
-              continue;
-            }
-            Rng& rng = rngs[size_t(lane)] =
+            const int x = bx + (lane & 3) * grid.stride, y = by + (lane >> 2);
+            laneX[lane] = x, laneY[lane] = y;
+            packet.active[lane] = (x < x1 && y < y1) ? -1 : 0;
+            active += packet.active[lane] != 0;
+            rngs[size_t(lane)] =
                 Rng::forSample(uint32_t(x), uint32_t(y), uint32_t(sample), settings.seed);
-            packet.set(lane, camera.generateRay(filmSample(x, y, sample, spp, strata, rng)));
-            ++stats.cameraRays;
           }
+          if (spp == 1) {
+            for (int lane = 0; lane < 16; ++lane) {
+              film.x[lane] = float(laneX[lane]) + 0.5f, film.y[lane] = float(laneY[lane]) + 0.5f;
+              film.apertureU[lane] = film.apertureV[lane] = 0.5f;
+            }
+          } else {
+            // Uniform jitter in the stratum (or in the whole pixel when spp is not a square).
+            for (int lane = 0; lane < 16; ++lane) {
+              Rng& rng = rngs[size_t(lane)];
+              film.x[lane] = float(laneX[lane]) + (sx + rng.uniform()) * inv;
+              film.y[lane] = float(laneY[lane]) + (sy + rng.uniform()) * inv;
+              film.apertureU[lane] = (sy + rng.uniform()) * inv;
+              film.apertureV[lane] = (sx + rng.uniform()) * inv;
+            }
+          }
+          camera.generateRays16(film, packet);
+          stats.cameraRays += uint64_t(active);
+          radiance.fill(0.0f);
           tracer.trace(packet, weight, rngs, radiance, 0, stats);
           for (int lane = 0; lane < 16; ++lane)
             if (packet.active[lane])
-              sums[size_t(laneY[size_t(lane)]) * size_t(grid.width) + size_t(laneX[size_t(lane)])] +=
-                  radiance[size_t(lane)];
+              sums[size_t(laneY[lane] - y0) * size_t(grid.width) + size_t(laneX[lane] - x0)] +=
+                  radiance.at(lane);
         }
       }
     }
   }
-  const float inv = 1.0f / float(spp);
+  const float perSample = 1.0f / float(spp);
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x)
-      image.at(x, y) = sums[size_t(y - y0) * size_t(grid.width) + size_t(x - x0)] * inv;
+      image.at(x, y) = sums[size_t(y - y0) * size_t(grid.width) + size_t(x - x0)] * perSample;
 }
 
 }  // namespace

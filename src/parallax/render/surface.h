@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
+#include "parallax/render/packet_types.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax {
@@ -24,6 +25,9 @@ class SurfaceShader {
  public:
   SurfaceShader(const Scene& scene, const Accelerator& accelerator);
   SurfacePoint evaluate(const Ray& ray, const Hit& hit) const;
+  // All hits of a packet at once; emission seen by each ray is added to `emitted`.
+  void evaluate16(const RayPacket16& rays, const HitPacket16& hits, SurfacePacket16& out,
+                  Color16& emitted) const;
 
  private:
   struct Geometry {
@@ -31,6 +35,9 @@ class SurfaceShader {
     const Sphere* sphere = nullptr;
     const Material* material = nullptr;
     const Texture* texture = nullptr;
+    // The mesh has vertex normals that differ within some triangle; flat-shaded meshes (every
+    // triangle's three normals equal) use the geometric normal and skip the interpolation.
+    bool smoothNormals = false;
   };
   const Scene& scene_;
   std::vector<Geometry> geometries_;
