@@ -6,6 +6,7 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
+#include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
 #include "parallax/app/commands.h"
 #include "parallax/core/memory.h"
@@ -18,7 +19,7 @@ namespace {
 
 struct BenchOptions {
   std::string camera = "pinhole";
-  std::string scene;
+  std::string scene, display;
   std::string size = "1920x1080";
   int spp = 16;
   int repeats = 2;
@@ -30,13 +31,23 @@ void runBench(const BenchOptions& o) {
   int width = 0, height = 0;
   parseSize("--size", o.size, width, height);
   if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
-  if (o.camera != "pinhole")
-    throw InputError("command line", "--camera", "unknown camera '" + o.camera + "' (pinhole)");
+  if (o.camera != "pinhole" && o.camera != "display")
+    throw InputError("command line", "--camera",
+                     "unknown camera '" + o.camera + "' (pinhole or display)");
   const Scene scene = loadSceneOrDefault(o.scene);
+  std::unique_ptr<Camera> camera;
+  if (o.camera == "display") {
+    // The display camera renders the image layer at its own resolution.
+    const DisplayDesign design = loadDesignOrDefault(o.display);
+    camera = std::make_unique<DisplayCamera>(design, scene.display);
+    width = camera->width(), height = camera->height();
+  }
   const CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
-  const PinholeCamera camera(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
+  const PinholeCamera pinhole(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
   const Accelerator accelerator(scene);
-  const BenchResult r = benchmarkPinhole(scene, accelerator, camera, o.spp, o.repeats, o.threads);
+  const Camera& measured = camera ? static_cast<const Camera&>(*camera) : pinhole;
+  const BenchResult r = benchmark(scene, accelerator, measured, pinhole, o.spp,
+                                  o.repeats, o.threads);
   const double peak = peakResidentMiB();
   if (o.json) {
     JsonWriter json;
@@ -73,10 +84,14 @@ void registerBenchCommand(CLI::App& cli) {
   auto options = std::make_shared<BenchOptions>();
   CLI::App* cmd = cli.add_subcommand(
       "bench", "Measure rays per second against raw Embree on the same rays");
-  cmd->add_option("--camera", options->camera, "Camera to measure: pinhole")
+  cmd->add_option("--camera", options->camera,
+                  "Camera to measure: pinhole, or display (the image layer through the barrier)")
       ->capture_default_str();
+  cmd->add_option("--display", options->display, "Display file for --camera display");
   cmd->add_option("--scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
-  cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--size", options->size,
+                  "Image size WIDTHxHEIGHT (pinhole; the display camera uses the panel's)")
+      ->capture_default_str();
   cmd->add_option("--spp", options->spp, "Rays per pixel")->capture_default_str();
   cmd->add_option("--repeats", options->repeats, "Alternating runs; the fastest of each counts")
       ->capture_default_str();

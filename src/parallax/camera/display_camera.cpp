@@ -1,6 +1,7 @@
 #include "parallax/camera/display_camera.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace parallax {
@@ -25,7 +26,28 @@ Transform worldFromDisplay(const DisplayPlacement& placement, double frontWidthM
 }
 
 DisplayCamera::DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement)
-    : rays_(design), worldFromDisplay_(worldFromDisplay(placement, design.frontWidthMm())) {}
+    : rays_(design), worldFromDisplay_(worldFromDisplay(placement, design.frontWidthMm())) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) affine_[r][c] = worldFromDisplay_.matrix().m[r][c];
+}
+
+void DisplayCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
+  const auto& m = affine_;
+  for (int i = 0; i < 16; ++i) {
+    if (!out.active[i]) continue;
+    const BarrierRay r = rays_.ray(s.x[i], s.y[i], s.apertureU[i], s.apertureV[i]);
+    const float x = float(r.origin.x), y = float(r.origin.y), z = float(r.origin.z);
+    const float dx = float(r.direction.x), dy = float(r.direction.y), dz = float(r.direction.z);
+    out.ox[i] = m[0][0] * x + m[0][1] * y + m[0][2] * z + m[0][3];
+    out.oy[i] = m[1][0] * x + m[1][1] * y + m[1][2] * z + m[1][3];
+    out.oz[i] = m[2][0] * x + m[2][1] * y + m[2][2] * z + m[2][3];
+    out.dx[i] = m[0][0] * dx + m[0][1] * dy + m[0][2] * dz;
+    out.dy[i] = m[1][0] * dx + m[1][1] * dy + m[1][2] * dz;
+    out.dz[i] = m[2][0] * dx + m[2][1] * dy + m[2][2] * dz;
+    out.tMin[i] = 0.0f;
+    out.tMax[i] = std::numeric_limits<float>::infinity();
+  }
+}
 
 Ray DisplayCamera::generateRay(const FilmSample& s) const {
   const BarrierRay r = rays_.ray(s.x, s.y, s.apertureU, s.apertureV);

@@ -23,6 +23,7 @@ class DisplayCamera final : public Camera {
   int width() const override { return rays_.filmWidth(); }
   int height() const override { return rays_.filmHeight(); }
   Ray generateRay(const FilmSample& sample) const override;
+  void generateRays16(const FilmSamples16& samples, RayPacket16& out) const override;
   int packetStride() const override;
 
   const BarrierRayGenerator& rays() const { return rays_; }
@@ -30,6 +31,7 @@ class DisplayCamera final : public Camera {
  private:
   BarrierRayGenerator rays_;
   Transform worldFromDisplay_;
+  float affine_[3][4];  // worldFromDisplay_ as a plain affine matrix for the hot loop
 };
 
 // An off-axis pinhole camera at `eyeMm` (display frame) whose film is the front layer's

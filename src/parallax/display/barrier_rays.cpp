@@ -19,6 +19,9 @@ BarrierRayGenerator::BarrierRayGenerator(const DisplayDesign& design)
   zImageVirtual_ = imageInFront ? 0.0 : -design.virtualGapMm;
   zMaskVirtual_ = imageInFront ? -design.virtualGapMm : 0.0;
   maskFromImage_ = (distance_ - zMask_) / (distance_ - zImage_);
+  imageFromMask_ = 1.0 / maskFromImage_;
+  inverseVirtualGap_ = 1.0 / (zMaskVirtual_ - zImageVirtual_);
+  inverseViewDepth_ = 1.0 / (virtualDistance_ - zImageVirtual_);
   virtualMaskFromImage_ = std::isinf(virtualDistance_)
                               ? 1.0
                               : (virtualDistance_ - zMaskVirtual_) /
@@ -50,8 +53,8 @@ BarrierRay BarrierRayGenerator::ray(double filmX, double filmY, double u, double
   // 2. The group centre: that aperture, at the sample's height on the mask (slanted and
   //    wiggling slits move with y), projected back onto the image layer.
   const double maskY = eyeY_ + (sample.y - eyeY_) * s;
-  const double groupX = eyeX_ + (mask_.apertureCenterX(r.aperture, maskY) - eyeX_) / s;
-  const double groupY = eyeY_ + (mask_.rowCenterY(r.apertureRow) - eyeY_) / s;
+  const double groupX = eyeX_ + (mask_.apertureCenterX(r.aperture, maskY) - eyeX_) * imageFromMask_;
+  const double groupY = eyeY_ + (mask_.rowCenterY(r.apertureRow) - eyeY_) * imageFromMask_;
   // 3. The virtual aperture (section 2.3): the group centre projected toward the virtual
   //    view-zone centre onto the virtual mask plane, v'_k = e_c + (c_k - e_c) D'/(D' + g')
   //    for barrier-back, and jittered across one virtual aperture period.
@@ -59,15 +62,15 @@ BarrierRay BarrierRayGenerator::ray(double filmX, double filmY, double u, double
   const double periodX = design_.screenPeriodMm * sv;
   const double apertureX = eyeX_ + (groupX - eyeX_) * sv + (u - 0.5) * periodX;
   const double dz = zMaskVirtual_ - zImageVirtual_;
-  const double slopeX = (apertureX - sample.x) / dz;
+  const double slopeX = (apertureX - sample.x) * inverseVirtualGap_;
   double slopeY = 0.0;
   if (mask_.isPinholeGrid()) {
-    const double periodY = mask_.verticalPeriodMm() / s * sv;
+    const double periodY = mask_.verticalPeriodMm() * imageFromMask_ * sv;
     const double apertureY = eyeY_ + (groupY - eyeY_) * sv + (v - 0.5) * periodY;
-    slopeY = (apertureY - sample.y) / dz;
+    slopeY = (apertureY - sample.y) * inverseVirtualGap_;
   } else if (!std::isinf(virtualDistance_)) {
     // One-axis perspective: every ray meets the view line y = y_e at z = D' (section 2.2).
-    slopeY = (eyeY_ - sample.y) / (virtualDistance_ - zImageVirtual_);
+    slopeY = (eyeY_ - sample.y) * inverseViewDepth_;
   }
   r.imagePoint = {sample.x, sample.y, zImageVirtual_};
   r.aperturePoint = {sample.x + slopeX * dz, sample.y + slopeY * dz, zMaskVirtual_};

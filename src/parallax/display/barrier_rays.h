@@ -56,6 +56,9 @@ class BarrierRayGenerator {
   double eyeX_, eyeY_, distance_, virtualDistance_;
   double maskFromImage_;                // (D - zM) / (D - zI): projection scale from the eye
   double virtualMaskFromImage_;         // the same with g', D' (1 for D' infinite)
+  double imageFromMask_;                // 1 / maskFromImage_
+  double inverseVirtualGap_;            // 1 / (zM' - zI'), signed
+  double inverseViewDepth_;             // 1 / (D' - zI'), 0 for D' infinite
 };
 
 }  // namespace parallax

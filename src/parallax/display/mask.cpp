@@ -38,6 +38,7 @@ MaskGeometry::MaskGeometry(const DisplayDesign& design)
     wiggleWavenumber_ = 2.0 * 3.14159265358979 / m.wiggleWavelengthMm;
   }
   if (kind_ == MaskKind::Jittered) jitter_ = m.jitterAmplitude * period_;
+  inversePeriod_ = 1.0 / period_;
 }
 
 double MaskGeometry::apertureCenterX(int64_t k, double y) const {
@@ -63,7 +64,7 @@ double MaskGeometry::apertureCenterX(int64_t k, double y) const {
 
 int64_t MaskGeometry::nearestAperture(double x, double y) const {
   const double base = kind_ == MaskKind::Jittered ? phaseMm_ : apertureCenterX(0, y);
-  int64_t k = int64_t(std::llround((x - base) / period_));
+  int64_t k = int64_t(std::llround((x - base) * inversePeriod_));
   if (kind_ != MaskKind::Jittered) return k;
   // Jittered slits move by less than half a period: the nearest is among k - 1 .. k + 1.
   int64_t best = k;

@@ -37,7 +37,7 @@ class MaskGeometry {
   double xOverlap(double a, double b, double y) const;  // open length of [a, b] at height y
 
   MaskKind kind_;
-  double period_, verticalPeriod_, apertureWidth_, apertureHeight_, phaseMm_;
+  double period_, inversePeriod_ = 0, verticalPeriod_, apertureWidth_, apertureHeight_, phaseMm_;
   double slope_, wiggleAmplitude_, wiggleWavenumber_, jitter_;
   uint64_t seed_;
   int width_, height_;

@@ -37,12 +37,12 @@ uint64_t traceLimit(const Accelerator& accelerator, const PinholeGrid& grid, con
 
 }  // namespace
 
-BenchResult benchmarkPinhole(const Scene& scene, const Accelerator& accelerator,
-                             const PinholeCamera& camera, int samplesPerPixel, int repeats,
-                             int threads) {
+BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
+                      const PinholeCamera& limitCamera, int samplesPerPixel, int repeats,
+                      int threads) {
   BenchResult result;
   result.seconds = result.limitSeconds = std::numeric_limits<double>::infinity();
-  const PinholeGrid grid = camera.grid(samplesPerPixel);
+  const PinholeGrid grid = limitCamera.grid(samplesPerPixel);
   const Vec3f light = LightSampler(scene).representativePoint(grid.eye);
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   RenderSettings settings;
