@@ -20,8 +20,10 @@ $(BUILD)/build.ninja: CMakeLists.txt | deps
 build: deps $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
 
-# Renders the built-in scene with the built-in display into out/.
+# Renders the built-in scene with the built-in display into out/: the two layer images
+# (image.png, mask.png, render.json) and an ordinary picture of the scene (view.png).
 run: build
+	./$(BUILD)/parallax render -o out
 	./$(BUILD)/parallax view -o out/view.png
 
 test: test-release test-asan

@@ -55,12 +55,45 @@ check "no output file after errors" bash -c "! ls '$tmp' | grep -q -E '^(s|e)\.p
 
 check "info --json" run 0 info --json
 check "info --json has triangles and bounds" \
-  bash -c "grep -q '\"triangles\": 24' '$tmp/out' && grep -q '\"min\"' '$tmp/out'"
+  bash -c "grep -q '\"triangles\": 16' '$tmp/out' && grep -q '\"min\"' '$tmp/out'"
 check "info on an example scene" run 0 info "$src/scenes/spheres.json"
 check "bench --json" run 0 bench --size 64x64 --spp 4 --repeats 1 --json
 for key in rays_per_second limit_rays_per_second ratio peak_rss_mb; do
   check "bench reports $key" grep -q "\"$key\"" "$tmp/out"
 done
+
+# The display: design, render, and the window view.
+check "design" run 0 design
+check "design prints the slit period" grep -q "9.045" "$tmp/out"
+check "design --json" run 0 design --json
+for key in screen_period_mm screen_period_px slit_period_mm slit_period_px views apertures \
+  view_zone_width_mm view_distance_mm gap_mm depth_of_field_mm; do
+  check "design reports $key" grep -q "\"$key\"" "$tmp/out"
+done
+printf '{"gap_mm": 0}' >"$tmp/zero-gap.json"
+check "impossible display exits 2" run 2 design "$tmp/zero-gap.json"
+check "impossible display names the key" one_line_naming "zero-gap.json: /gap_mm"
+printf '{"screen_period_px": 9, "slit_period_px": 8.5}' >"$tmp/g1.json"
+check "broken G1 exits 2" run 2 render --display "$tmp/g1.json" -o "$tmp/g1out"
+check "broken G1 names the relation" one_line_naming "/slit_period_px"
+check "failed render writes nothing" test ! -e "$tmp/g1out"
+cat >"$tmp/small.json" <<'JSON'
+{"image_layer": {"resolution": [96, 54], "pixel_pitch_mm": 0.2745, "subpixels": "RGB"},
+ "gap_mm": 3, "view_distance_mm": 600, "views": 9,
+ "mask": {"type": "slanted", "angle_deg": 10, "duty_cycle": 0.15}}
+JSON
+check "render a small display" run 0 render --display "$tmp/small.json" --spp 4 -o "$tmp/r" --linear
+check "render wrote image.png" is_png "$tmp/r/image.png"
+check "render wrote mask.png" is_png "$tmp/r/mask.png"
+check "render wrote render.json" grep -q '"rays_per_second"' "$tmp/r/render.json"
+check "render wrote image.pfm" test -s "$tmp/r/image.pfm"
+check "render left no temporary files" bash -c "! ls '$tmp/r' | grep -q tmp"
+check "render --subpixels" run 0 render --display "$tmp/small.json" --spp 1 --subpixels -o "$tmp/rs"
+check "view --display-eye" run 0 view --display "$tmp/small.json" --display-eye 0,0,600 -o "$tmp/w.png"
+check "window view has the front layer's size" grep -q "96x54" "$tmp/out"
+check "eye behind the display exits 2" run 2 view --display-eye 0,0,-5 -o "$tmp/w2.png"
+check "bench --camera display" run 0 bench --camera display --display "$tmp/small.json" --spp 1 \
+  --repeats 1 --json
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

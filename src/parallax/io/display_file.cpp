@@ -35,7 +35,10 @@ Panel readPanel(const JsonReader& node, const Panel& fallback) {
     p.width = e[0].integer(1, 1 << 16);
     p.height = e[1].integer(1, 1 << 16);
   }
-  if (auto pitch = node.find("pixel_pitch_mm")) p.pitchMm = pitch->positive();
+  if (auto pitch = node.find("pixel_pitch_mm")) {
+    p.pitchMm = pitch->number();  // double: periods are derived from it to 1e-9 mm
+    if (!(p.pitchMm > 0)) pitch->fail("expected a positive number of mm");
+  }
   if (auto s = node.find("subpixels")) {
     const std::string name = s->string();
     if (name == "RGB" || name == "rgb") p.subpixels = SubpixelOrder::RGB;

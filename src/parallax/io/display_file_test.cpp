@@ -1,0 +1,96 @@
+#include "parallax/io/display_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "parallax/core/error.h"
+
+namespace parallax {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "parallax_display_file_test";
+  fs::create_directories(dir);
+  const fs::path path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(DisplayFile, EveryExampleLoadsAndDesigns) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(PARALLAX_SOURCE_DIR) / "displays")) {
+    const DisplayDesign d = designDisplay(loadDisplayFile(entry.path().string()));
+    EXPECT_GT(d.views, 2.0) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 5);
+}
+
+TEST(DisplayFile, DefaultFileIsTheBuiltInDisplay) {
+  const DisplayDesign file =
+      designDisplay(loadDisplayFile(std::string(PARALLAX_SOURCE_DIR) + "/displays/default.json"));
+  const DisplayDesign builtIn = designDisplay(defaultDisplaySpec());
+  EXPECT_DOUBLE_EQ(file.slitPeriodMm, builtIn.slitPeriodMm);
+  EXPECT_DOUBLE_EQ(file.viewZoneWidthMm, builtIn.viewZoneWidthMm);
+  EXPECT_NEAR(file.spec.mask.dutyCycle, builtIn.spec.mask.dutyCycle, 1e-9);
+}
+
+TEST(DisplayFile, MeasuredPeriodsGiveTheDistance) {
+  const std::string path =
+      writeTemp("measured.json", R"({"gap_mm": 3, "screen_period_px": 9, "slit_period_px": 9.045})");
+  const DisplayDesign d = designDisplay(loadDisplayFile(path));
+  EXPECT_NEAR(d.viewDistanceMm, 3.0 / (9.045 / 9.0 - 1.0), 1e-6);
+}
+
+TEST(DisplayFile, WrittenTextReadsBackToTheSameDesign) {
+  DisplaySpec s = defaultDisplaySpec();
+  s.order = LayerOrder::BarrierFront;
+  s.gapMm = 4.5;
+  s.views = 7.5;
+  s.mask.kind = MaskKind::Wiggling;
+  s.mask.wiggleAmplitudeMm = 0.3;
+  s.mask.wiggleWavelengthMm = 5;
+  s.virtualDistanceMm = kInfinity;
+  s.subpixelRays = true;
+  const DisplayDesign a = designDisplay(s);
+  const DisplayDesign b = designDisplay(loadDisplayFile(writeTemp("round.json", displayFileText(s))));
+  EXPECT_DOUBLE_EQ(a.slitPeriodMm, b.slitPeriodMm);
+  EXPECT_DOUBLE_EQ(a.screenPeriodMm, b.screenPeriodMm);
+  EXPECT_EQ(b.spec.order, LayerOrder::BarrierFront);
+  EXPECT_EQ(b.spec.mask.kind, MaskKind::Wiggling);
+  EXPECT_DOUBLE_EQ(b.spec.mask.wiggleWavelengthMm, 5.0);
+  EXPECT_TRUE(std::isinf(b.virtualDistanceMm));
+  EXPECT_TRUE(b.spec.subpixelRays);
+}
+
+void expectError(const std::string& text, const std::string& pointer) {
+  const std::string path = writeTemp("bad.json", text);
+  try {
+    designDisplay(loadDisplayFile(path));
+    ADD_FAILURE() << "accepted " << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.path(), pointer) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DisplayFile, ErrorsNameTheFileAndTheKey) {
+  expectError(R"({"gap_mm": 0})", "/gap_mm");
+  expectError(R"({"gapmm": 3})", "/gapmm");
+  expectError(R"({"gap_mm": "three"})", "/gap_mm");
+  expectError(R"({"image_layer": {"resolution": [1920]}})", "/image_layer/resolution");
+  expectError(R"({"mask": {"type": "zigzag"}})", "/mask/type");
+  expectError(R"({"virtual": {"distance_mm": "far"}})", "/virtual/distance_mm");
+  expectError(R"({"views": 1})", "/views");
+  expectError(R"({"layer_order": "sideways"})", "/layer_order");
+  expectError(R"({"screen_period_px": 9, "slit_period_px": 8})", "/slit_period_px");
+  expectError(R"({"mask": {"type": "pinholes"}})", "/mask/vertical_period_px");
+}
+
+}  // namespace
+}  // namespace parallax

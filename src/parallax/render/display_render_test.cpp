@@ -1,0 +1,90 @@
+// The two layer images belong together: from an eye at a design position, the image pixels
+// seen through the mask are what an ideal window shows that eye (view --display-eye). The
+// "seeing" here is a small simulation written for the test: the line from the eye through a
+// front pixel's centre, on to the rear (mask) layer, open where an aperture lies.
+#include "parallax/render/display_render.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "parallax/camera/display_camera.h"
+
+namespace parallax {
+namespace {
+
+DisplaySpec smallBarrierBack() {
+  DisplaySpec s = defaultDisplaySpec();
+  s.imagePanel.width = s.maskPanel.width = 180;
+  s.imagePanel.height = s.maskPanel.height = 60;
+  return s;
+}
+
+TEST(DisplayRender, SeenThroughTheMaskTheImageIsTheWindowView) {
+  const DisplayDesign d = designDisplay(smallBarrierBack());
+  Scene scene = defaultScene();
+  // 180 pixels of 0.2745 mm: the display is 49.4 mm wide; the box is about 0.9 units.
+  scene.display.width = 1.5f;
+  const Accelerator accel(scene);
+  const DisplayLayers layers = renderDisplay(scene, accel, d, {});
+  ASSERT_EQ(layers.image.width(), 180);
+  ASSERT_EQ(layers.mask.width(), 180);
+
+  const double dx = d.spec.imagePanel.pitchMm, D = d.viewDistanceMm, g = d.gapMm;
+  const double halfWidth = 0.5 * d.spec.imagePanel.widthMm();
+  const double aperture = d.spec.mask.dutyCycle * d.slitPeriodMm;
+  for (int view : {1, 4, 7}) {
+    // Rays of view j meet at x = (j - (N-1)/2) dx (1 + D / g) on the view line (G1, G2).
+    const Vec3d eye{(view - 4) * dx * (1.0 + D / g), d.spec.viewZoneHeightMm, D};
+    const WindowCamera window(eye, d, scene.display, 180, 60);
+    const Image ideal = render(scene, accel, window, {});
+    int seen = 0, matching = 0;
+    for (int y = 0; y < 60; ++y)
+      for (int x = 0; x < 180; ++x) {
+        const double fx = -halfWidth + (x + 0.5) * dx;
+        // On to the mask layer at z = -g: open if an aperture centre is within half a width.
+        const double mx = eye.x + (fx - eye.x) * (D + g) / D;
+        const double k = std::round((mx - d.apertureOriginMm) / d.slitPeriodMm);
+        const double centre = d.apertureOriginMm + k * d.slitPeriodMm;
+        if (std::abs(mx - centre) >= 0.5 * aperture) continue;
+        ++seen;
+        const Vec3f a = layers.image.at(x, y), b = ideal.at(x, y);
+        matching += length(a - b) <= 1e-3f * (1.0f + length(b));
+      }
+    // The eye sees about a duty cycle's share of the pixels, and each is the window's view.
+    EXPECT_NEAR(double(seen) / (180 * 60), d.spec.mask.dutyCycle, 0.03) << "view " << view;
+    EXPECT_GE(matching, seen - seen / 100) << "view " << view << ": " << matching << " of " << seen;
+  }
+}
+
+TEST(DisplayRender, SubpixelChannelsComeFromTheirOwnRays) {
+  DisplaySpec s = smallBarrierBack();
+  s.subpixelRays = true;
+  const DisplayDesign d = designDisplay(s);
+  Scene scene = defaultScene();
+  scene.display.width = 1.5f;
+  const Accelerator accel(scene);
+  const DisplayLayers layers = renderDisplay(scene, accel, d, {});
+  // The film has three columns per pixel; pixel x's red is film column 3x's red (RGB order).
+  const DisplayCamera camera(d, scene.display);
+  const Image film = render(scene, accel, camera, {});
+  ASSERT_EQ(film.width(), 540);
+  for (int y = 0; y < 60; y += 7)
+    for (int x = 0; x < 180; ++x) {
+      EXPECT_EQ(layers.image.at(x, y).x, film.at(3 * x, y).x);
+      EXPECT_EQ(layers.image.at(x, y).y, film.at(3 * x + 1, y).y);
+      EXPECT_EQ(layers.image.at(x, y).z, film.at(3 * x + 2, y).z);
+    }
+}
+
+TEST(DisplayRender, MaskLayerImageIsTheRaster) {
+  const DisplayDesign d = designDisplay(smallBarrierBack());
+  const Image mask = maskLayerImage(d);
+  double mean = 0;
+  for (const Vec3f& p : mask.pixels()) mean += p.x;
+  mean /= double(mask.pixels().size());
+  EXPECT_NEAR(mean, d.spec.mask.dutyCycle, 0.1 * d.spec.mask.dutyCycle);
+}
+
+}  // namespace
+}  // namespace parallax
