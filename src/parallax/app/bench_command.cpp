@@ -6,9 +6,9 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
+#include "parallax/app/commands.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
-#include "parallax/app/commands.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/render/bench.h"
@@ -46,8 +46,8 @@ void runBench(const BenchOptions& o) {
   const PinholeCamera pinhole(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
   const Accelerator accelerator(scene);
   const Camera& measured = camera ? static_cast<const Camera&>(*camera) : pinhole;
-  const BenchResult r = benchmark(scene, accelerator, measured, pinhole, o.spp,
-                                  o.repeats, o.threads);
+  const BenchResult r =
+      benchmark(scene, accelerator, measured, pinhole, o.spp, o.repeats, o.threads);
   const double peak = peakResidentMiB();
   if (o.json) {
     JsonWriter json;
@@ -68,8 +68,8 @@ void runBench(const BenchOptions& o) {
     std::printf("%s\n", json.dump().c_str());
     return;
   }
-  std::printf("scene        %s (%zu triangles), %s camera, %dx%d, %d spp\n",
-              scene.source.c_str(), scene.triangleCount(), o.camera.c_str(), width, height, o.spp);
+  std::printf("scene        %s (%zu triangles), %s camera, %dx%d, %d spp\n", scene.source.c_str(),
+              scene.triangleCount(), o.camera.c_str(), width, height, o.spp);
   std::printf("parallax     %12llu rays in %.3f s  %s\n", (unsigned long long)r.rays, r.seconds,
               formatRate(r.raysPerSecond()).c_str());
   std::printf("raw Embree   %12llu rays in %.3f s  %s (rtcIntersect16 + rtcOccluded16)\n",
@@ -82,8 +82,8 @@ void runBench(const BenchOptions& o) {
 
 void registerBenchCommand(CLI::App& cli) {
   auto options = std::make_shared<BenchOptions>();
-  CLI::App* cmd = cli.add_subcommand(
-      "bench", "Measure rays per second against raw Embree on the same rays");
+  CLI::App* cmd =
+      cli.add_subcommand("bench", "Measure rays per second against raw Embree on the same rays");
   cmd->add_option("--camera", options->camera,
                   "Camera to measure: pinhole, or display (the image layer through the barrier)")
       ->capture_default_str();

@@ -15,8 +15,7 @@ Vec3f parseVec3(const std::string& option, const std::string& text) {
   Vec3f v;
   char c1 = 0, c2 = 0;
   std::istringstream in(text);
-  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
-      !isFinite(v))
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() || !isFinite(v))
     throw InputError("command line", option, "expected X,Y,Z, got '" + text + "'");
   return v;
 }

@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "parallax/app/cli_support.h"
-#include "parallax/core/error.h"
 #include "parallax/app/commands.h"
+#include "parallax/core/error.h"
 #include "parallax/io/display_file.h"
 
 namespace parallax::app {
@@ -27,8 +27,7 @@ void printDesign(const DisplayDesign& d, double depthMm) {
   std::printf("view distance D      %.6g mm\n", d.viewDistanceMm);
   std::printf("screen period Tx     %.6g mm = %.6g px\n", d.screenPeriodMm, d.screenPeriodPx);
   std::printf("slit period Tv       %.6g mm = %.6g mask px\n", d.slitPeriodMm, d.slitPeriodPx);
-  std::printf("views                %.6g%s\n", d.views,
-              s.subpixelRays ? " x 3 subpixel rays" : "");
+  std::printf("views                %.6g%s\n", d.views, s.subpixelRays ? " x 3 subpixel rays" : "");
   std::printf("apertures            %.0f across", d.aperturesAcross);
   if (s.mask.kind == MaskKind::Pinholes) std::printf(", %.0f down", d.aperturesDown);
   std::printf("\nview zone width S    %.5g mm (%.4g mm per view) at D\n", d.viewZoneWidthMm,

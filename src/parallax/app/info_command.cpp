@@ -14,10 +14,14 @@ namespace {
 
 const char* lightKindName(Light::Kind kind) {
   switch (kind) {
-    case Light::Kind::Point: return "point";
-    case Light::Kind::Directional: return "directional";
-    case Light::Kind::Quad: return "quad";
-    case Light::Kind::Mesh: return "mesh";
+    case Light::Kind::Point:
+      return "point";
+    case Light::Kind::Directional:
+      return "directional";
+    case Light::Kind::Quad:
+      return "quad";
+    case Light::Kind::Mesh:
+      return "mesh";
   }
   return "?";
 }
@@ -64,8 +68,8 @@ void printText(const Scene& scene) {
               scene.meshes.size(), scene.spheres.size());
   const Bounds3f b = scene.bounds();
   if (!b.empty())
-    std::printf("bounds    (%g, %g, %g) to (%g, %g, %g)\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x,
-                b.hi.y, b.hi.z);
+    std::printf("bounds    (%g, %g, %g) to (%g, %g, %g)\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y,
+                b.hi.z);
   std::printf("objects:\n");
   for (const auto& m : scene.meshes)
     std::printf("  %-28s mesh, %zu triangles, material %s\n", m.name.c_str(), m.triangleCount(),

@@ -8,8 +8,8 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
-#include "parallax/core/error.h"
 #include "parallax/app/commands.h"
+#include "parallax/core/error.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"

@@ -6,9 +6,9 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
-#include "parallax/core/error.h"
-#include "parallax/camera/display_camera.h"
 #include "parallax/app/commands.h"
+#include "parallax/camera/display_camera.h"
+#include "parallax/core/error.h"
 #include "parallax/io/image_file.h"
 #include "parallax/render/render.h"
 
@@ -34,14 +34,14 @@ std::unique_ptr<Camera> makeCamera(const ViewOptions& o, const Scene& scene) {
   if (!o.displayEye.empty()) {
     const DisplayDesign design = loadDesignOrDefault(o.display);
     const Panel& front = design.spec.order == LayerOrder::BarrierBack ? design.spec.imagePanel
-                                                                       : design.spec.maskPanel;
+                                                                      : design.spec.maskPanel;
     width = front.width, height = front.height;
     if (!o.size.empty()) parseSize("--size", o.size, width, height);
     const Vec3f eye = parseVec3("--display-eye", o.displayEye);
     if (!(eye.z > 0))
       throw InputError("command line", "--display-eye", "the eye must be in front (z > 0 mm)");
-    return std::make_unique<WindowCamera>(Vec3d{eye.x, eye.y, eye.z}, design, scene.display,
-                                          width, height);
+    return std::make_unique<WindowCamera>(Vec3d{eye.x, eye.y, eye.z}, design, scene.display, width,
+                                          height);
   }
   if (!o.size.empty()) parseSize("--size", o.size, width, height);
   CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
@@ -78,8 +78,8 @@ void runView(const ViewOptions& o) {
   }
   writeImage(o.output, image);
   std::printf("wrote %s (%dx%d, %d spp) in %.2f s, %s\n", o.output.c_str(), camera->width(),
-              camera->height(), o.spp,
-              stats.seconds, formatRate(double(stats.totalRays()) / stats.seconds).c_str());
+              camera->height(), o.spp, stats.seconds,
+              formatRate(double(stats.totalRays()) / stats.seconds).c_str());
 }
 
 }  // namespace

@@ -40,8 +40,8 @@ class Camera {
 // An ideal pinhole camera looking from `eye` at `lookAt`, with a vertical field of view.
 class PinholeCamera final : public Camera {
  public:
-  PinholeCamera(const Vec3f& eye, const Vec3f& lookAt, const Vec3f& up, float fovDegrees,
-                int width, int height);
+  PinholeCamera(const Vec3f& eye, const Vec3f& lookAt, const Vec3f& up, float fovDegrees, int width,
+                int height);
 
   int width() const override { return width_; }
   int height() const override { return height_; }

@@ -7,7 +7,9 @@
 namespace parallax {
 
 namespace {
-Vec3f toFloat(const Vec3d& v) { return {float(v.x), float(v.y), float(v.z)}; }
+Vec3f toFloat(const Vec3d& v) {
+  return {float(v.x), float(v.y), float(v.z)};
+}
 }  // namespace
 
 Transform worldFromDisplay(const DisplayPlacement& placement, double frontWidthMm) {
@@ -57,8 +59,7 @@ Ray DisplayCamera::generateRay(const FilmSample& s) const {
 
 int DisplayCamera::packetStride() const {
   // Pixels one screen period apart show the same view through neighbouring apertures.
-  const double columnsPerGroup =
-      rays_.design().screenPeriodPx * (rays_.subpixelMode() ? 3.0 : 1.0);
+  const double columnsPerGroup = rays_.design().screenPeriodPx * (rays_.subpixelMode() ? 3.0 : 1.0);
   return std::max(1, int(std::lround(columnsPerGroup)));
 }
 
@@ -66,7 +67,8 @@ WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design,
                            const DisplayPlacement& placement, int width, int height)
     : width_(width), height_(height) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("camera size must be positive");
-  if (!(eyeMm.z > 0)) throw std::invalid_argument("the eye must be in front of the display (z > 0)");
+  if (!(eyeMm.z > 0))
+    throw std::invalid_argument("the eye must be in front of the display (z > 0)");
   const Transform world = worldFromDisplay(placement, design.frontWidthMm());
   const float w = float(design.frontWidthMm()), h = float(design.frontHeightMm());
   eye_ = world.point(toFloat(eyeMm));

@@ -32,26 +32,46 @@ struct Vec3f {
   constexpr bool operator==(const Vec3f&) const = default;
 };
 
-constexpr Vec3f operator+(const Vec3f& a, const Vec3f& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-constexpr Vec3f operator-(const Vec3f& a, const Vec3f& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-constexpr Vec3f operator*(const Vec3f& a, const Vec3f& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-constexpr Vec3f operator*(const Vec3f& a, float s) { return {a.x * s, a.y * s, a.z * s}; }
-constexpr Vec3f operator*(float s, const Vec3f& a) { return a * s; }
-constexpr Vec3f operator/(const Vec3f& a, float s) { return a * (1.0f / s); }
+constexpr Vec3f operator+(const Vec3f& a, const Vec3f& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+constexpr Vec3f operator-(const Vec3f& a, const Vec3f& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+constexpr Vec3f operator*(const Vec3f& a, const Vec3f& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+constexpr Vec3f operator*(const Vec3f& a, float s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+constexpr Vec3f operator*(float s, const Vec3f& a) {
+  return a * s;
+}
+constexpr Vec3f operator/(const Vec3f& a, float s) {
+  return a * (1.0f / s);
+}
 
-constexpr float dot(const Vec3f& a, const Vec3f& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr float dot(const Vec3f& a, const Vec3f& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3f cross(const Vec3f& a, const Vec3f& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length(const Vec3f& a) { return std::sqrt(dot(a, a)); }
-inline Vec3f normalize(const Vec3f& a) { return a / length(a); }
+inline float length(const Vec3f& a) {
+  return std::sqrt(dot(a, a));
+}
+inline Vec3f normalize(const Vec3f& a) {
+  return a / length(a);
+}
 inline Vec3f min(const Vec3f& a, const Vec3f& b) {
   return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
 }
 inline Vec3f max(const Vec3f& a, const Vec3f& b) {
   return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
-inline float maxComponent(const Vec3f& a) { return std::max(a.x, std::max(a.y, a.z)); }
+inline float maxComponent(const Vec3f& a) {
+  return std::max(a.x, std::max(a.y, a.z));
+}
 inline bool isFinite(const Vec3f& a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }

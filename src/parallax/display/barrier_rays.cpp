@@ -22,10 +22,9 @@ BarrierRayGenerator::BarrierRayGenerator(const DisplayDesign& design)
   imageFromMask_ = 1.0 / maskFromImage_;
   inverseVirtualGap_ = 1.0 / (zMaskVirtual_ - zImageVirtual_);
   inverseViewDepth_ = 1.0 / (virtualDistance_ - zImageVirtual_);
-  virtualMaskFromImage_ = std::isinf(virtualDistance_)
-                              ? 1.0
-                              : (virtualDistance_ - zMaskVirtual_) /
-                                    (virtualDistance_ - zImageVirtual_);
+  virtualMaskFromImage_ = std::isinf(virtualDistance_) ? 1.0
+                                                       : (virtualDistance_ - zMaskVirtual_) /
+                                                             (virtualDistance_ - zImageVirtual_);
 }
 
 int BarrierRayGenerator::channelOfColumn(int column) const {

@@ -14,11 +14,11 @@ struct Vec3d {
 };
 
 struct BarrierRay {
-  Vec3d origin;     // on the viewer's side: at z = D' (or z = D when D' is infinite)
-  Vec3d direction;  // toward the display, normalised to direction.z = -1
-  Vec3d imagePoint;   // where the ray crosses the (virtual) image layer
-  Vec3d aperturePoint;  // where it crosses the (virtual) mask layer
-  int64_t aperture = 0;  // index of the serving aperture (column)
+  Vec3d origin;             // on the viewer's side: at z = D' (or z = D when D' is infinite)
+  Vec3d direction;          // toward the display, normalised to direction.z = -1
+  Vec3d imagePoint;         // where the ray crosses the (virtual) image layer
+  Vec3d aperturePoint;      // where it crosses the (virtual) mask layer
+  int64_t aperture = 0;     // index of the serving aperture (column)
   int64_t apertureRow = 0;  // pinhole row (0 for slits)
 };
 
@@ -51,14 +51,14 @@ class BarrierRayGenerator {
   MaskGeometry mask_;
   bool subpixels_;
   int filmWidth_;
-  double zImage_, zMask_;               // physical layers
+  double zImage_, zMask_;                // physical layers
   double zImageVirtual_, zMaskVirtual_;  // the camera's layers (g')
   double eyeX_, eyeY_, distance_, virtualDistance_;
-  double maskFromImage_;                // (D - zM) / (D - zI): projection scale from the eye
-  double virtualMaskFromImage_;         // the same with g', D' (1 for D' infinite)
-  double imageFromMask_;                // 1 / maskFromImage_
-  double inverseVirtualGap_;            // 1 / (zM' - zI'), signed
-  double inverseViewDepth_;             // 1 / (D' - zI'), 0 for D' infinite
+  double maskFromImage_;         // (D - zM) / (D - zI): projection scale from the eye
+  double virtualMaskFromImage_;  // the same with g', D' (1 for D' infinite)
+  double imageFromMask_;         // 1 / maskFromImage_
+  double inverseVirtualGap_;     // 1 / (zM' - zI'), signed
+  double inverseViewDepth_;      // 1 / (D' - zI'), 0 for D' infinite
 };
 
 }  // namespace parallax

@@ -54,10 +54,10 @@ TEST(BarrierRays, RaysOfOneViewMeetInOnePointAtTheDesignDistance) {
     for (int x = 0; x < 180; ++x) {
       const BarrierRay r = gen.ray(x + 0.5, 20.5, 0.5, 0.5);
       const Vec3d pixel = gen.imagePoint(x + 0.5, 20.5);
-      const double groupCentre = d.spec.viewZoneCenterXMm +
-                                 (gen.mask().apertureCenterX(r.aperture, 0) - 0) *
-                                     (d.viewDistanceMm - d.imageLayerZ()) /
-                                     (d.viewDistanceMm - d.maskLayerZ());
+      const double groupCentre =
+          d.spec.viewZoneCenterXMm + (gen.mask().apertureCenterX(r.aperture, 0) - 0) *
+                                         (d.viewDistanceMm - d.imageLayerZ()) /
+                                         (d.viewDistanceMm - d.maskLayerZ());
       const double offset = (pixel.x - groupCentre) / d.spec.imagePanel.pitchMm;
       const int64_t view = std::llround(offset + 4.0);
       ASSERT_NEAR(offset + 4.0, double(view), 1e-6) << "pixel centres must sit on view slots";
@@ -119,7 +119,8 @@ TEST(BarrierRays, SubpixelsGetTheirOwnRays) {
   // Subpixels of one pixel sit dx/3 apart, so (within a group) their rays differ in slope by
   // (dx / 3) / g: three times the views.
   const double dx = s.imagePanel.pitchMm;
-  const BarrierRay a = gen.ray(3 * 85 + 0.5, 10.5, 0.5, 0.5), b = gen.ray(3 * 85 + 1.5, 10.5, 0.5, 0.5);
+  const BarrierRay a = gen.ray(3 * 85 + 0.5, 10.5, 0.5, 0.5),
+                   b = gen.ray(3 * 85 + 1.5, 10.5, 0.5, 0.5);
   ASSERT_EQ(a.aperture, b.aperture);
   EXPECT_NEAR(std::abs(a.direction.x - b.direction.x), dx / 3.0 / s.gapMm, 1e-12);
   EXPECT_NEAR(b.imagePoint.x - a.imagePoint.x, dx / 3.0, 1e-12);

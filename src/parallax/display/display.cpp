@@ -29,28 +29,35 @@ double DisplayDesign::imageLayerZ() const {
 double DisplayDesign::maskLayerZ() const {
   return spec.order == LayerOrder::BarrierBack ? -gapMm : 0.0;
 }
-double DisplayDesign::frontWidthMm() const { return frontPanel(spec).widthMm(); }
-double DisplayDesign::frontHeightMm() const { return frontPanel(spec).heightMm(); }
+double DisplayDesign::frontWidthMm() const {
+  return frontPanel(spec).widthMm();
+}
+double DisplayDesign::frontHeightMm() const {
+  return frontPanel(spec).heightMm();
+}
 
 double DisplayDesign::adjacentViewDisparityMm(double depthMm) const {
   return viewWidthMm * std::abs(depthMm) / (viewDistanceMm - depthMm);
 }
 
-DisplaySpec defaultDisplaySpec() { return DisplaySpec{}; }
+DisplaySpec defaultDisplaySpec() {
+  return DisplaySpec{};
+}
 
 DisplayDesign designDisplay(const DisplaySpec& spec) {
   const auto fail = [&spec](const std::string& key, const std::string& message) {
     return InputError(spec.source, key, message);
   };
-  for (const auto& [key, panel] : {std::pair{"/image_layer", &spec.imagePanel},
-                                   std::pair{"/mask_layer", &spec.maskPanel}}) {
+  for (const auto& [key, panel] :
+       {std::pair{"/image_layer", &spec.imagePanel}, std::pair{"/mask_layer", &spec.maskPanel}}) {
     if (panel->width < 1 || panel->height < 1)
       throw fail(std::string(key) + "/resolution", "must be at least 1x1 pixels");
     if (!(panel->pitchMm > 0) || !std::isfinite(panel->pitchMm))
       throw fail(std::string(key) + "/pixel_pitch_mm", "must be a positive number");
   }
   const double g = spec.gapMm;
-  if (!(g > 0) || !std::isfinite(g)) throw fail("/gap_mm", "must be positive (got " + number(g) + ")");
+  if (!(g > 0) || !std::isfinite(g))
+    throw fail("/gap_mm", "must be positive (got " + number(g) + ")");
 
   DisplayDesign d;
   d.spec = spec;
@@ -75,8 +82,8 @@ DisplayDesign designDisplay(const DisplaySpec& spec) {
                              "(D+g)/D > 1); in this layer order the ") +
                      (imageInFront ? "slit period must exceed the screen period"
                                    : "slit period must be shorter than the screen period") +
-                     " (got Tx = " + number(d.screenPeriodMm) + " mm, Tv = " +
-                     number(d.slitPeriodMm) + " mm)");
+                     " (got Tx = " + number(d.screenPeriodMm) +
+                     " mm, Tv = " + number(d.slitPeriodMm) + " mm)");
     d.viewDistanceMm = g / (rear / front - 1.0);
     if (spec.viewDistanceMm &&
         std::abs(*spec.viewDistanceMm - d.viewDistanceMm) > 0.01 * d.viewDistanceMm)
@@ -110,8 +117,8 @@ DisplayDesign designDisplay(const DisplaySpec& spec) {
   d.screenPeriodPx = d.screenPeriodMm / dxImage;
   d.slitPeriodPx = d.slitPeriodMm / dxMask;
   d.views = d.screenPeriodPx;
-  const std::string periodKey = measured ? "/screen_period_px"
-                                         : (spec.viewZoneWidthMm ? "/view_zone/width_mm" : "/views");
+  const std::string periodKey =
+      measured ? "/screen_period_px" : (spec.viewZoneWidthMm ? "/view_zone/width_mm" : "/views");
   if (d.screenPeriodPx < 2.0)
     throw fail(periodKey, "fewer than 2 pixels per group (Tx/dx = " + number(d.screenPeriodPx) +
                               "): no parallax is left");
@@ -128,7 +135,7 @@ DisplayDesign designDisplay(const DisplaySpec& spec) {
   // One aperture serves each whole group of the image layer.
   d.aperturesAcross = std::floor(spec.imagePanel.widthMm() / d.screenPeriodMm + 1e-9);
   d.apertureSpanMm = (d.aperturesAcross - 1) * d.slitPeriodMm;  // G3: Sv = (N - 1) Tv
-  d.depthOfFieldMm = g * d.slitPeriodMm / dxImage;               // G4
+  d.depthOfFieldMm = g * d.slitPeriodMm / dxImage;              // G4
   // The paper's D_max = D S / (Sv - S); only meaningful when the apertures span more than S.
   d.farthestConsistentDistanceMm =
       d.apertureSpanMm > d.viewZoneWidthMm
@@ -145,8 +152,9 @@ DisplayDesign designDisplay(const DisplaySpec& spec) {
   if (m.kind == MaskKind::Jittered && !(m.jitterAmplitude >= 0 && m.jitterAmplitude < 0.5))
     throw fail("/mask/jitter", "must be in [0, 0.5) slit periods, or slits would swap order");
   if (m.kind == MaskKind::Jittered && m.jitterAmplitude + 0.5 * m.dutyCycle >= 0.5)
-    throw fail("/mask/jitter", "jitter + duty_cycle / 2 must stay below 0.5 periods, or "
-                               "neighbouring slits would overlap");
+    throw fail("/mask/jitter",
+               "jitter + duty_cycle / 2 must stay below 0.5 periods, or "
+               "neighbouring slits would overlap");
   if (m.kind == MaskKind::Pinholes) {
     if (!(m.verticalPeriodPx >= 2))
       throw fail("/mask/vertical_period_px",
@@ -158,8 +166,7 @@ DisplayDesign designDisplay(const DisplaySpec& spec) {
     const double groupIndex = std::round(halfWidth / d.screenPeriodMm - 0.5);
     const double groupCentre = -halfWidth + (groupIndex + 0.5) * d.screenPeriodMm;
     const double e = spec.viewZoneCenterXMm, D = d.viewDistanceMm;
-    d.apertureOriginMm =
-        e + (groupCentre - e) * (D - d.maskLayerZ()) / (D - d.imageLayerZ());
+    d.apertureOriginMm = e + (groupCentre - e) * (D - d.maskLayerZ()) / (D - d.imageLayerZ());
   }
   if (spec.subpixelRays && spec.imagePanel.subpixels == SubpixelOrder::None)
     throw fail("/subpixel_rays", "needs an image layer whose subpixels are RGB or BGR");

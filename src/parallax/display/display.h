@@ -28,12 +28,12 @@ struct Panel {
 
 struct MaskSpec {
   MaskKind kind = MaskKind::Slits;
-  double dutyCycle = 1.0 / 9.0;   // aperture width / slit period (and height / period, pinholes)
-  double phasePx = 0.0;           // shift of the whole mask, in mask pixels
-  double slantDegrees = 0.0;      // Slanted: angle from vertical, positive leans right going up
-  double wiggleAmplitudeMm = 0.0; // Wiggling: x offset A sin(2 pi y / wavelength)
+  double dutyCycle = 1.0 / 9.0;    // aperture width / slit period (and height / period, pinholes)
+  double phasePx = 0.0;            // shift of the whole mask, in mask pixels
+  double slantDegrees = 0.0;       // Slanted: angle from vertical, positive leans right going up
+  double wiggleAmplitudeMm = 0.0;  // Wiggling: x offset A sin(2 pi y / wavelength)
   double wiggleWavelengthMm = 0.0;
-  double jitterAmplitude = 0.0;   // Jittered: max offset of each slit, in slit periods (< 0.5)
+  double jitterAmplitude = 0.0;  // Jittered: max offset of each slit, in slit periods (< 0.5)
   uint64_t jitterSeed = 1;
   double verticalPeriodPx = 0.0;  // Pinholes: vertical pinhole period in mask pixels
 };
@@ -47,7 +47,7 @@ struct DisplaySpec {
   double gapMm = 3.0;
   std::optional<double> viewDistanceMm = 600.0;
   double viewZoneCenterXMm = 0.0;
-  double viewZoneHeightMm = 0.0;  // y of the view line (HPO) at the view distance
+  double viewZoneHeightMm = 0.0;      // y of the view line (HPO) at the view distance
   std::optional<double> views = 9.0;  // pixels per group on the image layer
   std::optional<double> viewZoneWidthMm;
   std::optional<double> screenPeriodPx, slitPeriodPx;
@@ -70,8 +70,8 @@ struct DisplayDesign {
   double viewZoneWidthMm = 0;                     // S
   double viewWidthMm = 0;                         // S / views
   double aperturesAcross = 0, aperturesDown = 1;
-  double apertureSpanMm = 0;                      // Sv = (N - 1) Tv
-  double depthOfFieldMm = 0;                      // G4: g Tv / dx either side of the mask
+  double apertureSpanMm = 0;                        // Sv = (N - 1) Tv
+  double depthOfFieldMm = 0;                        // G4: g Tv / dx either side of the mask
   double farthestConsistentDistanceMm = kInfinity;  // the paper's D S / (Sv - S)
   double virtualGapMm = 0, virtualDistanceMm = 0;
   // x of aperture 0 on the mask layer (before the mask's phase): the projection, from the

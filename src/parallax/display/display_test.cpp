@@ -81,8 +81,7 @@ TEST(DisplayDesign, G3ApertureSpanAndTheResolutionCount) {
   const double Sx = s.imagePanel.widthMm();
   EXPECT_NEAR(d.aperturesAcross, 240.0, 0.0);
   EXPECT_NEAR(d.apertureSpanMm, (Sx - d.screenPeriodMm) * 600.0 / 603.0, 1e-9);
-  EXPECT_NEAR(d.views * (d.apertureSpanMm / d.slitPeriodMm + 1), Sx / s.imagePanel.pitchMm,
-              1e-6);
+  EXPECT_NEAR(d.views * (d.apertureSpanMm / d.slitPeriodMm + 1), Sx / s.imagePanel.pitchMm, 1e-6);
 }
 
 TEST(DisplayDesign, AcceptsWhatUsersKnow) {

@@ -34,8 +34,9 @@ double meanOf(const std::vector<float>& v) {
 // The period (in pixels) of the strongest spectral peak of a row, found by scanning the
 // discrete-time Fourier transform finely between 3 and 40 pixels.
 double dominantPeriod(const std::vector<float>& raster, int width, int row) {
-  const double mean = std::accumulate(raster.begin() + row * width,
-                                      raster.begin() + (row + 1) * width, 0.0) / width;
+  const double mean =
+      std::accumulate(raster.begin() + row * width, raster.begin() + (row + 1) * width, 0.0) /
+      width;
   double bestPeriod = 0, bestPower = -1;
   for (double period = 3.0; period <= 40.0; period += 0.0005) {
     std::complex<double> sum = 0;
@@ -48,8 +49,8 @@ double dominantPeriod(const std::vector<float>& raster, int width, int row) {
 }
 
 TEST(Mask, MeanTransmittanceIsTheDutyCycle) {
-  for (MaskKind kind : {MaskKind::Slits, MaskKind::Slanted, MaskKind::Wiggling,
-                        MaskKind::Jittered, MaskKind::Pinholes})
+  for (MaskKind kind : {MaskKind::Slits, MaskKind::Slanted, MaskKind::Wiggling, MaskKind::Jittered,
+                        MaskKind::Pinholes})
     for (double duty : {1.0 / 9.0, 0.25, 0.5}) {
       const DisplayDesign d = designWith(kind, duty);
       const std::vector<float> raster = MaskGeometry(d).rasterize();

@@ -17,11 +17,16 @@ const char* orderName(LayerOrder o) {
 }
 const char* maskName(MaskKind k) {
   switch (k) {
-    case MaskKind::Slits: return "slits";
-    case MaskKind::Slanted: return "slanted";
-    case MaskKind::Wiggling: return "wiggling";
-    case MaskKind::Jittered: return "jittered";
-    case MaskKind::Pinholes: return "pinholes";
+    case MaskKind::Slits:
+      return "slits";
+    case MaskKind::Slanted:
+      return "slanted";
+    case MaskKind::Wiggling:
+      return "wiggling";
+    case MaskKind::Jittered:
+      return "jittered";
+    case MaskKind::Pinholes:
+      return "pinholes";
   }
   return "?";
 }
@@ -41,25 +46,36 @@ Panel readPanel(const JsonReader& node, const Panel& fallback) {
   }
   if (auto s = node.find("subpixels")) {
     const std::string name = s->string();
-    if (name == "RGB" || name == "rgb") p.subpixels = SubpixelOrder::RGB;
-    else if (name == "BGR" || name == "bgr") p.subpixels = SubpixelOrder::BGR;
-    else if (name == "none") p.subpixels = SubpixelOrder::None;
-    else s->fail("expected \"RGB\", \"BGR\" or \"none\", got \"" + name + "\"");
+    if (name == "RGB" || name == "rgb")
+      p.subpixels = SubpixelOrder::RGB;
+    else if (name == "BGR" || name == "bgr")
+      p.subpixels = SubpixelOrder::BGR;
+    else if (name == "none")
+      p.subpixels = SubpixelOrder::None;
+    else
+      s->fail("expected \"RGB\", \"BGR\" or \"none\", got \"" + name + "\"");
   }
   return p;
 }
 
 MaskSpec readMask(const JsonReader& node) {
-  node.expectObject({"type", "duty_cycle", "phase_px", "angle_deg", "amplitude_mm",
-                     "wavelength_mm", "jitter", "seed", "vertical_period_px"});
+  node.expectObject({"type", "duty_cycle", "phase_px", "angle_deg", "amplitude_mm", "wavelength_mm",
+                     "jitter", "seed", "vertical_period_px"});
   MaskSpec m;
   const std::string type = node.string("type", "slits");
-  if (type == "slits") m.kind = MaskKind::Slits;
-  else if (type == "slanted") m.kind = MaskKind::Slanted;
-  else if (type == "wiggling") m.kind = MaskKind::Wiggling;
-  else if (type == "jittered") m.kind = MaskKind::Jittered;
-  else if (type == "pinholes") m.kind = MaskKind::Pinholes;
-  else node["type"].fail("expected slits, slanted, wiggling, jittered or pinholes, got \"" + type + "\"");
+  if (type == "slits")
+    m.kind = MaskKind::Slits;
+  else if (type == "slanted")
+    m.kind = MaskKind::Slanted;
+  else if (type == "wiggling")
+    m.kind = MaskKind::Wiggling;
+  else if (type == "jittered")
+    m.kind = MaskKind::Jittered;
+  else if (type == "pinholes")
+    m.kind = MaskKind::Pinholes;
+  else
+    node["type"].fail("expected slits, slanted, wiggling, jittered or pinholes, got \"" + type +
+                      "\"");
   const auto number = [&node](std::string_view key, double fallback) {
     const auto v = node.find(key);
     return v ? v->number() : fallback;
@@ -81,8 +97,8 @@ DisplaySpec loadDisplayFile(const std::string& path) {
   const JsonDocument doc = JsonDocument::parseFile(path);
   const JsonReader root = doc.root();
   root.expectObject({"image_layer", "mask_layer", "layer_order", "gap_mm", "view_distance_mm",
-                     "view_zone", "views", "screen_period_px", "slit_period_px", "mask",
-                     "virtual", "subpixel_rays", "name", "version"});
+                     "view_zone", "views", "screen_period_px", "slit_period_px", "mask", "virtual",
+                     "subpixel_rays", "name", "version"});
   DisplaySpec s = defaultDisplaySpec();
   s.source = path;
   if (auto n = root.find("image_layer")) s.imagePanel = readPanel(*n, s.imagePanel);
@@ -91,9 +107,12 @@ DisplaySpec loadDisplayFile(const std::string& path) {
   if (auto n = root.find("mask_layer")) s.maskPanel = readPanel(*n, s.imagePanel);
   if (auto n = root.find("layer_order")) {
     const std::string order = n->string();
-    if (order == "barrier-back") s.order = LayerOrder::BarrierBack;
-    else if (order == "barrier-front") s.order = LayerOrder::BarrierFront;
-    else n->fail("expected \"barrier-back\" or \"barrier-front\", got \"" + order + "\"");
+    if (order == "barrier-back")
+      s.order = LayerOrder::BarrierBack;
+    else if (order == "barrier-front")
+      s.order = LayerOrder::BarrierFront;
+    else
+      n->fail("expected \"barrier-back\" or \"barrier-front\", got \"" + order + "\"");
   }
   if (auto n = root.find("gap_mm")) s.gapMm = n->number();
   const bool measured = root.has("screen_period_px") || root.has("slit_period_px");

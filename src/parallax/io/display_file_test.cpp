@@ -41,8 +41,8 @@ TEST(DisplayFile, DefaultFileIsTheBuiltInDisplay) {
 }
 
 TEST(DisplayFile, MeasuredPeriodsGiveTheDistance) {
-  const std::string path =
-      writeTemp("measured.json", R"({"gap_mm": 3, "screen_period_px": 9, "slit_period_px": 9.045})");
+  const std::string path = writeTemp(
+      "measured.json", R"({"gap_mm": 3, "screen_period_px": 9, "slit_period_px": 9.045})");
   const DisplayDesign d = designDisplay(loadDisplayFile(path));
   EXPECT_NEAR(d.viewDistanceMm, 3.0 / (9.045 / 9.0 - 1.0), 1e-6);
 }
@@ -58,7 +58,8 @@ TEST(DisplayFile, WrittenTextReadsBackToTheSameDesign) {
   s.virtualDistanceMm = kInfinity;
   s.subpixelRays = true;
   const DisplayDesign a = designDisplay(s);
-  const DisplayDesign b = designDisplay(loadDisplayFile(writeTemp("round.json", displayFileText(s))));
+  const DisplayDesign b =
+      designDisplay(loadDisplayFile(writeTemp("round.json", displayFileText(s))));
   EXPECT_DOUBLE_EQ(a.slitPeriodMm, b.slitPeriodMm);
   EXPECT_DOUBLE_EQ(a.screenPeriodMm, b.screenPeriodMm);
   EXPECT_EQ(b.spec.order, LayerOrder::BarrierFront);

@@ -13,9 +13,8 @@ TEST(JsonWriter, BuildsNestedObjectsAndArraysByPointer) {
   w.set("/objects/1/name", "floor");
   w.set("/ok", true);
   w.setEmptyArray("/warnings");
-  EXPECT_EQ(w.dump(-1),
-            R"({"bounds":{"min":[-1.0,0.0,0.5]},"objects":[{"name":"box \"one\""},)"
-            R"({"name":"floor"}],"ok":true,"triangles":12,"warnings":[]})");
+  EXPECT_EQ(w.dump(-1), R"({"bounds":{"min":[-1.0,0.0,0.5]},"objects":[{"name":"box \"one\""},)"
+                        R"({"name":"floor"}],"ok":true,"triangles":12,"warnings":[]})");
 }
 
 }  // namespace

@@ -15,8 +15,12 @@ struct BenchResult {
   uint64_t limitRays = 0;  // raw Embree: primary + one shadow ray per hit
   double limitSeconds = 0.0;
   double raysPerSecond() const { return seconds > 0 ? double(rays) / seconds : 0.0; }
-  double limitRaysPerSecond() const { return limitSeconds > 0 ? double(limitRays) / limitSeconds : 0.0; }
-  double ratio() const { return limitRaysPerSecond() > 0 ? raysPerSecond() / limitRaysPerSecond() : 0.0; }
+  double limitRaysPerSecond() const {
+    return limitSeconds > 0 ? double(limitRays) / limitSeconds : 0.0;
+  }
+  double ratio() const {
+    return limitRaysPerSecond() > 0 ? raysPerSecond() / limitRaysPerSecond() : 0.0;
+  }
 };
 
 // Renders through `camera` at `samplesPerPixel` and traces the raw Embree limit for the

@@ -8,7 +8,6 @@
 
 #include <cmath>
 
-
 namespace parallax {
 
 inline int stratificationOrder(int samplesPerPixel) {

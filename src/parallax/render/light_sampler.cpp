@@ -43,8 +43,8 @@ LightSampler::LightSampler(const Scene& scene) {
 
 // A point q on an area light (uniformly chosen, pdf 1 / A) as seen from p with normal n:
 // E = L cos(theta) cos(theta_light) A / r^2.
-LightSample LightSampler::areaSample(const Entry& e, const Vec3f& p, const Vec3f& n,
-                                     const Vec3f& q, const Vec3f& lightNormal) {
+LightSample LightSampler::areaSample(const Entry& e, const Vec3f& p, const Vec3f& n, const Vec3f& q,
+                                     const Vec3f& lightNormal) {
   LightSample s;
   s.toLight = q - p;
   const float r2 = dot(s.toLight, s.toLight);
@@ -59,8 +59,8 @@ LightSample LightSampler::areaSample(const Entry& e, const Vec3f& p, const Vec3f
   return s;
 }
 
-LightSample LightSampler::sample(size_t index, const Vec3f& p, const Vec3f& n, float u1,
-                                 float u2, float u3) const {
+LightSample LightSampler::sample(size_t index, const Vec3f& p, const Vec3f& n, float u1, float u2,
+                                 float u3) const {
   const Entry& e = lights_[index];
   LightSample s;
   switch (e.light.kind) {

@@ -11,9 +11,8 @@ inline float offsetScale(float x, float y, float z) {
 
 }  // namespace
 
-void PacketTracer::trace(const RayPacket16& rays, const Color16& weight,
-                         std::array<Rng, 16>& rngs, Color16& radiance, int depth,
-                         RenderStats& stats) const {
+void PacketTracer::trace(const RayPacket16& rays, const Color16& weight, std::array<Rng, 16>& rngs,
+                         Color16& radiance, int depth, RenderStats& stats) const {
   HitPacket16 hits;
   accelerator_.intersect16(rays, hits);
   SurfacePacket16 sp;
@@ -83,8 +82,8 @@ void PacketTracer::addDirectLight(const SurfacePacket16& sp, const Color16& weig
       for (int i = 0; i < 16; ++i) {
         // A light below the geometric surface cannot be seen even if the shading normal
         // faces it: skip it rather than start the shadow ray inside the object.
-        const bool above = sp.gx[i] * light.tx[i] + sp.gy[i] * light.ty[i] +
-                               sp.gz[i] * light.tz[i] > 0.0f;
+        const bool above =
+            sp.gx[i] * light.tx[i] + sp.gy[i] * light.ty[i] + sp.gz[i] * light.tz[i] > 0.0f;
         const bool trace = light.valid[i] && above;
         const float o = offsetScale(sp.px[i], sp.py[i], sp.pz[i]);
         // Origin lifted off the surface; the direction still ends on the light point.
@@ -105,9 +104,12 @@ void PacketTracer::addDirectLight(const SurfacePacket16& sp, const Color16& weig
       stats.shadowRays += uint64_t(count);
       for (int i = 0; i < 16; ++i) {
         const bool lit = shadow.active[i] && !occluded[i];
-        radiance.r[i] += lit ? weight.r[i] * sp.diffuse.r[i] * light.irradiance.r[i] * perSample : 0.0f;
-        radiance.g[i] += lit ? weight.g[i] * sp.diffuse.g[i] * light.irradiance.g[i] * perSample : 0.0f;
-        radiance.b[i] += lit ? weight.b[i] * sp.diffuse.b[i] * light.irradiance.b[i] * perSample : 0.0f;
+        radiance.r[i] +=
+            lit ? weight.r[i] * sp.diffuse.r[i] * light.irradiance.r[i] * perSample : 0.0f;
+        radiance.g[i] +=
+            lit ? weight.g[i] * sp.diffuse.g[i] * light.irradiance.g[i] * perSample : 0.0f;
+        radiance.b[i] +=
+            lit ? weight.b[i] * sp.diffuse.b[i] * light.irradiance.b[i] * perSample : 0.0f;
       }
     }
   }

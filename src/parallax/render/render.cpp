@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "parallax/render/film_sampler.h"
-#include "parallax/render/packet_types.h"
 #include "parallax/render/packet_tracer.h"
+#include "parallax/render/packet_types.h"
 
 namespace parallax {
 
@@ -106,8 +106,7 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
 }  // namespace
 
 Image render(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
-             const RenderSettings& settings, RenderStats* stats,
-             const ProgressCallback& progress) {
+             const RenderSettings& settings, RenderStats* stats, const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   Image image(camera.width(), camera.height());
   const LightSampler lights(scene);
@@ -136,8 +135,7 @@ Image render(const Scene& scene, const Accelerator& accelerator, const Camera& c
                         total.secondaryRays += local.secondaryRays;
                       });
   });
-  total.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats) *stats = total;
   return image;
 }

@@ -19,7 +19,7 @@ struct RenderSettings {
 };
 
 struct RenderStats {
-  uint64_t cameraRays = 0;     // primary rays
+  uint64_t cameraRays = 0;  // primary rays
   uint64_t shadowRays = 0;
   uint64_t secondaryRays = 0;  // mirror bounces
   double seconds = 0.0;

@@ -24,7 +24,9 @@ PinholeCamera downCamera(int size, float height = 10.0f, float fov = 60.0f) {
   return PinholeCamera({0, height, 0}, {0, 0, 0}, {0, 0, -1}, fov, size, size);
 }
 
-Vec3f hitOnGround(const Ray& ray) { return ray.at(-ray.origin.y / ray.direction.y); }
+Vec3f hitOnGround(const Ray& ray) {
+  return ray.at(-ray.origin.y / ray.direction.y);
+}
 
 TEST(Render, DirectionalLightGivesAlbedoTimesIrradianceOverPi) {
   Scene scene = planeScene(0.5f);

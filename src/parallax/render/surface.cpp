@@ -58,8 +58,8 @@ SurfacePoint SurfaceShader::evaluate(const Ray& ray, const Hit& hit) const {
     const uint32_t* tri = &mesh.indices[size_t(hit.primitive) * 3];
     const float w0 = 1.0f - hit.u - hit.v;
     if (g.smoothNormals) {
-      const Vec3f n = mesh.normals[tri[0]] * w0 + mesh.normals[tri[1]] * hit.u +
-                      mesh.normals[tri[2]] * hit.v;
+      const Vec3f n =
+          mesh.normals[tri[0]] * w0 + mesh.normals[tri[1]] * hit.u + mesh.normals[tri[2]] * hit.v;
       const float len2 = dot(n, n);
       if (len2 > 0.0f) ns = n * (1.0f / std::sqrt(len2));
     }
@@ -71,7 +71,8 @@ SurfacePoint SurfaceShader::evaluate(const Ray& ray, const Hit& hit) const {
     ng = normalize(sp.position - g.sphere->center);
     ns = ng;
     // Spherical coordinates as texture coordinates.
-    if (g.texture) uv = {0.5f + std::atan2(ng.z, ng.x) / (2.0f * kPi), 0.5f + std::asin(ng.y) / kPi};
+    if (g.texture)
+      uv = {0.5f + std::atan2(ng.z, ng.x) / (2.0f * kPi), 0.5f + std::asin(ng.y) / kPi};
   }
   const bool frontFace = dot(ng, ray.direction) < 0.0f;
   if (!frontFace) ng = -ng;
@@ -130,8 +131,8 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
       const uint32_t* tri = &mesh.indices[size_t(hits.primitive[i]) * 3];
       const float b1 = hits.u[i], b2 = hits.v[i], b0 = 1.0f - b1 - b2;
       if (g.smoothNormals) {
-        const Vec3f n = mesh.normals[tri[0]] * b0 + mesh.normals[tri[1]] * b1 +
-                        mesh.normals[tri[2]] * b2;
+        const Vec3f n =
+            mesh.normals[tri[0]] * b0 + mesh.normals[tri[1]] * b1 + mesh.normals[tri[2]] * b2;
         const float len2 = dot(n, n);
         if (len2 > 0.0f) {
           const float inv = 1.0f / std::sqrt(len2);
@@ -145,8 +146,7 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
     } else {
       const Vec3f n = normalize(position - g.sphere->center);
       out.gx[i] = out.nx[i] = n.x, out.gy[i] = out.ny[i] = n.y, out.gz[i] = out.nz[i] = n.z;
-      if (g.texture)
-        uv = {0.5f + std::atan2(n.z, n.x) / (2.0f * kPi), 0.5f + std::asin(n.y) / kPi};
+      if (g.texture) uv = {0.5f + std::atan2(n.z, n.x) / (2.0f * kPi), 0.5f + std::asin(n.y) / kPi};
     }
     const Material& material = *g.material;
     Vec3f albedo = material.diffuse;
@@ -166,8 +166,8 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
     const float ns =
         out.nx[i] * out.gx[i] + out.ny[i] * out.gy[i] + out.nz[i] * out.gz[i] < 0.0f ? -1.0f : 1.0f;
     out.nx[i] *= ns, out.ny[i] *= ns, out.nz[i] *= ns;
-    out.shade[i] = out.hit[i] && (out.diffuse.r[i] > 0.0f || out.diffuse.g[i] > 0.0f ||
-                                  out.diffuse.b[i] > 0.0f);
+    out.shade[i] = out.hit[i] &&
+                   (out.diffuse.r[i] > 0.0f || out.diffuse.g[i] > 0.0f || out.diffuse.b[i] > 0.0f);
   }
 }
 

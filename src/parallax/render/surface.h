@@ -16,7 +16,7 @@ struct SurfacePoint {
   Vec3f shadingNormal;    // unit, interpolated vertex normal, same side as geometricNormal
   Vec3f diffuse{0.0f};    // albedo times (1 - mirror)
   Vec3f mirror{0.0f};
-  Vec3f emission{0.0f};   // only if the ray hit the emitting (front) face
+  Vec3f emission{0.0f};  // only if the ray hit the emitting (front) face
 };
 
 // Turns hits into surface points. Built once per render: it resolves every Embree geometry to

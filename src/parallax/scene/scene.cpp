@@ -49,12 +49,12 @@ void addBox(Scene& scene, const std::string& name, const Vec3f& lo, const Vec3f&
   const struct {
     Vec3f corner, u, v;
   } faces[6] = {
-      {lo, ey, ex},                           // -z
-      {lo + ez, ex, ey},                      // +z
-      {lo, ez, ey},                           // -x
-      {lo + ex, ey, ez},                      // +x
-      {lo, ex, ez},                           // -y
-      {lo + ey, ez, ex},                      // +y
+      {lo, ey, ex},       // -z
+      {lo + ez, ex, ey},  // +z
+      {lo, ez, ey},       // -x
+      {lo + ex, ey, ez},  // +x
+      {lo, ex, ez},       // -y
+      {lo + ey, ez, ex},  // +y
   };
   for (const auto& f : faces) {
     const auto base = uint32_t(mesh.positions.size());
@@ -64,8 +64,7 @@ void addBox(Scene& scene, const std::string& name, const Vec3f& lo, const Vec3f&
       mesh.normals.push_back(n);
     }
     mesh.uvs.insert(mesh.uvs.end(), {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
-    mesh.indices.insert(mesh.indices.end(),
-                        {base, base + 1, base + 2, base, base + 2, base + 3});
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
   scene.meshes.push_back(std::move(mesh));
 }

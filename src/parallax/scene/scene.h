@@ -16,10 +16,10 @@ namespace parallax {
 struct Texture {
   enum class Kind { Constant, Checker, Image };
   Kind kind = Kind::Constant;
-  Vec3f color{0.8f};                 // Constant; the first checker colour
-  Vec3f color2{0.2f};                // the second checker colour
-  float checkerSize = 1.0f;          // Checker: edge of one square, in world units
-  int image = -1;                    // Image: index into Scene::images
+  Vec3f color{0.8f};         // Constant; the first checker colour
+  Vec3f color2{0.2f};        // the second checker colour
+  float checkerSize = 1.0f;  // Checker: edge of one square, in world units
+  int image = -1;            // Image: index into Scene::images
 };
 
 struct Material {
@@ -55,7 +55,7 @@ struct Light {
   Kind kind = Kind::Point;
   Vec3f intensity{1.0f};  // Point: W/sr per channel; Directional: irradiance; Quad/Mesh: radiance
   Vec3f position;         // Point
-  Vec3f direction{0, -1, 0};  // Directional: the direction light travels (unit)
+  Vec3f direction{0, -1, 0};   // Directional: the direction light travels (unit)
   Vec3f corner, edgeU, edgeV;  // Quad: emits from the side of cross(edgeU, edgeV)
   bool twoSided = false;       // Quad/Mesh: emit from both faces
   int mesh = -1;               // Mesh: index into Scene::meshes (its material's emission)
