@@ -89,85 +89,108 @@ SurfacePoint SurfaceShader::evaluate(const Ray& ray, const Hit& hit) const {
   return sp;
 }
 
-// The same as evaluate() for a whole packet, reading the SoA packets directly: the lane-wise
-// arithmetic runs as SIMD loops, only the per-object lookups are scalar.
+// The same as evaluate() for a whole packet, reading the SoA packets directly. The arithmetic
+// runs as SIMD loops over the lanes; the scalar loop only looks up each hit's object and
+// material, and does the rarer work (spheres, smooth normals, image textures) lane by lane.
 void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
                                SurfacePacket16& out, Color16& emitted) const {
-  out = SurfacePacket16{};  // lanes without a hit stay zero, so lane loops can skip masks
-  {
-    // Local copies tell the compiler that nothing aliases, so the loop becomes SIMD.
-    alignas(64) float t[16], ngx[16], ngy[16], ngz[16];
-    alignas(64) int32_t hit[16];
-    for (int i = 0; i < 16; ++i) {
-      hit[i] = rays.active[i] != 0 && hits.geometry[i] != kNoHit ? 1 : 0;
-      t[i] = hits.t[i], ngx[i] = hits.ngx[i], ngy[i] = hits.ngy[i], ngz[i] = hits.ngz[i];
-    }
-    alignas(64) float px[16], py[16], pz[16], gx[16], gy[16], gz[16];
-    for (int i = 0; i < 16; ++i) {
-      const float ti = hit[i] ? t[i] : 0.0f;
-      px[i] = rays.ox[i] + rays.dx[i] * ti;
-      py[i] = rays.oy[i] + rays.dy[i] * ti;
-      pz[i] = rays.oz[i] + rays.dz[i] * ti;
-      const float len2 = ngx[i] * ngx[i] + ngy[i] * ngy[i] + ngz[i] * ngz[i];
-      const float inv = hit[i] && len2 > 0.0f ? 1.0f / std::sqrt(len2) : 0.0f;
-      gx[i] = ngx[i] * inv, gy[i] = ngy[i] * inv, gz[i] = ngz[i] * inv;
-    }
-    for (int i = 0; i < 16; ++i) {
-      out.hit[i] = hit[i];
-      out.px[i] = px[i], out.py[i] = py[i], out.pz[i] = pz[i];
-      out.gx[i] = out.nx[i] = gx[i];
-      out.gy[i] = out.ny[i] = gy[i];
-      out.gz[i] = out.nz[i] = gz[i];
-    }
-  }
-  int32_t front[16] = {};
+  // Local arrays tell the compiler that nothing aliases, so the lane loops vectorise.
+  alignas(64) int32_t hit[16];
+  alignas(64) float px[16], py[16], pz[16], gx[16], gy[16], gz[16], nx[16], ny[16], nz[16];
   for (int i = 0; i < 16; ++i) {
-    if (!out.hit[i]) continue;
+    hit[i] = rays.active[i] != 0 && hits.geometry[i] != kNoHit ? 1 : 0;
+    const float t = hit[i] ? hits.t[i] : 0.0f;
+    px[i] = rays.ox[i] + rays.dx[i] * t;
+    py[i] = rays.oy[i] + rays.dy[i] * t;
+    pz[i] = rays.oz[i] + rays.dz[i] * t;
+    const float len2 =
+        hits.ngx[i] * hits.ngx[i] + hits.ngy[i] * hits.ngy[i] + hits.ngz[i] * hits.ngz[i];
+    const float inv = hit[i] && len2 > 0.0f ? 1.0f / std::sqrt(len2) : 0.0f;
+    nx[i] = gx[i] = hits.ngx[i] * inv;
+    ny[i] = gy[i] = hits.ngy[i] * inv;
+    nz[i] = gz[i] = hits.ngz[i] * inv;
+  }
+
+  // Material terms per lane; checkerboards are evaluated afterwards for all lanes at once.
+  alignas(64) float albedo[3][16], mirror[3][16], emission[3][16];
+  alignas(64) float checkerA[3][16], checkerB[3][16], checkerScale[16];
+  alignas(64) int32_t checker[16];
+  for (int i = 0; i < 16; ++i) {
+    checker[i] = 0;
+    checkerScale[i] = 0.0f;
+    for (int c = 0; c < 3; ++c)
+      albedo[c][i] = mirror[c][i] = emission[c][i] = checkerA[c][i] = checkerB[c][i] = 0.0f;
+    if (!hit[i]) continue;
     const Geometry& g = geometries_[hits.geometry[i]];
-    const Vec3f position{out.px[i], out.py[i], out.pz[i]};
-    Vec2f uv{hits.u[i], hits.v[i]};
-    if (g.mesh) {
-      const TriangleMesh& mesh = *g.mesh;
-      const uint32_t* tri = &mesh.indices[size_t(hits.primitive[i]) * 3];
-      const float b1 = hits.u[i], b2 = hits.v[i], b0 = 1.0f - b1 - b2;
-      if (g.smoothNormals) {
-        const Vec3f n =
-            mesh.normals[tri[0]] * b0 + mesh.normals[tri[1]] * b1 + mesh.normals[tri[2]] * b2;
-        const float len2 = dot(n, n);
-        if (len2 > 0.0f) {
-          const float inv = 1.0f / std::sqrt(len2);
-          out.nx[i] = n.x * inv, out.ny[i] = n.y * inv, out.nz[i] = n.z * inv;
-        }
-      }
-      if (!mesh.uvs.empty() && g.texture) {
-        const Vec2f a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
-        uv = {a.x * b0 + b.x * b1 + c.x * b2, a.y * b0 + b.y * b1 + c.y * b2};
-      }
-    } else {
-      const Vec3f n = normalize(position - g.sphere->center);
-      out.gx[i] = out.nx[i] = n.x, out.gy[i] = out.ny[i] = n.y, out.gz[i] = out.nz[i] = n.z;
-      if (g.texture) uv = {0.5f + std::atan2(n.z, n.x) / (2.0f * kPi), 0.5f + std::asin(n.y) / kPi};
-    }
     const Material& material = *g.material;
-    Vec3f albedo = material.diffuse;
-    if (g.texture) albedo = albedo * evaluateTexture(scene_, *g.texture, position, uv);
-    out.mirror.set(i, material.mirror);
-    out.diffuse.set(i, albedo * (Vec3f(1.0f) - material.mirror));
-    front[i] = out.gx[i] * rays.dx[i] + out.gy[i] * rays.dy[i] + out.gz[i] * rays.dz[i] < 0.0f;
-    if (front[i]) {
-      emitted.r[i] += material.emission.x, emitted.g[i] += material.emission.y;
-      emitted.b[i] += material.emission.z;
+    for (int c = 0; c < 3; ++c) {
+      albedo[c][i] = material.diffuse[c];
+      mirror[c][i] = material.mirror[c];
+      emission[c][i] = material.emission[c];
     }
+    if (g.sphere) {
+      const Vec3f n = normalize(Vec3f{px[i], py[i], pz[i]} - g.sphere->center);
+      gx[i] = nx[i] = n.x, gy[i] = ny[i] = n.y, gz[i] = nz[i] = n.z;
+    }
+    const uint32_t* tri = g.mesh ? &g.mesh->indices[size_t(hits.primitive[i]) * 3] : nullptr;
+    const float b1 = hits.u[i], b2 = hits.v[i], b0 = 1.0f - b1 - b2;
+    if (g.smoothNormals) {
+      const auto& normals = g.mesh->normals;
+      const Vec3f n = normals[tri[0]] * b0 + normals[tri[1]] * b1 + normals[tri[2]] * b2;
+      const float len2 = dot(n, n);
+      if (len2 > 0.0f) {
+        const float inv = 1.0f / std::sqrt(len2);
+        nx[i] = n.x * inv, ny[i] = n.y * inv, nz[i] = n.z * inv;
+      }
+    }
+    if (!g.texture) continue;
+    if (g.texture->kind == Texture::Kind::Checker) {
+      checker[i] = 1;
+      checkerScale[i] = 1.0f / g.texture->checkerSize;
+      for (int c = 0; c < 3; ++c)
+        checkerA[c][i] = g.texture->color[c], checkerB[c][i] = g.texture->color2[c];
+      continue;
+    }
+    Vec2f uv{b1, b2};
+    if (g.sphere) {
+      uv = {0.5f + std::atan2(gz[i], gx[i]) / (2.0f * kPi), 0.5f + std::asin(gy[i]) / kPi};
+    } else if (!g.mesh->uvs.empty()) {
+      const Vec2f a = g.mesh->uvs[tri[0]], b = g.mesh->uvs[tri[1]], c = g.mesh->uvs[tri[2]];
+      uv = {a.x * b0 + b.x * b1 + c.x * b2, a.y * b0 + b.y * b1 + c.y * b2};
+    }
+    const Vec3f tex = evaluateTexture(scene_, *g.texture, {px[i], py[i], pz[i]}, uv);
+    for (int c = 0; c < 3; ++c) albedo[c][i] *= tex[c];
   }
-  // Both normals onto the side the ray came from.
+
+  // Solid checkerboards (evaluateTexture's Checker case), then both normals onto the side the
+  // ray came from, emission from front faces only, and the diffuse share (1 - mirror).
   for (int i = 0; i < 16; ++i) {
-    const float gs = out.hit[i] && !front[i] ? -1.0f : 1.0f;
-    out.gx[i] *= gs, out.gy[i] *= gs, out.gz[i] *= gs;
-    const float ns =
-        out.nx[i] * out.gx[i] + out.ny[i] * out.gy[i] + out.nz[i] * out.gz[i] < 0.0f ? -1.0f : 1.0f;
-    out.nx[i] *= ns, out.ny[i] *= ns, out.nz[i] *= ns;
-    out.shade[i] = out.hit[i] &&
-                   (out.diffuse.r[i] > 0.0f || out.diffuse.g[i] > 0.0f || out.diffuse.b[i] > 0.0f);
+    const float s = checkerScale[i];
+    const int64_t cells = int64_t(std::floor(px[i] * s + 1e-3f)) +
+                          int64_t(std::floor(py[i] * s + 1e-3f)) +
+                          int64_t(std::floor(pz[i] * s + 1e-3f));
+    const bool odd = (cells & 1) != 0;
+    for (int c = 0; c < 3; ++c)
+      albedo[c][i] *= checker[i] ? (odd ? checkerB[c][i] : checkerA[c][i]) : 1.0f;
+  }
+  for (int i = 0; i < 16; ++i) {
+    const bool front = gx[i] * rays.dx[i] + gy[i] * rays.dy[i] + gz[i] * rays.dz[i] < 0.0f;
+    const float gs = front ? 1.0f : -1.0f;
+    gx[i] *= gs, gy[i] *= gs, gz[i] *= gs;
+    const float ns = nx[i] * gx[i] + ny[i] * gy[i] + nz[i] * gz[i] < 0.0f ? -1.0f : 1.0f;
+    out.hit[i] = hit[i];
+    out.px[i] = px[i], out.py[i] = py[i], out.pz[i] = pz[i];
+    out.gx[i] = gx[i], out.gy[i] = gy[i], out.gz[i] = gz[i];
+    out.nx[i] = nx[i] * ns, out.ny[i] = ny[i] * ns, out.nz[i] = nz[i] * ns;
+    out.diffuse.r[i] = albedo[0][i] * (1.0f - mirror[0][i]);
+    out.diffuse.g[i] = albedo[1][i] * (1.0f - mirror[1][i]);
+    out.diffuse.b[i] = albedo[2][i] * (1.0f - mirror[2][i]);
+    out.mirror.r[i] = mirror[0][i], out.mirror.g[i] = mirror[1][i], out.mirror.b[i] = mirror[2][i];
+    out.shade[i] =
+        hit[i] && (out.diffuse.r[i] > 0.0f || out.diffuse.g[i] > 0.0f || out.diffuse.b[i] > 0.0f);
+    emitted.r[i] += front ? emission[0][i] : 0.0f;
+    emitted.g[i] += front ? emission[1][i] : 0.0f;
+    emitted.b[i] += front ? emission[2][i] : 0.0f;
   }
 }
 

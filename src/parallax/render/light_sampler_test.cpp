@@ -1,0 +1,100 @@
+// Light samples against closed forms, and the packet path against the scalar one.
+#include "parallax/render/light_sampler.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "parallax/core/random.h"
+
+namespace parallax {
+namespace {
+
+TEST(LightSampler, PointLightIrradianceIsCosineOverDistanceSquared) {
+  Scene scene;
+  Light l;
+  l.kind = Light::Kind::Point;
+  l.position = {0, 2, 0};
+  l.intensity = Vec3f(8.0f);
+  scene.lights.push_back(l);
+  const LightSampler sampler(scene);
+  const LightSample s = sampler.sample(0, {1, 0, 0}, {0, 1, 0}, 0, 0, 0);
+  ASSERT_TRUE(s.valid);
+  const float r2 = 5.0f, cosine = 2.0f / std::sqrt(5.0f);
+  EXPECT_NEAR(s.irradiance.x, 8.0f * cosine / r2, 1e-6f);
+  EXPECT_FALSE(sampler.sample(0, {1, 0, 0}, {0, -1, 0}, 0, 0, 0).valid);  // light behind
+}
+
+TEST(LightSampler, MeshLightAveragesToTheQuadLight) {
+  // An emissive mesh quad and a quad light of the same shape deliver the same mean
+  // irradiance (both unbiased estimators of one integral).
+  Scene quad, mesh;
+  Material lamp;
+  lamp.emission = Vec3f(5.0f);
+  for (Scene* s : {&quad, &mesh}) s->materials.push_back(lamp);
+  Light q;
+  q.kind = Light::Kind::Quad;
+  q.corner = {-1, 2, -1}, q.edgeU = {2, 0, 0}, q.edgeV = {0, 0, 2};
+  q.intensity = lamp.emission;
+  quad.lights.push_back(q);
+  addQuad(mesh, "lamp", q.corner, q.edgeU, q.edgeV, 0);
+  Light m;
+  m.kind = Light::Kind::Mesh;
+  m.mesh = 0;
+  mesh.lights.push_back(m);
+  const LightSampler a(quad), b(mesh);
+  Rng rng(9);
+  double sumA = 0, sumB = 0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+    sumA += a.sample(0, {0.3f, 0, 0.2f}, {0, 1, 0}, u1, u2, u3).irradiance.x;
+    sumB += b.sample(0, {0.3f, 0, 0.2f}, {0, 1, 0}, u1, u2, u3).irradiance.x;
+  }
+  EXPECT_NEAR(sumA / n, sumB / n, 0.01 * sumA / n);
+}
+
+TEST(LightSampler, PacketMatchesScalar) {
+  Scene scene;
+  Light q;
+  q.kind = Light::Kind::Quad;
+  q.corner = {-1, 2, -1}, q.edgeU = {2, 0, 0}, q.edgeV = {0, 0, 2};
+  q.intensity = Vec3f(3.0f);
+  scene.lights.push_back(q);
+  Light p;
+  p.kind = Light::Kind::Point;
+  p.position = {0.5f, 1, 0};
+  p.intensity = Vec3f(2.0f);
+  scene.lights.push_back(p);
+  const LightSampler sampler(scene);
+  Rng rng(3);
+  SurfacePacket16 sp{};
+  alignas(64) float u1[16], u2[16], u3[16];
+  for (int i = 0; i < 16; ++i) {
+    sp.px[i] = rng.uniform() * 4 - 2, sp.py[i] = 0, sp.pz[i] = rng.uniform() * 4 - 2;
+    const Vec3f n = normalize(Vec3f{rng.uniform() - 0.5f, 1.0f, rng.uniform() - 0.5f});
+    sp.nx[i] = n.x, sp.ny[i] = n.y, sp.nz[i] = n.z;
+    sp.hit[i] = sp.shade[i] = i % 5 != 0;
+    u1[i] = rng.uniform(), u2[i] = rng.uniform(), u3[i] = rng.uniform();
+  }
+  for (size_t light = 0; light < 2; ++light) {
+    LightPacket16 out;
+    sampler.sample16(light, sp, u1, u2, u3, out);
+    for (int i = 0; i < 16; ++i) {
+      if (!sp.shade[i]) {
+        EXPECT_FALSE(out.valid[i]);
+        continue;
+      }
+      const LightSample s = sampler.sample(light, {sp.px[i], sp.py[i], sp.pz[i]},
+                                           {sp.nx[i], sp.ny[i], sp.nz[i]}, u1[i], u2[i], u3[i]);
+      ASSERT_EQ(bool(out.valid[i]), s.valid) << i;
+      if (!s.valid) continue;
+      EXPECT_NEAR(out.irradiance.r[i], s.irradiance.x, 1e-5f * (1 + s.irradiance.x));
+      EXPECT_NEAR(out.tx[i], s.toLight.x, 1e-5f);
+      EXPECT_EQ(out.tMax[i], s.tMax);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace parallax
