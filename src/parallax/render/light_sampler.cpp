@@ -112,6 +112,7 @@ void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float
     // point on the parallelogram, E = L cos(theta) cos(theta_light) A / r^2.
     const Vec3f c = light.corner, eu = light.edgeU, ev = light.edgeV;
     const Vec3f ln = e.triangles.front().normal;
+    PARALLAX_SIMD
     for (int i = 0; i < 16; ++i) {
       const float tx = c.x + eu.x * u1[i] + ev.x * u2[i] - sp.px[i];
       const float ty = c.y + eu.y * u1[i] + ev.y * u2[i] - sp.py[i];
@@ -132,6 +133,7 @@ void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float
     }
     return;
   }
+  PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
     out.valid[i] = 0;
     if (!sp.shade[i]) continue;

@@ -23,6 +23,7 @@ void PacketTracer::trace(const RayPacket16& rays, const Color16& weight, std::ar
   // Escaped rays see the background; hits add what they emit and the ambient term (a uniform
   // radiance L_a over the hemisphere reflects albedo * L_a from a Lambertian surface).
   const Vec3f bg = scene_.background, amb = scene_.ambient;
+  PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
     const bool active = rays.active[i] != 0;
     const float r = sp.hit[i] ? emitted.r[i] + sp.diffuse.r[i] * amb.x : (active ? bg.x : 0.f);
@@ -72,6 +73,7 @@ void PacketTracer::addDirectLight(const SurfacePacket16& sp, const Color16& weig
     const int samples = lights_.samplesFor(index);
     const float perSample = 1.0f / (kPi * float(samples));
     for (int s = 0; s < samples; ++s) {
+      PARALLAX_SIMD
       for (int i = 0; i < 16; ++i) {
         u1[i] = rngs[size_t(i)].uniform();
         u2[i] = rngs[size_t(i)].uniform();
@@ -79,6 +81,7 @@ void PacketTracer::addDirectLight(const SurfacePacket16& sp, const Color16& weig
       }
       lights_.sample16(index, sp, u1, u2, u3, light);
       int count = 0;
+      PARALLAX_SIMD_SUM(count)
       for (int i = 0; i < 16; ++i) {
         // A light below the geometric surface cannot be seen even if the shading normal
         // faces it: skip it rather than start the shadow ray inside the object.
@@ -102,6 +105,7 @@ void PacketTracer::addDirectLight(const SurfacePacket16& sp, const Color16& weig
       bool occluded[16];
       accelerator_.occluded16(shadow, occluded);
       stats.shadowRays += uint64_t(count);
+      PARALLAX_SIMD
       for (int i = 0; i < 16; ++i) {
         const bool lit = shadow.active[i] && !occluded[i];
         radiance.r[i] +=

@@ -94,18 +94,20 @@ SurfacePoint SurfaceShader::evaluate(const Ray& ray, const Hit& hit) const {
 // material, and does the rarer work (spheres, smooth normals, image textures) lane by lane.
 void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
                                SurfacePacket16& out, Color16& emitted) const {
-  // Local arrays tell the compiler that nothing aliases, so the lane loops vectorise.
+  // Local arrays tell the compiler that nothing aliases, so the lane loops vectorise; the
+  // conditions use & and | (no short-circuit branches) for the same reason.
   alignas(64) int32_t hit[16];
   alignas(64) float px[16], py[16], pz[16], gx[16], gy[16], gz[16], nx[16], ny[16], nz[16];
+  PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
-    hit[i] = rays.active[i] != 0 && hits.geometry[i] != kNoHit ? 1 : 0;
-    const float t = hit[i] ? hits.t[i] : 0.0f;
+    hit[i] = int32_t(rays.active[i] != 0) & int32_t(hits.geometry[i] != kNoHit);
+    const float t = hit[i] != 0 ? hits.t[i] : 0.0f;
     px[i] = rays.ox[i] + rays.dx[i] * t;
     py[i] = rays.oy[i] + rays.dy[i] * t;
     pz[i] = rays.oz[i] + rays.dz[i] * t;
     const float len2 =
         hits.ngx[i] * hits.ngx[i] + hits.ngy[i] * hits.ngy[i] + hits.ngz[i] * hits.ngz[i];
-    const float inv = hit[i] && len2 > 0.0f ? 1.0f / std::sqrt(len2) : 0.0f;
+    const float inv = ((hit[i] != 0) & (len2 > 0.0f)) ? 1.0f / std::sqrt(len2) : 0.0f;
     nx[i] = gx[i] = hits.ngx[i] * inv;
     ny[i] = gy[i] = hits.ngy[i] * inv;
     nz[i] = gz[i] = hits.ngz[i] * inv;
@@ -164,33 +166,45 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
 
   // Solid checkerboards (evaluateTexture's Checker case), then both normals onto the side the
   // ray came from, emission from front faces only, and the diffuse share (1 - mirror).
+  PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
-    const float s = checkerScale[i];
-    const int64_t cells = int64_t(std::floor(px[i] * s + 1e-3f)) +
-                          int64_t(std::floor(py[i] * s + 1e-3f)) +
-                          int64_t(std::floor(pz[i] * s + 1e-3f));
-    const bool odd = (cells & 1) != 0;
-    for (int c = 0; c < 3; ++c)
-      albedo[c][i] *= checker[i] ? (odd ? checkerB[c][i] : checkerA[c][i]) : 1.0f;
+    const float k = checkerScale[i];
+    // The parity of the cell sum, in floats so that the loop stays SIMD (exact for cell
+    // indices below 2^24).
+    const float cells = std::floor(px[i] * k + 1e-3f) + std::floor(py[i] * k + 1e-3f) +
+                        std::floor(pz[i] * k + 1e-3f);
+    // Blend weights instead of branches: odd squares take colour B, even ones colour A.
+    const float odd = cells - 2.0f * std::floor(0.5f * cells), on = float(checker[i]);
+    const float r = 1.0f - on + on * (odd * checkerB[0][i] + (1.0f - odd) * checkerA[0][i]);
+    const float g = 1.0f - on + on * (odd * checkerB[1][i] + (1.0f - odd) * checkerA[1][i]);
+    const float b = 1.0f - on + on * (odd * checkerB[2][i] + (1.0f - odd) * checkerA[2][i]);
+    albedo[0][i] *= r, albedo[1][i] *= g, albedo[2][i] *= b;
   }
+  alignas(64) float frontFace[16];
+  PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
-    const bool front = gx[i] * rays.dx[i] + gy[i] * rays.dy[i] + gz[i] * rays.dz[i] < 0.0f;
-    const float gs = front ? 1.0f : -1.0f;
+    const float facing = gx[i] * rays.dx[i] + gy[i] * rays.dy[i] + gz[i] * rays.dz[i];
+    frontFace[i] = facing < 0.0f ? 1.0f : 0.0f;
+    const float gs = facing < 0.0f ? 1.0f : -1.0f;
     gx[i] *= gs, gy[i] *= gs, gz[i] *= gs;
     const float ns = nx[i] * gx[i] + ny[i] * gy[i] + nz[i] * gz[i] < 0.0f ? -1.0f : 1.0f;
+    nx[i] *= ns, ny[i] *= ns, nz[i] *= ns;
+  }
+  PARALLAX_SIMD
+  for (int i = 0; i < 16; ++i) {
     out.hit[i] = hit[i];
     out.px[i] = px[i], out.py[i] = py[i], out.pz[i] = pz[i];
     out.gx[i] = gx[i], out.gy[i] = gy[i], out.gz[i] = gz[i];
-    out.nx[i] = nx[i] * ns, out.ny[i] = ny[i] * ns, out.nz[i] = nz[i] * ns;
-    out.diffuse.r[i] = albedo[0][i] * (1.0f - mirror[0][i]);
-    out.diffuse.g[i] = albedo[1][i] * (1.0f - mirror[1][i]);
-    out.diffuse.b[i] = albedo[2][i] * (1.0f - mirror[2][i]);
+    out.nx[i] = nx[i], out.ny[i] = ny[i], out.nz[i] = nz[i];
+    const float dr = albedo[0][i] * (1.0f - mirror[0][i]);
+    const float dg = albedo[1][i] * (1.0f - mirror[1][i]);
+    const float db = albedo[2][i] * (1.0f - mirror[2][i]);
+    out.diffuse.r[i] = dr, out.diffuse.g[i] = dg, out.diffuse.b[i] = db;
     out.mirror.r[i] = mirror[0][i], out.mirror.g[i] = mirror[1][i], out.mirror.b[i] = mirror[2][i];
-    out.shade[i] =
-        hit[i] && (out.diffuse.r[i] > 0.0f || out.diffuse.g[i] > 0.0f || out.diffuse.b[i] > 0.0f);
-    emitted.r[i] += front ? emission[0][i] : 0.0f;
-    emitted.g[i] += front ? emission[1][i] : 0.0f;
-    emitted.b[i] += front ? emission[2][i] : 0.0f;
+    out.shade[i] = hit[i] & int32_t((dr > 0.0f) | (dg > 0.0f) | (db > 0.0f));
+    emitted.r[i] += frontFace[i] * emission[0][i];
+    emitted.g[i] += frontFace[i] * emission[1][i];
+    emitted.b[i] += frontFace[i] * emission[2][i];
   }
 }
 
