@@ -1,5 +1,6 @@
 #include "parallax/display/barrier_rays.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace parallax {
@@ -37,6 +38,20 @@ Vec3d BarrierRayGenerator::imagePoint(double filmX, double filmY) const {
   const double columnWidth = p.pitchMm / (subpixels_ ? 3.0 : 1.0);
   return {-0.5 * p.widthMm() + filmX * columnWidth, 0.5 * p.heightMm() - filmY * p.pitchMm,
           zImage_};
+}
+
+int BarrierRayGenerator::viewIndex(int column, int row) const {
+  const Vec3d centre = imagePoint(column + 0.5, row + 0.5);
+  const double s = maskFromImage_;
+  const double maskY = eyeY_ + (centre.y - eyeY_) * s;
+  const int64_t k = mask_.nearestAperture(eyeX_ + (centre.x - eyeX_) * s, maskY);
+  const double groupX = eyeX_ + (mask_.apertureCenterX(k, maskY) - eyeX_) * imageFromMask_;
+  const double columnWidth = design_.spec.imagePanel.pitchMm / (subpixels_ ? 3.0 : 1.0);
+  const double columnsPerGroup = design_.screenPeriodMm / columnWidth;
+  // Offset from the group's left edge, in columns.
+  const double offset = (centre.x - groupX) / columnWidth + 0.5 * columnsPerGroup;
+  const int views = std::max(1, int(std::lround(columnsPerGroup)));
+  return std::clamp(int(std::floor(offset)), 0, views - 1);
 }
 
 BarrierRay BarrierRayGenerator::ray(double filmX, double filmY, double u, double v) const {

@@ -40,6 +40,10 @@ class BarrierRayGenerator {
   // aperture's centre line.
   BarrierRay ray(double filmX, double filmY, double u, double v) const;
 
+  // The view a film column serves: its place in its group, 0 .. round(views) - 1 counted in
+  // the direction of increasing x on the image layer (3x the views in subpixel mode).
+  int viewIndex(int column, int row) const;
+
   // The image-layer point (mm) of a film position.
   Vec3d imagePoint(double filmX, double filmY) const;
 

@@ -61,6 +61,7 @@ TEST(BarrierRays, RaysOfOneViewMeetInOnePointAtTheDesignDistance) {
       const double offset = (pixel.x - groupCentre) / d.spec.imagePanel.pitchMm;
       const int64_t view = std::llround(offset + 4.0);
       ASSERT_NEAR(offset + 4.0, double(view), 1e-6) << "pixel centres must sit on view slots";
+      EXPECT_EQ(gen.viewIndex(x, 20), int(view)) << x;
       hitsByView[view].push_back(at(r, d.viewDistanceMm).first);
     }
     ASSERT_EQ(hitsByView.size(), 9u);
@@ -74,6 +75,26 @@ TEST(BarrierRays, RaysOfOneViewMeetInOnePointAtTheDesignDistance) {
       previous = xs.front();
     }
   }
+}
+
+TEST(BarrierRays, ViewIndexCountsPixelsAcrossTheGroup) {
+  const BarrierRayGenerator gen(designDisplay(narrowDisplay()));
+  // Every view index covers one pixel per group, and within a group the index rises by one
+  // per pixel: the same pixels whose rays meet in one point at D (the test above).
+  std::map<int, int> count;
+  int previous = -1;
+  for (int x = 0; x < 180; ++x) {
+    const int view = gen.viewIndex(x, 20);
+    ASSERT_GE(view, 0);
+    ASSERT_LT(view, 9);
+    if (previous >= 0 && view != 0) {
+      EXPECT_EQ(view, previous + 1) << x;
+    }
+    previous = view;
+    ++count[view];
+  }
+  ASSERT_EQ(count.size(), 9u);
+  for (const auto& [view, n] : count) EXPECT_NEAR(n, 20, 1) << view;
 }
 
 TEST(BarrierRays, InfiniteVirtualDistanceGivesParallelViews) {
