@@ -73,6 +73,7 @@ void runRender(const RenderOptions& o) {
   record.set("/rays_per_second", raysPerSecond);
   record.set("/outputs/image", "image.png");
   record.set("/outputs/mask", "mask.png");
+  record.set("/outputs/display", "display.json");
   record.set("/scene_display/center", scene.display.center);
   record.set("/scene_display/normal", scene.display.normal);
   record.set("/scene_display/up", scene.display.up);
@@ -84,6 +85,8 @@ void runRender(const RenderOptions& o) {
   writeImage(dir + "/image.png", layers.image);
   writeImage(dir + "/mask.png", layers.mask);
   if (o.linear) writeImage(dir + "/image.pfm", layers.image);
+  // The display as a display file, so that `simulate DIR` and other tools can read it back.
+  writeFileAtomically(dir + "/display.json", displayFileText(design.spec));
   writeFileAtomically(dir + "/render.json", record.dump() + "\n");
   std::printf("wrote %s/image.png (%dx%d), %s/mask.png (%dx%d), %s/render.json\n", dir.c_str(),
               layers.image.width(), layers.image.height(), dir.c_str(), layers.mask.width(),

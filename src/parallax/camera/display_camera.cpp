@@ -64,8 +64,9 @@ int DisplayCamera::packetStride() const {
 }
 
 WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design,
-                           const DisplayPlacement& placement, int width, int height)
-    : width_(width), height_(height) {
+                           const DisplayPlacement& placement, int width, int height,
+                           bool horizontalOnly)
+    : width_(width), height_(height), horizontalOnly_(horizontalOnly) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("camera size must be positive");
   if (!(eyeMm.z > 0))
     throw std::invalid_argument("the eye must be in front of the display (z > 0)");
@@ -75,11 +76,24 @@ WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design,
   corner_ = world.point({-0.5f * w, 0.5f * h, 0.0f});
   stepX_ = world.vector({w / float(width), 0.0f, 0.0f});
   stepY_ = world.vector({0.0f, -h / float(height), 0.0f});
+  worldUp_ = world.vector({0.0f, 1.0f, 0.0f});
+  eyeZ_ = float(eyeMm.z);
+  eyeHeight_ = float(eyeMm.y);
+  frontHalfHeight_ = 0.5f * h;
+  viewLineY_ = float(design.spec.viewZoneHeightMm);
+  viewDistance_ = float(design.viewDistanceMm);
 }
 
 Ray WindowCamera::generateRay(const FilmSample& s) const {
   const Vec3f target = corner_ + stepX_ * s.x + stepY_ * s.y;
-  return {eye_, target - eye_};
+  if (!horizontalOnly_) return {eye_, target - eye_};
+  // The line through the front point F at height y_F: x toward the eye, y toward the view
+  // line, so at the eye's depth it is (x_e, y_F + (y_e - y_F) z_e / D).
+  const float frontY = frontHalfHeight_ - s.y * (2.0f * frontHalfHeight_ / float(height_));
+  const float originY = frontY + (viewLineY_ - frontY) * eyeZ_ / viewDistance_;
+  // eye_ sits at the eye's height; move the origin along the display's up to originY.
+  const Vec3f origin = eye_ + worldUp_ * (originY - eyeHeight_);
+  return {origin, target - origin};
 }
 
 }  // namespace parallax

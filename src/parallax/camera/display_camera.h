@@ -35,11 +35,13 @@ class DisplayCamera final : public Camera {
 };
 
 // An off-axis pinhole camera at `eyeMm` (display frame) whose film is the front layer's
-// rectangle: the picture an ideal window would show that eye.
+// rectangle: the picture an ideal window would show that eye. With `horizontalOnly`, the
+// vertical perspective is the display's instead of the eye's: every ray meets the view line
+// y = y_e, z = D in y (one-axis perspective, what a slit display can show; section 2.2).
 class WindowCamera final : public Camera {
  public:
   WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design, const DisplayPlacement& placement,
-               int width, int height);
+               int width, int height, bool horizontalOnly = false);
 
   int width() const override { return width_; }
   int height() const override { return height_; }
@@ -48,6 +50,10 @@ class WindowCamera final : public Camera {
  private:
   Vec3f eye_, corner_, stepX_, stepY_;
   int width_, height_;
+  bool horizontalOnly_;
+  Vec3f worldUp_;      // display +y in the scene (scaled)
+  float eyeZ_ = 0, eyeHeight_ = 0;  // the eye's z and y (mm)
+  float frontHalfHeight_ = 0, viewLineY_ = 0, viewDistance_ = 0;  // mm
 };
 
 }  // namespace parallax
