@@ -27,6 +27,7 @@ struct RenderOptions {
   std::string output = "out";
   bool linear = false;
   bool subpixels = false;
+  bool directMapping = false;
 };
 
 std::string utcNow() {
@@ -54,8 +55,9 @@ void runRender(const RenderOptions& o) {
   DisplayLayers layers;
   {
     ProgressBar bar("render");
-    layers = renderDisplay(scene, accelerator, design, settings,
-                           [&bar](int done, int total) { bar.update(done, total); });
+    const auto onProgress = [&bar](int done, int total) { bar.update(done, total); };
+    layers = o.directMapping ? renderDirectMapping(scene, accelerator, design, settings, onProgress)
+                             : renderDisplay(scene, accelerator, design, settings, onProgress);
   }
   const double raysPerSecond = double(layers.stats.totalRays()) / layers.stats.seconds;
 
@@ -66,6 +68,7 @@ void runRender(const RenderOptions& o) {
   record.set("/scene", scene.source);
   record.set("/display_file", o.display.empty() ? std::string("<built-in>") : o.display);
   record.set("/spp", o.spp);
+  record.set("/method", o.directMapping ? "direct-mapping" : "barrier-camera");
   record.set("/seed", o.seed);
   record.set("/threads", o.threads);
   record.set("/seconds", layers.stats.seconds);
@@ -109,6 +112,8 @@ void registerRenderCommand(CLI::App& cli) {
   cmd->add_option("--seed", options->seed, "Seed of the sample jitter");
   cmd->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
   cmd->add_flag("--linear", options->linear, "Also write image.pfm, linear float");
+  cmd->add_flag("--direct-mapping", options->directMapping,
+                "The usual practice as a baseline: N ordinary views, interleaved (Fig. 2)");
   cmd->add_flag("--subpixels", options->subpixels,
                 "One ray per R, G, B subpixel (three times the views)");
   cmd->callback([options] { runRender(*options); });

@@ -51,7 +51,7 @@ class WindowCamera final : public Camera {
   Vec3f eye_, corner_, stepX_, stepY_;
   int width_, height_;
   bool horizontalOnly_;
-  Vec3f worldUp_;      // display +y in the scene (scaled)
+  Vec3f worldUp_;                   // display +y in the scene (scaled)
   float eyeZ_ = 0, eyeHeight_ = 0;  // the eye's z and y (mm)
   float frontHalfHeight_ = 0, viewLineY_ = 0, viewDistance_ = 0;  // mm
 };

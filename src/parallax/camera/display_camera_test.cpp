@@ -58,7 +58,8 @@ TEST(WindowCamera, HorizontalOnlyMeetsTheViewLineInY) {
   const WindowCamera camera(eye, d, placement, 40, 30, true);
   for (float y : {0.5f, 10.5f, 29.5f}) {
     const Ray ray = camera.generateRay({20.5f, y});
-    const Vec3f o = displayFromWorld.point(ray.origin), dir = displayFromWorld.vector(ray.direction);
+    const Vec3f o = displayFromWorld.point(ray.origin),
+                dir = displayFromWorld.vector(ray.direction);
     // In x the ray passes through the eye; in y through the view line at z = D.
     const auto at = [&](float z) { return o + dir * ((z - o.z) / dir.z); };
     EXPECT_NEAR(at(450.0f).x, 60.0f, 1e-2f);

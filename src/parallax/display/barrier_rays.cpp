@@ -54,6 +54,13 @@ int BarrierRayGenerator::viewIndex(int column, int row) const {
   return std::clamp(int(std::floor(offset)), 0, views - 1);
 }
 
+Vec3d BarrierRayGenerator::viewPosition(int view) const {
+  const double columnWidth = design_.spec.imagePanel.pitchMm / (subpixels_ ? 3.0 : 1.0);
+  const double columnsPerGroup = design_.screenPeriodMm / columnWidth;
+  const double offset = (view + 0.5 - 0.5 * columnsPerGroup) * columnWidth;
+  return {eyeX_ + offset * (zMask_ - distance_) / (zMask_ - zImage_), eyeY_, distance_};
+}
+
 BarrierRay BarrierRayGenerator::ray(double filmX, double filmY, double u, double v) const {
   BarrierRay r;
   // 1. Association, at the pixel's centre: the aperture nearest to the line from the

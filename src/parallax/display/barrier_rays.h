@@ -44,6 +44,11 @@ class BarrierRayGenerator {
   // the direction of increasing x on the image layer (3x the views in subpixel mode).
   int viewIndex(int column, int row) const;
 
+  // The design eye position of a view: where the central rays of all its columns meet, on the
+  // view line at z = D: x = e_c + delta (z_M - D) / (z_M - z_I), with delta the column's offset
+  // from its group centre (docs/display-geometry.md).
+  Vec3d viewPosition(int view) const;
+
   // The image-layer point (mm) of a film position.
   Vec3d imagePoint(double filmX, double filmY) const;
 

@@ -68,6 +68,7 @@ TEST(BarrierRays, RaysOfOneViewMeetInOnePointAtTheDesignDistance) {
     double previous = NAN;
     for (const auto& [view, xs] : hitsByView) {
       for (double x : xs) EXPECT_NEAR(x, xs.front(), 1e-6) << "view " << view;
+      EXPECT_NEAR(gen.viewPosition(int(view)).x, xs.front(), 1e-6) << "view " << view;
       // Neighbouring views are one view width S / N apart (G2).
       if (!std::isnan(previous)) {
         EXPECT_NEAR(std::abs(xs.front() - previous), d.viewWidthMm, 1e-6);

@@ -2,6 +2,8 @@
 // mask layer's raster.
 #pragma once
 
+#include <vector>
+
 #include "parallax/accel/accelerator.h"
 #include "parallax/display/display.h"
 #include "parallax/image/image.h"
@@ -19,6 +21,16 @@ struct DisplayLayers {
 DisplayLayers renderDisplay(const Scene& scene, const Accelerator& accelerator,
                             const DisplayDesign& design, const RenderSettings& settings,
                             const ProgressCallback& progress = {});
+
+// The usual practice the paper improves on (its Fig. 2): render one ordinary picture per view
+// from that view's design eye position (one-axis perspective for slits), then interleave them,
+// each image pixel (or subpixel column) taking its own view's picture at its own place.
+DisplayLayers renderDirectMapping(const Scene& scene, const Accelerator& accelerator,
+                                  const DisplayDesign& design, const RenderSettings& settings,
+                                  const ProgressCallback& progress = {});
+
+// Interleaves per-view pictures (each at the image layer's resolution) into the image layer.
+Image interleaveViews(const DisplayDesign& design, const std::vector<Image>& views);
 
 // The mask layer as a grey image of transmittances.
 Image maskLayerImage(const DisplayDesign& design);

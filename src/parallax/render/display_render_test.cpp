@@ -77,6 +77,27 @@ TEST(DisplayRender, SubpixelChannelsComeFromTheirOwnRays) {
     }
 }
 
+TEST(DisplayRender, DirectMappingAtOneSampleCastsTheBarrierCamerasRays) {
+  // At spp = 1 the display ray of a pixel passes through the pixel centre and its view's
+  // design eye position, which is exactly the ray of that view's ordinary (one-axis) camera
+  // through the same pixel: two code paths, one image.
+  const DisplayDesign d = designDisplay(smallBarrierBack());
+  Scene scene = defaultScene();
+  scene.display.width = 1.5f;
+  const Accelerator accel(scene);
+  const Image barrier = renderDisplay(scene, accel, d, {}).image;
+  const Image direct = renderDirectMapping(scene, accel, d, {}).image;
+  int close = 0;
+  for (size_t i = 0; i < barrier.pixels().size(); ++i)
+    close += length(barrier.pixels()[i] - direct.pixels()[i]) <= 1e-3f;
+  EXPECT_GE(close, int(barrier.pixels().size()) * 99 / 100);
+  // With super-sampling they differ: the barrier camera also jitters across the aperture.
+  RenderSettings sixteen;
+  sixteen.samplesPerPixel = 16;
+  EXPECT_NE(renderDisplay(scene, accel, d, sixteen).image.pixels(),
+            renderDirectMapping(scene, accel, d, sixteen).image.pixels());
+}
+
 TEST(DisplayRender, MaskLayerImageIsTheRaster) {
   const DisplayDesign d = designDisplay(smallBarrierBack());
   const Image mask = maskLayerImage(d);
