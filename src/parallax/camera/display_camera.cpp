@@ -34,12 +34,13 @@ DisplayCamera::DisplayCamera(const DisplayDesign& design, const DisplayPlacement
 }
 
 void DisplayCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
+  alignas(64) double origin[3][16], direction[3][16];
+  rays_.rays16(s.x, s.y, s.apertureU, s.apertureV, origin, direction);
   const auto& m = affine_;
   for (int i = 0; i < 16; ++i) {
-    if (!out.active[i]) continue;
-    const BarrierRay r = rays_.ray(s.x[i], s.y[i], s.apertureU[i], s.apertureV[i]);
-    const float x = float(r.origin.x), y = float(r.origin.y), z = float(r.origin.z);
-    const float dx = float(r.direction.x), dy = float(r.direction.y), dz = float(r.direction.z);
+    const float x = float(origin[0][i]), y = float(origin[1][i]), z = float(origin[2][i]);
+    const float dx = float(direction[0][i]), dy = float(direction[1][i]);
+    const float dz = float(direction[2][i]);
     out.ox[i] = m[0][0] * x + m[0][1] * y + m[0][2] * z + m[0][3];
     out.oy[i] = m[1][0] * x + m[1][1] * y + m[1][2] * z + m[1][3];
     out.oz[i] = m[2][0] * x + m[2][1] * y + m[2][2] * z + m[2][3];

@@ -61,6 +61,45 @@ Vec3d BarrierRayGenerator::viewPosition(int view) const {
   return {eyeX_ + offset * (zMask_ - distance_) / (zMask_ - zImage_), eyeY_, distance_};
 }
 
+void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16],
+                                 const float u[16], const float v[16], double origin[3][16],
+                                 double direction[3][16]) const {
+  if (design_.spec.mask.kind != MaskKind::Slits || std::isinf(virtualDistance_)) {
+    for (int i = 0; i < 16; ++i) {
+      const BarrierRay r = ray(filmX[i], filmY[i], u[i], v[i]);
+      origin[0][i] = r.origin.x, origin[1][i] = r.origin.y, origin[2][i] = r.origin.z;
+      direction[0][i] = r.direction.x, direction[1][i] = r.direction.y;
+      direction[2][i] = r.direction.z;
+    }
+    return;
+  }
+  // ray() for vertical slits and a finite D', written out lane-wise: the same steps 1-3.
+  const Panel& p = design_.spec.imagePanel;
+  const double columnWidth = p.pitchMm / (subpixels_ ? 3.0 : 1.0);
+  const double left = -0.5 * p.widthMm(), top = 0.5 * p.heightMm();
+  const double apertureBase = mask_.apertureCenterX(0, 0.0), period = mask_.periodMm();
+  const double inversePeriod = 1.0 / period, s = maskFromImage_, sv = virtualMaskFromImage_;
+  const double periodX = design_.screenPeriodMm * sv;
+  const double originZ = virtualDistance_, t = originZ - zImageVirtual_;
+  alignas(64) double fx[16], fy[16], fu[16];
+  for (int i = 0; i < 16; ++i) fx[i] = filmX[i], fy[i] = filmY[i], fu[i] = u[i];
+  for (int i = 0; i < 16; ++i) {
+    const double centreX = left + (std::floor(fx[i]) + 0.5) * columnWidth;
+    const double sampleX = left + fx[i] * columnWidth;
+    const double sampleY = top - fy[i] * p.pitchMm;
+    const double k = std::floor((eyeX_ + (centreX - eyeX_) * s - apertureBase) * inversePeriod + 0.5);
+    const double groupX = eyeX_ + (apertureBase + k * period - eyeX_) * imageFromMask_;
+    const double apertureX = eyeX_ + (groupX - eyeX_) * sv + (fu[i] - 0.5) * periodX;
+    const double slopeX = (apertureX - sampleX) * inverseVirtualGap_;
+    const double slopeY = (eyeY_ - sampleY) * inverseViewDepth_;
+    origin[0][i] = sampleX + slopeX * t;
+    origin[1][i] = sampleY + slopeY * t;
+    origin[2][i] = originZ;
+    direction[0][i] = -slopeX, direction[1][i] = -slopeY, direction[2][i] = -1.0;
+  }
+  (void)v;
+}
+
 BarrierRay BarrierRayGenerator::ray(double filmX, double filmY, double u, double v) const {
   BarrierRay r;
   // 1. Association, at the pixel's centre: the aperture nearest to the line from the

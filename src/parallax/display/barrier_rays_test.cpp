@@ -187,3 +187,36 @@ TEST(BarrierRays, SlantedSlitsAreFollowedAtTheCrossingHeight) {
 
 }  // namespace
 }  // namespace parallax
+
+namespace parallax {
+namespace {
+
+TEST(BarrierRays, SixteenAtOnceMatchOneByOne) {
+  for (MaskKind kind : {MaskKind::Slits, MaskKind::Slanted}) {
+    DisplaySpec s = defaultDisplaySpec();
+    s.imagePanel.width = s.maskPanel.width = 180;
+    s.imagePanel.height = s.maskPanel.height = 40;
+    s.mask.kind = kind;
+    s.mask.slantDegrees = 10;
+    s.viewZoneHeightMm = 20;
+    s.virtualGapMm = 4.0;
+    const BarrierRayGenerator gen(designDisplay(s));
+    alignas(64) float x[16], y[16], u[16], v[16];
+    for (int i = 0; i < 16; ++i)
+      x[i] = 11.3f * float(i) + 0.37f, y[i] = 2.1f * float(i) + 0.5f, u[i] = 0.06f * float(i),
+      v[i] = 0.5f;
+    alignas(64) double origin[3][16], direction[3][16];
+    gen.rays16(x, y, u, v, origin, direction);
+    for (int i = 0; i < 16; ++i) {
+      const BarrierRay r = gen.ray(x[i], y[i], u[i], v[i]);
+      EXPECT_NEAR(origin[0][i], r.origin.x, 1e-9);
+      EXPECT_NEAR(origin[1][i], r.origin.y, 1e-9);
+      EXPECT_NEAR(origin[2][i], r.origin.z, 1e-9);
+      EXPECT_NEAR(direction[0][i], r.direction.x, 1e-12);
+      EXPECT_NEAR(direction[1][i], r.direction.y, 1e-12);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace parallax
