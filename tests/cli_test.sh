@@ -95,5 +95,13 @@ check "eye behind the display exits 2" run 2 view --display-eye 0,0,-5 -o "$tmp/
 check "bench --camera display" run 0 bench --camera display --display "$tmp/small.json" --spp 1 \
   --repeats 1 --json
 
+check "lightfield" run 0 lightfield --from -2 --to 2 --spp 4 -o "$tmp/lf.svg"
+check "lightfield wrote an SVG" grep -q "</svg>" "$tmp/lf.svg"
+check "lightfield with a bad spp exits 2" run 2 lightfield --spp 3 -o "$tmp/lf2.svg"
+check "no SVG after the error" test ! -e "$tmp/lf2.svg"
+check "render --direct-mapping" run 0 render --display "$tmp/small.json" --spp 1 --direct-mapping \
+  -o "$tmp/dm"
+check "direct mapping is recorded" grep -q '"direct-mapping"' "$tmp/dm/render.json"
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

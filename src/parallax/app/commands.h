@@ -13,5 +13,6 @@ void registerInfoCommand(CLI::App& cli);
 void registerBenchCommand(CLI::App& cli);
 void registerDesignCommand(CLI::App& cli);
 void registerRenderCommand(CLI::App& cli);
+void registerLightfieldCommand(CLI::App& cli);
 
 }  // namespace parallax::app
