@@ -12,7 +12,7 @@ set(allowed_scene core image display)
 set(allowed_io core image display scene)
 set(allowed_accel core image display scene)
 set(allowed_camera core image display scene accel)
-set(allowed_render core image display scene accel camera)
+set(allowed_render core image display scene accel camera sim)
 set(allowed_sim core image display)
 set(allowed_app core image display scene io accel camera render sim)
 

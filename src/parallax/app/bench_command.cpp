@@ -12,10 +12,53 @@
 #include "parallax/core/memory.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/render/bench.h"
+#include "parallax/render/display_render.h"
+#include "parallax/sim/simulator.h"
+
+#include <chrono>
 
 namespace parallax::app {
 
 namespace {
+
+// The simulator's benchmark: a sweep of `views` eyes across the view zone of the display, on
+// layers rendered beforehand (not timed).
+void benchSimulator(const std::string& displayPath, const std::string& scenePath, int views,
+                    bool json) {
+  const DisplayDesign design = loadDesignOrDefault(displayPath);
+  const Scene scene = loadSceneOrDefault(scenePath);
+  const Accelerator accelerator(scene);
+  DisplayLayers layers = renderDisplay(scene, accelerator, design, {});
+  const DisplaySimulator simulator(design, {std::move(layers.image), std::move(layers.mask)}, {});
+  const BarrierRayGenerator rays(design);
+  const auto start = std::chrono::steady_clock::now();
+  double checksum = 0;
+  for (int i = 0; i < views; ++i) {
+    const Vec3d eye{
+        design.spec.viewZoneCenterXMm + design.viewZoneWidthMm * ((i + 0.5) / views - 0.5),
+        design.spec.viewZoneHeightMm, design.viewDistanceMm};
+    checksum += double(simulator.view(eye).at(0, 0).x);
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double samples = double(views) * simulator.outputWidth() * simulator.outputHeight();
+  if (json) {
+    JsonWriter out;
+    out.set("/views", views);
+    out.set("/width", simulator.outputWidth());
+    out.set("/height", simulator.outputHeight());
+    out.set("/seconds", seconds);
+    out.set("/samples_per_second", samples / seconds);
+    out.set("/peak_rss_mb", peakResidentMiB());
+    std::printf("%s\n", out.dump().c_str());
+  } else {
+    std::printf(
+        "simulator    %d views of %dx%d in %.3f s (%.1f M samples/s), peak memory %.0f MiB\n",
+        views, simulator.outputWidth(), simulator.outputHeight(), seconds, samples / seconds / 1e6,
+        peakResidentMiB());
+  }
+  (void)checksum;
+}
 
 struct BenchOptions {
   std::string camera = "pinhole";
@@ -25,9 +68,11 @@ struct BenchOptions {
   int repeats = 2;
   int threads = 0;
   bool json = false;
+  int simulateViews = 0;
 };
 
 void runBench(const BenchOptions& o) {
+  if (o.simulateViews > 0) return benchSimulator(o.display, o.scene, o.simulateViews, o.json);
   int width = 0, height = 0;
   parseSize("--size", o.size, width, height);
   if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
@@ -96,6 +141,8 @@ void registerBenchCommand(CLI::App& cli) {
   cmd->add_option("--repeats", options->repeats, "Alternating runs; the fastest of each counts")
       ->capture_default_str();
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)");
+  cmd->add_option("--simulate", options->simulateViews,
+                  "Instead: time a sweep of N simulated views of the display (9 is the goal)");
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });
 }

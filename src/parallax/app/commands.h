@@ -14,5 +14,6 @@ void registerBenchCommand(CLI::App& cli);
 void registerDesignCommand(CLI::App& cli);
 void registerRenderCommand(CLI::App& cli);
 void registerLightfieldCommand(CLI::App& cli);
+void registerSimulateCommand(CLI::App& cli);
 
 }  // namespace parallax::app

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   parallax::app::registerDesignCommand(cli);
   parallax::app::registerRenderCommand(cli);
   parallax::app::registerViewCommand(cli);
+  parallax::app::registerSimulateCommand(cli);
   parallax::app::registerLightfieldCommand(cli);
   parallax::app::registerInfoCommand(cli);
   parallax::app::registerBenchCommand(cli);

@@ -61,8 +61,8 @@ Vec3d BarrierRayGenerator::viewPosition(int view) const {
   return {eyeX_ + offset * (zMask_ - distance_) / (zMask_ - zImage_), eyeY_, distance_};
 }
 
-void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16],
-                                 const float u[16], const float v[16], double origin[3][16],
+void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], const float u[16],
+                                 const float v[16], double origin[3][16],
                                  double direction[3][16]) const {
   if (design_.spec.mask.kind != MaskKind::Slits || std::isinf(virtualDistance_)) {
     for (int i = 0; i < 16; ++i) {
@@ -87,7 +87,8 @@ void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16],
     const double centreX = left + (std::floor(fx[i]) + 0.5) * columnWidth;
     const double sampleX = left + fx[i] * columnWidth;
     const double sampleY = top - fy[i] * p.pitchMm;
-    const double k = std::floor((eyeX_ + (centreX - eyeX_) * s - apertureBase) * inversePeriod + 0.5);
+    const double k =
+        std::floor((eyeX_ + (centreX - eyeX_) * s - apertureBase) * inversePeriod + 0.5);
     const double groupX = eyeX_ + (apertureBase + k * period - eyeX_) * imageFromMask_;
     const double apertureX = eyeX_ + (groupX - eyeX_) * sv + (fu[i] - 0.5) * periodX;
     const double slopeX = (apertureX - sampleX) * inverseVirtualGap_;

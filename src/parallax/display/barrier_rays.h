@@ -51,8 +51,8 @@ class BarrierRayGenerator {
 
   // Sixteen rays at once, origins and directions only (the render loop's packets). Vertical
   // slits, the common case, run as branch-free lane loops; other masks call ray() per lane.
-  void rays16(const float filmX[16], const float filmY[16], const float u[16],
-              const float v[16], double origin[3][16], double direction[3][16]) const;
+  void rays16(const float filmX[16], const float filmY[16], const float u[16], const float v[16],
+              double origin[3][16], double direction[3][16]) const;
 
   // The image-layer point (mm) of a film position.
   Vec3d imagePoint(double filmX, double filmY) const;

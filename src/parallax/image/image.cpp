@@ -1,10 +1,34 @@
 #include "parallax/image/image.h"
 
+#include "parallax/core/error.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 namespace parallax {
+
+namespace {
+
+// Weights of input cells [i, i + 1) in the output cells [o r, (o + 1) r), r = in / out.
+struct AreaWeight {
+  int input;
+  double weight;
+};
+std::vector<std::vector<AreaWeight>> areaWeights(int inSize, int outSize) {
+  const double r = double(inSize) / double(outSize);
+  std::vector<std::vector<AreaWeight>> weights(static_cast<size_t>(outSize));
+  for (int o = 0; o < outSize; ++o) {
+    const double lo = o * r, hi = (o + 1) * r;
+    for (int i = int(std::floor(lo)); i < std::min(inSize, int(std::ceil(hi))); ++i) {
+      const double overlap = std::min(hi, i + 1.0) - std::max(lo, double(i));
+      if (overlap > 0) weights[size_t(o)].push_back({i, overlap / r});
+    }
+  }
+  return weights;
+}
+
+}  // namespace
 
 Vec3f Image::sampleBilinear(float u, float v) const {
   if (pixels_.empty()) return Vec3f(0.0f);
@@ -19,6 +43,27 @@ Vec3f Image::sampleBilinear(float u, float v) const {
   const Vec3f top = at(x0, y0) * (1 - tx) + at(x1, y0) * tx;
   const Vec3f bottom = at(x0, y1) * (1 - tx) + at(x1, y1) * tx;
   return top * (1 - ty) + bottom * ty;
+}
+
+Image resizeArea(const Image& image, int width, int height) {
+  if (width < 1 || height < 1 || image.empty())
+    throw InputError("", "", "area resampling needs a non-empty image and a positive size");
+  const auto across = areaWeights(image.width(), width), down = areaWeights(image.height(), height);
+  Image wide(width, image.height());
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < width; ++x) {
+      Vec3f sum(0.0f);
+      for (const AreaWeight& a : across[size_t(x)]) sum += image.at(a.input, y) * float(a.weight);
+      wide.at(x, y) = sum;
+    }
+  Image out(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      Vec3f sum(0.0f);
+      for (const AreaWeight& a : down[size_t(y)]) sum += wide.at(x, a.input) * float(a.weight);
+      out.at(x, y) = sum;
+    }
+  return out;
 }
 
 float srgbToLinear(float c) {

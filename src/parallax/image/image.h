@@ -33,6 +33,10 @@ class Image {
   std::vector<Vec3f> pixels_;
 };
 
+// Area resampling to width x height: each output pixel is the mean of the input area it covers
+// (fractional overlaps weighted), so the image's mean is kept exactly.
+Image resizeArea(const Image& image, int width, int height);
+
 // The sRGB transfer function (IEC 61966-2-1), per channel.
 float srgbToLinear(float encoded);
 float linearToSrgb(float linear);

@@ -2,19 +2,12 @@
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/display/mask.h"
+#include "parallax/sim/simulator.h"  // maskLayerImage
 
 #include <algorithm>
 #include <cmath>
 
 namespace parallax {
-
-Image maskLayerImage(const DisplayDesign& design) {
-  const Panel& panel = design.spec.maskPanel;
-  const std::vector<float> coverage = MaskGeometry(design).rasterize();
-  Image mask(panel.width, panel.height);
-  for (size_t i = 0; i < coverage.size(); ++i) mask.pixels()[i] = Vec3f(coverage[i]);
-  return mask;
-}
 
 DisplayLayers renderDisplay(const Scene& scene, const Accelerator& accelerator,
                             const DisplayDesign& design, const RenderSettings& settings,

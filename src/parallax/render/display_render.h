@@ -32,7 +32,4 @@ DisplayLayers renderDirectMapping(const Scene& scene, const Accelerator& acceler
 // Interleaves per-view pictures (each at the image layer's resolution) into the image layer.
 Image interleaveViews(const DisplayDesign& design, const std::vector<Image>& views);
 
-// The mask layer as a grey image of transmittances.
-Image maskLayerImage(const DisplayDesign& design);
-
 }  // namespace parallax

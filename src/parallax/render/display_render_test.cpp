@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "parallax/camera/display_camera.h"
+#include "parallax/sim/simulator.h"
 
 namespace parallax {
 namespace {

@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# Reproduces the paper's experiments with parallax: renders each configuration, simulates what
+# eyes across the view zone see, measures it against the ideal view, and writes a gallery page
+# with the pictures and a table of figures.
+#
+#   examples/paper/run.sh [--full] [--bin PATH] [--out DIR] [--page FILE]
+#
+# Default: reduced size (a 480x270 panel with the default display's pitch and gap), which CI
+# runs as a test. --full: the built-in 1920x1080 display; the gallery in docs/ is made this way:
+#   examples/paper/run.sh --full --out docs/gallery --page docs/gallery.md
+set -euo pipefail
+
+root=$(cd "$(dirname "$0")/../.." && pwd)
+bin="$root/build/parallax"
+out="$root/out/paper"
+page=""
+full=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --full) full=1 ;;
+    --bin) bin=$2; shift ;;
+    --out) out=$2; shift ;;
+    --page) page=$2; shift ;;
+    *) echo "usage: $0 [--full] [--bin PATH] [--out DIR] [--page FILE]" >&2; exit 2 ;;
+  esac
+  shift
+done
+[ -n "$page" ] || page="$out/gallery.md"
+mkdir -p "$out"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+if [ $full -eq 1 ]; then width=1920; height=1080; sweep=9; refspp=16; else width=480; height=270; sweep=5; refspp=4; fi
+# A display file per experiment: the built-in display at this size, with one change each.
+display() {  # display NAME EXTRA_JSON
+  printf '{"image_layer": {"resolution": [%d, %d], "pixel_pitch_mm": 0.2745}, "gap_mm": 3, "view_distance_mm": 600, "views": 9%s}\n' \
+    "$width" "$height" "$2" >"$work/$1.json"
+  echo "$work/$1.json"
+}
+# The scenes are scaled with the panel so that the reduced size shows the same picture.
+scale=$(awk -v w="$width" 'BEGIN { printf "%.4f", 4 * w / 1920 }')
+scene() {  # scene SOURCE NAME: a copy whose display width matches this panel size
+  sed "s/\"width\": 4}/\"width\": $scale}/" "$1" >"$work/$2.json"
+  echo "$work/$2.json"
+}
+box=$(scene "$root/scenes/checker-box.json" box)
+shadows=$(scene "$root/scenes/paper-shadows.json" shadows)
+
+rows=()
+# experiment NAME TITLE SCENE DISPLAY SPP [render options...]
+experiment() {
+  local name=$1 title=$2 scene=$3 disp=$4 spp=$5
+  shift 5
+  "$bin" render "$scene" --display "$disp" --spp "$spp" "$@" -o "$work/$name" >/dev/null
+  "$bin" simulate "$work/$name" --sweep "$sweep" -o "$out/$name" >/dev/null
+  local json
+  json=$("$bin" simulate "$work/$name" --sweep "$sweep" -o "$work/$name-q" --reference \
+    --reference-spp "$refspp" --json)
+  # The mean figures over the sweep (one value per line in the JSON's "mean" object).
+  local mean
+  mean=$(printf '%s\n' "$json" | awk '/"mean"/ {m=1} m && /"(psnr|ssim|brightness|crosstalk)"/ {gsub(/[",]/, ""); printf "%s=%s ", $1, $2}')
+  rows+=("$name|$title|$spp|$mean")
+  echo "$name: $mean"
+}
+
+default=$(display default "")
+experiment box-1spp "Box over checkerboard, 1 ray per pixel (Fig. 10)" "$box" "$default" 1
+experiment box-16spp "Box over checkerboard, 16 rays per pixel (Fig. 11)" "$box" "$default" 16
+experiment shadows-1spp "Shadows, 1 ray per pixel: ghost shadows (Fig. 12)" "$shadows" "$default" 1
+experiment shadows-16spp "Shadows, 16 rays per pixel: blurred (Fig. 13)" "$shadows" "$default" 16
+ortho=$(display ortho ', "virtual": {"distance_mm": "infinity"}')
+experiment ortho-1spp "D' = infinity, orthographic views, 1 ray (Fig. 14)" "$box" "$ortho" 1
+experiment ortho-16spp "D' = infinity, orthographic views, 16 rays (Fig. 14)" "$box" "$ortho" 16
+slanted=$(display slanted ', "mask": {"type": "slanted", "angle_deg": 18.4, "duty_cycle": 0.1111}')
+experiment slanted "Slanted mask (Fig. 15)" "$box" "$slanted" 16
+wiggling=$(display wiggling ', "mask": {"type": "wiggling", "amplitude_mm": 0.6, "wavelength_mm": 7, "duty_cycle": 0.1111}')
+experiment wiggling "Wiggling mask (Fig. 16)" "$box" "$wiggling" 16
+jittered=$(display jittered ', "mask": {"type": "jittered", "jitter": 0.2, "seed": 3, "duty_cycle": 0.1111}')
+experiment jittered "Randomly jittered mask (section 4.3)" "$box" "$jittered" 16
+experiment direct "Direct mapping of 9 camera views (Fig. 2), the usual practice" "$box" "$default" 16 --direct-mapping
+
+# Leaving the view zone: the periodic mask wraps around, the jittered one loses parallax.
+"$bin" render "$box" --display "$default" --spp 16 -o "$work/wrap" >/dev/null
+"$bin" simulate "$work/wrap" --sweep "$sweep" --sweep-range 2.5 -o "$out/leaving-zone" >/dev/null
+"$bin" render "$box" --display "$jittered" --spp 16 -o "$work/wrap-jittered" >/dev/null
+"$bin" simulate "$work/wrap-jittered" --sweep "$sweep" --sweep-range 2.5 -o "$out/leaving-zone-jittered" >/dev/null
+# The display from several angles (Fig. 1): eyes to the left, centre and right, and nearer.
+"$bin" simulate "$work/box-16spp" --eye -200,0,600 --eye 0,0,600 --eye 200,0,600 --eye 0,0,400 \
+  -o "$out/angles.png" >/dev/null
+"$bin" lightfield "$default" --from -3 --to 3 --spp 16 -o "$out/lightfield.svg" >/dev/null
+
+rel=$(realpath --relative-to="$(dirname "$page")" "$out")
+{
+  echo "# The paper's experiments, reproduced"
+  echo
+  echo "Made by \`examples/paper/run.sh$([ $full -eq 1 ] && echo ' --full')\` with a ${width}x${height} panel"
+  echo "(0.2745 mm pixels, 3 mm gap, 9 views, D = 600 mm, mask behind the image unless noted)."
+  echo "Each row renders the scene for the display, simulates $sweep eyes across the view zone"
+  echo "(\`parallax simulate --sweep\`), and compares each simulated view with the ideal view of"
+  echo "that eye filtered to the display's resolution (\`--reference\`). PSNR and SSIM are means over"
+  echo "the eyes; brightness is the mean transmittance; cross-talk is the share of light from other"
+  echo "views, measured with view-coded layers."
+  echo
+  echo "| experiment | spp | PSNR (dB) | SSIM | brightness | cross-talk | pictures |"
+  echo "|---|---|---|---|---|---|---|"
+  for row in "${rows[@]}"; do
+    IFS='|' read -r name title spp mean <<<"$row"
+    get() { printf '%s\n' "$mean" | tr ' ' '\n' | awk -F= -v k="$1" '$1 == k { printf "%.3f", $2 }'; }
+    echo "| $title | $spp | $(get psnr) | $(get ssim) | $(get brightness) | $(get crosstalk) | [sheet]($rel/$name-sheet.png), [slider]($rel/$name.html) |"
+  done
+  echo
+  for row in "${rows[@]}"; do
+    IFS='|' read -r name title spp mean <<<"$row"
+    echo "### $title"
+    echo
+    echo "![$title]($rel/$name-sheet.png)"
+    echo
+  done
+  echo "### Leaving the view zone"
+  echo
+  echo "Eyes from 1.25 view-zone widths left to 1.25 right. The periodic mask repeats its views;"
+  echo "the jittered mask's parallax is lost outside the zone."
+  echo
+  echo "![periodic mask]($rel/leaving-zone-sheet.png)"
+  echo
+  echo "![jittered mask]($rel/leaving-zone-jittered-sheet.png)"
+  echo
+  echo "### The display from several angles (Fig. 1)"
+  echo
+  for i in 0 1 2 3; do echo "![angle $i]($rel/angles-$i.png)"; done
+  echo
+  echo "### Ray space (Figs. 7, 8)"
+  echo
+  echo "![ray space]($rel/lightfield.svg)"
+} >"$page"
+echo "wrote $page"

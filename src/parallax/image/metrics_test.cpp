@@ -1,0 +1,141 @@
+// Metrics against hand-computed values: PSNR of a known offset, SSIM's luminance term in closed
+// form, box filters against brute-force integration.
+#include "parallax/image/metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "parallax/core/error.h"
+#include "parallax/core/random.h"
+
+namespace parallax {
+namespace {
+
+// An image whose sRGB-encoded grey values are encoded(x, y).
+template <class F>
+Image fromEncoded(int width, int height, const F& encoded) {
+  Image image(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) image.at(x, y) = Vec3f(srgbToLinear(float(encoded(x, y))));
+  return image;
+}
+
+TEST(Metrics, PsnrOfAConstantOffsetIsTenLogOfOneOverItsSquare) {
+  Rng rng(5);
+  std::vector<double> values(40 * 30);
+  for (double& v : values) v = 0.1 + 0.7 * rng.uniform();
+  const auto base = [&](int x, int y) { return values[size_t(y * 40 + x)]; };
+  const Image a = fromEncoded(40, 30, base);
+  const Image b = fromEncoded(40, 30, [&](int x, int y) { return base(x, y) + 0.05; });
+  // Encoded values differ by 0.05 everywhere: MSE = 0.0025.
+  EXPECT_NEAR(psnr(a, b), 10 * std::log10(1 / 0.0025), 1e-3);
+  EXPECT_NEAR(psnr(a, b, 2.0), 10 * std::log10(4 / 0.0025), 1e-3);
+  EXPECT_TRUE(std::isinf(psnr(a, a)));
+  // In linear light: an offset of 0.1 gives 20 dB.
+  Image c = a;
+  for (Vec3f& p : c.pixels()) p += Vec3f(0.1f);
+  EXPECT_NEAR(psnr(a, c, 1.0, MetricEncoding::Linear), 20.0, 1e-4);
+}
+
+TEST(Metrics, SsimOfAnImageWithItselfIsOne) {
+  Rng rng(9);
+  Image a(32, 24);
+  for (Vec3f& p : a.pixels()) p = Vec3f(rng.uniform(), rng.uniform(), rng.uniform());
+  EXPECT_NEAR(ssim(a, a), 1.0, 1e-12);
+  Image b = a;
+  for (Vec3f& p : b.pixels()) p = p * 0.5f;
+  EXPECT_LT(ssim(a, b), 0.99);
+}
+
+TEST(Metrics, SsimOfAShiftedCheckerboardIsItsLuminanceTerm) {
+  // x = m + a (-1)^(i+j) (encoded), y = x + c. Then y - x is constant inside every window, so
+  // sigma_x = sigma_y = sigma_xy and the contrast-structure term is exactly 1; SSIM is the
+  // luminance term (2 mu_x mu_y + C1) / (mu_x^2 + mu_y^2 + C1) with mu_y = mu_x + c. The
+  // Gaussian window (11 x 11, sigma 1.5) sees mean m + a (-1)^(i0+j0) beta, where
+  // beta = (sum_d g_d (-1)^d)^2 with g the normalised 1-D weights.
+  const double m = 0.4, a = 0.1, c = 0.2, C1 = 1e-4;
+  const int w = 30, h = 20;
+  const Image x = fromEncoded(w, h, [&](int i, int j) { return m + a * ((i + j) % 2 ? -1 : 1); });
+  const Image y =
+      fromEncoded(w, h, [&](int i, int j) { return m + c + a * ((i + j) % 2 ? -1 : 1); });
+  double g[11], total = 0, alternating = 0;
+  for (int d = -5; d <= 5; ++d) total += g[d + 5] = std::exp(-d * d / (2 * 1.5 * 1.5));
+  for (int d = -5; d <= 5; ++d) alternating += (d % 2 ? -1 : 1) * g[d + 5] / total;
+  const double beta = alternating * alternating;
+  double expected = 0;
+  int windows = 0;
+  for (int j0 = 5; j0 < h - 5; ++j0)
+    for (int i0 = 5; i0 < w - 5; ++i0, ++windows) {
+      const double mx = m + a * ((i0 + j0) % 2 ? -1 : 1) * beta, my = mx + c;
+      expected += (2 * mx * my + C1) / (mx * mx + my * my + C1);
+    }
+  EXPECT_NEAR(ssim(x, y), expected / windows, 1e-5);
+  EXPECT_LT(ssim(x, y), 0.97);  // the shift is not free
+}
+
+TEST(Metrics, BoxFilterMatchesBruteForceIntegration) {
+  Rng rng(2);
+  Image image(50, 2);
+  for (Vec3f& p : image.pixels()) p = Vec3f(rng.uniform(), rng.uniform(), rng.uniform());
+  for (double width : {1.0, 4.3, 9.045}) {
+    const Image filtered = boxFilterX(image, width);
+    for (int x = 0; x < 50; ++x) {
+      // Midpoint rule over the clipped box, 20000 points.
+      const double lo = std::max(0.0, x + 0.5 - width / 2),
+                   hi = std::min(50.0, x + 0.5 + width / 2);
+      double sum = 0;
+      const int n = 20000;
+      for (int s = 0; s < n; ++s) sum += image.at(int(lo + (s + 0.5) * (hi - lo) / n), 1).y;
+      EXPECT_NEAR(filtered.at(x, 1).y, sum / n, 2e-4) << width << " " << x;
+    }
+  }
+}
+
+TEST(Metrics, BoxFilterOfOnePeriodFlattensStripesAndKeepsTheirMean) {
+  for (int period : {9, 7}) {
+    Image stripes(90, 3);
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 90; x += period) stripes.at(x, y) = Vec3f(1.0f);
+    const Image flat = boxFilterX(stripes, period);
+    for (int x = period; x < 90 - period; ++x)
+      EXPECT_NEAR(flat.at(x, 1).x, 1.0 / period, 1e-6) << period << " " << x;
+    // A mismatched width does not flatten them.
+    const Image ripple = boxFilterX(stripes, period + 0.5);
+    double lo = 1, hi = 0;
+    for (int x = period; x < 90 - period; ++x)
+      lo = std::min(lo, double(ripple.at(x, 1).x)), hi = std::max(hi, double(ripple.at(x, 1).x));
+    EXPECT_GT(hi - lo, 0.02);
+  }
+  const Image grey(20, 2, Vec3f(0.3f));
+  const Image greyFiltered = boxFilterX(grey, 6.5);
+  for (const Vec3f& p : greyFiltered.pixels()) EXPECT_NEAR(p.x, 0.3f, 1e-6f);
+}
+
+TEST(Metrics, AreaResizeAveragesTheCoveredArea) {
+  Image image(4, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) image.at(x, y) = Vec3f(float(x + 4 * y));
+  const Image half = resizeArea(image, 2, 1);
+  EXPECT_NEAR(half.at(0, 0).x, (0 + 1 + 4 + 5) / 4.0, 1e-6);
+  EXPECT_NEAR(half.at(1, 0).x, (2 + 3 + 6 + 7) / 4.0, 1e-6);
+  // 4 -> 3 columns: the middle output covers [4/3, 8/3): 2/3 of pixel 1 and 2/3 of pixel 2.
+  const Image thirds = resizeArea(image, 3, 2);
+  EXPECT_NEAR(thirds.at(1, 0).x, (1 + 2) / 2.0, 1e-6);
+  EXPECT_NEAR(thirds.at(0, 0).x, (1.0 * 0 + 1.0 / 3 * 1) / (4.0 / 3), 1e-6);
+  // Mass is kept for any ratio.
+  Rng rng(4);
+  Image random(17, 11);
+  for (Vec3f& p : random.pixels()) p = Vec3f(rng.uniform());
+  EXPECT_NEAR(meanLuminance(resizeArea(random, 5, 4)), meanLuminance(random), 1e-6);
+}
+
+TEST(Metrics, RejectMismatchedImages) {
+  EXPECT_THROW(psnr(Image(4, 4), Image(4, 5)), InputError);
+  EXPECT_THROW(ssim(Image(10, 10), Image(10, 10)), InputError);  // smaller than the window
+  EXPECT_THROW(boxFilterX(Image(4, 4), 0.0), InputError);
+}
+
+}  // namespace
+}  // namespace parallax

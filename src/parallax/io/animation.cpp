@@ -1,0 +1,153 @@
+#include "parallax/io/animation.h"
+
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+namespace parallax {
+namespace {
+
+constexpr std::string_view kPngSignature = "\x89PNG\r\n\x1a\n";
+// Image data is split into chunks of at most this many bytes, as libpng does (with 8 KiB);
+// the PNG limit is 2^31 - 1 bytes per chunk.
+constexpr size_t kMaxChunkData = size_t(1) << 16;
+
+// Byte-at-a-time CRC table for the reflected polynomial 0xEDB88320 (PNG spec, annex D).
+constexpr std::array<uint32_t, 256> makeCrcTable() {
+  std::array<uint32_t, 256> table{};
+  for (uint32_t n = 0; n < 256; ++n) {
+    uint32_t c = n;
+    for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    table[n] = c;
+  }
+  return table;
+}
+constexpr std::array<uint32_t, 256> kCrcTable = makeCrcTable();
+
+void appendU32(std::string& out, uint32_t value) {
+  for (int shift = 24; shift >= 0; shift -= 8) out += char((value >> shift) & 0xFF);
+}
+void appendU16(std::string& out, uint32_t value) {
+  out += char((value >> 8) & 0xFF);
+  out += char(value & 0xFF);
+}
+uint32_t readU32(std::string_view bytes, size_t at) {
+  uint32_t value = 0;
+  for (size_t i = 0; i < 4; ++i) value = value << 8 | uint8_t(bytes[at + i]);
+  return value;
+}
+
+// A chunk: length, type, data, CRC over type and data (PNG spec, section 5.3).
+void appendChunk(std::string& out, std::string_view type, std::string_view data) {
+  appendU32(out, uint32_t(data.size()));
+  std::string typeAndData(type);
+  typeAndData += data;
+  out += typeAndData;
+  appendU32(out, pngCrc32(typeAndData));
+}
+
+// The parts of a single-image PNG that an APNG reuses.
+struct PngParts {
+  std::string header;     // IHDR data
+  std::string imageData;  // all IDAT payloads, concatenated: one zlib stream
+};
+
+PngParts splitPng(std::string_view png) {
+  if (png.substr(0, kPngSignature.size()) != kPngSignature)
+    throw std::runtime_error("encodeApng: encoder produced no PNG signature");
+  PngParts parts;
+  size_t at = kPngSignature.size();
+  while (at + 12 <= png.size()) {
+    const size_t length = readU32(png, at);
+    if (at + 12 + length > png.size()) break;
+    const std::string_view type = png.substr(at + 4, 4);
+    const std::string_view data = png.substr(at + 8, length);
+    if (type == "IHDR") parts.header = data;
+    if (type == "IDAT") parts.imageData += data;
+    if (type == "IEND") return parts;
+    at += 12 + length;
+  }
+  throw std::runtime_error("encodeApng: encoder produced a truncated PNG");
+}
+
+// fcTL: the frame's region (the whole canvas), delay and how it replaces the previous frame.
+std::string frameControl(uint32_t sequence, int width, int height, int delayMs) {
+  std::string data;
+  appendU32(data, sequence);
+  appendU32(data, uint32_t(width));
+  appendU32(data, uint32_t(height));
+  appendU32(data, 0);  // x offset
+  appendU32(data, 0);  // y offset
+  appendU16(data, uint32_t(delayMs));
+  appendU16(data, 1000);  // delay denominator: milliseconds
+  data += char(0);        // dispose_op NONE: the next frame covers everything anyway
+  data += char(0);        // blend_op SOURCE: replace, do not composite
+  return data;
+}
+
+}  // namespace
+
+uint32_t pngCrc32(std::string_view bytes) {
+  uint32_t c = 0xFFFFFFFFu;
+  for (const char byte : bytes) c = kCrcTable[(c ^ uint8_t(byte)) & 0xFF] ^ (c >> 8);
+  return c ^ 0xFFFFFFFFu;
+}
+
+std::string pngBytes(const Image& image) {
+  if (image.empty()) throw std::invalid_argument("pngBytes: empty image");
+  std::vector<unsigned char> codes;
+  codes.reserve(image.pixels().size() * 3);
+  for (const Vec3f& p : image.pixels())
+    for (int c = 0; c < 3; ++c) codes.push_back(linearToSrgb8(p[c]));
+  std::string out;
+  auto append = [](void* context, void* bytes, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(bytes), size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &out, image.width(), image.height(), 3, codes.data(),
+                              image.width() * 3))
+    throw std::runtime_error("PNG encoding failed");
+  return out;
+}
+
+std::string encodeApng(const std::vector<Image>& frames, int delayMs, int loops) {
+  if (frames.empty()) throw std::invalid_argument("encodeApng: no frames");
+  if (delayMs < 0 || delayMs > 65535)
+    throw std::invalid_argument("encodeApng: delay must be 0..65535 ms");
+  if (loops < 0) throw std::invalid_argument("encodeApng: loops must be >= 0 (0 = forever)");
+  const int width = frames[0].width(), height = frames[0].height();
+  for (const Image& frame : frames)
+    if (frame.empty() || frame.width() != width || frame.height() != height)
+      throw std::invalid_argument("encodeApng: frames must be non-empty and of equal size");
+
+  std::string out(kPngSignature);
+  uint32_t sequence = 0;  // shared by fcTL and fdAT chunks, from 0, no gaps
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const PngParts parts = splitPng(pngBytes(frames[i]));
+    if (i == 0) {
+      appendChunk(out, "IHDR", parts.header);
+      std::string animationControl;
+      appendU32(animationControl, uint32_t(frames.size()));
+      appendU32(animationControl, uint32_t(loops));
+      appendChunk(out, "acTL", animationControl);
+    }
+    appendChunk(out, "fcTL", frameControl(sequence++, width, height, delayMs));
+    const std::string_view data = parts.imageData;
+    for (size_t at = 0; at < data.size(); at += kMaxChunkData) {
+      const std::string_view piece = data.substr(at, kMaxChunkData);
+      if (i == 0) {
+        appendChunk(out, "IDAT", piece);
+      } else {
+        std::string frameData;
+        appendU32(frameData, sequence++);
+        frameData += piece;
+        appendChunk(out, "fdAT", frameData);
+      }
+    }
+  }
+  appendChunk(out, "IEND", "");
+  return out;
+}
+
+}  // namespace parallax

@@ -1,0 +1,260 @@
+#include "parallax/sim/simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <thread>
+
+#include "parallax/core/error.h"
+#include "parallax/display/mask.h"
+
+namespace parallax {
+
+namespace {
+
+// Runs body(begin, end) on `threads` contiguous slices of [0, count). Every item is computed
+// the same way whichever slice holds it, so results do not depend on the thread count.
+template <class Body>
+void parallelFor(int count, int threads, const Body& body) {
+  threads = std::clamp(threads, 1, std::max(1, count));
+  if (threads == 1) return body(0, count);
+  std::vector<std::thread> workers;
+  workers.reserve(size_t(threads));
+  for (int t = 0; t < threads; ++t)
+    workers.emplace_back([&body, t, threads, count] {
+      body(int(int64_t(count) * t / threads), int(int64_t(count) * (t + 1) / threads));
+    });
+  for (std::thread& worker : workers) worker.join();
+}
+
+std::string size(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
+void checkSize(const DisplayDesign& design, const Image& image, const Panel& panel,
+               const std::string& key, const std::string& what) {
+  if (image.width() != panel.width || image.height() != panel.height)
+    throw InputError(design.spec.source, key + "/resolution",
+                     "the " + what + " is " + size(image.width(), image.height()) +
+                         " pixels but its panel is " + size(panel.width, panel.height));
+}
+
+void checkOptions(const SimulationOptions& o) {
+  const auto fail = [](const std::string& key, const std::string& message) {
+    return InputError("simulation", key, message);
+  };
+  if (o.width < 0 || o.height < 0) throw fail("/width", "must be 0 (native) or positive");
+  const int n = int(std::lround(std::sqrt(double(std::max(o.samplesPerPixel, 0)))));
+  if (o.samplesPerPixel < 1 || n * n != o.samplesPerPixel)
+    throw fail("/samples_per_pixel", "must be a square (1, 4, 9, 16, ...)");
+  if (!(o.pupilDiameterMm >= 0) || !std::isfinite(o.pupilDiameterMm))
+    throw fail("/pupil_diameter_mm", "must be 0 (a pinhole eye) or positive");
+  if (o.pupilSamples < 1) throw fail("/pupil_samples", "must be at least 1");
+  if (!(o.diffuserSigmaMm >= 0) || !std::isfinite(o.diffuserSigmaMm))
+    throw fail("/diffuser_sigma_mm", "must be 0 or positive");
+  if (o.threads < 0) throw fail("/threads", "must be 0 (all cores) or positive");
+}
+
+// Probability that a normal variable of standard deviation sigma falls below x.
+double normalCdf(double x, double sigma) {
+  return 0.5 * std::erfc(-x / (sigma * std::sqrt(2.0)));
+}
+
+}  // namespace
+
+DisplaySimulator::Layer DisplaySimulator::makeLayer(const Image& image, const Panel& panel,
+                                                    bool colourFilters) {
+  Layer layer;
+  const bool stripes = colourFilters && panel.subpixels != SubpixelOrder::None;
+  const int perPixel = stripes ? 3 : 1;
+  layer.striped = stripes;
+  layer.columns = image.width() * perPixel;
+  layer.rows = image.height();
+  layer.cellWidthMm = panel.pitchMm / perPixel;
+  layer.cellHeightMm = panel.pitchMm;
+  layer.cells.assign(size_t(layer.columns + 1) * size_t(layer.rows), Vec3f(0.0f));
+  for (int y = 0; y < layer.rows; ++y) {
+    Vec3f* out = layer.cells.data() + size_t(y) * size_t(layer.columns + 1);
+    for (int x = 0; x < image.width(); ++x) {
+      const Vec3f value = image.at(x, y);
+      if (!stripes) {
+        out[x] = value;
+        continue;
+      }
+      for (int s = 0; s < 3; ++s) {  // stripe s, left to right, passes one channel
+        const int channel = panel.subpixels == SubpixelOrder::BGR ? 2 - s : s;
+        out[3 * x + s][channel] = value[channel];
+      }
+    }
+  }
+  return layer;
+}
+
+// The diffuser blurs the rear panel's box pixels with a Gaussian; each cell keeps the blurred
+// value at its centre, so the kernel weight of a neighbour m cells away is the Gaussian's mass
+// over that cell, [m - 1/2, m + 1/2] (cells outside the panel are dark).
+void DisplaySimulator::blur(Layer& layer, double sigmaMm, int threads) {
+  if (!(sigmaMm > 0)) return;
+  const auto kernel = [](double sigmaCells) {
+    const int radius = int(std::ceil(4.0 * sigmaCells + 0.5));
+    std::vector<float> weights(size_t(2 * radius + 1));
+    for (int m = -radius; m <= radius; ++m)
+      weights[size_t(m + radius)] =
+          float(normalCdf(m + 0.5, sigmaCells) - normalCdf(m - 0.5, sigmaCells));
+    return weights;
+  };
+  const size_t stride = size_t(layer.columns + 1);
+  std::vector<Vec3f> blurred(layer.cells.size(), Vec3f(0.0f));
+  const std::vector<float> wx = kernel(sigmaMm / layer.cellWidthMm);
+  const int rx = int(wx.size() / 2);
+  parallelFor(layer.rows, threads, [&](int begin, int end) {
+    for (int y = begin; y < end; ++y) {
+      const Vec3f* in = layer.cells.data() + size_t(y) * stride;
+      Vec3f* out = blurred.data() + size_t(y) * stride;
+      for (int x = 0; x < layer.columns; ++x) {
+        Vec3f sum(0.0f);
+        for (int m = std::max(-rx, -x); m <= std::min(rx, layer.columns - 1 - x); ++m)
+          sum += in[x + m] * wx[size_t(m + rx)];
+        out[x] = sum;
+      }
+    }
+  });
+  const std::vector<float> wy = kernel(sigmaMm / layer.cellHeightMm);
+  const int ry = int(wy.size() / 2);
+  parallelFor(layer.rows, threads, [&](int begin, int end) {
+    for (int y = begin; y < end; ++y) {
+      Vec3f* out = layer.cells.data() + size_t(y) * stride;
+      std::fill(out, out + stride, Vec3f(0.0f));
+      for (int m = std::max(-ry, -y); m <= std::min(ry, layer.rows - 1 - y); ++m) {
+        const Vec3f* in = blurred.data() + size_t(y + m) * stride;
+        const float w = wy[size_t(m + ry)];
+        for (int x = 0; x < layer.columns; ++x) out[x] += in[x] * w;
+      }
+    }
+  });
+}
+
+DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages layers,
+                                   const SimulationOptions& options)
+    : design_(design), options_(options) {
+  const DisplaySpec& spec = design.spec;
+  checkSize(design, layers.image, spec.imagePanel, "/image_layer", "image");
+  checkSize(design, layers.mask, spec.maskPanel, "/mask_layer", "mask");
+  checkOptions(options);
+  threads_ = options.threads > 0 ? options.threads
+                                 : int(std::max(1u, std::thread::hardware_concurrency()));
+  samplesPerAxis_ = int(std::lround(std::sqrt(double(options.samplesPerPixel))));
+
+  double sum = 0;
+  for (const Vec3f& p : layers.mask.pixels()) sum += (double(p.x) + p.y + p.z) / 3.0;
+  maskMean_ = sum / double(layers.mask.pixels().size());
+
+  const bool imageInFront = spec.order == LayerOrder::BarrierBack;
+  const Panel& frontPanel = imageInFront ? spec.imagePanel : spec.maskPanel;
+  const Panel& rearPanel = imageInFront ? spec.maskPanel : spec.imagePanel;
+  front_ = makeLayer(imageInFront ? layers.image : layers.mask, frontPanel, options.colourFilters);
+  rear_ = makeLayer(imageInFront ? layers.mask : layers.image, rearPanel, options.colourFilters);
+  blur(rear_, options.diffuserSigmaMm, threads_);
+
+  width_ = options.width > 0 ? options.width : frontPanel.width;
+  height_ = options.height > 0 ? options.height : frontPanel.height;
+
+  double normaliser = 1.0;
+  if (options.normalise) {
+    // A stripe passes one channel of three: a filtered layer's mean throughput is 1/3.
+    for (const Layer* layer : {&front_, &rear_})
+      if (layer->striped) normaliser *= 3.0;
+    if (maskMean_ > 0) normaliser /= maskMean_;  // a black mask has nothing to normalise
+  }
+  scale_ = normaliser / (double(options.samplesPerPixel) * double(pupilPoints({}).size()));
+}
+
+std::vector<Vec3d> DisplaySimulator::pupilPoints(const Vec3d& eye) const {
+  if (!(options_.pupilDiameterMm > 0)) return {eye};
+  // Fibonacci (Vogel) spiral: equal-area rings, points a golden angle apart.
+  const int n = options_.pupilSamples;
+  const double goldenAngle = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+  std::vector<Vec3d> points(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double r = 0.5 * options_.pupilDiameterMm * std::sqrt((i + 0.5) / n);
+    const double angle = i * goldenAngle;
+    points[size_t(i)] = {eye.x + r * std::cos(angle), eye.y + r * std::sin(angle), eye.z};
+  }
+  return points;
+}
+
+Image DisplaySimulator::view(const Vec3d& eye) const {
+  if (!(eye.z > 0) || !std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z))
+    throw InputError("simulation", "/eye", "the eye must be in front of the display (z > 0)");
+  const int n = samplesPerAxis_;
+  const std::vector<Vec3d> eyes = pupilPoints(eye);
+  const size_t pupil = eyes.size();
+  const size_t columnSamples = size_t(width_) * size_t(n), rowSamples = size_t(height_) * size_t(n);
+
+  // The eye's line through F meets the rear layer where x and y depend on F.x and F.y alone,
+  // so every lookup reduces to one column table and one row table per pupil point.
+  std::vector<int> frontColumn(columnSamples), frontRow(rowSamples);
+  std::vector<int> rearColumn(pupil * columnSamples), rearRow(pupil * rowSamples);
+  const double frontWidth = front_.columns * front_.cellWidthMm;
+  const double frontHeight = front_.rows * front_.cellHeightMm;
+  const double rearWidth = rear_.columns * rear_.cellWidthMm;
+  const double rearHeight = rear_.rows * rear_.cellHeightMm;
+  for (size_t s = 0; s < columnSamples; ++s) {
+    const double t = (double(s) + 0.5) / double(columnSamples);  // across the front layer
+    frontColumn[s] = std::clamp(int(std::floor(t * front_.columns)), 0, front_.columns - 1);
+    const double frontX = (t - 0.5) * frontWidth;
+    for (size_t p = 0; p < pupil; ++p) {
+      const Vec3d& e = eyes[p];
+      const double rearX = e.x + (frontX - e.x) * (e.z + design_.gapMm) / e.z;
+      const double c = std::floor((rearX + 0.5 * rearWidth) / rear_.cellWidthMm);
+      rearColumn[p * columnSamples + s] = c >= 0 && c < rear_.columns ? int(c) : rear_.columns;
+    }
+  }
+  for (size_t s = 0; s < rowSamples; ++s) {
+    const double t = (double(s) + 0.5) / double(rowSamples);  // down the front layer
+    frontRow[s] = std::clamp(int(std::floor(t * front_.rows)), 0, front_.rows - 1);
+    const double frontY = (0.5 - t) * frontHeight;
+    for (size_t p = 0; p < pupil; ++p) {
+      const Vec3d& e = eyes[p];
+      const double rearY = e.y + (frontY - e.y) * (e.z + design_.gapMm) / e.z;
+      const double r = std::floor((0.5 * rearHeight - rearY) / rear_.cellHeightMm);
+      rearRow[p * rowSamples + s] = r >= 0 && r < rear_.rows ? int(r) : -1;
+    }
+  }
+
+  Image out(width_, height_);
+  const Vec3f scale = options_.backlight * float(scale_);
+  parallelFor(height_, threads_, [&](int begin, int end) {
+    std::vector<Vec3f> sum(static_cast<size_t>(width_));
+    for (int j = begin; j < end; ++j) {
+      std::fill(sum.begin(), sum.end(), Vec3f(0.0f));
+      for (size_t p = 0; p < pupil; ++p)
+        for (int sy = 0; sy < n; ++sy) {
+          const size_t rowSample = size_t(j) * size_t(n) + size_t(sy);
+          const int rr = rearRow[p * rowSamples + rowSample];
+          if (rr < 0) continue;  // above or below the rear panel: dark
+          const Vec3f* front = front_.row(frontRow[rowSample]);
+          const Vec3f* rear = rear_.row(rr);
+          const int* fc = frontColumn.data();
+          const int* rc = rearColumn.data() + p * columnSamples;
+          for (int i = 0; i < width_; ++i) {
+            Vec3f light(0.0f);
+            for (int sx = 0; sx < n; ++sx, ++fc, ++rc) light += front[*fc] * rear[*rc];
+            sum[size_t(i)] += light;
+          }
+        }
+      for (int i = 0; i < width_; ++i) out.at(i, j) = sum[size_t(i)] * scale;
+    }
+  });
+  return out;
+}
+
+Image maskLayerImage(const DisplayDesign& design) {
+  const Panel& panel = design.spec.maskPanel;
+  const std::vector<float> coverage = MaskGeometry(design).rasterize();
+  Image image(panel.width, panel.height);
+  for (size_t i = 0; i < coverage.size(); ++i) image.pixels()[i] = Vec3f(coverage[i]);
+  return image;
+}
+
+}  // namespace parallax
