@@ -3,11 +3,14 @@
 # eyes across the view zone see, measures it against the ideal view, and writes a gallery page
 # with the pictures and a table of figures.
 #
-#   examples/paper/run.sh [--full] [--bin PATH] [--out DIR] [--page FILE]
+#   examples/paper/run.sh [--full | --size WxH] [--bin PATH] [--out DIR] [--page FILE]
 #
-# Default: reduced size (a 480x270 panel with the default display's pitch and gap), which CI
-# runs as a test. --full: the built-in 1920x1080 display; the gallery in docs/ is made this way:
-#   examples/paper/run.sh --full --out docs/gallery --page docs/gallery.md
+# Default: reduced size (a 480x270 panel with the default display's pitch and gap: a crop of
+# the full display), which CI runs as a test. --full: the built-in 1920x1080 display. The
+# gallery in docs/ is made at half size, to keep the repository small:
+#   examples/paper/run.sh --size 960x540 --out docs/gallery --page docs/gallery.md
+# Each experiment also leaves an animation (NAME-anim.png) and a slider page (NAME.html) in the
+# output folder; docs/gallery keeps only the contact sheets.
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -15,13 +18,15 @@ bin="$root/build/parallax"
 out="$root/out/paper"
 page=""
 full=0
+size=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --full) full=1 ;;
+    --size) size=$2; shift ;;
     --bin) bin=$2; shift ;;
     --out) out=$2; shift ;;
     --page) page=$2; shift ;;
-    *) echo "usage: $0 [--full] [--bin PATH] [--out DIR] [--page FILE]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--full | --size WxH] [--bin PATH] [--out DIR] [--page FILE]" >&2; exit 2 ;;
   esac
   shift
 done
@@ -31,6 +36,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 if [ $full -eq 1 ]; then width=1920; height=1080; sweep=9; refspp=16; else width=480; height=270; sweep=5; refspp=4; fi
+if [ -n "$size" ]; then width=${size%x*}; height=${size#*x}; sweep=9; refspp=16; fi
 # A display file per experiment: the built-in display at this size, with one change each.
 display() {  # display NAME EXTRA_JSON
   printf '{"image_layer": {"resolution": [%d, %d], "pixel_pitch_mm": 0.2745}, "gap_mm": 3, "view_distance_mm": 600, "views": 9%s}\n' \
@@ -58,7 +64,7 @@ experiment() {
     --reference-spp "$refspp" --json)
   # The mean figures over the sweep (one value per line in the JSON's "mean" object).
   local mean
-  mean=$(printf '%s\n' "$json" | awk '/"mean"/ {m=1} m && /"(psnr|ssim|brightness|crosstalk)"/ {gsub(/[",]/, ""); printf "%s=%s ", $1, $2}')
+  mean=$(printf '%s\n' "$json" | awk '/"mean"/ {m=1} m && /"(psnr|ssim|brightness|crosstalk)"/ {gsub(/[",:]/, ""); printf "%s=%s ", $1, $2}')
   rows+=("$name|$title|$spp|$mean")
   echo "$name: $mean"
 }
@@ -93,24 +99,33 @@ rel=$(realpath --relative-to="$(dirname "$page")" "$out")
 {
   echo "# The paper's experiments, reproduced"
   echo
-  echo "Made by \`examples/paper/run.sh$([ $full -eq 1 ] && echo ' --full')\` with a ${width}x${height} panel"
-  echo "(0.2745 mm pixels, 3 mm gap, 9 views, D = 600 mm, mask behind the image unless noted)."
+  echo "Made by \`examples/paper/run.sh --size ${width}x${height}\`: a ${width}x${height} panel"
+  echo "(0.2745 mm pixels, 3 mm gap, 9 views, D = 600 mm, mask behind the image unless noted; the"
+  echo "scenes are scaled so that this panel shows the centre of the full 1920x1080 display's picture)."
   echo "Each row renders the scene for the display, simulates $sweep eyes across the view zone"
   echo "(\`parallax simulate --sweep\`), and compares each simulated view with the ideal view of"
   echo "that eye filtered to the display's resolution (\`--reference\`). PSNR and SSIM are means over"
   echo "the eyes; brightness is the mean transmittance; cross-talk is the share of light from other"
-  echo "views, measured with view-coded layers."
+  echo "views, measured with view-coded layers. Pictures are what each eye sees, integrated over one"
+  echo "screen period as a viewer at 600 mm perceives them; the script also writes an animation and"
+  echo "a page with a slider for every row (not kept in docs/, to keep the repository small)."
   echo
-  echo "| experiment | spp | PSNR (dB) | SSIM | brightness | cross-talk | pictures |"
-  echo "|---|---|---|---|---|---|---|"
+  echo "Reading the figures: the reference is the sharp ideal view, so PSNR rewards the 1-ray"
+  echo "renders at the design eye positions (where each seen pixel is exactly the ideal ray) and"
+  echo "penalises the blur that super-sampling trades for aliasing beyond the depth of field."
+  echo
+  echo "| experiment | spp | PSNR (dB) | SSIM | brightness | cross-talk |"
+  echo "|---|---|---|---|---|---|"
   for row in "${rows[@]}"; do
     IFS='|' read -r name title spp mean <<<"$row"
     get() { printf '%s\n' "$mean" | tr ' ' '\n' | awk -F= -v k="$1" '$1 == k { printf "%.3f", $2 }'; }
-    echo "| $title | $spp | $(get psnr) | $(get ssim) | $(get brightness) | $(get crosstalk) | [sheet]($rel/$name-sheet.png), [slider]($rel/$name.html) |"
+    echo "| [$title](#$name) | $spp | $(get psnr) | $(get ssim) | $(get brightness) | $(get crosstalk) |"
   done
   echo
   for row in "${rows[@]}"; do
     IFS='|' read -r name title spp mean <<<"$row"
+    echo "<a id=\"$name\"></a>"
+    echo
     echo "### $title"
     echo
     echo "![$title]($rel/$name-sheet.png)"

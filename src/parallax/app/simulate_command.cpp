@@ -49,6 +49,7 @@ struct SimulateOptions {
   int referenceSpp = 16;
   bool json = false;
   int threads = 0;
+  bool rawPixels = false;
 };
 
 // The inputs: a `render` output folder, or an image and mask with a display file.
@@ -152,24 +153,32 @@ void runSimulate(const SimulateOptions& o) {
 
   std::vector<Image> views;
   for (const Vec3d& eye : eyes) views.push_back(simulator.view(eye));
+  // Pictures as perceived: a viewer at the design distance does not resolve single pixels
+  // (0.27 mm at 600 mm is about 1.5 arc minutes), so each output pixel shows the light of one
+  // screen period around it; --raw-pixels keeps the pinhole eye's samples as they are.
+  std::vector<Image> pictures;
+  for (const Image& view : views)
+    pictures.push_back(o.rawPixels ? view : boxFilterX(view, periodInPixels(d, view.width())));
 
   std::vector<std::string> written;
   if (o.sweep > 0) {
-    const std::string prefix = o.output.empty() ? "out/sweep" : o.output;
+    // The sweep's files share a prefix: a given extension is dropped (-o out/sweep.png).
+    const fs::path out(o.output.empty() ? "out/sweep" : o.output);
+    const std::string prefix = (out.parent_path() / out.stem()).string();
     std::vector<std::string> labels, pngs;
     for (const Vec3d& eye : eyes) labels.push_back(eyeLabel(eye));
-    for (const Image& view : views) pngs.push_back(pngBytes(view));
-    const int thumbnail = std::min(480, views.front().width());
+    for (const Image& picture : pictures) pngs.push_back(pngBytes(picture));
+    const int thumbnail = std::min(480, pictures.front().width());
     writeImage(prefix + "-sheet.png",
-               contactSheet(views, std::min<int>(int(views.size()), 3), thumbnail, labels));
-    writeFileAtomically(prefix + "-anim.png", encodeApng(views, 250));
+               contactSheet(pictures, std::min<int>(int(pictures.size()), 3), thumbnail, labels));
+    writeFileAtomically(prefix + "-anim.png", encodeApng(pictures, 250));
     writeFileAtomically(prefix + ".html",
                         sliderPage("parallax: eye sweep across " + d.spec.source, pngs, labels));
     written = {prefix + "-sheet.png", prefix + "-anim.png", prefix + ".html"};
   } else {
     const std::string path = o.output.empty() ? "out/simulated.png" : o.output;
     for (size_t i = 0; i < views.size(); ++i) {
-      writeImage(numbered(path, i, views.size()), views[i]);
+      writeImage(numbered(path, i, views.size()), pictures[i]);
       written.push_back(numbered(path, i, views.size()));
     }
   }
@@ -182,7 +191,8 @@ void runSimulate(const SimulateOptions& o) {
       const Image reference = referenceView(scene, accelerator, d, eyes[i], views[i].width(),
                                             views[i].height(), o.referenceSpp, o.threads);
       Quality q;
-      const Image seen = boxFilterX(views[i], periodInPixels(d, views[i].width()));
+      const Image seen =
+          o.rawPixels ? boxFilterX(views[i], periodInPixels(d, views[i].width())) : pictures[i];
       q.psnr = psnr(seen, reference);
       q.ssim = ssim(seen, reference);
       // Brightness is the raw mean transmittance, whatever --raw says for the pictures.
@@ -267,6 +277,9 @@ void registerSimulateCommand(CLI::App& cli) {
   cmd->add_flag("--color-filters", o->colourFilters,
                 "Model the R, G, B colour-filter stripes of both layers (rainbow fringes)");
   cmd->add_flag("--raw", o->raw, "Raw brightness (default: normalised by the aperture ratio)");
+  cmd->add_flag("--raw-pixels", o->rawPixels,
+                "Write the pinhole eye's samples unfiltered (default: integrated over one "
+                "screen period, as a viewer at the design distance perceives them)");
   cmd->add_option("--sweep", o->sweep,
                   "Move the eye across the view zone in N steps: contact sheet, APNG, HTML");
   cmd->add_option("--sweep-range", o->sweepRange,
