@@ -103,5 +103,30 @@ check "render --direct-mapping" run 0 render --display "$tmp/small.json" --spp 1
   -o "$tmp/dm"
 check "direct mapping is recorded" grep -q '"direct-mapping"' "$tmp/dm/render.json"
 
+# Seeing the display: simulate the small render from above.
+check "simulate one eye" run 0 simulate "$tmp/r" --eye 0,0,600 -o "$tmp/s.png"
+check "simulate wrote a PNG" is_png "$tmp/s.png"
+check "simulate two eyes" run 0 simulate "$tmp/r" --eye -30,0,600 --eye 30,0,600 -o "$tmp/two.png"
+check "two eyes, two files" test -s "$tmp/two-0.png" -a -s "$tmp/two-1.png"
+check "simulate a sweep" run 0 simulate "$tmp/r" --sweep 3 -o "$tmp/sweep"
+check "sweep contact sheet" is_png "$tmp/sweep-sheet.png"
+check "sweep animation" is_png "$tmp/sweep-anim.png"
+check "sweep page" grep -q 'id="slider"' "$tmp/sweep.html"
+check "simulate --reference --json" run 0 simulate "$tmp/r" --eye 0,0,600 -o "$tmp/q.png" \
+  --reference --reference-spp 1 --json
+for key in psnr ssim brightness crosstalk; do
+  check "reference reports $key" grep -q "\"$key\"" "$tmp/out"
+done
+check "simulate an image and mask pair" run 0 simulate --image "$tmp/r/image.png" \
+  --mask "$tmp/r/mask.png" --display "$tmp/small.json" --pupil 4 --diffuser 0.1 \
+  --color-filters --spp 9 -o "$tmp/pair.png"
+check "simulate without layers exits 2" run 2 simulate "$tmp/nothing-here" -o "$tmp/n.png"
+check "missing layers name the file" one_line_naming "image.png"
+check "mismatched display exits 2" run 2 simulate "$tmp/r" --display "$src/displays/default.json" \
+  -o "$tmp/m.png"
+check "mismatched display names the key" one_line_naming "/image_layer/resolution"
+check "eye behind the display exits 2" run 2 simulate "$tmp/r" --eye 0,0,-1 -o "$tmp/b.png"
+check "bench --simulate" run 0 bench --simulate 2 --display "$tmp/small.json" --json
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]
