@@ -15,5 +15,8 @@ void registerDesignCommand(CLI::App& cli);
 void registerRenderCommand(CLI::App& cli);
 void registerLightfieldCommand(CLI::App& cli);
 void registerSimulateCommand(CLI::App& cli);
+void registerCalibrateCommand(CLI::App& cli);
+void registerInterlaceCommand(CLI::App& cli);
+void registerLenticularCommand(CLI::App& cli);
 
 }  // namespace parallax::app

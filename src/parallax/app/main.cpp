@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
   parallax::app::registerViewCommand(cli);
   parallax::app::registerSimulateCommand(cli);
   parallax::app::registerLightfieldCommand(cli);
+  parallax::app::registerCalibrateCommand(cli);
+  parallax::app::registerInterlaceCommand(cli);
+  parallax::app::registerLenticularCommand(cli);
   parallax::app::registerInfoCommand(cli);
   parallax::app::registerBenchCommand(cli);
   try {

@@ -2,18 +2,22 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <memory>
+#include <vector>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/layer_output.h"
 #include "parallax/core/error.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/render/display_render.h"
+#include "parallax/render/quilt.h"
 
 namespace parallax::app {
 
@@ -28,17 +32,83 @@ struct RenderOptions {
   bool linear = false;
   bool subpixels = false;
   bool directMapping = false;
+  std::string quilt, size;  // --quilt CxR, --size WxH of one quilt view
 };
 
-std::string utcNow() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return text;
+}  // namespace
+
+namespace {
+
+// `render --quilt CxR`: the C*R off-axis views of the display's window from eyes spread evenly
+// across the view zone, tiled from the bottom-left into DIR/quilt_qs{C}x{R}a{aspect}.png
+// (docs/quilts.md).
+void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDesign& design,
+                    const Scene& scene, const RenderSettings& settings) {
+  int width = design.spec.imagePanel.width, height = design.spec.imagePanel.height;
+  if (!o.size.empty()) parseSize("--size", o.size, width, height);
+  if (int64_t(width) * layout.columns > 65536 || int64_t(height) * layout.rows > 65536)
+    throw InputError("command line", "--quilt",
+                     "the quilt would be wider or taller than 65536 pixels; give a smaller --size");
+  layout.aspect = double(width) / height;
+  const double windowAspect = design.frontWidthMm() / design.frontHeightMm();
+  if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01)
+    std::fprintf(stderr,
+                 "warning: --size %dx%d has aspect %.4f, the display's window %.4f: the views are "
+                 "stretched\n",
+                 width, height, layout.aspect, windowAspect);
+
+  const Accelerator accelerator(scene);
+  RenderStats stats;
+  std::vector<Image> views;
+  {
+    ProgressBar bar("render");
+    views = renderQuiltViews(scene, accelerator, design, settings, layout.views(), width, height,
+                             &stats, [&bar](int done, int total) { bar.update(done, total); });
+  }
+  const Image quilt = assembleQuilt(views, layout.columns, layout.rows);
+  const double raysPerSecond = double(stats.totalRays()) / stats.seconds;
+
+  const std::string name = quiltFileName("quilt", layout, ".png");
+  JsonWriter record;
+  startRenderRecord(record, "quilt", o.display);
+  record.set("/scene", scene.source);
+  record.set("/spp", o.spp);
+  record.set("/seed", o.seed);
+  record.set("/threads", o.threads);
+  record.set("/seconds", stats.seconds);
+  record.set("/rays", stats.totalRays());
+  record.set("/rays_per_second", raysPerSecond);
+  record.set("/quilt/columns", layout.columns);
+  record.set("/quilt/rows", layout.rows);
+  record.set("/quilt/view_size", std::to_string(width) + "x" + std::to_string(height));
+  record.set("/quilt/order", "view 0 = leftmost camera = bottom-left tile, rightward then upward");
+  for (int k = 0; k < layout.views(); ++k) {
+    const Vec3d eye = quiltEyePosition(design, k, layout.views());
+    record.set("/quilt/eyes_mm/" + std::to_string(k),
+               Vec3f(float(eye.x), float(eye.y), float(eye.z)));
+  }
+  record.set("/outputs/quilt", name);
+  writeDesignJson(record, "/design", design);
+  const std::string linearName = quiltFileName("quilt", layout, ".pfm");
+  if (o.linear) record.set("/outputs/quilt_linear", linearName);
+
+  const std::string dir = o.output.empty() ? "." : o.output;
+  writeImage(dir + "/" + name, quilt);
+  if (o.linear) writeImage(dir + "/" + linearName, quilt);
+  writeFileAtomically(dir + "/display.json", displayFileText(design.spec));
+  writeFileAtomically(dir + "/render.json", record.dump() + "\n");
+  std::printf("wrote %s/%s (%d views of %dx%d), %s/render.json\n", dir.c_str(), name.c_str(),
+              layout.views(), width, height, dir.c_str());
+  std::printf("%d spp in %.2f s, %s\n", o.spp, stats.seconds, formatRate(raysPerSecond).c_str());
 }
 
 void runRender(const RenderOptions& o) {
   if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
+  if (!o.size.empty() && o.quilt.empty())
+    throw InputError("command line", "--size", "sets the size of one quilt view: needs --quilt");
+  QuiltLayout layout;
+  if (!o.quilt.empty() && !parseColumnsByRows(o.quilt, layout.columns, layout.rows))
+    throw InputError("command line", "--quilt", "expected COLUMNSxROWS, got '" + o.quilt + "'");
   DisplayDesign design = loadDesignOrDefault(o.display);
   if (o.subpixels) {
     DisplaySpec spec = design.spec;
@@ -47,11 +117,12 @@ void runRender(const RenderOptions& o) {
   }
   const Scene scene = loadSceneOrDefault(o.scene);
   for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  const Accelerator accelerator(scene);
   RenderSettings settings;
   settings.samplesPerPixel = o.spp;
   settings.threads = o.threads;
   settings.seed = o.seed;
+  if (!o.quilt.empty()) return runQuiltRender(o, layout, design, scene, settings);
+  const Accelerator accelerator(scene);
   DisplayLayers layers;
   {
     ProgressBar bar("render");
@@ -62,38 +133,19 @@ void runRender(const RenderOptions& o) {
   const double raysPerSecond = double(layers.stats.totalRays()) / layers.stats.seconds;
 
   JsonWriter record;
-  record.set("/program", "parallax");
-  record.set("/version", PARALLAX_VERSION);
-  record.set("/created", utcNow());
+  startRenderRecord(record, o.directMapping ? "direct-mapping" : "barrier-camera", o.display);
   record.set("/scene", scene.source);
-  record.set("/display_file", o.display.empty() ? std::string("<built-in>") : o.display);
   record.set("/spp", o.spp);
-  record.set("/method", o.directMapping ? "direct-mapping" : "barrier-camera");
   record.set("/seed", o.seed);
   record.set("/threads", o.threads);
   record.set("/seconds", layers.stats.seconds);
   record.set("/rays", layers.stats.totalRays());
   record.set("/rays_per_second", raysPerSecond);
-  record.set("/outputs/image", "image.png");
-  record.set("/outputs/mask", "mask.png");
-  record.set("/outputs/display", "display.json");
   record.set("/scene_display/center", scene.display.center);
   record.set("/scene_display/normal", scene.display.normal);
   record.set("/scene_display/up", scene.display.up);
   record.set("/scene_display/width", double(scene.display.width));
-  writeDesignJson(record, "/design", design);
-  if (o.linear) record.set("/outputs/image_linear", "image.pfm");
-
-  const std::string dir = o.output.empty() ? "." : o.output;
-  writeImage(dir + "/image.png", layers.image);
-  writeImage(dir + "/mask.png", layers.mask);
-  if (o.linear) writeImage(dir + "/image.pfm", layers.image);
-  // The display as a display file, so that `simulate DIR` and other tools can read it back.
-  writeFileAtomically(dir + "/display.json", displayFileText(design.spec));
-  writeFileAtomically(dir + "/render.json", record.dump() + "\n");
-  std::printf("wrote %s/image.png (%dx%d), %s/mask.png (%dx%d), %s/render.json\n", dir.c_str(),
-              layers.image.width(), layers.image.height(), dir.c_str(), layers.mask.width(),
-              layers.mask.height(), dir.c_str());
+  writeDisplayLayers(o.output, layers.image, layers.mask, design, o.linear, record);
   std::printf("%d spp in %.2f s, %s\n", o.spp, layers.stats.seconds,
               formatRate(raysPerSecond).c_str());
 }
@@ -112,10 +164,20 @@ void registerRenderCommand(CLI::App& cli) {
   cmd->add_option("--seed", options->seed, "Seed of the sample jitter");
   cmd->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
   cmd->add_flag("--linear", options->linear, "Also write image.pfm, linear float");
-  cmd->add_flag("--direct-mapping", options->directMapping,
-                "The usual practice as a baseline: N ordinary views, interleaved (Fig. 2)");
-  cmd->add_flag("--subpixels", options->subpixels,
-                "One ray per R, G, B subpixel (three times the views)");
+  CLI::Option* direct =
+      cmd->add_flag("--direct-mapping", options->directMapping,
+                    "The usual practice as a baseline: N ordinary views, interleaved (Fig. 2)");
+  CLI::Option* subpixels = cmd->add_flag("--subpixels", options->subpixels,
+                                         "One ray per R, G, B subpixel (three times the views)");
+  cmd->add_option("--quilt", options->quilt,
+                  "Instead of the layers: C*R off-axis views of the display's window, leftmost "
+                  "camera first, as DIR/quilt_qs{C}x{R}a{aspect}.png (docs/quilts.md)")
+      ->type_name("CxR")
+      ->excludes(direct)
+      ->excludes(subpixels);
+  cmd->add_option("--size", options->size,
+                  "With --quilt: the size of one view (default: the image layer's resolution)")
+      ->type_name("WxH");
   cmd->callback([options] { runRender(*options); });
 }
 

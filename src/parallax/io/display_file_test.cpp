@@ -24,6 +24,7 @@ std::string writeTemp(const std::string& name, const std::string& text) {
 TEST(DisplayFile, EveryExampleLoadsAndDesigns) {
   int count = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(PARALLAX_SOURCE_DIR) / "displays")) {
+    if (!entry.is_regular_file() || entry.path().extension() != ".json") continue;
     const DisplayDesign d = designDisplay(loadDisplayFile(entry.path().string()));
     EXPECT_GT(d.views, 2.0) << entry.path();
     ++count;

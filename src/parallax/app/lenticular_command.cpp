@@ -1,0 +1,151 @@
+// `parallax lenticular`: slanted lenticular displays (the Looking Glass family) from their
+// calibration file: render the panel's framebuffer, and see it from an eye (docs/lenticular.md).
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/app/cli_support.h"
+#include "parallax/app/commands.h"
+#include "parallax/core/error.h"
+#include "parallax/io/image_file.h"
+#include "parallax/io/json_writer.h"
+#include "parallax/io/lenticular_file.h"
+#include "parallax/render/lenticular_render.h"
+#include "parallax/sim/lenticular_sim.h"
+
+namespace parallax::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LenticularRenderOptions {
+  std::string calibration, scene, output = "out";
+  int spp = 1, threads = 0;
+  uint64_t seed = 0;
+  double distance = 0;
+};
+
+struct LenticularSimulateOptions {
+  std::vector<std::string> inputs;  // DIR [CALIBRATION], or CALIBRATION with --image
+  std::string image, eye, output = "out/lenticular-view.png";
+  double distance = 0;
+};
+
+void runRender(const LenticularRenderOptions& o) {
+  if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
+  if (o.distance < 0) throw InputError("command line", "--distance", "must be positive");
+  const LenticularDesign design =
+      designLenticular(loadLenticularCalibration(o.calibration), o.distance);
+  const Scene scene = loadSceneOrDefault(o.scene);
+  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const Accelerator accelerator(scene);
+  RenderSettings settings;
+  settings.samplesPerPixel = o.spp;
+  settings.threads = o.threads;
+  settings.seed = o.seed;
+  LenticularRender out;
+  {
+    ProgressBar bar("lenticular render");
+    out = renderLenticular(scene, accelerator, design, settings,
+                           [&bar](int done, int total) { bar.update(done, total); });
+  }
+  JsonWriter record;
+  record.set("/program", "parallax");
+  record.set("/version", PARALLAX_VERSION);
+  record.set("/method", "lenticular: one ray per subpixel along its view");
+  record.set("/scene", scene.source);
+  record.set("/spp", o.spp);
+  record.set("/seed", o.seed);
+  record.set("/seconds", out.stats.seconds);
+  record.set("/rays", out.stats.totalRays());
+  record.set("/outputs/image", "image.png");
+  record.set("/outputs/calibration", "visual.json");
+  record.set("/scene_display/center", scene.display.center);
+  record.set("/scene_display/normal", scene.display.normal);
+  record.set("/scene_display/up", scene.display.up);
+  record.set("/scene_display/width", double(scene.display.width));
+  writeLenticularDesignJson(record, "/design", design);
+
+  const std::string dir = o.output.empty() ? "." : o.output;
+  writeImage(dir + "/image.png", out.image);
+  // The calibration beside the image, so that `lenticular simulate DIR` finds it.
+  writeFileAtomically(dir + "/visual.json", lenticularCalibrationText(design.calibration));
+  writeFileAtomically(dir + "/render.json", record.dump() + "\n");
+  std::printf("wrote %s/image.png (%dx%d), %s/visual.json, %s/render.json\n", dir.c_str(),
+              out.image.width(), out.image.height(), dir.c_str(), dir.c_str());
+  std::printf("%.2f pixels per lens, views over %.0f degrees; %d spp in %.2f s, %s\n",
+              design.pixelsPerLens, design.calibration.viewConeDegrees, o.spp, out.stats.seconds,
+              formatRate(double(out.stats.totalRays()) / out.stats.seconds).c_str());
+}
+
+void runSimulate(const LenticularSimulateOptions& o) {
+  std::string imagePath = o.image, calibrationPath;
+  if (!o.image.empty()) {
+    if (o.inputs.size() != 1)
+      throw InputError("command line", "--image", "takes the calibration file as the argument");
+    calibrationPath = o.inputs[0];
+  } else {
+    if (o.inputs.empty() || o.inputs.size() > 2)
+      throw InputError("command line", "DIR",
+                       "expected DIR [CALIBRATION] or --image FILE CALIBRATION");
+    imagePath = (fs::path(o.inputs[0]) / "image.png").string();
+    calibrationPath =
+        o.inputs.size() == 2 ? o.inputs[1] : (fs::path(o.inputs[0]) / "visual.json").string();
+  }
+  if (o.distance < 0) throw InputError("command line", "--distance", "must be positive");
+  const LenticularDesign design =
+      designLenticular(loadLenticularCalibration(calibrationPath), o.distance);
+  const Image panel = readImage(imagePath);
+  Vec3d eye{0, 0, design.viewDistanceMm};
+  if (!o.eye.empty()) {
+    const Vec3f e = parseVec3("--eye", o.eye);
+    if (!(e.z > 0)) throw InputError("command line", "--eye", "the eye must be in front (z > 0)");
+    eye = {e.x, e.y, e.z};
+  }
+  const Image view = simulateLenticularView(design, panel, eye);
+  writeImage(o.output, view);
+  std::printf("wrote %s (%dx%d): the panel seen from %.1f,%.1f,%.1f mm\n", o.output.c_str(),
+              view.width(), view.height(), eye.x, eye.y, eye.z);
+}
+
+}  // namespace
+
+void registerLenticularCommand(CLI::App& cli) {
+  CLI::App* cmd = cli.add_subcommand(
+      "lenticular", "Slanted lenticular displays (Looking Glass family) from their visual.json");
+  cmd->require_subcommand(1);
+
+  auto r = std::make_shared<LenticularRenderOptions>();
+  CLI::App* render = cmd->add_subcommand(
+      "render", "The panel image: one ray per subpixel along its calibrated view");
+  render->add_option("calibration", r->calibration, "Calibration file (visual.json)")->required();
+  render->add_option("scene", r->scene, "Scene or mesh file (built-in scene if omitted)");
+  render->add_option("--spp", r->spp, "Rays per subpixel (n*n over its area; 1: exact formula)")
+      ->capture_default_str();
+  render->add_option("--distance", r->distance,
+                     "Design viewer distance in mm (default: the cone spans 1 m)");
+  render->add_option("--threads", r->threads, "Worker threads (0: all cores)");
+  render->add_option("--seed", r->seed, "Seed of the sample jitter");
+  render->add_option("-o,--output", r->output, "Output folder")->capture_default_str();
+  render->callback([r] { runRender(*r); });
+
+  auto s = std::make_shared<LenticularSimulateOptions>();
+  CLI::App* simulate =
+      cmd->add_subcommand("simulate", "What an eye sees on the panel through the lenses");
+  simulate->add_option("inputs", s->inputs,
+                       "DIR of `lenticular render` [CALIBRATION], or CALIBRATION with --image");
+  simulate->add_option("--image", s->image, "Panel image (instead of DIR/image.png)");
+  simulate->add_option("--eye", s->eye,
+                       "Eye X,Y,Z in mm (origin: panel centre, z toward the viewer; default: "
+                       "the centre of the view cone at the design distance)");
+  simulate->add_option("--distance", s->distance, "Design viewer distance in mm (default eye)");
+  simulate->add_option("-o,--output", s->output, "Output image (.png or .pfm)")
+      ->capture_default_str();
+  simulate->callback([s] { runSimulate(*s); });
+}
+
+}  // namespace parallax::app

@@ -1,0 +1,107 @@
+#include "parallax/camera/lenticular_camera.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "parallax/camera/display_camera.h"
+
+namespace parallax {
+namespace {
+
+LenticularDesign smallDesign() {
+  LenticularCalibration c;
+  c.source = "small.json";
+  c.pitch = 7.0;
+  c.slope = -6.0;
+  c.center = 0.3;
+  c.viewConeDegrees = 40;
+  c.dpi = 40;
+  c.screenW = 180;
+  c.screenH = 120;
+  c.invView = true;
+  return designLenticular(c);
+}
+
+DisplayPlacement tiltedPlacement() {
+  DisplayPlacement p;
+  p.center = {1, 2, -3};
+  p.normal = normalize(Vec3f{0.3f, 0.1f, 1.0f});
+  p.up = {0, 1, 0};
+  p.width = 2.5f;
+  return p;
+}
+
+TEST(LenticularCamera, OneColumnPerSubpixel) {
+  const LenticularCamera camera(smallDesign(), DisplayPlacement{});
+  EXPECT_EQ(camera.width(), 540);
+  EXPECT_EQ(camera.height(), 120);
+  EXPECT_EQ(LenticularCamera::channelOfColumn(3 * 17 + 2), 2);
+}
+
+TEST(LenticularCamera, RayPassesThroughItsSubpixelInItsViewDirection) {
+  const LenticularDesign d = smallDesign();
+  const DisplayPlacement placement = tiltedPlacement();
+  const LenticularCamera camera(d, placement);
+  const Transform world = worldFromDisplay(placement, d.widthMm);
+  const Transform display = world.inverse();
+  for (const auto& [x, y, channel] : {std::array<int, 3>{0, 0, 0}, std::array<int, 3>{90, 60, 1},
+                                      std::array<int, 3>{179, 119, 2}}) {
+    const Ray ray = camera.generateRay({3.0f * x + channel + 0.5f, y + 0.5f, 0.5f, 0.5f});
+    // In display mm the ray starts on the eye line (y = 0, z = D) and meets the panel (z = 0)
+    // at the subpixel's point.
+    const Vec3f o = display.point(ray.origin), dir = display.vector(ray.direction);
+    EXPECT_NEAR(o.z, d.viewDistanceMm, 1e-3);
+    EXPECT_NEAR(o.y, 0.0, 1e-3);
+    const float t = -o.z / dir.z;
+    const Vec3d p = subpixelPointMm(d, x + 0.5, y + 0.5, channel);
+    EXPECT_NEAR(o.x + t * dir.x, p.x, 1e-3);
+    EXPECT_NEAR(o.y + t * dir.y, p.y, 1e-3);
+    // Horizontally it leaves the panel at the angle of its view fraction.
+    EXPECT_NEAR(std::atan2(-dir.x, -dir.z), viewAngle(d, viewFraction(d, x, y, channel)), 1e-5);
+  }
+}
+
+TEST(LenticularCamera, SamplesSpreadOverTheSubpixel) {
+  const LenticularDesign d = smallDesign();
+  const LenticularCamera camera(d, DisplayPlacement{});
+  const Transform display = worldFromDisplay(DisplayPlacement{}, d.widthMm).inverse();
+  const Vec3d centre = subpixelPointMm(d, 40.5, 30.5, 1);
+  for (const float within : {0.01f, 0.99f}) {
+    const Ray ray = camera.generateRay({3 * 40 + 1 + within, 30.5f, 0.5f, 0.5f});
+    const Vec3f o = display.point(ray.origin), dir = display.vector(ray.direction);
+    const float hitX = o.x - o.z / dir.z * dir.x;
+    // Within a third of a pixel (the subpixel's width) of its centre, on the sample's side.
+    EXPECT_LT(std::fabs(hitX - centre.x), d.pixelPitchMm / 6 + 1e-4);
+    EXPECT_GT(std::fabs(hitX - centre.x), d.pixelPitchMm / 7);
+    EXPECT_EQ(hitX > centre.x, within > 0.5f);
+  }
+}
+
+// A second code path: the one-axis window camera placed where a subpixel's ray starts casts the
+// same ray through that subpixel's point.
+TEST(LenticularCamera, AgreesWithTheWindowCameraAtTheRaysEye) {
+  const LenticularDesign d = smallDesign();
+  const DisplayPlacement placement = tiltedPlacement();
+  const LenticularCamera camera(d, placement);
+  const DisplayDesign window = lenticularWindowDesign(d);
+  EXPECT_NEAR(window.frontWidthMm(), d.widthMm, 1e-9);
+  EXPECT_NEAR(window.frontHeightMm(), d.heightMm, 1e-9);
+  const int x = 37, y = 81, channel = 2;
+  const LenticularRay r = lenticularRay(d, x + 0.5, y + 0.5, channel);
+  const WindowCamera eye(r.origin, window, placement, d.calibration.screenW, d.calibration.screenH,
+                         true);
+  const float filmX = float((r.panelPoint.x + 0.5 * d.widthMm) / d.pixelPitchMm);
+  const float filmY = float((0.5 * d.heightMm - r.panelPoint.y) / d.pixelPitchMm);
+  const Ray expected = eye.generateRay({filmX, filmY, 0.5f, 0.5f});
+  const Ray got = camera.generateRay({3.0f * x + channel + 0.5f, y + 0.5f, 0.5f, 0.5f});
+  const Vec3f gotDirection = normalize(got.direction),
+              expectedDirection = normalize(expected.direction);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(got.origin[k], expected.origin[k], 1e-4);
+    EXPECT_NEAR(gotDirection[k], expectedDirection[k], 1e-6);  // both run origin -> panel
+  }
+}
+
+}  // namespace
+}  // namespace parallax

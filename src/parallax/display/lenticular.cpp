@@ -1,0 +1,142 @@
+#include "parallax/display/lenticular.h"
+
+#include <cmath>
+
+#include "parallax/core/error.h"
+
+namespace parallax {
+
+namespace {
+
+constexpr double kMmPerInch = 25.4;
+constexpr double kPi = 3.14159265358979323846;
+
+double radians(double degrees) {
+  return degrees * kPi / 180.0;
+}
+
+// The subpixel's offset from its pixel's reference point, in screen fractions (x right, y up),
+// as the calibration describes it: stripes at slot / (3 W) (slot 2 - channel for BGR, the
+// shaders' ri/bi swap), or the cell's offsets. Pixel row `row` counts from the bottom, as the
+// shaders' cell pattern does.
+void subpixelOffset(const LenticularDesign& d, int column, int row, int channel, double& dx,
+                    double& dy) {
+  const LenticularCalibration& c = d.calibration;
+  if (c.subpixelCells.empty()) {
+    const int slot = c.flipSubpixels ? 2 - channel : channel;
+    dx = slot / (3.0 * c.screenW);
+    dy = 0;
+    return;
+  }
+  // Checkerboard (mode 1): cell 0 where column and row have the same parity.
+  const int cell = c.cellPatternMode == 1 ? ((column + row) & 1) : 0;
+  const SubpixelCell& s = c.subpixelCells[size_t(cell) % c.subpixelCells.size()];
+  dx = s.offsetX[size_t(channel)];
+  dy = s.offsetY[size_t(channel)];
+}
+
+// Framebuffer position to the shaders' screen coordinates: u right, v up, both in [0, 1].
+void screenUv(const LenticularDesign& d, double filmX, double filmY, double& u, double& v) {
+  u = filmX / d.calibration.screenW;
+  v = 1.0 - filmY / d.calibration.screenH;
+}
+
+}  // namespace
+
+LenticularDesign designLenticular(const LenticularCalibration& c, double viewDistanceMm) {
+  const auto fail = [&c](const char* key, const std::string& message) {
+    return InputError(c.source, key, message);
+  };
+  if (!(c.pitch > 0)) throw fail("/pitch", "must be a positive number of lenses per inch");
+  if (!(c.dpi > 0)) throw fail("/DPI", "must be positive");
+  if (!std::isfinite(c.slope) || c.slope == 0)
+    throw fail("/slope", "must not be 0 (the lenses would be horizontal)");
+  if (!std::isfinite(c.center)) throw fail("/center", "must be a finite number");
+  if (!(c.viewConeDegrees > 0 && c.viewConeDegrees < 180))
+    throw fail("/viewCone", "must be between 0 and 180 degrees");
+  if (c.screenW < 1 || c.screenH < 1) throw fail("/screenW", "the screen must have pixels");
+  if (c.cellPatternMode < 0 || c.cellPatternMode > 1)
+    throw fail("/CellPatternMode", "only 0 (one cell) and 1 (checkerboard) are supported");
+  if (c.cellPatternMode == 1 && c.subpixelCells.size() < 2)
+    throw fail("/subpixelCells", "the checkerboard pattern needs two cells");
+
+  LenticularDesign d;
+  d.calibration = c;
+  d.pixelPitchMm = kMmPerInch / c.dpi;
+  d.widthMm = c.screenW * d.pixelPitchMm;
+  d.heightMm = c.screenH * d.pixelPitchMm;
+  // pitch is measured across the slanted lenses; along x a lens is 1 / cos(slant) wider.
+  d.pitchPx = c.pitch * (c.screenW / c.dpi) * std::cos(std::atan(1.0 / c.slope));
+  d.tilt = c.screenH / (double(c.screenW) * c.slope) * (c.flipImageX ? -1.0 : 1.0);
+  d.lensSlantDegrees = std::atan(1.0 / std::fabs(c.slope)) * 180.0 / kPi;
+  d.lensPitchMm = kMmPerInch / c.pitch;
+  d.horizontalLensPitchMm = d.widthMm / d.pitchPx;
+  d.pixelsPerLens = c.screenW / d.pitchPx;
+  d.subpixelsPerLens = 3.0 * d.pixelsPerLens;
+  if (!(d.pixelsPerLens > 1))
+    throw fail("/pitch", "the lenses are narrower than a pixel (" + std::to_string(d.pitchPx) +
+                             " lenses across " + std::to_string(c.screenW) + " pixels)");
+  d.lenticuleCount = d.pitchPx * (1.0 + std::fabs(d.tilt));
+  const double halfCone = 0.5 * radians(c.viewConeDegrees);
+  d.viewDistanceMm =
+      viewDistanceMm > 0 ? viewDistanceMm : 0.5 * kLenticularZoneWidthMm / std::tan(halfCone);
+  d.viewZoneWidthMm = 2.0 * d.viewDistanceMm * std::tan(halfCone);
+  return d;
+}
+
+double viewFractionAt(const LenticularDesign& d, double filmX, double filmY, int channel) {
+  const LenticularCalibration& c = d.calibration;
+  double u, v, dx, dy;
+  screenUv(d, filmX, filmY, u, v);
+  subpixelOffset(d, int(std::floor(filmX)), c.screenH - 1 - int(std::floor(filmY)), channel, dx,
+                 dy);
+  // flipImageX mirrors u and reverses the subpixel step (tilt is already negated in the design),
+  // as the HoloPlay SDK does: the formula then runs in the viewer's frame.
+  if (c.flipImageX) u = 1.0 - u, dx = -dx;
+  const double phase = (u + dx + (v + dy) * d.tilt) * d.pitchPx - c.center;
+  double f = phase - std::floor(phase);
+  if (c.invView) f = 1.0 - f;
+  // Rounding can land on 1 (a phase just below an integer); view 1 is view 0 of the next lens.
+  return f >= 1.0 ? f - 1.0 : f;
+}
+
+double viewFraction(const LenticularDesign& d, int x, int y, int channel) {
+  return viewFractionAt(d, x + 0.5, y + 0.5, channel);
+}
+
+Vec3d subpixelPointMm(const LenticularDesign& d, double filmX, double filmY, int channel) {
+  const LenticularCalibration& c = d.calibration;
+  const int column = int(std::floor(filmX)), row = c.screenH - 1 - int(std::floor(filmY));
+  double u, v, dx, dy, meanX = 0;
+  screenUv(d, filmX, filmY, u, v);
+  for (int k = 0; k < 3; ++k) {
+    subpixelOffset(d, column, row, k, dx, dy);
+    meanX += dx / 3.0;
+  }
+  subpixelOffset(d, column, row, channel, dx, dy);
+  u += dx - meanX;
+  v += dy;
+  if (c.flipImageX) u = 1.0 - u;
+  if (c.flipImageY) v = 1.0 - v;
+  return {(u - 0.5) * d.widthMm, (v - 0.5) * d.heightMm, 0.0};
+}
+
+double viewAngle(const LenticularDesign& d, double fraction) {
+  return (fraction - 0.5) * radians(d.calibration.viewConeDegrees);
+}
+
+double viewFractionOfAngle(const LenticularDesign& d, double angle) {
+  return angle / radians(d.calibration.viewConeDegrees) + 0.5;
+}
+
+LenticularRay lenticularRay(const LenticularDesign& d, double filmX, double filmY, int channel) {
+  LenticularRay r;
+  r.viewFraction = viewFractionAt(d, filmX, filmY, channel);
+  r.panelPoint = subpixelPointMm(d, filmX, filmY, channel);
+  const double D = d.viewDistanceMm;
+  r.origin = {r.panelPoint.x + D * std::tan(viewAngle(d, r.viewFraction)), 0.0, D};
+  r.direction = {(r.panelPoint.x - r.origin.x) / D, (r.panelPoint.y - r.origin.y) / D, -1.0};
+  return r;
+}
+
+}  // namespace parallax

@@ -1,0 +1,103 @@
+// Slanted lenticular displays (the Looking Glass family): an LCD or OLED panel under a sheet of
+// slanted cylindrical lenses at their focal distance, described by a per-device calibration
+// (visual.json). Each subpixel gets a fractional view in [0, 1) from the published formula of the
+// Looking Glass shaders (docs/lenticular.md):
+//
+//   pitch_px = pitch * (screenW / DPI) * cos(atan(1 / slope))   lenses across the width, along x
+//   tilt     = screenH / (screenW * slope)
+//   view     = fract((u + i / (3 screenW) + v * tilt) * pitch_px - center)
+//
+// for subpixel slot i of the pixel at screen coordinates (u, v) in [0, 1]^2, v up, with invView
+// replacing view by 1 - view. The lens sends the light of view f toward the horizontal angle
+// (f - 1/2) * viewCone. Frame as in docs/display-geometry.md: millimetres, the panel at z = 0
+// with its centre at the origin, x right, y up, z toward the viewer.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "parallax/display/barrier_rays.h"  // Vec3d
+
+namespace parallax {
+
+// Where the R, G and B subpixels of one kind of pixel sit (OLED panels whose subpixels are not
+// three vertical stripes), as offsets from the pixel's reference point in fractions of the
+// screen width (x) and height (y, up): the Looking Glass Bridge shader's convention.
+struct SubpixelCell {
+  std::array<double, 3> offsetX{}, offsetY{};  // R, G, B
+};
+
+// The calibration fields as the device writes them (visual.json).
+struct LenticularCalibration {
+  std::string source = "<built-in>";            // file name for error messages
+  double pitch = 0;                             // lenticules per inch, across the lenticules
+  double slope = 0;                             // lens slant: screen pixels down per pixel across
+  double center = 0;                            // phase of view 0, in lens periods
+  double viewConeDegrees = 0;                   // angle the views of one lens period fan over
+  double dpi = 0;                               // panel pixels per inch
+  int screenW = 0, screenH = 0;                 // panel pixels
+  bool invView = false;                         // view -> 1 - view (the lens inverts; most devices)
+  bool flipImageX = false, flipImageY = false;  // the panel is mirrored as the viewer sees it
+  bool flipSubpixels = false;                   // BGR instead of RGB stripes
+  int cellPatternMode = 0;  // 0: every pixel uses subpixelCells[0]; 1: checkerboard of cells 0, 1
+  std::vector<SubpixelCell> subpixelCells;  // empty: RGB (or BGR) stripes a third of a pixel wide
+};
+
+// What follows from a calibration, and where the viewer is assumed to be.
+struct LenticularDesign {
+  LenticularCalibration calibration;
+  double pixelPitchMm = 0;  // 25.4 / DPI
+  double widthMm = 0, heightMm = 0;
+  double pitchPx = 0;                // pitch_px above: lenses across the screen width, along x
+  double tilt = 0;                   // tilt above (negated with flipImageX, as the shaders do)
+  double lensSlantDegrees = 0;       // lens axis from vertical: atan(1 / |slope|)
+  double lensPitchMm = 0;            // 25.4 / pitch, across the lenticules
+  double horizontalLensPitchMm = 0;  // widthMm / pitch_px, along a pixel row
+  double pixelsPerLens = 0;          // screenW / pitch_px
+  double subpixelsPerLens = 0;       // 3 screenW / pitch_px
+  double lenticuleCount = 0;         // lenses that cross the panel: pitch_px (1 + |tilt|)
+  double viewDistanceMm = 0;         // the design viewer's distance (vertical perspective)
+  double viewZoneWidthMm = 0;        // the view cone's width there: 2 D tan(viewCone / 2)
+};
+
+// The default design distance: where the view cone spans a 1 m wide zone (one or two people
+// side by side), D = 500 mm / tan(viewCone / 2).
+inline constexpr double kLenticularZoneWidthMm = 1000.0;
+
+// Derives the design and checks the calibration; throws InputError naming calibration.source
+// and the key ("/slope: must not be 0"). viewDistanceMm <= 0 picks the default distance.
+LenticularDesign designLenticular(const LenticularCalibration& calibration,
+                                  double viewDistanceMm = 0);
+
+// The view fraction in [0, 1) of colour channel `channel` (0 R, 1 G, 2 B) of the pixel in
+// framebuffer column x, row y (row 0 at the top, as in images): the published formula at the
+// pixel's centre.
+double viewFraction(const LenticularDesign& design, int x, int y, int channel);
+
+// The same formula at a continuous framebuffer position (pixel (x, y) covers [x, x+1) x [y, y+1),
+// y down); the subpixel's own offset is added. viewFraction(d, x, y, c) is
+// viewFractionAt(d, x + 0.5, y + 0.5, c).
+double viewFractionAt(const LenticularDesign& design, double filmX, double filmY, int channel);
+
+// Where that subpixel is on the panel as the viewer sees it (mm, z = 0); the three subpixels of a
+// pixel are centred on the pixel.
+Vec3d subpixelPointMm(const LenticularDesign& design, double filmX, double filmY, int channel);
+
+// The horizontal angle (radians, positive toward +x) into which the lens sends view f:
+// (f - 1/2) * viewCone, and its inverse (not wrapped: outside [0, 1) beyond the cone).
+double viewAngle(const LenticularDesign& design, double fraction);
+double viewFractionOfAngle(const LenticularDesign& design, double angle);
+
+// The ray a subpixel sample shows: it leaves the panel point in the view's horizontal direction
+// and, vertically, toward the design viewer's eye line (y = 0, z = D), the one-axis perspective
+// of a horizontal-parallax display. `origin` is that point on the viewer's side (z = D), and
+// `direction` runs from it to the panel point, normalised to direction.z = -1.
+struct LenticularRay {
+  Vec3d origin, direction, panelPoint;
+  double viewFraction = 0;
+};
+LenticularRay lenticularRay(const LenticularDesign& design, double filmX, double filmY,
+                            int channel);
+
+}  // namespace parallax

@@ -1,0 +1,154 @@
+#include "parallax/io/lenticular_file.h"
+
+#include <cmath>
+
+#include "parallax/core/error.h"
+#include "parallax/io/json_reader.h"
+
+namespace parallax {
+
+namespace {
+
+// A field as devices write it, {"value": n}, or a plain number.
+double fieldNumber(const JsonReader& node) {
+  if (!node.isObject()) return node.number();
+  node.expectObject({"value"});
+  return node["value"].number();
+}
+
+JsonReader present(const JsonReader& root, const char* key) {
+  if (!root.has(key)) throw InputError(root.file(), root.pointer() + "/" + key, "missing");
+  return root[key];
+}
+
+double required(const JsonReader& root, const char* key) {
+  return fieldNumber(present(root, key));
+}
+
+// Flags are numbers 0 or 1 in device files (JSON booleans accepted as well).
+bool flag(const JsonReader& node) {
+  if (node.isObject()) {
+    node.expectObject({"value"});
+    return flag(node["value"]);
+  }
+  if (!node.isNumber()) return node.boolean();
+  const double v = node.number();
+  if (v != 0 && v != 1) node.fail("expected 0 or 1, found " + node.dump());
+  return v == 1;
+}
+
+int pixels(const JsonReader& root, const char* key) {
+  const double v = required(root, key);
+  if (!(v >= 1 && v <= 65536 && v == std::floor(v)))
+    root[key].fail("expected a whole number of pixels from 1 to 65536");
+  return int(v);
+}
+
+SubpixelCell readCell(const JsonReader& node) {
+  node.expectObject({"ROffsetX", "ROffsetY", "GOffsetX", "GOffsetY", "BOffsetX", "BOffsetY"});
+  SubpixelCell cell;
+  const char* names[3][2] = {
+      {"ROffsetX", "ROffsetY"}, {"GOffsetX", "GOffsetY"}, {"BOffsetX", "BOffsetY"}};
+  for (size_t c = 0; c < 3; ++c) {
+    cell.offsetX[c] = required(node, names[c][0]);
+    cell.offsetY[c] = required(node, names[c][1]);
+  }
+  return cell;
+}
+
+LenticularCalibration readCalibration(const JsonReader& root) {
+  // The fields of the published calibration format; serial, configVersion, fringe and
+  // verticalAngle are the device's bookkeeping and are not used here.
+  root.expectObject({"configVersion", "serial", "pitch", "slope", "center", "fringe", "viewCone",
+                     "invView", "verticalAngle", "DPI", "screenW", "screenH", "flipImageX",
+                     "flipImageY", "flipSubp", "CellPatternMode", "subpixelCells"});
+  LenticularCalibration c;
+  c.source = root.file();
+  c.pitch = required(root, "pitch");
+  c.slope = required(root, "slope");
+  c.center = required(root, "center");
+  c.viewConeDegrees = required(root, "viewCone");
+  for (const char* unused : {"fringe", "verticalAngle"})
+    if (root.has(unused)) fieldNumber(root[unused]);  // checked, though not used
+  c.dpi = required(root, "DPI");
+  c.screenW = pixels(root, "screenW");
+  c.screenH = pixels(root, "screenH");
+  c.invView = flag(present(root, "invView"));  // required: it decides the views' direction
+  const auto optionalFlag = [&root](const char* key) { return root.has(key) && flag(root[key]); };
+  c.flipImageX = optionalFlag("flipImageX");
+  c.flipImageY = optionalFlag("flipImageY");
+  c.flipSubpixels = optionalFlag("flipSubp");
+  if (root.has("CellPatternMode")) {
+    const double mode = fieldNumber(root["CellPatternMode"]);
+    if (mode != 0 && mode != 1)
+      root["CellPatternMode"].fail("only 0 (one cell) and 1 (checkerboard) are supported");
+    c.cellPatternMode = int(mode);
+  }
+  if (const auto cells = root.find("subpixelCells"))
+    for (const JsonReader& cell : cells->elements()) c.subpixelCells.push_back(readCell(cell));
+  designLenticular(c);  // the relations between fields, reported against this file
+  return c;
+}
+
+}  // namespace
+
+LenticularCalibration parseLenticularCalibration(const std::string& text, const std::string& file) {
+  return readCalibration(JsonDocument::parseText(text, file).root());
+}
+
+LenticularCalibration loadLenticularCalibration(const std::string& path) {
+  return readCalibration(JsonDocument::parseFile(path).root());  // missing file: InputError
+}
+
+std::string lenticularCalibrationText(const LenticularCalibration& c) {
+  JsonWriter json;
+  const auto value = [&json](const char* key, double v) {
+    json.set(std::string("/") + key + "/value", v);
+  };
+  value("pitch", c.pitch);
+  value("slope", c.slope);
+  value("center", c.center);
+  value("viewCone", c.viewConeDegrees);
+  value("invView", c.invView ? 1.0 : 0.0);
+  value("DPI", c.dpi);
+  value("screenW", double(c.screenW));
+  value("screenH", double(c.screenH));
+  value("flipImageX", c.flipImageX ? 1.0 : 0.0);
+  value("flipImageY", c.flipImageY ? 1.0 : 0.0);
+  value("flipSubp", c.flipSubpixels ? 1.0 : 0.0);
+  value("CellPatternMode", double(c.cellPatternMode));
+  json.setEmptyArray("/subpixelCells");
+  const char* names[3] = {"R", "G", "B"};
+  for (size_t i = 0; i < c.subpixelCells.size(); ++i)
+    for (size_t ch = 0; ch < 3; ++ch) {
+      const std::string at = "/subpixelCells/" + std::to_string(i) + "/" + names[ch];
+      json.set(at + "OffsetX", c.subpixelCells[i].offsetX[ch]);
+      json.set(at + "OffsetY", c.subpixelCells[i].offsetY[ch]);
+    }
+  return json.dump() + "\n";
+}
+
+void writeLenticularDesignJson(JsonWriter& json, const std::string& at, const LenticularDesign& d) {
+  json.set(at + "/calibration_file", d.calibration.source);
+  json.set(at + "/screen_w_px", d.calibration.screenW);
+  json.set(at + "/screen_h_px", d.calibration.screenH);
+  json.set(at + "/pixel_pitch_mm", d.pixelPitchMm);
+  json.set(at + "/width_mm", d.widthMm);
+  json.set(at + "/height_mm", d.heightMm);
+  json.set(at + "/pitch_px", d.pitchPx);
+  json.set(at + "/tilt", d.tilt);
+  json.set(at + "/center", d.calibration.center);
+  json.set(at + "/inv_view", d.calibration.invView);
+  json.set(at + "/lens_slant_deg", d.lensSlantDegrees);
+  json.set(at + "/lens_pitch_mm", d.lensPitchMm);
+  json.set(at + "/horizontal_lens_pitch_mm", d.horizontalLensPitchMm);
+  json.set(at + "/pixels_per_lens", d.pixelsPerLens);
+  json.set(at + "/subpixels_per_lens", d.subpixelsPerLens);
+  json.set(at + "/lenticules", d.lenticuleCount);
+  json.set(at + "/view_cone_deg", d.calibration.viewConeDegrees);
+  json.set(at + "/view_distance_mm", d.viewDistanceMm);
+  json.set(at + "/view_zone_width_mm", d.viewZoneWidthMm);
+  json.set(at + "/subpixel_cells", int(d.calibration.subpixelCells.size()));
+}
+
+}  // namespace parallax

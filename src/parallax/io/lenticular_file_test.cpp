@@ -1,0 +1,149 @@
+#include "parallax/io/lenticular_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "parallax/core/error.h"
+
+namespace parallax {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A device-style file: every field an object {"value": n}.
+const char* kDeviceStyle = R"({
+  "configVersion": "3.0", "serial": "TEST-0001",
+  "pitch": {"value": 47.61}, "slope": {"value": -6.21}, "center": {"value": 0.413},
+  "fringe": {"value": 0.0}, "viewCone": {"value": 40.0}, "invView": {"value": 1.0},
+  "verticalAngle": {"value": 0.0}, "DPI": {"value": 324.0},
+  "screenW": {"value": 1536.0}, "screenH": {"value": 2048.0},
+  "flipImageX": {"value": 0.0}, "flipImageY": {"value": 1.0}, "flipSubp": {"value": 1.0},
+  "CellPatternMode": {"value": 1},
+  "subpixelCells": [
+    {"ROffsetX": 0.0, "ROffsetY": 0.0, "GOffsetX": 0.0002, "GOffsetY": 0.0,
+     "BOffsetX": 0.0004, "BOffsetY": 0.0001},
+    {"ROffsetX": 0.0004, "ROffsetY": 0.0, "GOffsetX": 0.0002, "GOffsetY": 0.0,
+     "BOffsetX": 0.0, "BOffsetY": -0.0001}
+  ]
+})";
+
+std::string errorOf(const std::string& text) {
+  try {
+    parseLenticularCalibration(text, "visual.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(LenticularFile, ReadsValueObjects) {
+  const LenticularCalibration c = parseLenticularCalibration(kDeviceStyle, "visual.json");
+  EXPECT_EQ(c.source, "visual.json");
+  EXPECT_DOUBLE_EQ(c.pitch, 47.61);
+  EXPECT_DOUBLE_EQ(c.slope, -6.21);
+  EXPECT_DOUBLE_EQ(c.center, 0.413);
+  EXPECT_DOUBLE_EQ(c.viewConeDegrees, 40.0);
+  EXPECT_DOUBLE_EQ(c.dpi, 324.0);
+  EXPECT_EQ(c.screenW, 1536);
+  EXPECT_EQ(c.screenH, 2048);
+  EXPECT_TRUE(c.invView);
+  EXPECT_FALSE(c.flipImageX);
+  EXPECT_TRUE(c.flipImageY);
+  EXPECT_TRUE(c.flipSubpixels);
+  EXPECT_EQ(c.cellPatternMode, 1);
+  ASSERT_EQ(c.subpixelCells.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.subpixelCells[0].offsetX[1], 0.0002);
+  EXPECT_DOUBLE_EQ(c.subpixelCells[0].offsetY[2], 0.0001);
+  EXPECT_DOUBLE_EQ(c.subpixelCells[1].offsetX[0], 0.0004);
+  EXPECT_DOUBLE_EQ(c.subpixelCells[1].offsetY[2], -0.0001);
+}
+
+TEST(LenticularFile, AcceptsPlainNumbers) {
+  const LenticularCalibration c = parseLenticularCalibration(
+      R"({"pitch": 50, "slope": -5, "center": 0.2, "viewCone": 40, "invView": 0, "DPI": 300,
+          "screenW": 1500, "screenH": 2000, "flipImageX": {"value": 1}})",
+      "plain.json");
+  EXPECT_DOUBLE_EQ(c.pitch, 50);
+  EXPECT_EQ(c.screenH, 2000);
+  EXPECT_FALSE(c.invView);
+  EXPECT_TRUE(c.flipImageX);
+  EXPECT_FALSE(c.flipSubpixels);  // absent flags are 0
+  EXPECT_TRUE(c.subpixelCells.empty());
+}
+
+TEST(LenticularFile, ErrorsNameTheFileAndKey) {
+  const std::string base =
+      R"("pitch": 50, "center": 0.2, "viewCone": 40, "invView": 1, "DPI": 300,
+         "screenW": 1500, "screenH": 2000)";
+  EXPECT_NE(errorOf("{" + base + "}").find("visual.json: /slope: missing"), std::string::npos)
+      << errorOf("{" + base + "}");
+  const std::string withSlope = "{" + base + R"(, "slope": -5)";
+  EXPECT_EQ(errorOf(withSlope + "}"), "no error");
+  EXPECT_NE(errorOf(withSlope + R"(, "pitchh": 3})").find("visual.json: /pitchh: unknown key"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withSlope + R"(, "flipSubp": {"value": "yes"}})").find("/flipSubp/value"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withSlope + R"(, "flipSubp": {"value": 2}})").find("/flipSubp/value"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withSlope + R"(, "fringe": {"value": 0, "min": 0}})").find("/fringe/min"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withSlope + R"(, "subpixelCells": [{"ROffsetX": 0}]})")
+                .find("/subpixelCells/0/ROffsetY: missing"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withSlope + R"(, "CellPatternMode": 3})").find("/CellPatternMode"),
+            std::string::npos);
+  // Relations between fields are checked against the same file.
+  EXPECT_NE(errorOf(R"({"pitch": 50, "slope": 0, "center": 0, "viewCone": 40, "invView": 1,
+                        "DPI": 300, "screenW": 1500, "screenH": 2000})")
+                .find("visual.json: /slope"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"pitch": 50, "slope": -5, "center": 0, "viewCone": 40, "invView": 1,
+                        "DPI": 300, "screenW": 1500.5, "screenH": 2000})")
+                .find("visual.json: /screenW: expected a whole number"),
+            std::string::npos);
+  try {
+    loadLenticularCalibration("/nonexistent/visual.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/visual.json"), std::string::npos);
+  }
+}
+
+TEST(LenticularFile, WrittenTextReadsBack) {
+  const LenticularCalibration a = parseLenticularCalibration(kDeviceStyle, "a.json");
+  const LenticularCalibration b = parseLenticularCalibration(lenticularCalibrationText(a), "b");
+  EXPECT_DOUBLE_EQ(a.pitch, b.pitch);
+  EXPECT_DOUBLE_EQ(a.slope, b.slope);
+  EXPECT_DOUBLE_EQ(a.center, b.center);
+  EXPECT_DOUBLE_EQ(a.viewConeDegrees, b.viewConeDegrees);
+  EXPECT_DOUBLE_EQ(a.dpi, b.dpi);
+  EXPECT_EQ(a.screenW, b.screenW);
+  EXPECT_EQ(a.screenH, b.screenH);
+  EXPECT_EQ(a.invView, b.invView);
+  EXPECT_EQ(a.flipImageY, b.flipImageY);
+  EXPECT_EQ(a.flipSubpixels, b.flipSubpixels);
+  EXPECT_EQ(a.cellPatternMode, b.cellPatternMode);
+  ASSERT_EQ(b.subpixelCells.size(), 2u);
+  for (size_t i = 0; i < 2; ++i)
+    for (size_t ch = 0; ch < 3; ++ch) {
+      EXPECT_DOUBLE_EQ(a.subpixelCells[i].offsetX[ch], b.subpixelCells[i].offsetX[ch]);
+      EXPECT_DOUBLE_EQ(a.subpixelCells[i].offsetY[ch], b.subpixelCells[i].offsetY[ch]);
+    }
+  EXPECT_NE(lenticularCalibrationText(a).find("\"value\""), std::string::npos);
+}
+
+TEST(LenticularFile, EveryExampleLoads) {
+  int count = 0;
+  for (const auto& entry :
+       fs::directory_iterator(fs::path(PARALLAX_SOURCE_DIR) / "displays" / "lenticular")) {
+    const LenticularDesign d = designLenticular(loadLenticularCalibration(entry.path().string()));
+    EXPECT_GT(d.subpixelsPerLens, 6.0) << entry.path();
+    EXPECT_LT(d.subpixelsPerLens, 100.0) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 3);
+}
+
+}  // namespace
+}  // namespace parallax

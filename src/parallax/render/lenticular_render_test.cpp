@@ -1,0 +1,86 @@
+// The rendered panel belongs to its calibration: seen from an eye (sim/lenticular_sim.h), it
+// shows what an ideal window shows that eye (WindowCamera, one-axis perspective), inside the view
+// cone; beyond the cone the eye sees the repeated views of the other side instead.
+#include "parallax/render/lenticular_render.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "parallax/camera/display_camera.h"
+#include "parallax/camera/lenticular_camera.h"
+#include "parallax/image/metrics.h"
+#include "parallax/sim/lenticular_sim.h"
+
+namespace parallax {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+LenticularDesign smallDesign() {
+  LenticularCalibration c;
+  c.source = "small.json";
+  c.pitch = 7.0;  // about 5.8 pixels per lens on a 40 DPI panel
+  c.slope = -6.0;
+  c.center = 0.3;
+  c.viewConeDegrees = 40;
+  c.dpi = 40;
+  c.screenW = 180;
+  c.screenH = 120;
+  c.invView = true;
+  return designLenticular(c);
+}
+
+Scene smallScene() {
+  Scene scene = defaultScene();
+  scene.display.width = 1.5f;  // the 114 mm panel spans the box and some floor
+  return scene;
+}
+
+TEST(LenticularRender, EachSubpixelKeepsItsOwnRaysChannel) {
+  const LenticularDesign d = smallDesign();
+  const Scene scene = smallScene();
+  const Accelerator accel(scene);
+  const LenticularRender out = renderLenticular(scene, accel, d, {});
+  ASSERT_EQ(out.image.width(), 180);
+  ASSERT_EQ(out.image.height(), 120);
+  EXPECT_EQ(out.stats.cameraRays, uint64_t(3 * 180 * 120));
+  const Image film = render(scene, accel, LenticularCamera(d, scene.display), {});
+  for (int y = 0; y < 120; y += 7)
+    for (int x = 0; x < 180; ++x)
+      for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(out.image.at(x, y)[ch], film.at(3 * x + ch, y)[ch]);
+}
+
+TEST(LenticularRender, SeenFromInsideTheConeItIsTheWindowView) {
+  const LenticularDesign d = smallDesign();
+  const Scene scene = smallScene();
+  const Accelerator accel(scene);
+  const Image panel = renderLenticular(scene, accel, d, {}).image;
+  const DisplayDesign window = lenticularWindowDesign(d);
+  RenderSettings reference;
+  reference.samplesPerPixel = 4;
+  const auto error = [&](const Vec3d& seenFrom, const Vec3d& windowFrom) {
+    const Image seen = simulateLenticularView(d, panel, seenFrom);
+    const WindowCamera camera(windowFrom, window, scene.display, 180, 120, true);
+    return meanSquaredError(seen, render(scene, accel, camera, reference));
+  };
+  const double D = d.viewDistanceMm, cone = 40 * kPi / 180;
+  const Vec3d centre{0, 0, D}, inside{D * std::tan(0.3 * cone), 0, D};
+  const Vec3d outside{D * std::tan(0.8 * cone), 0, D};  // 12 degrees past the cone's edge
+  const Vec3d repeat{D * std::tan(-0.2 * cone), 0, D};  // where outside's views were meant to go
+  const double centreError = error(centre, centre), insideError = error(inside, inside);
+  const double outsideError = error(outside, outside);
+  EXPECT_LT(centreError, 0.01);
+  EXPECT_LT(insideError, 0.01);
+  EXPECT_GT(outsideError, 3 * centreError);
+  EXPECT_GT(outsideError, 3 * insideError);
+  // Past the cone's edge the eye sees the views meant for the other side.
+  EXPECT_LT(error(outside, repeat), outsideError / 3);
+  // And an eye above the eye line sees the same views (horizontal parallax only).
+  const Image level = simulateLenticularView(d, panel, centre);
+  const Image raised = simulateLenticularView(d, panel, {0, 80, D});
+  EXPECT_EQ(meanSquaredError(level, raised), 0.0);
+}
+
+}  // namespace
+}  // namespace parallax

@@ -1,0 +1,178 @@
+#include "parallax/render/quilt.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numeric>
+#include <regex>
+#include <stdexcept>
+
+#include "parallax/camera/display_camera.h"
+#include "parallax/core/error.h"
+#include "parallax/display/mask.h"
+#include "parallax/render/display_render.h"
+
+namespace parallax {
+
+namespace {
+
+constexpr int kMaxTilesPerSide = 1024;
+constexpr const char* kNameConvention =
+    "expected the name to end in _qs{columns}x{rows}a{aspect} before the extension, e.g. "
+    "scene_qs5x9a1.7778.png";
+
+bool parseCount(std::string_view text, int& count) {
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, count);
+  return error == std::errc() && stop == end && count >= 1 && count <= kMaxTilesPerSide;
+}
+
+}  // namespace
+
+bool parseColumnsByRows(std::string_view text, int& columns, int& rows) {
+  const size_t x = text.find('x');
+  if (x == std::string_view::npos) return false;
+  int c = 0, r = 0;
+  if (!parseCount(text.substr(0, x), c) || !parseCount(text.substr(x + 1), r)) return false;
+  columns = c;
+  rows = r;
+  return true;
+}
+
+QuiltLayout parseQuiltName(const std::string& path) {
+  const std::string stem = std::filesystem::path(path).stem().string();
+  const size_t at = stem.rfind("_qs");
+  if (at == std::string::npos)
+    throw InputError(path, "", "no quilt layout: " + std::string(kNameConvention));
+  const std::string ending = stem.substr(at);
+  // The whole ending, to the extension: _qs, columns, x, rows, a, a positive decimal number.
+  static const std::regex pattern(R"(_qs([0-9]+x[0-9]+)a([0-9]+(\.[0-9]+)?))");
+  std::smatch match;
+  QuiltLayout layout;
+  if (!std::regex_match(ending, match, pattern) ||
+      !parseColumnsByRows(match[1].str(), layout.columns, layout.rows))
+    throw InputError(path, "", "malformed quilt layout '" + ending + "': " + kNameConvention);
+  layout.aspect = std::stod(match[2].str());
+  if (!(layout.aspect > 0) || !std::isfinite(layout.aspect))
+    throw InputError(path, "", "quilt aspect must be positive, got '" + match[2].str() + "'");
+  return layout;
+}
+
+std::string formatQuiltAspect(double aspect) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.4f", aspect);
+  std::string s = text;
+  s.erase(s.find_last_not_of('0') + 1);
+  if (s.back() == '.') s.pop_back();
+  return s;
+}
+
+std::string quiltFileName(const std::string& stem, const QuiltLayout& layout,
+                          const std::string& extension) {
+  return stem + "_qs" + std::to_string(layout.columns) + "x" + std::to_string(layout.rows) + "a" +
+         formatQuiltAspect(layout.aspect) + extension;
+}
+
+Image assembleQuilt(const std::vector<Image>& views, int columns, int rows) {
+  if (columns < 1 || rows < 1 || views.size() != size_t(columns) * size_t(rows))
+    throw std::invalid_argument("assembleQuilt: need columns * rows views");
+  const int w = views[0].width(), h = views[0].height();
+  Image quilt(columns * w, rows * h);
+  for (int k = 0; k < int(views.size()); ++k) {
+    if (views[size_t(k)].width() != w || views[size_t(k)].height() != h)
+      throw std::invalid_argument("assembleQuilt: views differ in size");
+    // Row k / columns counted from the bottom; image rows are counted from the top.
+    const int left = (k % columns) * w, top = (rows - 1 - k / columns) * h;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) quilt.at(left + x, top + y) = views[size_t(k)].at(x, y);
+  }
+  return quilt;
+}
+
+std::vector<Image> splitQuilt(const Image& quilt, const QuiltLayout& layout,
+                              const std::string& source) {
+  const int w = quilt.width() / layout.columns, h = quilt.height() / layout.rows;
+  const std::string size = std::to_string(quilt.width()) + "x" + std::to_string(quilt.height());
+  const std::string grid = std::to_string(layout.columns) + "x" + std::to_string(layout.rows);
+  if (w < 1 || h < 1)
+    throw InputError(source, "", size + " pixels are too few for " + grid + " tiles");
+  if (layout.aspect > 0 && std::abs(double(w) / h / layout.aspect - 1.0) > 0.05)
+    throw InputError(source, "",
+                     grid + " tiles are " + std::to_string(w) + "x" + std::to_string(h) +
+                         " (aspect " + formatQuiltAspect(double(w) / h) + "), the name says a" +
+                         formatQuiltAspect(layout.aspect) +
+                         " (is the layout right? --quilt-layout overrides the name)");
+  std::vector<Image> views;
+  for (int k = 0; k < layout.views(); ++k) {
+    const int left = (k % layout.columns) * w;
+    const int top = quilt.height() - (k / layout.columns + 1) * h;
+    Image view(w, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) view.at(x, y) = quilt.at(left + x, top + y);
+    views.push_back(std::move(view));
+  }
+  return views;
+}
+
+int interlacedViewCount(const DisplayDesign& design) {
+  const double columnsPerGroup = design.screenPeriodPx * (design.spec.subpixelRays ? 3.0 : 1.0);
+  return std::max(1, int(std::lround(columnsPerGroup)));
+}
+
+std::vector<int> designViewsLeftToRight(const DisplayDesign& design) {
+  const BarrierRayGenerator rays(design);
+  std::vector<int> order(size_t(interlacedViewCount(design)));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&rays](int a, int b) {
+    return rays.viewPosition(a).x < rays.viewPosition(b).x;
+  });
+  return order;
+}
+
+Image interlaceCameraViews(const DisplayDesign& design, const std::vector<Image>& cameraViews) {
+  const std::vector<int> designView = designViewsLeftToRight(design);
+  if (cameraViews.size() != designView.size())
+    throw std::invalid_argument("interlaceCameraViews: the display needs " +
+                                std::to_string(designView.size()) + " views");
+  const Panel& panel = design.spec.imagePanel;
+  std::vector<Image> views(designView.size());
+  for (size_t k = 0; k < cameraViews.size(); ++k) {
+    const Image& view = cameraViews[k];
+    const bool fits = view.width() == panel.width && view.height() == panel.height;
+    views[size_t(designView[k])] = fits ? view : resizeArea(view, panel.width, panel.height);
+  }
+  return interleaveViews(design, views);
+}
+
+Vec3d quiltEyePosition(const DisplayDesign& design, int camera, int count) {
+  const double S = design.viewZoneWidthMm;
+  return {design.spec.viewZoneCenterXMm + S * ((camera + 0.5) / count - 0.5),
+          design.spec.viewZoneHeightMm, design.viewDistanceMm};
+}
+
+std::vector<Image> renderQuiltViews(const Scene& scene, const Accelerator& accelerator,
+                                    const DisplayDesign& design, const RenderSettings& settings,
+                                    int count, int width, int height, RenderStats* stats,
+                                    const ProgressCallback& progress) {
+  const bool horizontalOnly = !MaskGeometry(design).isPinholeGrid();
+  std::vector<Image> views;
+  RenderStats total;
+  for (int k = 0; k < count; ++k) {
+    const WindowCamera camera(quiltEyePosition(design, k, count), design, scene.display, width,
+                              height, horizontalOnly);
+    RenderStats one;
+    views.push_back(render(scene, accelerator, camera, settings, &one, [&](int done, int tiles) {
+      if (progress) progress(k * tiles + done, count * tiles);
+    }));
+    total.cameraRays += one.cameraRays;
+    total.shadowRays += one.shadowRays;
+    total.secondaryRays += one.secondaryRays;
+    total.seconds += one.seconds;
+  }
+  if (stats) *stats = total;
+  return views;
+}
+
+}  // namespace parallax

@@ -1,0 +1,79 @@
+// Multi-view content: N ordinary camera views of the display's window, alone or tiled into a
+// quilt, and their mapping onto the image layer (the paper's Fig. 2 direct mapping).
+//
+// Conventions (docs/quilts.md): camera views are ordered from the leftmost camera (view 0) to
+// the rightmost. A quilt holds them as tiles row by row from the bottom-left: view 0 is the
+// bottom-left tile, views increase to the right and then upward. Its file name ends in
+// `_qs{columns}x{rows}a{aspect}` before the extension, aspect = width / height of one view.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/display/barrier_rays.h"
+#include "parallax/display/display.h"
+#include "parallax/image/image.h"
+#include "parallax/render/render.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax {
+
+struct QuiltLayout {
+  int columns = 1, rows = 1;
+  double aspect = 0;  // width / height of one view; 0 when not known
+  int views() const { return columns * rows; }
+};
+
+// "CxR" with both counts positive (and at most 1024); false if malformed.
+bool parseColumnsByRows(std::string_view text, int& columns, int& rows);
+
+// The layout in a quilt file's name ("scene_qs5x9a1.7778.png"). Throws InputError naming the
+// file when the `_qs{C}x{R}a{aspect}` ending is absent or malformed.
+QuiltLayout parseQuiltName(const std::string& path);
+
+// The aspect as written in quilt names: at most four decimals, no trailing zeros ("1.7778").
+std::string formatQuiltAspect(double aspect);
+// stem + "_qs{C}x{R}a{aspect}" + extension, e.g. ("quilt", 3x3 a1.7778, ".png").
+std::string quiltFileName(const std::string& stem, const QuiltLayout& layout,
+                          const std::string& extension);
+
+// Tiles `views` (all the same size, leftmost camera first, columns * rows of them) into a quilt.
+Image assembleQuilt(const std::vector<Image>& views, int columns, int rows);
+
+// Cuts a quilt into its views (leftmost camera first). Tiles are floor(W / C) x floor(H / R)
+// pixels from the bottom-left corner; leftover pixels at the right and top are padding. When
+// layout.aspect > 0 the tiles' aspect must agree with it within 5% (quilts squeezed onto a
+// square texture round their tiles); otherwise throws InputError naming `source`.
+std::vector<Image> splitQuilt(const Image& quilt, const QuiltLayout& layout,
+                              const std::string& source);
+
+// Views the image layer interleaves: round(views), or round(3 views) with subpixel rays.
+int interlacedViewCount(const DisplayDesign& design);
+
+// Element k: the design view index (BarrierRayGenerator::viewIndex) whose design eye position
+// (viewPosition) is k-th from the left. Barrier-back counts views left to right, barrier-front
+// right to left.
+std::vector<int> designViewsLeftToRight(const DisplayDesign& design);
+
+// Maps camera views (leftmost camera first, interlacedViewCount of them) onto the image layer:
+// each is resampled by area to the image layer's resolution if it differs, given to the design
+// view seen from its place in the row of eyes, and interleaved (interleaveViews). Throws
+// std::invalid_argument for a wrong count (callers check and report it).
+Image interlaceCameraViews(const DisplayDesign& design, const std::vector<Image>& cameraViews);
+
+// The eye of camera k of `count`, spread evenly across the view zone S at distance D:
+// (e_c + S ((k + 0.5) / count - 0.5), y_e, D). For count = views this is the design eye of the
+// k-th view from the left.
+Vec3d quiltEyePosition(const DisplayDesign& design, int camera, int count);
+
+// Renders `count` off-axis views of the display's window (WindowCamera, sheared frustum) of
+// width x height pixels from quiltEyePosition, leftmost camera first. Slit masks get the
+// one-axis perspective of renderDirectMapping (identical for eyes on the view line).
+std::vector<Image> renderQuiltViews(const Scene& scene, const Accelerator& accelerator,
+                                    const DisplayDesign& design, const RenderSettings& settings,
+                                    int count, int width, int height, RenderStats* stats = nullptr,
+                                    const ProgressCallback& progress = {});
+
+}  // namespace parallax

@@ -1,0 +1,256 @@
+// Quilts and the direct mapping of camera views. Truths: names and tile positions worked out by
+// hand from the convention (docs/quilts.md), the display's own geometry (viewIndex, the ray of
+// a pixel, viewPosition), and renderDirectMapping as a second code path.
+#include "parallax/render/quilt.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "parallax/core/error.h"
+#include "parallax/render/display_render.h"
+
+namespace parallax {
+namespace {
+
+Image solid(int width, int height, float value) {
+  return Image(width, height, Vec3f(value));
+}
+
+DisplaySpec smallDisplay(LayerOrder order) {
+  DisplaySpec s = defaultDisplaySpec();  // 9 views, D = 600 mm, g = 3 mm
+  s.order = order;
+  s.imagePanel.width = s.maskPanel.width = 180;
+  s.imagePanel.height = s.maskPanel.height = 60;
+  return s;
+}
+
+TEST(QuiltName, ParsesTheLayout) {
+  QuiltLayout a = parseQuiltName("scene_qs5x9a1.7778.png");
+  EXPECT_EQ(a.columns, 5);
+  EXPECT_EQ(a.rows, 9);
+  EXPECT_DOUBLE_EQ(a.aspect, 1.7778);
+  a = parseQuiltName("/renders/v1.2/shot_qs8x6a0.75.jpg");
+  EXPECT_EQ(a.columns, 8);
+  EXPECT_EQ(a.rows, 6);
+  EXPECT_DOUBLE_EQ(a.aspect, 0.75);
+  a = parseQuiltName("old_qs2x2a1_qs11x6a2.pfm");  // the last _qs counts
+  EXPECT_EQ(a.columns, 11);
+  EXPECT_EQ(a.rows, 6);
+  EXPECT_DOUBLE_EQ(a.aspect, 2.0);
+}
+
+TEST(QuiltName, RejectsMalformedNamesNamingTheFile) {
+  for (const char* name :
+       {"scene.png", "scene_qs5x9.png", "scene_qs5x9a.png", "scene_qs0x9a1.png",
+        "scene_qs5by9a1.png", "scene_qs5x9a1.7778_final.png", "scene_qs5x9a0.png",
+        "scene_qs5x9a-1.png", "scene_qs5x99999999999a1.png", "scene_qsx9a1.png"}) {
+    try {
+      parseQuiltName(name);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), name);
+      EXPECT_NE(std::string(e.what()).find("_qs"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(QuiltName, WrittenNamesReadBack) {
+  EXPECT_EQ(formatQuiltAspect(1.0), "1");
+  EXPECT_EQ(formatQuiltAspect(0.75), "0.75");
+  EXPECT_EQ(formatQuiltAspect(1920.0 / 1080.0), "1.7778");
+  const QuiltLayout layout{3, 3, 1920.0 / 1080.0};
+  const std::string name = quiltFileName("quilt", layout, ".png");
+  EXPECT_EQ(name, "quilt_qs3x3a1.7778.png");
+  const QuiltLayout back = parseQuiltName(name);
+  EXPECT_EQ(back.columns, 3);
+  EXPECT_EQ(back.rows, 3);
+  EXPECT_NEAR(back.aspect, layout.aspect, 5e-5);
+}
+
+TEST(ColumnsByRows, ParsesAndRejects) {
+  int c = 0, r = 0;
+  EXPECT_TRUE(parseColumnsByRows("5x9", c, r));
+  EXPECT_EQ(c, 5);
+  EXPECT_EQ(r, 9);
+  for (const char* bad : {"", "5", "5x", "x9", "5x9x2", "0x3", "3x0", "-3x3", "3 x3", "3x3 "})
+    EXPECT_FALSE(parseColumnsByRows(bad, c, r)) << bad;
+}
+
+TEST(Quilt, TilesStartAtTheBottomLeft) {
+  // 3 x 2 tiles of 4 x 3: view k is a solid k. By the convention, the bottom row (image rows
+  // 3-5) holds views 0, 1, 2 from left to right and the top row (rows 0-2) views 3, 4, 5.
+  std::vector<Image> views;
+  for (int k = 0; k < 6; ++k) views.push_back(solid(4, 3, float(k)));
+  const Image quilt = assembleQuilt(views, 3, 2);
+  ASSERT_EQ(quilt.width(), 12);
+  ASSERT_EQ(quilt.height(), 6);
+  EXPECT_EQ(quilt.at(0, 5).x, 0.0f);   // bottom-left
+  EXPECT_EQ(quilt.at(5, 4).x, 1.0f);   // bottom row, second tile
+  EXPECT_EQ(quilt.at(11, 3).x, 2.0f);  // bottom-right
+  EXPECT_EQ(quilt.at(0, 2).x, 3.0f);   // top row starts on the left
+  EXPECT_EQ(quilt.at(7, 0).x, 4.0f);
+  EXPECT_EQ(quilt.at(11, 0).x, 5.0f);  // top-right: the last view
+  const std::vector<Image> back = splitQuilt(quilt, {3, 2, 0.0}, "q");
+  ASSERT_EQ(back.size(), 6u);
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(back[size_t(k)].pixels(), views[size_t(k)].pixels()) << k;
+}
+
+TEST(Quilt, RoundTripKeepsEveryPixel) {
+  std::vector<Image> views;
+  for (int k = 0; k < 12; ++k) {
+    Image v(5, 4);
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 5; ++x) v.at(x, y) = Vec3f(float(k), float(x), float(y));
+    views.push_back(v);
+  }
+  const Image quilt = assembleQuilt(views, 4, 3);
+  const std::vector<Image> back = splitQuilt(quilt, {4, 3, 1.25}, "q");
+  ASSERT_EQ(back.size(), views.size());
+  for (size_t k = 0; k < views.size(); ++k) EXPECT_EQ(back[k].pixels(), views[k].pixels()) << k;
+}
+
+TEST(Quilt, PaddingAtTheTopAndRightIsIgnored) {
+  // 13 x 7 pixels in 3 x 2 tiles: tiles of 4 x 3 from the bottom-left; column 12 and row 0
+  // are padding.
+  Image quilt(13, 7, Vec3f(-1.0f));
+  for (int y = 1; y < 7; ++y)
+    for (int x = 0; x < 12; ++x) quilt.at(x, y) = Vec3f(float(x / 4 + 3 * ((6 - y) / 3)));
+  const std::vector<Image> views = splitQuilt(quilt, {3, 2, 0.0}, "q");
+  ASSERT_EQ(views.size(), 6u);
+  for (int k = 0; k < 6; ++k) {
+    ASSERT_EQ(views[size_t(k)].width(), 4);
+    ASSERT_EQ(views[size_t(k)].height(), 3);
+    EXPECT_EQ(views[size_t(k)].pixels(), solid(4, 3, float(k)).pixels()) << k;
+  }
+}
+
+TEST(Quilt, TileAspectMustAgreeWithTheName) {
+  const Image quilt(12, 6);  // 3 x 2 tiles of 4 x 3: aspect 1.333
+  EXPECT_NO_THROW(splitQuilt(quilt, {3, 2, 1.3333}, "q_qs3x2a1.3333.png"));
+  EXPECT_NO_THROW(splitQuilt(quilt, {3, 2, 1.3}, "q"));  // within 5%: a squeezed quilt
+  try {
+    splitQuilt(quilt, {2, 3, 1.3333}, "q_qs2x3a1.3333.png");  // rows and columns swapped
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "q_qs2x3a1.3333.png");
+  }
+  EXPECT_THROW(splitQuilt(Image(2, 2), {3, 1, 0.0}, "q"), InputError);
+}
+
+TEST(Interlace, ViewCountIsRoundedViewsOrThreeTimesWithSubpixels) {
+  DisplaySpec s = smallDisplay(LayerOrder::BarrierBack);
+  EXPECT_EQ(interlacedViewCount(designDisplay(s)), 9);
+  s.subpixelRays = true;
+  EXPECT_EQ(interlacedViewCount(designDisplay(s)), 27);
+  EXPECT_THROW(interlaceCameraViews(designDisplay(s), std::vector<Image>(9, solid(180, 60, 0))),
+               std::invalid_argument);
+}
+
+TEST(Interlace, BarrierBackCountsViewsLeftToRightAndBarrierFrontRightToLeft) {
+  // Barrier-back: the backlight aperture sits behind the group centre, so a pixel left of the
+  // centre sends its light to the left: view 0 (the group's leftmost column) is seen from the
+  // left. Barrier-front: the aperture is in front, a left pixel is seen from the right.
+  const std::vector<int> back =
+      designViewsLeftToRight(designDisplay(smallDisplay(LayerOrder::BarrierBack)));
+  const std::vector<int> front =
+      designViewsLeftToRight(designDisplay(smallDisplay(LayerOrder::BarrierFront)));
+  ASSERT_EQ(back.size(), 9u);
+  ASSERT_EQ(front.size(), 9u);
+  for (int k = 0; k < 9; ++k) {
+    EXPECT_EQ(back[size_t(k)], k);
+    EXPECT_EQ(front[size_t(k)], 8 - k);
+  }
+}
+
+TEST(Interlace, SolidViewsGoToTheirViewIndexAndLeftmostEye) {
+  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+    const DisplayDesign d = designDisplay(smallDisplay(order));
+    const BarrierRayGenerator rays(d);
+    std::vector<Image> cameras;  // camera k (k-th from the left) shows a solid k
+    for (int k = 0; k < 9; ++k) cameras.push_back(solid(180, 60, float(k)));
+    const Image image = interlaceCameraViews(d, cameras);
+    for (int y = 0; y < 60; y += 11)
+      for (int x = 0; x < 180; ++x) {
+        const int camera = int(image.at(x, y).x);
+        const int view = rays.viewIndex(x, y);
+        // Barrier-back: the colour is the view index itself; barrier-front: mirrored.
+        EXPECT_EQ(camera, order == LayerOrder::BarrierBack ? view : 8 - view) << x << "," << y;
+        // The pixel's central display ray leaves toward the eye of its camera: camera k's
+        // picture is seen from the k-th eye from the left (spaced S / 9 = 55 mm apart).
+        const BarrierRay ray = rays.ray(x + 0.5, y + 0.5, 0.5, 0.5);
+        EXPECT_NEAR(ray.origin.x, rays.viewPosition(view).x, 0.5);
+        EXPECT_NEAR(ray.origin.x, quiltEyePosition(d, camera, 9).x, 0.5) << x << "," << y;
+      }
+    // The leftmost camera is seen from the leftmost design eye.
+    double leftmost = 1e9;
+    int leftmostView = -1;
+    for (int v = 0; v < 9; ++v)
+      if (rays.viewPosition(v).x < leftmost) leftmost = rays.viewPosition(v).x, leftmostView = v;
+    for (int x = 0; x < 180; ++x)
+      if (rays.viewIndex(x, 30) == leftmostView) {
+        EXPECT_EQ(image.at(x, 30).x, 0.0f) << x;
+      }
+  }
+}
+
+TEST(Interlace, SubpixelChannelsComeFromTheirOwnCameras) {
+  DisplaySpec s = smallDisplay(LayerOrder::BarrierBack);
+  s.subpixelRays = true;
+  const DisplayDesign d = designDisplay(s);
+  const BarrierRayGenerator rays(d);
+  std::vector<Image> cameras;
+  for (int k = 0; k < 27; ++k) cameras.push_back(solid(180, 60, float(k)));
+  const Image image = interlaceCameraViews(d, cameras);
+  const std::vector<int> order = designViewsLeftToRight(d);
+  for (int x = 0; x < 180; ++x)
+    for (int i = 0; i < 3; ++i) {
+      const int column = 3 * x + i, view = rays.viewIndex(column, 20);
+      const int camera = int(std::find(order.begin(), order.end(), view) - order.begin());
+      EXPECT_EQ(image.at(x, 20)[rays.channelOfColumn(column)], float(camera)) << column;
+    }
+}
+
+TEST(Interlace, ViewsOfAnotherSizeAreResampled) {
+  const DisplayDesign d = designDisplay(smallDisplay(LayerOrder::BarrierBack));
+  std::vector<Image> full, half;
+  for (int k = 0; k < 9; ++k) {
+    full.push_back(solid(180, 60, float(k)));
+    half.push_back(solid(90, 30, float(k)));
+  }
+  EXPECT_EQ(interlaceCameraViews(d, half).pixels(), interlaceCameraViews(d, full).pixels());
+}
+
+TEST(Interlace, QuiltOfTheDisplaysViewsIsTheDirectMapping) {
+  // Two code paths: renderDirectMapping renders design view v from viewPosition(v); here the
+  // views are rendered from eyes spread evenly over S, tiled into a quilt, cut out again and
+  // interlaced by camera order.
+  Scene scene = defaultScene();
+  scene.display.width = 1.5f;  // the 49.4 mm display frames the box
+  const Accelerator accel(scene);
+  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+    const DisplayDesign d = designDisplay(smallDisplay(order));
+    const BarrierRayGenerator rays(d);
+    const std::vector<int> designView = designViewsLeftToRight(d);
+    for (int k = 0; k < 9; ++k)
+      EXPECT_NEAR(quiltEyePosition(d, k, 9).x, rays.viewPosition(designView[size_t(k)]).x, 1e-9);
+
+    const std::vector<Image> views = renderQuiltViews(scene, accel, d, {}, 9, 180, 60);
+    const Image quilt = assembleQuilt(views, 3, 3);
+    const QuiltLayout layout = parseQuiltName(quiltFileName("quilt", {3, 3, 3.0}, ".png"));
+    const Image image = interlaceCameraViews(d, splitQuilt(quilt, layout, "quilt"));
+    const Image direct = renderDirectMapping(scene, accel, d, {}).image;
+    ASSERT_EQ(image.pixels().size(), direct.pixels().size());
+    int close = 0;
+    for (size_t i = 0; i < image.pixels().size(); ++i)
+      close += length(image.pixels()[i] - direct.pixels()[i]) <= 1e-3f;
+    EXPECT_GE(close, int(image.pixels().size()) * 99 / 100);
+    // And the picture is not trivially uniform: views differ from one another.
+    EXPECT_NE(views[0].pixels(), views[8].pixels());
+  }
+}
+
+}  // namespace
+}  // namespace parallax

@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# `parallax lenticular` as a user meets it. Usage: cli_lenticular_test.sh PARALLAX_BINARY SOURCE_DIR
+set -u
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+passes=0
+check() {  # check NAME CONDITION...
+  local name=$1
+  shift
+  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name" >&2; failures=$((failures + 1)); fi
+}
+# run EXPECTED_CODE ARGS...: runs the binary, keeps stdout/stderr in $tmp/out and $tmp/err
+run() {
+  local expected=$1
+  shift
+  "$bin" "$@" >"$tmp/out" 2>"$tmp/err"
+  local code=$?
+  if [ "$code" -ne "$expected" ]; then
+    echo "exit $code (expected $expected) for: parallax $*" >&2
+    cat "$tmp/err" >&2
+    return 1
+  fi
+}
+one_line_naming() {  # stderr is exactly one line and contains the text
+  [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qF -- "$1" "$tmp/err"
+}
+is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
+png_size() { od -An -tu1 -j16 -N8 "$1" | awk '{print $3*256+$4 "x" $7*256+$8}'; }
+
+# A small device-style calibration: every field {"value": n}.
+cat >"$tmp/small.json" <<'JSON'
+{"serial": "TEST", "pitch": {"value": 13.7}, "slope": {"value": -6.2}, "center": {"value": 0.4},
+ "viewCone": {"value": 40}, "invView": {"value": 1}, "DPI": {"value": 81},
+ "screenW": {"value": 96}, "screenH": {"value": 128}, "flipImageX": {"value": 0},
+ "flipImageY": {"value": 0}, "flipSubp": {"value": 0}}
+JSON
+
+check "lenticular without a subcommand exits 2" run 2 lenticular
+check "render" run 0 lenticular render "$tmp/small.json" -o "$tmp/r"
+check "render wrote image.png" is_png "$tmp/r/image.png"
+check "image has the panel's size" test "$(png_size "$tmp/r/image.png")" = "96x128"
+check "render wrote render.json" grep -q '"pitch_px"' "$tmp/r/render.json"
+check "render.json has the view distance" grep -q '"view_distance_mm"' "$tmp/r/render.json"
+check "render wrote the calibration beside it" grep -q '"value"' "$tmp/r/visual.json"
+check "render left no temporary files" bash -c "! ls '$tmp/r' | grep -q tmp"
+check "render a scene file with spp 4" run 0 lenticular render "$tmp/small.json" \
+  "$src/scenes/spheres.json" --spp 4 -o "$tmp/r4"
+
+check "simulate DIR" run 0 lenticular simulate "$tmp/r" --eye 0,0,1374 -o "$tmp/v.png"
+check "simulated view has the panel's size" test "$(png_size "$tmp/v.png")" = "96x128"
+check "simulate DIR CALIBRATION" run 0 lenticular simulate "$tmp/r" "$tmp/small.json" -o "$tmp/v2.png"
+check "simulate --image" run 0 lenticular simulate --image "$tmp/r/image.png" "$tmp/small.json" \
+  --eye 300,50,1000 -o "$tmp/v3.png"
+check "simulate --image wrote a PNG" is_png "$tmp/v3.png"
+check "every example calibration loads (up to the panel size check)" bash -c "for f in '$src'/displays/lenticular/*.json; do
+  '$bin' lenticular simulate --image '$tmp/r/image.png' \"\$f\" -o '$tmp/x.png' 2>&1 |
+  grep -q '/screenW' || exit 1; done"
+
+# Bad input: one line naming the file and key, exit 2, no output.
+sed 's/"slope": {"value": -6.2}, //' "$tmp/small.json" >"$tmp/noslope.json"
+check "missing field exits 2" run 2 lenticular render "$tmp/noslope.json" -o "$tmp/bad1"
+check "missing field names the key" one_line_naming "noslope.json: /slope: missing"
+check "failed render writes nothing" test ! -e "$tmp/bad1"
+sed 's/"serial"/"serail"/' "$tmp/small.json" >"$tmp/typo.json"
+check "unknown field exits 2" run 2 lenticular render "$tmp/typo.json" -o "$tmp/bad2"
+check "unknown field names the key" one_line_naming "typo.json: /serail: unknown key"
+printf '{"pitch": 13.7, "slope": -6.2, "center": 0.4, "viewCone": 40, "invView": 1, "DPI": 81,
+ "screenW": 96, "screenH": 128}' >"$tmp/plain.json"
+check "plain numbers are accepted" run 0 lenticular simulate "$tmp/r" "$tmp/plain.json" -o "$tmp/p.png"
+check "missing calibration exits 2" run 2 lenticular render "$tmp/nope.json" -o "$tmp/bad3"
+check "missing calibration names the file" one_line_naming "nope.json"
+check "wrong panel size exits 2" run 2 lenticular simulate --image "$tmp/r/image.png" \
+  "$src/displays/lenticular/portrait-like.json" -o "$tmp/bad4.png"
+check "wrong panel size names the key" one_line_naming "/screenW"
+check "no view after the error" test ! -e "$tmp/bad4.png"
+check "eye behind the panel exits 2" run 2 lenticular simulate "$tmp/r" --eye 0,0,-5 -o "$tmp/b.png"
+check "eye behind the panel names the option" one_line_naming "--eye"
+check "bad spp exits 2" run 2 lenticular render "$tmp/small.json" --spp 0 -o "$tmp/bad5"
+check "simulate without inputs exits 2" run 2 lenticular simulate -o "$tmp/n.png"
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]
