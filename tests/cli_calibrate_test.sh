@@ -81,7 +81,8 @@ check "the error names --steps" one_line_naming "--steps"
 # Prediction against G1: an eye at 800 mm wants Tv = 9 (800 + 3) / 800 for the built-in
 # display; tolerance 1 / (2N) + step / 2 with N = 213 groups (calibration_test.cpp).
 check "predict --json" run 0 calibrate predict --eye 0,0,800 --json
-for key in screen_period_px slit_period_px phase_px distance_over_gap view_distance_mm contrast; do
+for key in screen_period_px slit_period_px phase_px distance_over_gap view_distance_mm contrast \
+  at_range_edge; do
   check "predict reports $key" grep -q "\"$key\"" "$tmp/out"
 done
 check "predicted slit period follows G1" near "$(json_number slit_period_px)" 9.03375 0.0025
@@ -102,7 +103,7 @@ check "slit period kept" near "$(json_number slit_period_px)" 9.0347 1e-9
 check "gap kept" near "$(json_number gap_mm)" 2.7 1e-9
 check "D = g / (Tv/Tx - 1) (barrier-back)" near "$(json_number view_distance_mm)" \
   "$(awk 'BEGIN { printf "%.10f", 2.7 / (9.0347 / 9 - 1) }')" 1e-6
-check "phase kept" grep -q '"phase_px": 0.25' "$tmp/cal/back.json"
+check "measured phase kept as the panel offset" grep -q '"panel_offset_px": 0.25' "$tmp/cal/back.json"
 check "apply (barrier-front)" run 0 calibrate apply --screen-period 9 --slit-period 8.97 \
   --display "$tmp/front.json" -o "$tmp/cal/front.json"
 check "design reads it" run 0 design "$tmp/cal/front.json" --json

@@ -129,6 +129,7 @@ void runPredict(const PredictOptions& o) {
     json.set("/search/from_px", p.fromPx);
     json.set("/search/to_px", p.toPx);
     json.set("/search/step_px", p.stepPx);
+    json.set("/search/at_range_edge", p.atRangeEdge);
     std::printf("%s\n", json.dump().c_str());
     return;
   }
@@ -143,6 +144,10 @@ void runPredict(const PredictOptions& o) {
   std::printf("contrast             %.3f (Michelson, against one view to each side)\n",
               p.score.contrast);
   std::printf("uniformity           %.3f (1 - std/mean across the view)\n", p.score.uniformity);
+  if (p.atRangeEdge)
+    std::printf(
+        "note                 the best period is at the edge of the searched range; "
+        "widen it with --from/--to\n");
 }
 
 // ---- apply -------------------------------------------------------------------------------
@@ -158,15 +163,17 @@ void runApply(const ApplyOptions& o) {
   // What is wrong from here on came from the command line.
   base.source = "command line";
   if (o.gap) base.gapMm = *o.gap;
-  const DisplaySpec spec =
-      measuredDisplaySpec(base, o.screenPeriod, o.slitPeriod, o.phase.value_or(base.mask.phasePx));
+  // The phase measured from the view-zone centre is the panels' sideways misalignment: it
+  // moves the drawn mask (panel_offset_px), not the apertures the rays are traced through.
+  DisplaySpec spec = measuredDisplaySpec(base, o.screenPeriod, o.slitPeriod, base.mask.phasePx);
+  if (o.phase) spec.mask.panelOffsetPx = *o.phase;
   const DisplayDesign d = designDisplay(spec);
   writeFileAtomically(o.output, displayFileText(spec));
   std::printf("wrote %s\n", o.output.c_str());
   std::printf(
-      "Tx %g px, Tv %g mask px, phase %g px, g %g mm: D = %.1f mm (G1), S = %.1f mm, "
+      "Tx %g px, Tv %g mask px, panel offset %g px, g %g mm: D = %.1f mm (G1), S = %.1f mm, "
       "%.4g views\n",
-      d.screenPeriodPx, d.slitPeriodPx, spec.mask.phasePx, d.gapMm, d.viewDistanceMm,
+      d.screenPeriodPx, d.slitPeriodPx, spec.mask.panelOffsetPx, d.gapMm, d.viewDistanceMm,
       d.viewZoneWidthMm, d.views);
 }
 
@@ -221,7 +228,9 @@ void registerCalibrateCommand(CLI::App& cli) {
       ->required();
   a->add_option("--slit-period", apply->slitPeriod, "Measured slit period Tv (mask px)")
       ->required();
-  a->add_option("--phase", apply->phase, "Measured mask phase (mask px; default: the base's)");
+  a->add_option("--phase", apply->phase,
+                "Mask phase (mask px) that looked right from the view-zone centre: written as "
+                "the mask panel's offset (moves the drawn mask, not the traced apertures)");
   a->add_option("--gap", apply->gap, "Gap g in mm (default: the base display's)");
   a->add_option("--display", apply->display, "Base display file (built-in display if omitted)");
   a->add_option("-o,--output", apply->output, "Display file to write")->required();

@@ -28,8 +28,12 @@ struct Panel {
 
 struct MaskSpec {
   MaskKind kind = MaskKind::Slits;
-  double dutyCycle = 1.0 / 9.0;    // aperture width / slit period (and height / period, pinholes)
-  double phasePx = 0.0;            // shift of the whole mask, in mask pixels
+  double dutyCycle = 1.0 / 9.0;  // aperture width / slit period (and height / period, pinholes)
+  double phasePx = 0.0;          // shift of the whole mask, in mask pixels
+  // A measured sideways offset of the mask panel against the image panel (calibration), in
+  // mask pixels: the drawn pattern moves by it, the apertures the camera traces do not, so
+  // that the physical apertures land where the rays expect them.
+  double panelOffsetPx = 0.0;
   double slantDegrees = 0.0;       // Slanted: angle from vertical, positive leans right going up
   double wiggleAmplitudeMm = 0.0;  // Wiggling: x offset A sin(2 pi y / wavelength)
   double wiggleWavelengthMm = 0.0;

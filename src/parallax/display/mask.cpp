@@ -39,6 +39,7 @@ MaskGeometry::MaskGeometry(const DisplayDesign& design)
   }
   if (kind_ == MaskKind::Jittered) jitter_ = m.jitterAmplitude * period_;
   inversePeriod_ = 1.0 / period_;
+  drawOffsetMm_ = m.panelOffsetPx * pitch_;
 }
 
 double MaskGeometry::apertureCenterX(int64_t k, double y) const {
@@ -85,6 +86,9 @@ int64_t MaskGeometry::nearestRow(double y) const {
 }
 
 double MaskGeometry::xOverlap(double a, double b, double y) const {
+  // The raster is drawn shifted by the panel offset: pixel [a, b] covers [a, b] - offset of
+  // the aperture pattern.
+  a -= drawOffsetMm_, b -= drawOffsetMm_;
   const double half = 0.5 * apertureWidth_;
   double open = 0.0;
   for (int64_t k = nearestAperture(a, y) - 1, last = nearestAperture(b, y) + 1; k <= last; ++k) {

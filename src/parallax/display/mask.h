@@ -37,6 +37,7 @@ class MaskGeometry {
   double xOverlap(double a, double b, double y) const;  // open length of [a, b] at height y
 
   MaskKind kind_;
+  double drawOffsetMm_ = 0;  // MaskSpec::panelOffsetPx: moves the raster only
   double period_, inversePeriod_ = 0, verticalPeriod_, apertureWidth_, apertureHeight_, phaseMm_;
   double slope_, wiggleAmplitude_, wiggleWavenumber_, jitter_;
   uint64_t seed_;

@@ -103,3 +103,24 @@ TEST(Mask, JitteredSlitsStayInOrderAndAreFoundAgain) {
 
 }  // namespace
 }  // namespace parallax
+
+namespace parallax {
+namespace {
+
+TEST(Mask, PanelOffsetMovesTheRasterButNotTheApertures) {
+  DisplaySpec s = defaultDisplaySpec();
+  s.maskPanel.width = s.imagePanel.width = 240;
+  s.maskPanel.height = s.imagePanel.height = 4;
+  const DisplayDesign plain = designDisplay(s);
+  s.mask.panelOffsetPx = 3.0;
+  const DisplayDesign shifted = designDisplay(s);
+  const MaskGeometry a(plain), b(shifted);
+  // The apertures the camera traces through stay where they were...
+  EXPECT_EQ(a.apertureCenterX(5, 0.0), b.apertureCenterX(5, 0.0));
+  // ...and the drawn pattern moves by exactly three mask pixels.
+  const std::vector<float> ra = a.rasterize(), rb = b.rasterize();
+  for (int x = 0; x + 3 < 240; ++x) EXPECT_NEAR(rb[size_t(x + 3)], ra[size_t(x)], 1e-6f) << x;
+}
+
+}  // namespace
+}  // namespace parallax

@@ -59,8 +59,8 @@ Panel readPanel(const JsonReader& node, const Panel& fallback) {
 }
 
 MaskSpec readMask(const JsonReader& node) {
-  node.expectObject({"type", "duty_cycle", "phase_px", "angle_deg", "amplitude_mm", "wavelength_mm",
-                     "jitter", "seed", "vertical_period_px"});
+  node.expectObject({"type", "duty_cycle", "phase_px", "panel_offset_px", "angle_deg",
+                     "amplitude_mm", "wavelength_mm", "jitter", "seed", "vertical_period_px"});
   MaskSpec m;
   const std::string type = node.string("type", "slits");
   if (type == "slits")
@@ -82,6 +82,7 @@ MaskSpec readMask(const JsonReader& node) {
   };
   m.dutyCycle = number("duty_cycle", m.dutyCycle);
   m.phasePx = number("phase_px", 0.0);
+  m.panelOffsetPx = number("panel_offset_px", 0.0);
   m.slantDegrees = number("angle_deg", 0.0);
   m.wiggleAmplitudeMm = number("amplitude_mm", 0.0);
   m.wiggleWavelengthMm = number("wavelength_mm", 0.0);
@@ -171,6 +172,7 @@ std::string displayFileText(const DisplaySpec& s) {
   json.set("/mask/type", maskName(m.kind));
   json.set("/mask/duty_cycle", m.dutyCycle);
   json.set("/mask/phase_px", m.phasePx);
+  if (m.panelOffsetPx != 0.0) json.set("/mask/panel_offset_px", m.panelOffsetPx);
   if (m.kind == MaskKind::Slanted) json.set("/mask/angle_deg", m.slantDegrees);
   if (m.kind == MaskKind::Wiggling) {
     json.set("/mask/amplitude_mm", m.wiggleAmplitudeMm);
@@ -228,6 +230,7 @@ void writeDesignJson(JsonWriter& json, const std::string& at, const DisplayDesig
   finiteOr("/farthest_consistent_distance_mm", d.farthestConsistentDistanceMm);
   json.set(at + "/duty_cycle", d.spec.mask.dutyCycle);
   json.set(at + "/phase_px", d.spec.mask.phasePx);
+  json.set(at + "/panel_offset_px", d.spec.mask.panelOffsetPx);
   const MaskSpec& m = d.spec.mask;
   if (m.kind == MaskKind::Slanted) json.set(at + "/mask_angle_deg", m.slantDegrees);
   if (m.kind == MaskKind::Wiggling) {

@@ -24,30 +24,28 @@ std::string fixed(double value, int decimals) {
   return text;
 }
 
-// Screen and slit periods in mm, as front and rear periods of the layer order.
+// G1 with D > 0: the rear period exceeds the front one (the slit period is the rear one
+// behind the image, barrier-back, and the front one in front of it, barrier-front).
 bool rearExceedsFront(const DisplaySpec& d, double screenPeriodPx, double slitPeriodPx) {
   const double screen = screenPeriodPx * d.imagePanel.pitchMm;
   const double slit = slitPeriodPx * d.maskPanel.pitchMm;
   return d.order == LayerOrder::BarrierBack ? slit > screen : screen > slit;
 }
 
-// G1 for a slit period given on the command line: Tr/Tf = (D + g)/D > 1.
+// A slit period given on the command line (or its default): at least 2 pixels, and G1.
 void checkSlitPeriod(const DisplaySpec& d, int screenPeriodPx, double slitPeriodPx,
                      const std::string& option) {
   if (!(slitPeriodPx >= 2.0) || !std::isfinite(slitPeriodPx))
     throw optionError(option, "the slit period must be at least 2 mask pixels (got " +
                                   fixed(slitPeriodPx, 4) + ")");
-  if (!rearExceedsFront(d, screenPeriodPx, slitPeriodPx)) {
-    const double screenInMaskPx = screenPeriodPx * d.imagePanel.pitchMm / d.maskPanel.pitchMm;
-    throw optionError(option, std::string("G1 needs the rear period to exceed the front period; ") +
-                                  (d.order == LayerOrder::BarrierBack ? "barrier-back: the slit "
-                                                                        "period must exceed"
-                                                                      : "barrier-front: the slit "
-                                                                        "period must be shorter "
-                                                                        "than") +
-                                  " the screen period, " + fixed(screenInMaskPx, 4) +
-                                  " mask px (got " + fixed(slitPeriodPx, 4) + ")");
-  }
+  if (rearExceedsFront(d, screenPeriodPx, slitPeriodPx)) return;
+  const double screenInMaskPx = screenPeriodPx * d.imagePanel.pitchMm / d.maskPanel.pitchMm;
+  const std::string relation = d.order == LayerOrder::BarrierBack
+                                   ? "barrier-back: the slit period must exceed"
+                                   : "barrier-front: the slit period must be shorter than";
+  throw optionError(option, "G1 needs the rear period to exceed the front period; " + relation +
+                                " the screen period, " + fixed(screenInMaskPx, 4) +
+                                " mask px (got " + fixed(slitPeriodPx, 4) + ")");
 }
 
 // A one-row strip of the display: vertical slits look the same in every row.
@@ -92,6 +90,19 @@ Vec3f hue(double h) {
     return float(std::clamp(2.0 - d, 0.0, 1.0));
   };
   return {ramp(0.0), ramp(2.0), ramp(4.0)};
+}
+
+// Whether the number `text`, centred in a picture of groups x rows cells with font pixels sx
+// cells wide and sy rows high, covers cell (group, row).
+bool numberCovers(const std::string& text, int groups, int rows, int sx, int sy, int group,
+                  int row) {
+  const int advance = kGlyphAdvance * int(text.size());
+  const int gx = group - (groups - (advance - 1) * sx) / 2;
+  const int gy = row - (rows - kGlyphHeight * sy) / 2;
+  if (gx < 0 || gy < 0 || gy >= kGlyphHeight * sy) return false;
+  const int cell = gx / sx, character = cell / kGlyphAdvance, column = cell % kGlyphAdvance;
+  if (character >= int(text.size()) || column >= kGlyphWidth) return false;
+  return (glyphRows(text[size_t(character)])[gy / sy] >> (kGlyphWidth - 1 - column)) & 1u;
 }
 
 // Peak position by a parabola through three equally spaced samples, as an offset in steps.
@@ -169,43 +180,49 @@ std::vector<PatternDescription> calibrationPatternSet(const DisplaySpec& display
     const size_t digits = std::max<size_t>(2, std::to_string(count).size());
     return std::string(digits - std::min(digits, text.size()), '0') + text;
   };
-  const auto mask = [&](std::string file, std::string purpose, double period, double phase) {
-    PatternDescription p{std::move(file),
-                         PatternKind::MaskSlits,
-                         true,
-                         std::move(purpose),
-                         s.screenPeriodPx,
-                         period,
-                         phase,
-                         s.duty,
-                         s.labelScale,
-                         ""};
-    p.label = "TV " + fixed(period, 4) + " PH " + fixed(phase, 2);
+  const auto pattern = [&s](std::string file, PatternKind kind, std::string purpose, double period,
+                            double phase, std::string label = "") {
+    PatternDescription p;
+    p.file = std::move(file);
+    p.kind = kind;
+    p.maskLayer = kind == PatternKind::MaskSlits;
+    p.purpose = std::move(purpose);
+    p.screenPeriodPx = s.screenPeriodPx;
+    p.slitPeriodPx = period;
+    p.phasePx = phase;
+    p.duty = s.duty;
+    p.labelScale = s.labelScale;
+    p.label = p.maskLayer ? "TV " + fixed(period, 4) + " PH " + fixed(phase, 2) : std::move(label);
     return p;
   };
+  const auto mask = PatternKind::MaskSlits;
   std::vector<PatternDescription> set;
-  set.push_back({"image-slits.png", PatternKind::ScreenSlits, false,
-                 "image layer: white slits at the screen period; show it with every mask pattern",
-                 s.screenPeriodPx, s.slitPeriodPx, s.phasePx, s.duty, s.labelScale, tx});
+  set.push_back(pattern("image-slits.png", PatternKind::ScreenSlits,
+                        "image layer: white slits at the screen period; show it with every mask "
+                        "pattern",
+                        s.slitPeriodPx, s.phasePx, tx));
   for (int i = 0; i < s.periodSteps; ++i) {
     const double t = s.periodSteps == 1 ? 0.5 : double(i) / double(s.periodSteps - 1);
-    set.push_back(mask("mask-period-" + number(i + 1, s.periodSteps) + ".png",
-                       "period sweep: the one that looks uniformly white from one place",
-                       s.fromPx + t * (s.toPx - s.fromPx), s.phasePx));
+    set.push_back(pattern("mask-period-" + number(i + 1, s.periodSteps) + ".png", mask,
+                          "period sweep: the one that looks uniformly white from one place",
+                          s.fromPx + t * (s.toPx - s.fromPx), s.phasePx));
   }
   const int phases = int(std::ceil(s.slitPeriodPx / s.phaseStepPx - 1e-9));
   for (int j = 0; j < phases; ++j)
-    set.push_back(mask("mask-phase-" + number(j + 1, phases) + ".png",
-                       "phase sweep: the one that is white from where you sit", s.slitPeriodPx,
-                       s.phasePx + j * s.phaseStepPx));
-  set.push_back(mask("mask-slits.png", "the mask for image-views.png and image-colours.png",
-                     s.slitPeriodPx, s.phasePx));
-  set.push_back({"image-views.png", PatternKind::NumberedViews, false,
-                 "image layer: each view shows its number in its own colour (with mask-slits)",
-                 s.screenPeriodPx, s.slitPeriodPx, s.phasePx, s.duty, s.labelScale, "VIEWS " + tx});
-  set.push_back({"image-colours.png", PatternKind::ColourTest, false,
-                 "image layer: white, red, green and blue slits in bands (with mask-slits)",
-                 s.screenPeriodPx, s.slitPeriodPx, s.phasePx, s.duty, s.labelScale, "WRGB " + tx});
+    set.push_back(pattern("mask-phase-" + number(j + 1, phases) + ".png", mask,
+                          "phase sweep: the one that is white from where you sit", s.slitPeriodPx,
+                          s.phasePx + j * s.phaseStepPx));
+  set.push_back(pattern("mask-slits.png", mask,
+                        "the mask for image-views.png and image-colours.png", s.slitPeriodPx,
+                        s.phasePx));
+  set.push_back(pattern("image-views.png", PatternKind::NumberedViews,
+                        "image layer: each view shows its number in its own colour (with "
+                        "mask-slits)",
+                        s.slitPeriodPx, s.phasePx, "VIEWS " + tx));
+  set.push_back(pattern("image-colours.png", PatternKind::ColourTest,
+                        "image layer: white, red, green and blue slits in bands (with "
+                        "mask-slits)",
+                        s.slitPeriodPx, s.phasePx, "WRGB " + tx));
   return set;
 }
 
@@ -260,32 +277,22 @@ Image numberedViewImage(const DisplaySpec& display, int screenPeriodPx, double s
   spec.subpixelRays = false;
   const BarrierRayGenerator rays(designDisplay(spec));
   const Panel& panel = display.imagePanel;
+  // Each view is a picture of one column per group by the panel's rows. A font pixel is sy
+  // rows high and sx groups wide, about square on the panel, and the widest number fits.
   const int groups = (panel.width + screenPeriodPx - 1) / screenPeriodPx;
-  Image image(panel.width, panel.height);
-  // Each view is a picture of `groups` columns (one pixel per group) by the panel's rows; a
-  // font pixel is sx groups wide and sy rows high, about square on the panel.
+  const int digits = int(std::to_string(screenPeriodPx - 1).size());
   const int sy = std::max(1, int(0.6 * panel.height / kGlyphHeight));
-  for (int x = 0; x < panel.width; ++x) {
-    const int group = x / screenPeriodPx;
+  const int sx = std::max(1, std::min(int(0.8 * groups / (digits * kGlyphAdvance)),
+                                      int(std::lround(double(sy) / screenPeriodPx))));
+  Image image(panel.width, panel.height);
+  for (int x = 0; x < panel.width; ++x)
     for (int y = 0; y < panel.height; ++y) {
       const int view = rays.viewIndex(x, y);
-      const std::string text = std::to_string(view);
-      const int advance = kGlyphAdvance * int(text.size());
-      const int sx = std::max(
-          1, std::min(int(0.8 * groups / advance), int(std::lround(double(sy) / screenPeriodPx))));
-      const int left = (groups - (advance - 1) * sx) / 2,
-                top = (panel.height - kGlyphHeight * sy) / 2;
       const Vec3f colour = viewColour(view, screenPeriodPx);
-      bool lit = false;
-      const int gx = group - left, gy = y - top;
-      if (gx >= 0 && gy >= 0 && gy < kGlyphHeight * sy) {
-        const int cell = gx / sx, character = cell / kGlyphAdvance, column = cell % kGlyphAdvance;
-        if (character < int(text.size()) && column < kGlyphWidth)
-          lit = (glyphRows(text[size_t(character)])[gy / sy] >> (kGlyphWidth - 1 - column)) & 1u;
-      }
+      const bool lit =
+          numberCovers(std::to_string(view), groups, panel.height, sx, sy, x / screenPeriodPx, y);
       image.at(x, y) = lit ? colour : colour * 0.15f;
     }
-  }
   return image;
 }
 
@@ -478,6 +485,7 @@ CalibrationPrediction predictCalibration(const DisplaySpec& assumed, const Displ
   phase = refinePhase(p.slitPeriodPx, phase);
   p.phasePx = phase - p.slitPeriodPx * std::ceil(phase / p.slitPeriodPx - 0.5);
   p.stepPx = fine;
+  p.atRangeEdge = std::min(p.slitPeriodPx - p.fromPx, p.toPx - p.slitPeriodPx) < step;
   p.score = scorer.score(p.slitPeriodPx, p.phasePx);
   const double slitMm = p.slitPeriodPx * assumed.maskPanel.pitchMm;
   const double screenMm = tx * assumed.imagePanel.pitchMm;

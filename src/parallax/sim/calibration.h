@@ -8,7 +8,8 @@
 // the w pixels starting at floor((Tx - w) / 2) are lit (the central view for odd Tx, w = 1).
 // The mask layer shows slits at a fractional period Tv and phase, rasterised by MaskGeometry
 // exactly as `render` draws a display file with these measured periods, so the phase found
-// here is the display file's mask.phase_px.
+// here is the display file's mask.phase_px (docs/calibration.md, "The phase", says what that
+// can and cannot compensate on a real display).
 #pragma once
 
 #include <string>
@@ -108,7 +109,7 @@ struct CalibrationScore {
   // What the search maximises: (B0 - Bn) / the image layer's mean, the light that reaches this
   // eye and not its neighbours. Uniformity is reported, not optimised: with anti-aliased slits
   // it is dominated by the moire of the slits against the mask's pixel grid, and weighting by
-  // it moved the optimum by 1/5 of the tolerance (docs/calibration.md).
+  // it doubled the search's error, to 0.0005 pixels (docs/calibration.md).
   double score = 0;
 };
 
@@ -121,7 +122,7 @@ class CalibrationScorer {
   // eye: display mm. samplesPerPixel: samples across each front-layer pixel. Throws
   // std::invalid_argument if the two displays' panels differ in size, pitch or order.
   CalibrationScorer(const DisplaySpec& assumed, const DisplayDesign& physics, const Vec3d& eye,
-                    int screenPeriodPx, double duty = 0, int samplesPerPixel = 16);
+                    int screenPeriodPx, double duty = 0, int samplesPerPixel = 8);
   // Uniformity costs a box filter; the search does without it (see score's comment).
   CalibrationScore score(double slitPeriodPx, double phasePx, bool uniformity = true) const;
   // Eyes one view to each side: one image pixel seen across the assumed gap,
@@ -151,13 +152,18 @@ struct CalibrationPrediction {
   double slitPeriodPx = 0, phasePx = 0;  // phase in (-Tv/2, Tv/2]
   double distanceOverGap = 0;            // D / g = 1 / (Tr/Tf - 1), G1
   CalibrationScore score;
-  double fromPx = 0, toPx = 0, stepPx = 0;    // searched range and the finest period step
+  double fromPx = 0, toPx = 0, stepPx = 0;  // searched range and the finest period step
+  bool atRangeEdge = false;                 // within one coarse step of either end: widen the range
   std::vector<double> periods, periodScores;  // coarse pass: best score over phases
 };
 
-// Searches the slit period for the integer screen period (coarse steps of 1/(4N) mask pixels,
-// N groups across, best of one-pixel phase steps at each; then ten times finer around the best,
-// with parabolic interpolation), then the phase (1/32 pixel steps, interpolated).
+// Searches the slit period for the integer screen period in coarse steps of 1/(4N) mask pixels
+// (N groups across), each at the best of phases one pixel apart; then the phase at the best
+// period in 1/32 pixel steps; then the period ten times finer around it; then the phase again.
+// Peaks are interpolated with a parabola. `physics` must have `assumed`'s panels and order.
+// This is the contrast optimum; it follows G1 within 1/(2N) pixels when N is 50 groups or
+// more. On narrower panels anti-aliasing, which blurs slits that straddle two mask pixels,
+// pulls it toward periods whose slits stay on whole pixels (docs/calibration.md).
 CalibrationPrediction predictCalibration(const DisplaySpec& assumed, const DisplayDesign& physics,
                                          const Vec3d& eye, const PredictionSettings& settings);
 
