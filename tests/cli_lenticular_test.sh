@@ -1,34 +1,7 @@
 #!/usr/bin/env bash
 # `parallax lenticular` as a user meets it. Usage: cli_lenticular_test.sh PARALLAX_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-passes=0
-check() {  # check NAME CONDITION...
-  local name=$1
-  shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name" >&2; failures=$((failures + 1)); fi
-}
-# run EXPECTED_CODE ARGS...: runs the binary, keeps stdout/stderr in $tmp/out and $tmp/err
-run() {
-  local expected=$1
-  shift
-  "$bin" "$@" >"$tmp/out" 2>"$tmp/err"
-  local code=$?
-  if [ "$code" -ne "$expected" ]; then
-    echo "exit $code (expected $expected) for: parallax $*" >&2
-    cat "$tmp/err" >&2
-    return 1
-  fi
-}
-one_line_naming() {  # stderr is exactly one line and contains the text
-  [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qF -- "$1" "$tmp/err"
-}
-is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
-png_size() { od -An -tu1 -j16 -N8 "$1" | awk '{print $3*256+$4 "x" $7*256+$8}'; }
+source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
 
 # A small device-style calibration: every field {"value": n}.
 cat >"$tmp/small.json" <<'JSON'
@@ -81,5 +54,4 @@ check "eye behind the panel names the option" one_line_naming "--eye"
 check "bad spp exits 2" run 2 lenticular render "$tmp/small.json" --spp 0 -o "$tmp/bad5"
 check "simulate without inputs exits 2" run 2 lenticular simulate -o "$tmp/n.png"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+cli_summary

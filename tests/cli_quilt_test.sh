@@ -2,33 +2,7 @@
 # Multi-view content end to end: `render --quilt`, `interlace` from views and from a quilt, and
 # their errors. Usage: cli_quilt_test.sh PARALLAX_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-passes=0
-check() {  # check NAME CONDITION...
-  local name=$1
-  shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name" >&2; failures=$((failures + 1)); fi
-}
-# run EXPECTED_CODE ARGS...: runs the binary, keeps stdout/stderr in $tmp/out and $tmp/err
-run() {
-  local expected=$1
-  shift
-  "$bin" "$@" >"$tmp/out" 2>"$tmp/err"
-  local code=$?
-  if [ "$code" -ne "$expected" ]; then
-    echo "exit $code (expected $expected) for: parallax $*" >&2
-    cat "$tmp/err" >&2
-    return 1
-  fi
-}
-one_line_naming() {  # stderr is exactly one line and contains the text
-  [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qF -- "$1" "$tmp/err"
-}
-is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
+source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
 # pfm_close A B: two PFM images of one size agree to 1e-3 in at least 99% of their values.
 pfm_close() {
   [ "$(head -3 "$1")" = "$(head -3 "$2")" ] || return 1
@@ -120,5 +94,4 @@ check "interlace the PNG quilt" run 0 interlace "$tmp/q/quilt_qs3x3a1.7778.png" 
 check "--quilt-layout gives the same image" cmp -s "$tmp/il/image.png" "$tmp/iqp/image.png"
 check "no output after the errors" bash -c "! ls -d '$tmp'/e? 2>/dev/null | grep -q ."
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+cli_summary

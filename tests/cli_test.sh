@@ -1,33 +1,7 @@
 #!/usr/bin/env bash
 # The command line as a user meets it. Usage: cli_test.sh PARALLAX_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-passes=0
-check() {  # check NAME CONDITION...
-  local name=$1
-  shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name" >&2; failures=$((failures + 1)); fi
-}
-# run EXPECTED_CODE ARGS...: runs the binary, keeps stdout/stderr in $tmp/out and $tmp/err
-run() {
-  local expected=$1
-  shift
-  "$bin" "$@" >"$tmp/out" 2>"$tmp/err"
-  local code=$?
-  if [ "$code" -ne "$expected" ]; then
-    echo "exit $code (expected $expected) for: parallax $*" >&2
-    cat "$tmp/err" >&2
-    return 1
-  fi
-}
-one_line_naming() {  # stderr is exactly one line and contains the text
-  [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qF -- "$1" "$tmp/err"
-}
-is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
+source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
 
 check "help" run 0 --help
 check "view renders the built-in scene" run 0 view --size 64x36 --spp 1 -o "$tmp/v.png"
@@ -128,5 +102,4 @@ check "mismatched display names the key" one_line_naming "/image_layer/resolutio
 check "eye behind the display exits 2" run 2 simulate "$tmp/r" --eye 0,0,-1 -o "$tmp/b.png"
 check "bench --simulate" run 0 bench --simulate 2 --display "$tmp/small.json" --json
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+cli_summary
