@@ -36,7 +36,10 @@ DisplayCamera::DisplayCamera(const DisplayDesign& design, const DisplayPlacement
 void DisplayCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
   alignas(64) double origin[3][16], direction[3][16];
   rays_.rays16(s.x, s.y, s.apertureU, s.apertureV, origin, direction);
-  const auto& m = affine_;
+  // A local copy of the matrix: the packet cannot alias it, so the loop vectorises.
+  float m[3][4];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) m[r][c] = affine_[r][c];
   for (int i = 0; i < 16; ++i) {
     const float x = float(origin[0][i]), y = float(origin[1][i]), z = float(origin[2][i]);
     const float dx = float(direction[0][i]), dy = float(direction[1][i]);

@@ -81,22 +81,29 @@ void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], c
   const double inversePeriod = 1.0 / period, s = maskFromImage_, sv = virtualMaskFromImage_;
   const double periodX = design_.screenPeriodMm * sv;
   const double originZ = virtualDistance_, t = originZ - zImageVirtual_;
-  alignas(64) double fx[16], fy[16], fu[16];
+  // Members and outputs as locals: nothing can alias, so the lane loop vectorises.
+  const double eyeX = eyeX_, eyeY = eyeY_, imageFromMask = imageFromMask_;
+  const double inverseGap = inverseVirtualGap_, inverseDepth = inverseViewDepth_;
+  const double pitch = p.pitchMm;
+  alignas(64) double fx[16], fy[16], fu[16], o[3][16], d[2][16];
   for (int i = 0; i < 16; ++i) fx[i] = filmX[i], fy[i] = filmY[i], fu[i] = u[i];
   for (int i = 0; i < 16; ++i) {
     const double centreX = left + (std::floor(fx[i]) + 0.5) * columnWidth;
     const double sampleX = left + fx[i] * columnWidth;
-    const double sampleY = top - fy[i] * p.pitchMm;
+    const double sampleY = top - fy[i] * pitch;
     const double k =
-        std::floor((eyeX_ + (centreX - eyeX_) * s - apertureBase) * inversePeriod + 0.5);
-    const double groupX = eyeX_ + (apertureBase + k * period - eyeX_) * imageFromMask_;
-    const double apertureX = eyeX_ + (groupX - eyeX_) * sv + (fu[i] - 0.5) * periodX;
-    const double slopeX = (apertureX - sampleX) * inverseVirtualGap_;
-    const double slopeY = (eyeY_ - sampleY) * inverseViewDepth_;
-    origin[0][i] = sampleX + slopeX * t;
-    origin[1][i] = sampleY + slopeY * t;
-    origin[2][i] = originZ;
-    direction[0][i] = -slopeX, direction[1][i] = -slopeY, direction[2][i] = -1.0;
+        std::floor((eyeX + (centreX - eyeX) * s - apertureBase) * inversePeriod + 0.5);
+    const double groupX = eyeX + (apertureBase + k * period - eyeX) * imageFromMask;
+    const double apertureX = eyeX + (groupX - eyeX) * sv + (fu[i] - 0.5) * periodX;
+    const double slopeX = (apertureX - sampleX) * inverseGap;
+    const double slopeY = (eyeY - sampleY) * inverseDepth;
+    o[0][i] = sampleX + slopeX * t;
+    o[1][i] = sampleY + slopeY * t;
+    d[0][i] = -slopeX, d[1][i] = -slopeY;
+  }
+  for (int i = 0; i < 16; ++i) {
+    origin[0][i] = o[0][i], origin[1][i] = o[1][i], origin[2][i] = originZ;
+    direction[0][i] = d[0][i], direction[1][i] = d[1][i], direction[2][i] = -1.0;
   }
   (void)v;
 }
