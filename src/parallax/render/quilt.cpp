@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <numeric>
-#include <regex>
 #include <stdexcept>
 
 #include "parallax/camera/display_camera.h"
@@ -47,16 +46,24 @@ QuiltLayout parseQuiltName(const std::string& path) {
   if (at == std::string::npos)
     throw InputError(path, "", "no quilt layout: " + std::string(kNameConvention));
   const std::string ending = stem.substr(at);
-  // The whole ending, to the extension: _qs, columns, x, rows, a, a positive decimal number.
-  static const std::regex pattern(R"(_qs([0-9]+x[0-9]+)a([0-9]+(\.[0-9]+)?))");
-  std::smatch match;
+  // The whole ending, to the extension: _qs, columns, x, rows, a, a positive decimal number
+  // (digits, optionally a point and more digits).
+  const size_t a = ending.find('a', 3);
+  const std::string counts = a == std::string::npos ? "" : ending.substr(3, a - 3);
+  const std::string aspect = a == std::string::npos ? "" : ending.substr(a + 1);
+  const size_t point = aspect.find('.');
+  const auto digits = [](const std::string& t) {
+    return !t.empty() && t.find_first_not_of("0123456789") == std::string::npos;
+  };
+  const bool aspectOk = point == std::string::npos
+                            ? digits(aspect)
+                            : digits(aspect.substr(0, point)) && digits(aspect.substr(point + 1));
   QuiltLayout layout;
-  if (!std::regex_match(ending, match, pattern) ||
-      !parseColumnsByRows(match[1].str(), layout.columns, layout.rows))
+  if (!aspectOk || !parseColumnsByRows(counts, layout.columns, layout.rows))
     throw InputError(path, "", "malformed quilt layout '" + ending + "': " + kNameConvention);
-  layout.aspect = std::stod(match[2].str());
+  layout.aspect = std::stod(aspect);
   if (!(layout.aspect > 0) || !std::isfinite(layout.aspect))
-    throw InputError(path, "", "quilt aspect must be positive, got '" + match[2].str() + "'");
+    throw InputError(path, "", "quilt aspect must be positive, got '" + aspect + "'");
   return layout;
 }
 
