@@ -91,8 +91,7 @@ void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], c
     const double centreX = left + (std::floor(fx[i]) + 0.5) * columnWidth;
     const double sampleX = left + fx[i] * columnWidth;
     const double sampleY = top - fy[i] * pitch;
-    const double k =
-        std::floor((eyeX + (centreX - eyeX) * s - apertureBase) * inversePeriod + 0.5);
+    const double k = std::floor((eyeX + (centreX - eyeX) * s - apertureBase) * inversePeriod + 0.5);
     const double groupX = eyeX + (apertureBase + k * period - eyeX) * imageFromMask;
     const double apertureX = eyeX + (groupX - eyeX) * sv + (fu[i] - 0.5) * periodX;
     const double slopeX = (apertureX - sampleX) * inverseGap;
