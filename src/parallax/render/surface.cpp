@@ -1,5 +1,6 @@
 #include "parallax/render/surface.h"
 
+#include <bit>
 #include <cmath>
 
 namespace parallax {
@@ -114,54 +115,64 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
   }
 
   // Material terms per lane; checkerboards are evaluated afterwards for all lanes at once.
-  alignas(64) float albedo[3][16], mirror[3][16], emission[3][16];
-  alignas(64) float checkerA[3][16], checkerB[3][16], checkerScale[16];
-  alignas(64) int32_t checker[16];
-  for (int i = 0; i < 16; ++i) {
-    checker[i] = 0;
-    checkerScale[i] = 0.0f;
-    for (int c = 0; c < 3; ++c)
-      albedo[c][i] = mirror[c][i] = emission[c][i] = checkerA[c][i] = checkerB[c][i] = 0.0f;
-    if (!hit[i]) continue;
-    const Geometry& g = geometries_[hits.geometry[i]];
-    const Material& material = *g.material;
-    for (int c = 0; c < 3; ++c) {
-      albedo[c][i] = material.diffuse[c];
-      mirror[c][i] = material.mirror[c];
-      emission[c][i] = material.emission[c];
-    }
-    if (g.sphere) {
-      const Vec3f n = normalize(Vec3f{px[i], py[i], pz[i]} - g.sphere->center);
-      gx[i] = nx[i] = n.x, gy[i] = ny[i] = n.y, gz[i] = nz[i] = n.z;
-    }
-    const uint32_t* tri = g.mesh ? &g.mesh->indices[size_t(hits.primitive[i]) * 3] : nullptr;
-    const float b1 = hits.u[i], b2 = hits.v[i], b0 = 1.0f - b1 - b2;
-    if (g.smoothNormals) {
-      const auto& normals = g.mesh->normals;
-      const Vec3f n = normals[tri[0]] * b0 + normals[tri[1]] * b1 + normals[tri[2]] * b2;
-      const float len2 = dot(n, n);
-      if (len2 > 0.0f) {
-        const float inv = 1.0f / std::sqrt(len2);
-        nx[i] = n.x * inv, ny[i] = n.y * inv, nz[i] = n.z * inv;
+  // Lanes mostly share their object, so each distinct object is looked up once and its terms
+  // are written to all its lanes by a masked SIMD loop; only spheres, smooth normals and image
+  // textures need per-lane scalar work.
+  alignas(64) float albedo[3][16] = {}, mirror[3][16] = {}, emission[3][16] = {};
+  alignas(64) float checkerA[3][16] = {}, checkerB[3][16] = {}, checkerScale[16] = {};
+  alignas(64) int32_t checker[16] = {}, geometry[16];
+  for (int i = 0; i < 16; ++i) geometry[i] = hit[i] ? int32_t(hits.geometry[i]) : -1;
+  uint32_t pending = 0;
+  for (int i = 0; i < 16; ++i) pending |= hit[i] ? 1u << i : 0u;
+  while (pending != 0) {
+    const int first = std::countr_zero(pending);
+    const int32_t id = geometry[first];
+    const Geometry& g = geometries_[size_t(id)];
+    const Material& m = *g.material;
+    const bool isChecker = g.texture && g.texture->kind == Texture::Kind::Checker;
+    const Vec3f cA = isChecker ? g.texture->color : Vec3f(0.0f);
+    const Vec3f cB = isChecker ? g.texture->color2 : Vec3f(0.0f);
+    const float scale = isChecker ? 1.0f / g.texture->checkerSize : 0.0f;
+    PARALLAX_SIMD
+    for (int i = 0; i < 16; ++i) {
+      if (geometry[i] != id) continue;
+      for (int c = 0; c < 3; ++c) {
+        albedo[c][i] = m.diffuse[c], mirror[c][i] = m.mirror[c], emission[c][i] = m.emission[c];
+        checkerA[c][i] = cA[c], checkerB[c][i] = cB[c];
       }
+      checker[i] = isChecker, checkerScale[i] = scale;
     }
-    if (!g.texture) continue;
-    if (g.texture->kind == Texture::Kind::Checker) {
-      checker[i] = 1;
-      checkerScale[i] = 1.0f / g.texture->checkerSize;
-      for (int c = 0; c < 3; ++c)
-        checkerA[c][i] = g.texture->color[c], checkerB[c][i] = g.texture->color2[c];
-      continue;
+    for (int i = first; i < 16; ++i)
+      if (geometry[i] == id) pending &= ~(1u << i);
+    if (!g.sphere && !g.smoothNormals && (!g.texture || isChecker)) continue;
+    for (int i = first; i < 16; ++i) {
+      if (geometry[i] != id) continue;
+      if (g.sphere) {
+        const Vec3f n = normalize(Vec3f{px[i], py[i], pz[i]} - g.sphere->center);
+        gx[i] = nx[i] = n.x, gy[i] = ny[i] = n.y, gz[i] = nz[i] = n.z;
+      }
+      const uint32_t* tri = g.mesh ? &g.mesh->indices[size_t(hits.primitive[i]) * 3] : nullptr;
+      const float b1 = hits.u[i], b2 = hits.v[i], b0 = 1.0f - b1 - b2;
+      if (g.smoothNormals) {
+        const auto& normals = g.mesh->normals;
+        const Vec3f n = normals[tri[0]] * b0 + normals[tri[1]] * b1 + normals[tri[2]] * b2;
+        const float len2 = dot(n, n);
+        if (len2 > 0.0f) {
+          const float inv = 1.0f / std::sqrt(len2);
+          nx[i] = n.x * inv, ny[i] = n.y * inv, nz[i] = n.z * inv;
+        }
+      }
+      if (!g.texture || isChecker) continue;
+      Vec2f uv{b1, b2};
+      if (g.sphere) {
+        uv = {0.5f + std::atan2(gz[i], gx[i]) / (2.0f * kPi), 0.5f + std::asin(gy[i]) / kPi};
+      } else if (!g.mesh->uvs.empty()) {
+        const Vec2f ua = g.mesh->uvs[tri[0]], ub = g.mesh->uvs[tri[1]], uc = g.mesh->uvs[tri[2]];
+        uv = {ua.x * b0 + ub.x * b1 + uc.x * b2, ua.y * b0 + ub.y * b1 + uc.y * b2};
+      }
+      const Vec3f tex = evaluateTexture(scene_, *g.texture, {px[i], py[i], pz[i]}, uv);
+      for (int c = 0; c < 3; ++c) albedo[c][i] *= tex[c];
     }
-    Vec2f uv{b1, b2};
-    if (g.sphere) {
-      uv = {0.5f + std::atan2(gz[i], gx[i]) / (2.0f * kPi), 0.5f + std::asin(gy[i]) / kPi};
-    } else if (!g.mesh->uvs.empty()) {
-      const Vec2f a = g.mesh->uvs[tri[0]], b = g.mesh->uvs[tri[1]], c = g.mesh->uvs[tri[2]];
-      uv = {a.x * b0 + b.x * b1 + c.x * b2, a.y * b0 + b.y * b1 + c.y * b2};
-    }
-    const Vec3f tex = evaluateTexture(scene_, *g.texture, {px[i], py[i], pz[i]}, uv);
-    for (int c = 0; c < 3; ++c) albedo[c][i] *= tex[c];
   }
 
   // Solid checkerboards (evaluateTexture's Checker case), then both normals onto the side the
