@@ -95,22 +95,6 @@ uint32_t pngCrc32(std::string_view bytes) {
   return c ^ 0xFFFFFFFFu;
 }
 
-std::string pngBytes(const Image& image) {
-  if (image.empty()) throw std::invalid_argument("pngBytes: empty image");
-  std::vector<unsigned char> codes;
-  codes.reserve(image.pixels().size() * 3);
-  for (const Vec3f& p : image.pixels())
-    for (int c = 0; c < 3; ++c) codes.push_back(linearToSrgb8(p[c]));
-  std::string out;
-  auto append = [](void* context, void* bytes, int size) {
-    static_cast<std::string*>(context)->append(static_cast<const char*>(bytes), size_t(size));
-  };
-  if (!stbi_write_png_to_func(append, &out, image.width(), image.height(), 3, codes.data(),
-                              image.width() * 3))
-    throw std::runtime_error("PNG encoding failed");
-  return out;
-}
-
 std::string encodeApng(const std::vector<Image>& frames, int delayMs, int loops) {
   if (frames.empty()) throw std::invalid_argument("encodeApng: no frames");
   if (delayMs < 0 || delayMs > 65535)

@@ -8,12 +8,9 @@
 #include <vector>
 
 #include "parallax/image/image.h"
+#include "parallax/io/image_file.h"  // pngBytes
 
 namespace parallax {
-
-// The bytes of an 8-bit sRGB RGB PNG of `image` (linear light, clamped to [0,1]).
-// Throws std::invalid_argument for an empty image.
-std::string pngBytes(const Image& image);
 
 // CRC-32 as used by PNG chunks (ISO 3309 / ITU-T V.42, polynomial 0xEDB88320 reflected;
 // PNG specification, annex D). crc32("IEND") == 0xAE426082.

@@ -182,7 +182,10 @@ Image decodeWithStb(const std::string& bytes, const std::string& path) {
   return imageFromCodes(pixels.get(), width, height, channels, srgb8ToLinear);
 }
 
-std::string encodePng(const Image& image) {
+}  // namespace
+
+std::string pngBytes(const Image& image) {
+  if (image.empty()) throw std::invalid_argument("pngBytes: empty image");
   std::vector<unsigned char> codes;
   codes.reserve(image.pixels().size() * 3);
   for (const Vec3f& p : image.pixels())
@@ -196,6 +199,8 @@ std::string encodePng(const Image& image) {
     throw std::runtime_error("PNG encoding failed");
   return out;
 }
+
+namespace {
 
 std::runtime_error ioFailure(const std::string& what, const std::string& path, int error) {
   return std::runtime_error("cannot " + what + " " + path + ": " +
@@ -215,7 +220,7 @@ void writeImage(const std::string& path, const Image& image) {
   if (image.empty()) throw std::invalid_argument("writeImage: empty image for " + path);
   const std::string ext = lowerExtension(path);
   if (ext == ".png")
-    writeFileAtomically(path, encodePng(image));
+    writeFileAtomically(path, pngBytes(image));
   else if (ext == ".pfm")
     writeFileAtomically(path, encodePfm(image));
   else

@@ -14,6 +14,9 @@ namespace parallax {
 Image readImage(const std::string& path);
 // Throws InputError for an unknown extension and std::runtime_error for an I/O failure.
 void writeImage(const std::string& path, const Image& image);
+// The bytes of an 8-bit sRGB PNG of `image` (linear light, clamped to [0,1]), in memory.
+// Throws std::invalid_argument for an empty image.
+std::string pngBytes(const Image& image);
 // Writes bytes to `path` atomically (temporary file + rename); creates missing parent folders.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
 
