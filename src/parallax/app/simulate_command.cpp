@@ -123,6 +123,19 @@ double periodInPixels(const DisplayDesign& d, int width) {
   return d.screenPeriodMm / (d.frontWidthMm() / double(width));
 }
 
+// An image at the display's spatial resolution: integrated over one group, across (and, for
+// pinhole grids, also down: one vertical pinhole period seen on the image layer).
+Image atDisplayResolution(const DisplayDesign& d, const Image& image) {
+  Image out = boxFilterX(image, periodInPixels(d, image.width()));
+  if (d.spec.mask.kind == MaskKind::Pinholes) {
+    const double rowPeriodMm = d.spec.mask.verticalPeriodPx * d.spec.maskPanel.pitchMm *
+                               (d.viewDistanceMm - d.imageLayerZ()) /
+                               (d.viewDistanceMm - d.maskLayerZ());
+    out = boxFilterY(out, rowPeriodMm / (d.frontHeightMm() / double(image.height())));
+  }
+  return out;
+}
+
 // The ideal view of the scene from the eye (one-axis perspective for slit displays), brought
 // to the display's spatial resolution by a box filter one screen period wide.
 Image referenceView(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& d,
@@ -132,7 +145,7 @@ Image referenceView(const Scene& scene, const Accelerator& accelerator, const Di
   RenderSettings settings;
   settings.samplesPerPixel = spp;
   settings.threads = threads;
-  return boxFilterX(render(scene, accelerator, camera, settings), periodInPixels(d, width));
+  return atDisplayResolution(d, render(scene, accelerator, camera, settings));
 }
 
 void runSimulate(const SimulateOptions& o) {
@@ -158,7 +171,7 @@ void runSimulate(const SimulateOptions& o) {
   // screen period around it; --raw-pixels keeps the pinhole eye's samples as they are.
   std::vector<Image> pictures;
   for (const Image& view : views)
-    pictures.push_back(o.rawPixels ? view : boxFilterX(view, periodInPixels(d, view.width())));
+    pictures.push_back(o.rawPixels ? view : atDisplayResolution(d, view));
 
   std::vector<std::string> written;
   if (o.sweep > 0) {
@@ -191,8 +204,7 @@ void runSimulate(const SimulateOptions& o) {
       const Image reference = referenceView(scene, accelerator, d, eyes[i], views[i].width(),
                                             views[i].height(), o.referenceSpp, o.threads);
       Quality q;
-      const Image seen =
-          o.rawPixels ? boxFilterX(views[i], periodInPixels(d, views[i].width())) : pictures[i];
+      const Image seen = o.rawPixels ? atDisplayResolution(d, views[i]) : pictures[i];
       q.psnr = psnr(seen, reference);
       q.ssim = ssim(seen, reference);
       // Brightness is the raw mean transmittance, whatever --raw says for the pictures.

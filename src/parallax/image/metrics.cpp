@@ -56,6 +56,16 @@ Plane filterValid(const Plane& in, const std::vector<double>& kernel) {
 
 }  // namespace
 
+Image boxFilterY(const Image& image, double heightPx) {
+  const auto transpose = [](const Image& in) {
+    Image out(in.height(), in.width());
+    for (int y = 0; y < in.height(); ++y)
+      for (int x = 0; x < in.width(); ++x) out.at(y, x) = in.at(x, y);
+    return out;
+  };
+  return transpose(boxFilterX(transpose(image), heightPx));
+}
+
 double meanLuminance(const Image& image) {
   double sum = 0;
   for (const Vec3f& p : image.pixels()) sum += luminance(p);

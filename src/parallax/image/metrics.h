@@ -33,5 +33,7 @@ double ssim(const Image& a, const Image& b);
 // the box clipped to the image and renormalised at the edges. Brings a reference down to the
 // display's spatial resolution (one aperture period).
 Image boxFilterX(const Image& image, double widthPx);
+// The same along y (columns), for displays with vertical parallax (pinhole grids).
+Image boxFilterY(const Image& image, double heightPx);
 
 }  // namespace parallax

@@ -139,3 +139,21 @@ TEST(Metrics, RejectMismatchedImages) {
 
 }  // namespace
 }  // namespace parallax
+
+namespace parallax {
+namespace {
+
+TEST(Metrics, BoxFilterYIsBoxFilterXOfTheTranspose) {
+  Image image(5, 7);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 5; ++x) image.at(x, y) = Vec3f(float((x * 3 + y * y) % 5));
+  Image transposed(7, 5);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 5; ++x) transposed.at(y, x) = image.at(x, y);
+  const Image a = boxFilterY(image, 2.5), b = boxFilterX(transposed, 2.5);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 5; ++x) EXPECT_EQ(a.at(x, y), b.at(y, x));
+}
+
+}  // namespace
+}  // namespace parallax
