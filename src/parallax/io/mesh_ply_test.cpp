@@ -1,0 +1,105 @@
+// PLY (ASCII and binary, both byte orders): synthetic files whose triangles are known by
+// construction.
+#include "parallax/io/mesh_test_support.h"
+
+namespace parallax {
+namespace {
+
+using namespace meshtest;
+
+TEST(MeshFile, AsciiPlyWithExtraElementsAndProperties) {
+  TempDir dir;
+  const std::string path = dir.file("square.ply");
+  // A unit square as one quad, plus a triangle whose corners 0 and 4 coincide (zero area) and
+  // one that repeats index 0: both degenerate. The edge element, the vertex list property and
+  // the face properties around vertex_indices must be read past.
+  writeFile(path,
+            "ply\n"
+            "format ascii 1.0\n"
+            "comment made by hand\n"
+            "Made by hand, without the comment keyword\n"
+            "element vertex 5\n"
+            "property float x\n"
+            "property float y\n"
+            "property float z\n"
+            "property list uchar int tags\n"
+            "property float nx\n"
+            "property float ny\n"
+            "property float nz\n"
+            "property float s\n"
+            "property float t\n"
+            "element edge 1\n"
+            "property int vertex1\n"
+            "property int vertex2\n"
+            "element face 3\n"
+            "property uchar flags\n"
+            "property list uchar int vertex_indices\n"
+            "property list uchar float texcoord\n"
+            "end_header\n"
+            "0 0 0  2 7 8  0 0 2  0 0\n"
+            "1 0 0  0      0 0 2  1 0\n"
+            "1 1 0  1 9    0 0 2  1 1\n"
+            "0 1 0  0      0 0 2  0 1\n"
+            "0 0 0  0      0 0 2  0 0\n"
+            "0 1\n"
+            "5 4 0 1 2 3  2 0.5 0.5\n"
+            "5 3 0 4 1    0\n"
+            "5 3 0 0 2    1 3.0\n");
+  const Scene scene = load(path);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const TriangleMesh& mesh = scene.meshes[0];
+  // A quad becomes the fan (0 1 2), (0 2 3).
+  expectTriangles(mesh, {{Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(1, 1, 0)},
+                         {Vec3f(0, 0, 0), Vec3f(1, 1, 0), Vec3f(0, 1, 0)}});
+  EXPECT_EQ(droppedCount(scene), 2u);
+  EXPECT_EQ(scene.warnings.size(), 2u) << "one for the odd header line, one for the drops";
+  ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+  for (const Vec3f& n : mesh.normals) expectNear(n, {0, 0, 1});  // normalised from (0 0 2)
+  ASSERT_EQ(mesh.uvs.size(), mesh.positions.size());
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    EXPECT_EQ(mesh.uvs[i].x, mesh.positions[i].x);  // s, t equal x, y by construction
+    EXPECT_EQ(mesh.uvs[i].y, mesh.positions[i].y);
+  }
+  // No material in the file: one default grey material.
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_EQ(mesh.material, 0u);
+  expectNear(scene.materials[0].diffuse, Vec3f(0.7f));
+}
+
+TEST(MeshFile, AsciiPlyWithTheShortestPossibleData) {
+  TempDir dir;
+  const std::string path = dir.file("tiny.ply");
+  // One-character values, all on one line and no final newline: ASCII PLY is a token stream.
+  writeFile(path,
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+            "end_header\n0 0 0 1 0 0 0 1 0 3 0 1 2");
+  const Scene scene = load(path);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  expectTriangles(scene.meshes[0], {{Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}});
+}
+
+TEST(MeshFile, BinaryPlyBothByteOrdersWithTransform) {
+  TempDir dir;
+  for (bool bigEndian : {false, true}) {
+    const std::string path = dir.file(bigEndian ? "be.ply" : "le.ply");
+    writeFile(path, binaryPly(bigEndian));
+    MeshLoadOptions options;
+    options.worldFromFile = Transform::translate({1, 2, 3}) * Transform::scale(Vec3f(2.0f));
+    const Scene scene = load(path, options);
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(droppedCount(scene), 0u);
+    // The pentagon's fan: (0 1 2), (0 2 3), (0 3 4), each corner at 2 p + (1, 2, 3).
+    std::vector<std::array<Vec3f, 3>> expected;
+    auto corner = [](int i) {
+      const double angle = 2 * 3.14159265358979 * i / 5;
+      return Vec3f(float(2 * std::cos(angle) + 1), float(2 * std::sin(angle) + 2), 17.0f);
+    };
+    for (int k = 1; k <= 3; ++k) expected.push_back({corner(0), corner(k), corner(k + 1)});
+    expectTriangles(scene.meshes[0], expected);
+    EXPECT_TRUE(scene.meshes[0].normals.empty());
+  }
+}
+
+}  // namespace
+}  // namespace parallax
