@@ -275,6 +275,47 @@ constexpr float kShadowEpsilon = 1e-4f;
 
 }  // namespace
 
+namespace {
+
+// The limit's shading stand-in: one shadow ray from every hit of `primary` toward the light.
+// Returns the number of shadow rays traced.
+uint32_t traceRawShadows(RTCScene scene, RTCIntersectContext& context, RTCRayHit16& primary,
+                         const int primaryValid[16], const Vec3f& lightPosition) {
+  alignas(64) RTCRay16 shadow;
+  alignas(64) int shadowValid[16];
+  uint32_t shadowCount = 0;
+  for (int lane = 0; lane < 16; ++lane) {
+    const bool hit = primaryValid[lane] != 0 && primary.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
+    shadowValid[lane] = hit ? -1 : 0;
+    shadowCount += hit;
+    const float t = hit ? primary.ray.tfar[lane] : 0.0f;
+    const Vec3f origin{primary.ray.org_x[lane] + t * primary.ray.dir_x[lane],
+                       primary.ray.org_y[lane] + t * primary.ray.dir_y[lane],
+                       primary.ray.org_z[lane] + t * primary.ray.dir_z[lane]};
+    const Vec3f toLight = lightPosition - origin;  // unnormalised: the light is at t = 1
+    shadow.org_x[lane] = origin.x, shadow.org_y[lane] = origin.y;
+    shadow.org_z[lane] = origin.z;
+    shadow.dir_x[lane] = toLight.x, shadow.dir_y[lane] = toLight.y;
+    shadow.dir_z[lane] = toLight.z;
+    shadow.tnear[lane] = kShadowEpsilon;
+    shadow.tfar[lane] = 1.0f - kShadowEpsilon;
+    shadow.time[lane] = 0.0f;
+    shadow.mask[lane] = 0xffffffffu;
+    shadow.id[lane] = unsigned(lane);
+    shadow.flags[lane] = 0;
+  }
+  if (shadowCount == 0) return 0;
+  rtcOccluded16(shadowValid, scene, &context, &shadow);
+  // The occlusion results are otherwise unused; a volatile store keeps them observable.
+  uint32_t occluded = 0;
+  for (int lane = 0; lane < 16; ++lane) occluded += shadowValid[lane] != 0 && shadow.tfar[lane] < 0;
+  volatile uint32_t sink = occluded;
+  (void)sink;
+  return shadowCount;
+}
+
+}  // namespace
+
 uint64_t Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int rowEnd,
                                     const Vec3f& lightPosition) const {
   rowBegin = std::max(rowBegin, 0);
@@ -286,11 +327,8 @@ uint64_t Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int r
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // a 4x4 pixel block shares one eye
   alignas(64) RTCRayHit16 primary;
-  alignas(64) RTCRay16 shadow;
   alignas(64) int primaryValid[16];
-  alignas(64) int shadowValid[16];
   uint64_t rayCount = 0;
-  uint32_t occludedCount = 0;
 
   for (int y0 = rowBegin; y0 < rowEnd; y0 += 4)
     for (int x0 = 0; x0 < grid.width; x0 += 4)
@@ -320,40 +358,25 @@ uint64_t Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int r
         }
         rtcIntersect16(primaryValid, impl_->scene, &context, &primary);
         rayCount += uint64_t(primaryCount);
-
-        int shadowCount = 0;
-        for (int lane = 0; lane < 16; ++lane) {
-          const bool hit =
-              primaryValid[lane] != 0 && primary.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
-          shadowValid[lane] = hit ? -1 : 0;
-          shadowCount += hit;
-          const float t = hit ? primary.ray.tfar[lane] : 0.0f;
-          const Vec3f origin{primary.ray.org_x[lane] + t * primary.ray.dir_x[lane],
-                             primary.ray.org_y[lane] + t * primary.ray.dir_y[lane],
-                             primary.ray.org_z[lane] + t * primary.ray.dir_z[lane]};
-          const Vec3f toLight = lightPosition - origin;  // unnormalised: the light is at t = 1
-          shadow.org_x[lane] = origin.x, shadow.org_y[lane] = origin.y;
-          shadow.org_z[lane] = origin.z;
-          shadow.dir_x[lane] = toLight.x, shadow.dir_y[lane] = toLight.y;
-          shadow.dir_z[lane] = toLight.z;
-          shadow.tnear[lane] = kShadowEpsilon;
-          shadow.tfar[lane] = 1.0f - kShadowEpsilon;
-          shadow.time[lane] = 0.0f;
-          shadow.mask[lane] = 0xffffffffu;
-          shadow.id[lane] = unsigned(lane);
-          shadow.flags[lane] = 0;
-        }
-        if (shadowCount == 0) continue;
-        rtcOccluded16(shadowValid, impl_->scene, &context, &shadow);
-        rayCount += uint64_t(shadowCount);
-        for (int lane = 0; lane < 16; ++lane)
-          occludedCount += shadowValid[lane] != 0 && shadow.tfar[lane] < 0.0f;
+        rayCount += traceRawShadows(impl_->scene, context, primary, primaryValid, lightPosition);
       }
-
-  // The occlusion results are otherwise unused; a volatile store keeps them observable.
-  volatile uint32_t sink = occludedCount;
-  (void)sink;
   return rayCount;
+}
+
+uint64_t Accelerator::traceRawPacket(const RayPacket16& rays, const Vec3f& lightPosition) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 primary;
+  fillRays(rays, primary.ray);
+  uint64_t rayCount = 0;
+  for (int lane = 0; lane < 16; ++lane) {
+    primary.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+    primary.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+    rayCount += rays.active[lane] != 0;
+  }
+  rtcIntersect16(rays.active, impl_->scene, &context, &primary);
+  return rayCount + traceRawShadows(impl_->scene, context, primary, rays.active, lightPosition);
 }
 
 }  // namespace parallax

@@ -100,6 +100,9 @@ class Accelerator {
   // Returns the number of rays traced (primary + shadow). Callers parallelise over rows.
   uint64_t traceRawLimit(const PinholeGrid& grid, int rowBegin, int rowEnd,
                          const Vec3f& lightPosition) const;
+  // The same limit on rays someone else made: the active lanes of `rays`, then one shadow ray
+  // per hit toward `lightPosition`. Returns the number of rays traced.
+  uint64_t traceRawPacket(const RayPacket16& rays, const Vec3f& lightPosition) const;
 
  private:
   struct Impl;

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
@@ -69,6 +70,7 @@ struct BenchOptions {
   int threads = 0;
   bool json = false;
   int simulateViews = 0;
+  std::string jitter = "auto";
 };
 
 void runBench(const BenchOptions& o) {
@@ -80,20 +82,34 @@ void runBench(const BenchOptions& o) {
     throw InputError("command line", "--camera",
                      "unknown camera '" + o.camera + "' (pinhole or display)");
   const Scene scene = loadSceneOrDefault(o.scene);
+  RenderSettings settings;
+  settings.samplesPerPixel = o.spp;
+  settings.threads = o.threads;
+  settings.jitter = parseJitter(o.jitter);
   std::unique_ptr<Camera> camera;
+  std::optional<PinholeGrid> limitGrid;
   if (o.camera == "display") {
-    // The display camera renders the image layer at its own resolution.
+    // The display camera renders the image layer at its own resolution. Its limit is a
+    // pinhole at the view-zone centre whose film is the front layer: the same content, seen
+    // by the coherent rays of one eye.
     const DisplayDesign design = loadDesignOrDefault(o.display);
     camera = std::make_unique<DisplayCamera>(design, scene.display);
     width = camera->width(), height = camera->height();
+    const Vec3d eye{design.spec.viewZoneCenterXMm, design.spec.viewZoneHeightMm,
+                    design.viewDistanceMm};
+    limitGrid = WindowCamera(eye, design, scene.display, width, height).grid(o.spp);
   }
   const CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
   const PinholeCamera pinhole(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
+  if (!limitGrid) limitGrid = pinhole.grid(o.spp);
   const Accelerator accelerator(scene);
   const Camera& measured = camera ? static_cast<const Camera&>(*camera) : pinhole;
-  const BenchResult r =
-      benchmark(scene, accelerator, measured, pinhole, o.spp, o.repeats, o.threads);
+  const BenchResult r = benchmark(scene, accelerator, measured, *limitGrid, settings, o.repeats);
   const double peak = peakResidentMiB();
+  const double sameRaysRatio =
+      r.sameRays.perSecond() > 0 ? r.ours.perSecond() / r.sameRays.perSecond() : 0.0;
+  const double rayOrder =
+      r.limit.perSecond() > 0 ? r.sameRays.perSecond() / r.limit.perSecond() : 0.0;
   if (o.json) {
     JsonWriter json;
     json.set("/camera", o.camera);
@@ -102,25 +118,35 @@ void runBench(const BenchOptions& o) {
     json.set("/width", width);
     json.set("/height", height);
     json.set("/spp", o.spp);
-    json.set("/rays", r.rays);
-    json.set("/seconds", r.seconds);
-    json.set("/rays_per_second", r.raysPerSecond());
-    json.set("/limit_rays", r.limitRays);
-    json.set("/limit_seconds", r.limitSeconds);
-    json.set("/limit_rays_per_second", r.limitRaysPerSecond());
+    json.set("/jitter", o.jitter);
+    json.set("/rays", r.ours.rays);
+    json.set("/seconds", r.ours.seconds);
+    json.set("/rays_per_second", r.ours.perSecond());
+    json.set("/limit_rays", r.limit.rays);
+    json.set("/limit_seconds", r.limit.seconds);
+    json.set("/limit_rays_per_second", r.limit.perSecond());
     json.set("/ratio", r.ratio());
+    json.set("/same_rays_limit_rays", r.sameRays.rays);
+    json.set("/same_rays_limit_seconds", r.sameRays.seconds);
+    json.set("/same_rays_limit_rays_per_second", r.sameRays.perSecond());
+    json.set("/same_rays_ratio", sameRaysRatio);
+    json.set("/ray_order_ratio", rayOrder);
     json.set("/peak_rss_mb", peak);
     std::printf("%s\n", json.dump().c_str());
     return;
   }
   std::printf("scene        %s (%zu triangles), %s camera, %dx%d, %d spp\n", scene.source.c_str(),
               scene.triangleCount(), o.camera.c_str(), width, height, o.spp);
-  std::printf("parallax     %12llu rays in %.3f s  %s\n", (unsigned long long)r.rays, r.seconds,
-              formatRate(r.raysPerSecond()).c_str());
-  std::printf("raw Embree   %12llu rays in %.3f s  %s (rtcIntersect16 + rtcOccluded16)\n",
-              (unsigned long long)r.limitRays, r.limitSeconds,
-              formatRate(r.limitRaysPerSecond()).c_str());
-  std::printf("ratio        %.2f\npeak memory  %.0f MiB\n", r.ratio(), peak);
+  std::printf("parallax     %12llu rays in %.3f s  %s\n", (unsigned long long)r.ours.rays,
+              r.ours.seconds, formatRate(r.ours.perSecond()).c_str());
+  std::printf("raw Embree   %12llu rays in %.3f s  %s (coherent pinhole rays)\n",
+              (unsigned long long)r.limit.rays, r.limit.seconds,
+              formatRate(r.limit.perSecond()).c_str());
+  std::printf("  same rays  %12llu rays in %.3f s  %s (this camera's rays, no shading)\n",
+              (unsigned long long)r.sameRays.rays, r.sameRays.seconds,
+              formatRate(r.sameRays.perSecond()).c_str());
+  std::printf("ratio        %.2f  (ray order %.2f x shading %.2f)\npeak memory  %.0f MiB\n",
+              r.ratio(), rayOrder, sameRaysRatio, peak);
 }
 
 }  // namespace
@@ -143,6 +169,10 @@ void registerBenchCommand(CLI::App& cli) {
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)");
   cmd->add_option("--simulate", options->simulateViews,
                   "Instead: time a sweep of N simulated views of the display (9 is the goal)");
+  cmd->add_option("--jitter", options->jitter,
+                  "Within-stratum jitter: auto (the camera's choice), pixel (independent) or "
+                  "packet (shared)")
+      ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });
 }

@@ -31,6 +31,14 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
   height = h;
 }
 
+JitterSharing parseJitter(const std::string& text) {
+  if (text == "auto") return JitterSharing::Auto;
+  if (text == "pixel") return JitterSharing::Pixel;
+  if (text == "packet") return JitterSharing::Packet;
+  throw InputError("command line", "--jitter",
+                   "expected auto, pixel or packet, got '" + text + "'");
+}
+
 Scene loadSceneOrDefault(const std::string& path) {
   return path.empty() ? defaultScene() : loadScene(path);
 }

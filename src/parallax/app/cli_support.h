@@ -8,6 +8,7 @@
 
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
+#include "parallax/render/tile_packets.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax::app {
@@ -18,6 +19,9 @@ inline constexpr int kExitInputError = 2;
 Vec3f parseVec3(const std::string& option, const std::string& text);
 // "WxH" -> (W, H) with both positive; throws InputError naming the option.
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);
+
+// "auto", "pixel" or "packet" (--jitter) -> JitterSharing; throws InputError naming the option.
+JitterSharing parseJitter(const std::string& text);
 
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
 Scene loadSceneOrDefault(const std::string& path);

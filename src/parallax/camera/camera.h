@@ -21,6 +21,15 @@ struct alignas(64) FilmSamples16 {
   FilmSample at(int lane) const { return {x[lane], y[lane], apertureU[lane], apertureV[lane]}; }
 };
 
+// A packet's pixels: `columns` x `rows` (16 in all), its columns `stride` film columns apart.
+// The default, a 4 x 4 block of neighbouring pixels, suits any camera with one eye.
+// `shareJitter`: the camera's rays stay parallel across the packet only if its lanes share
+// the sub-pixel and aperture jitter (the display camera), so the render loop shares it.
+struct PacketShape {
+  int columns = 4, rows = 4, stride = 1;
+  bool shareJitter = false;
+};
+
 class Camera {
  public:
   virtual ~Camera() = default;
@@ -32,9 +41,8 @@ class Camera {
     for (int lane = 0; lane < 16; ++lane)
       if (out.active[lane]) out.set(lane, generateRay(samples.at(lane)));
   }
-  // Film columns this far apart carry nearly parallel rays; the render loop packs them into
-  // one packet so that Embree traverses coherent rays (1: neighbouring pixels).
-  virtual int packetStride() const { return 1; }
+  // Which film pixels share a 16-ray packet, so that Embree traverses coherent rays.
+  virtual PacketShape packetShape() const { return {}; }
 };
 
 // An ideal pinhole camera looking from `eye` at `lookAt`, with a vertical field of view.

@@ -24,7 +24,7 @@ class DisplayCamera final : public Camera {
   int height() const override { return rays_.filmHeight(); }
   Ray generateRay(const FilmSample& sample) const override;
   void generateRays16(const FilmSamples16& samples, RayPacket16& out) const override;
-  int packetStride() const override;
+  PacketShape packetShape() const override;
 
   const BarrierRayGenerator& rays() const { return rays_; }
 
@@ -46,6 +46,11 @@ class WindowCamera final : public Camera {
   int width() const override { return width_; }
   int height() const override { return height_; }
   Ray generateRay(const FilmSample& sample) const override;
+  // The film as a pinhole grid (the benchmark's limit rays); the eye's own perspective, so
+  // only for a camera without `horizontalOnly`.
+  PinholeGrid grid(int samplesPerPixel) const {
+    return {eye_, corner_, stepX_, stepY_, width_, height_, samplesPerPixel};
+  }
 
  private:
   Vec3f eye_, corner_, stepX_, stepY_;

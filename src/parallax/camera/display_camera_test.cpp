@@ -72,7 +72,6 @@ TEST(DisplayCamera, PacketsMatchSingleRays) {
   spec.imagePanel.width = spec.maskPanel.width = 90;
   spec.imagePanel.height = spec.maskPanel.height = 20;
   const DisplayCamera camera(designDisplay(spec), tiltedPlacement());
-  EXPECT_EQ(camera.packetStride(), 9);
   FilmSamples16 samples;
   RayPacket16 packet;
   for (int i = 0; i < 16; ++i) {

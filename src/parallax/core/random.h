@@ -23,12 +23,32 @@ class Rng {
   // Generator for one pixel sample of one render: the same inputs always give the same
   // numbers, whatever thread or tile order draws them.
   static Rng forSample(uint32_t x, uint32_t y, uint32_t sampleIndex, uint64_t renderSeed = 0) {
-    Rng rng;
+    return forSample(pixelStream(x, y, renderSeed), sampleIndex);
+  }
+  // The same in two steps, for loops that reuse a pixel's stream for all its samples: the
+  // pixel's part costs one mix, a sample's part one add.
+  static uint64_t pixelStream(uint32_t x, uint32_t y, uint64_t renderSeed = 0) {
     const uint64_t pixel = (uint64_t(y) << 32) | x;
-    rng.state_ = mix64(pixel ^ (renderSeed * 0xd1b54a32d192ed03ull)) +
-                 uint64_t(sampleIndex) * 0x632be59bd9b4e019ull;
+    return mix64(pixel ^ (renderSeed * 0xd1b54a32d192ed03ull));
+  }
+  static Rng forSample(uint64_t pixelStream, uint32_t sampleIndex) {
+    return fromState(pixelStream + sampleOffset(sampleIndex));
+  }
+  static constexpr uint64_t sampleOffset(uint32_t sampleIndex) {
+    return uint64_t(sampleIndex) * 0x632be59bd9b4e019ull;
+  }
+
+  // The whole generator as one number, for code that keeps sixteen of them in a SIMD array.
+  uint64_t state() const { return state_; }
+  static Rng fromState(uint64_t state) {
+    Rng rng;
+    rng.state_ = state;
     return rng;
   }
+
+  // Moves past `count` draws without computing them: the streams stay the same whichever
+  // draws a caller needs.
+  void skip(uint32_t count) { state_ += uint64_t(count) * 0x9e3779b97f4a7c15ull; }
 
   uint32_t next() {
     state_ += 0x9e3779b97f4a7c15ull;

@@ -26,6 +26,12 @@ BarrierRayGenerator::BarrierRayGenerator(const DisplayDesign& design)
   virtualMaskFromImage_ = std::isinf(virtualDistance_) ? 1.0
                                                        : (virtualDistance_ - zMaskVirtual_) /
                                                              (virtualDistance_ - zImageVirtual_);
+  // Vertical slits serve a film column through the same aperture at every height.
+  if (design.spec.mask.kind == MaskKind::Slits) {
+    apertureCellLeft_.resize(size_t(filmWidth_));
+    for (int column = 0; column < filmWidth_; ++column)
+      apertureCellLeft_[size_t(column)] = associate(column + 0.5, 0.5).cellLeftX;
+  }
 }
 
 int BarrierRayGenerator::channelOfColumn(int column) const {
@@ -73,27 +79,26 @@ void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], c
     }
     return;
   }
-  // ray() for vertical slits and a finite D', written out lane-wise: the same steps 1-3.
+  // ray() for vertical slits and a finite D', written out lane-wise, with the association
+  // (which depends on the film column only) read from the column table.
   const Panel& p = design_.spec.imagePanel;
   const double columnWidth = p.pitchMm / (subpixels_ ? 3.0 : 1.0);
   const double left = -0.5 * p.widthMm(), top = 0.5 * p.heightMm();
-  const double apertureBase = mask_.apertureCenterX(0, 0.0), period = mask_.periodMm();
-  const double inversePeriod = 1.0 / period, s = maskFromImage_, sv = virtualMaskFromImage_;
-  const double periodX = design_.screenPeriodMm * sv;
+  const double periodX = design_.screenPeriodMm * virtualMaskFromImage_;
   const double originZ = virtualDistance_, t = originZ - zImageVirtual_;
-  // Members and outputs as locals: nothing can alias, so the lane loop vectorises.
-  const double eyeX = eyeX_, eyeY = eyeY_, imageFromMask = imageFromMask_;
-  const double inverseGap = inverseVirtualGap_, inverseDepth = inverseViewDepth_;
+  // Members and outputs as locals: nothing can alias, so the lane loops vectorise.
+  const double eyeY = eyeY_, inverseGap = inverseVirtualGap_, inverseDepth = inverseViewDepth_;
   const double pitch = p.pitchMm;
-  alignas(64) double fx[16], fy[16], fu[16], o[3][16], d[2][16];
-  for (int i = 0; i < 16; ++i) fx[i] = filmX[i], fy[i] = filmY[i], fu[i] = u[i];
+  const int lastColumn = filmWidth_ - 1;
+  alignas(64) double fx[16], fy[16], fu[16], cell[16], o[3][16], d[2][16];
   for (int i = 0; i < 16; ++i) {
-    const double centreX = left + (std::floor(fx[i]) + 0.5) * columnWidth;
+    fx[i] = filmX[i], fy[i] = filmY[i], fu[i] = u[i];
+    cell[i] = apertureCellLeft_[size_t(std::clamp(int(std::floor(filmX[i])), 0, lastColumn))];
+  }
+  for (int i = 0; i < 16; ++i) {
     const double sampleX = left + fx[i] * columnWidth;
     const double sampleY = top - fy[i] * pitch;
-    const double k = std::floor((eyeX + (centreX - eyeX) * s - apertureBase) * inversePeriod + 0.5);
-    const double groupX = eyeX + (apertureBase + k * period - eyeX) * imageFromMask;
-    const double apertureX = eyeX + (groupX - eyeX) * sv + (fu[i] - 0.5) * periodX;
+    const double apertureX = cell[i] + fu[i] * periodX;
     const double slopeX = (apertureX - sampleX) * inverseGap;
     const double slopeY = (eyeY - sampleY) * inverseDepth;
     o[0][i] = sampleX + slopeX * t;
@@ -107,33 +112,43 @@ void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], c
   (void)v;
 }
 
-BarrierRay BarrierRayGenerator::ray(double filmX, double filmY, double u, double v) const {
-  BarrierRay r;
+BarrierRayGenerator::Association BarrierRayGenerator::associate(double filmX, double filmY) const {
+  Association a;
   // 1. Association, at the pixel's centre: the aperture nearest to the line from the
   //    view-zone centre through the pixel, where that line crosses the mask.
   const Vec3d centre = imagePoint(std::floor(filmX) + 0.5, std::floor(filmY) + 0.5);
-  const Vec3d sample = imagePoint(filmX, filmY);
   const double s = maskFromImage_;
   const double centreMaskY = eyeY_ + (centre.y - eyeY_) * s;
-  r.aperture = mask_.nearestAperture(eyeX_ + (centre.x - eyeX_) * s, centreMaskY);
-  r.apertureRow = mask_.nearestRow(centreMaskY);
+  a.aperture = mask_.nearestAperture(eyeX_ + (centre.x - eyeX_) * s, centreMaskY);
+  a.apertureRow = mask_.nearestRow(centreMaskY);
   // 2. The group centre: that aperture, at the sample's height on the mask (slanted and
   //    wiggling slits move with y), projected back onto the image layer.
-  const double maskY = eyeY_ + (sample.y - eyeY_) * s;
-  const double groupX = eyeX_ + (mask_.apertureCenterX(r.aperture, maskY) - eyeX_) * imageFromMask_;
-  const double groupY = eyeY_ + (mask_.rowCenterY(r.apertureRow) - eyeY_) * imageFromMask_;
-  // 3. The virtual aperture (section 2.3): the group centre projected toward the virtual
+  const double maskY = eyeY_ + (imagePoint(filmX, filmY).y - eyeY_) * s;
+  a.groupX = eyeX_ + (mask_.apertureCenterX(a.aperture, maskY) - eyeX_) * imageFromMask_;
+  a.groupY = eyeY_ + (mask_.rowCenterY(a.apertureRow) - eyeY_) * imageFromMask_;
+  // 3. The virtual aperture cell (section 2.3): the group centre projected toward the virtual
   //    view-zone centre onto the virtual mask plane, v'_k = e_c + (c_k - e_c) D'/(D' + g')
-  //    for barrier-back, and jittered across one virtual aperture period.
+  //    for barrier-back; the cell spans one virtual aperture period around it.
   const double sv = virtualMaskFromImage_;
-  const double periodX = design_.screenPeriodMm * sv;
-  const double apertureX = eyeX_ + (groupX - eyeX_) * sv + (u - 0.5) * periodX;
+  a.cellLeftX = eyeX_ + (a.groupX - eyeX_) * sv - 0.5 * design_.screenPeriodMm * sv;
+  return a;
+}
+
+BarrierRay BarrierRayGenerator::ray(double filmX, double filmY, double u, double v) const {
+  BarrierRay r;
+  const Association a = associate(filmX, filmY);
+  r.aperture = a.aperture;
+  r.apertureRow = a.apertureRow;
+  const Vec3d sample = imagePoint(filmX, filmY);
+  const double sv = virtualMaskFromImage_;
+  // The sample's point in the virtual aperture cell.
+  const double apertureX = a.cellLeftX + u * design_.screenPeriodMm * sv;
   const double dz = zMaskVirtual_ - zImageVirtual_;
   const double slopeX = (apertureX - sample.x) * inverseVirtualGap_;
   double slopeY = 0.0;
   if (mask_.isPinholeGrid()) {
     const double periodY = mask_.verticalPeriodMm() * imageFromMask_ * sv;
-    const double apertureY = eyeY_ + (groupY - eyeY_) * sv + (v - 0.5) * periodY;
+    const double apertureY = eyeY_ + (a.groupY - eyeY_) * sv + (v - 0.5) * periodY;
     slopeY = (apertureY - sample.y) * inverseVirtualGap_;
   } else if (!std::isinf(virtualDistance_)) {
     // One-axis perspective: every ray meets the view line y = y_e at z = D' (section 2.2).

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "parallax/display/display.h"
 #include "parallax/display/mask.h"
@@ -73,6 +74,16 @@ class BarrierRayGenerator {
   double imageFromMask_;         // 1 / maskFromImage_
   double inverseVirtualGap_;     // 1 / (zM' - zI'), signed
   double inverseViewDepth_;      // 1 / (D' - zI'), 0 for D' infinite
+  // Vertical slits: the left edge (u = 0) of each film column's virtual aperture cell, x in mm.
+  std::vector<double> apertureCellLeft_;
+
+  // Which aperture serves a film sample, and where its group and virtual aperture cell lie.
+  struct Association {
+    int64_t aperture = 0, apertureRow = 0;
+    double groupX = 0, groupY = 0;  // group centre on the image layer (mm)
+    double cellLeftX = 0;           // left edge of the virtual aperture cell (u = 0), mm
+  };
+  Association associate(double filmX, double filmY) const;
 };
 
 }  // namespace parallax

@@ -10,53 +10,57 @@
 #include <limits>
 
 #include "parallax/render/light_sampler.h"
-#include "parallax/render/render.h"
+#include "parallax/render/tile_packets.h"
 
 namespace parallax {
 
 namespace {
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// The raw limit, parallelised like the renderer: bands of 16 rows (4 packets high).
-uint64_t traceLimit(const Accelerator& accelerator, const PinholeGrid& grid, const Vec3f& light,
-                    tbb::task_arena& arena) {
+// Runs count(i) for i in [0, n) over the arena's threads, as the renderer does, and returns
+// the summed rays with the wall time.
+template <class Count>
+RayRate timedSum(tbb::task_arena& arena, int n, const Count& count) {
+  const auto start = std::chrono::steady_clock::now();
   tbb::enumerable_thread_specific<uint64_t> counts(0);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, (grid.height + 15) / 16, 1),
-                      [&](const tbb::blocked_range<int>& bands) {
-                        for (int band = bands.begin(); band != bands.end(); ++band)
-                          counts.local() += accelerator.traceRawLimit(
-                              grid, band * 16, std::min(grid.height, band * 16 + 16), light);
-                      });
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int i = r.begin(); i != r.end(); ++i) counts.local() += count(i);
+    });
   });
-  return counts.combine([](uint64_t a, uint64_t b) { return a + b; });
+  const uint64_t rays = counts.combine([](uint64_t a, uint64_t b) { return a + b; });
+  return {rays, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+}
+
+void keepFastest(RayRate& best, const RayRate& run) {
+  if (run.seconds < best.seconds) best = run;
 }
 
 }  // namespace
 
 BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
-                      const PinholeCamera& limitCamera, int samplesPerPixel, int repeats,
-                      int threads) {
+                      const PinholeGrid& limitGrid, const RenderSettings& settings, int repeats) {
   BenchResult result;
-  result.seconds = result.limitSeconds = std::numeric_limits<double>::infinity();
-  const PinholeGrid grid = limitCamera.grid(samplesPerPixel);
-  const Vec3f light = LightSampler(scene).representativePoint(grid.eye);
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  RenderSettings settings;
-  settings.samplesPerPixel = samplesPerPixel;
-  settings.threads = threads;
+  const double never = std::numeric_limits<double>::infinity();
+  result.ours.seconds = result.limit.seconds = result.sameRays.seconds = never;
+  const Vec3f light = LightSampler(scene).representativePoint(limitGrid.eye);
+  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  const TileGrid tiles(camera);
+  const PacketWalk walk(settings.samplesPerPixel, settings.seed, settings.jitter, camera);
   for (int i = 0; i < std::max(1, repeats); ++i) {
-    auto start = std::chrono::steady_clock::now();
-    result.limitRays = traceLimit(accelerator, grid, light, arena);
-    result.limitSeconds = std::min(result.limitSeconds, secondsSince(start));
-
+    // The pinhole limit in bands of 16 rows (4 packets high), parallelised like the renderer.
+    keepFastest(result.limit, timedSum(arena, (limitGrid.height + 15) / 16, [&](int band) {
+                  return accelerator.traceRawLimit(limitGrid, band * 16, band * 16 + 16, light);
+                }));
+    keepFastest(result.sameRays, timedSum(arena, tiles.count(), [&](int tile) {
+                  uint64_t rays = 0;
+                  forEachPacket(tiles, tile, camera, walk, [&](const FilmPacket& packet) {
+                    rays += accelerator.traceRawPacket(packet.rays, light);
+                  });
+                  return rays;
+                }));
     RenderStats stats;
     render(scene, accelerator, camera, settings, &stats);
-    result.rays = stats.totalRays();
-    result.seconds = std::min(result.seconds, stats.seconds);
+    keepFastest(result.ours, {stats.totalRays(), stats.seconds});
   }
   return result;
 }

@@ -1,34 +1,37 @@
-// The benchmark: our renderer against raw Embree on the same rays, measured in one run.
+// The benchmark: our renderer against raw Embree, measured in one run.
 #pragma once
 
 #include <cstdint>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/camera/camera.h"
+#include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax {
 
-struct BenchResult {
-  uint64_t rays = 0;  // ours: primary + shadow + secondary
+// Rays traced in a time; the rate of the fastest of several runs.
+struct RayRate {
+  uint64_t rays = 0;
   double seconds = 0.0;
-  uint64_t limitRays = 0;  // raw Embree: primary + one shadow ray per hit
-  double limitSeconds = 0.0;
-  double raysPerSecond() const { return seconds > 0 ? double(rays) / seconds : 0.0; }
-  double limitRaysPerSecond() const {
-    return limitSeconds > 0 ? double(limitRays) / limitSeconds : 0.0;
-  }
-  double ratio() const {
-    return limitRaysPerSecond() > 0 ? raysPerSecond() / limitRaysPerSecond() : 0.0;
-  }
+  double perSecond() const { return seconds > 0 ? double(rays) / seconds : 0.0; }
 };
 
-// Renders through `camera` at `samplesPerPixel` and traces the raw Embree limit for the
-// coherent pinhole rays of `limitCamera` at the same rays per pixel, alternating `repeats`
-// times and keeping the fastest of each (the machines are noisy). For the pinhole benchmark
-// both cameras are the same; the display camera is measured against the same pinhole limit.
+struct BenchResult {
+  RayRate ours;      // primary + shadow + secondary, shaded
+  RayRate limit;     // raw Embree, coherent pinhole rays: primary + one shadow ray per hit
+  RayRate sameRays;  // raw Embree on our camera's own rays, in our packet order, the same way
+  double ratio() const { return limit.perSecond() > 0 ? ours.perSecond() / limit.perSecond() : 0; }
+};
+
+// Renders through `camera` with `settings` and traces two raw Embree limits at the same rays
+// per pixel, alternating `repeats` times and keeping the fastest of each (the machines are
+// noisy): the coherent pinhole rays of `limitGrid` (for the display camera, a pinhole at the
+// view-zone centre that sees what the display shows), and the camera's own rays. The gap
+// between the two limits is what the camera's ray order costs Embree; the gap between the
+// same-rays limit and ours is what shading costs.
 BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
-                      const PinholeCamera& limitCamera, int samplesPerPixel, int repeats = 2,
-                      int threads = 0);
+                      const PinholeGrid& limitGrid, const RenderSettings& settings,
+                      int repeats = 2);
 
 }  // namespace parallax

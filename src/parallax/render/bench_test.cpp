@@ -1,25 +1,25 @@
-// The benchmark counts what it claims: our rays are the renderer's, and the limit traces one
+// The benchmark counts what it claims: our rays are the renderer's, and each limit traces one
 // primary ray per sample plus one shadow ray per primary hit.
 #include "parallax/render/bench.h"
 
-#include "parallax/render/render.h"
-
 #include <gtest/gtest.h>
+
+#include "parallax/render/render.h"
 
 namespace parallax {
 namespace {
 
-TEST(Bench, CountsTheRaysOfBothSides) {
+TEST(Bench, CountsTheRaysOfEverySide) {
   const Scene scene = defaultScene();
   const Accelerator accel(scene);
   const CameraSpec& c = *scene.camera;
   const PinholeCamera camera(c.eye, c.lookAt, c.up, c.fovDegrees, 40, 24);
-  const BenchResult r = benchmark(scene, accel, camera, camera, 4, 1);
-  RenderStats stats;
   RenderSettings settings;
   settings.samplesPerPixel = 4;
+  const BenchResult r = benchmark(scene, accel, camera, camera.grid(4), settings, 1);
+  RenderStats stats;
   render(scene, accel, camera, settings, &stats);
-  EXPECT_EQ(r.rays, stats.totalRays());
+  EXPECT_EQ(r.ours.rays, stats.totalRays());
   // Primary: 40 x 24 x 4. Shadow: one per primary hit, counted here with single rays.
   uint64_t hits = 0;
   for (int y = 0; y < 24; ++y)
@@ -28,10 +28,25 @@ TEST(Bench, CountsTheRaysOfBothSides) {
         const float jx = (s % 2 + 0.5f) / 2, jy = (s / 2 + 0.5f) / 2;
         hits += accel.intersect(camera.generateRay({x + jx, y + jy})).valid();
       }
-  EXPECT_NEAR(double(r.limitRays), double(40 * 24 * 4 + hits), 4.0);
-  EXPECT_GT(r.raysPerSecond(), 0.0);
-  EXPECT_GT(r.limitRaysPerSecond(), 0.0);
-  EXPECT_NEAR(r.ratio(), r.raysPerSecond() / r.limitRaysPerSecond(), 1e-12);
+  EXPECT_NEAR(double(r.limit.rays), double(40 * 24 * 4 + hits), 4.0);
+  // The same-rays limit traces the renderer's primary rays: as many as the renderer's.
+  EXPECT_GE(r.sameRays.rays, stats.cameraRays);
+  EXPECT_LE(r.sameRays.rays, 2 * stats.cameraRays);
+  EXPECT_GT(r.ours.perSecond(), 0.0);
+  EXPECT_GT(r.limit.perSecond(), 0.0);
+  EXPECT_NEAR(r.ratio(), r.ours.perSecond() / r.limit.perSecond(), 1e-12);
+}
+
+TEST(Bench, AtOneSampleBothLimitsTraceThePixelCentres) {
+  // At 1 spp the renderer's pinhole rays are the pixel centres, which is what the pinhole
+  // limit traces: two code paths, one set of rays, the same count of primary and shadow rays.
+  const Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  const CameraSpec& c = *scene.camera;
+  const PinholeCamera camera(c.eye, c.lookAt, c.up, c.fovDegrees, 37, 21);
+  const BenchResult r = benchmark(scene, accel, camera, camera.grid(1), RenderSettings{}, 1);
+  EXPECT_EQ(r.sameRays.rays, r.limit.rays);
+  EXPECT_GT(r.limit.rays, uint64_t(37 * 21));
 }
 
 }  // namespace

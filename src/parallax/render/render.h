@@ -8,6 +8,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/camera/camera.h"
 #include "parallax/image/image.h"
+#include "parallax/render/tile_packets.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax {
@@ -16,6 +17,7 @@ struct RenderSettings {
   int samplesPerPixel = 1;  // a square n*n is stratified; 1 casts exactly the pixel centre
   uint64_t seed = 0;        // varies the jitter pattern; the same seed gives the same image
   int threads = 0;          // 0: all cores. The image does not depend on it.
+  JitterSharing jitter = JitterSharing::Auto;  // tile_packets.h
 };
 
 struct RenderStats {
