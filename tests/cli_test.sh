@@ -32,7 +32,8 @@ check "info --json has triangles and bounds" \
   bash -c "grep -q '\"triangles\": 16' '$tmp/out' && grep -q '\"min\"' '$tmp/out'"
 check "info on an example scene" run 0 info "$src/scenes/spheres.json"
 check "bench --json" run 0 bench --size 64x64 --spp 4 --repeats 1 --json
-for key in rays_per_second limit_rays_per_second ratio peak_rss_mb; do
+for key in rays_per_second limit_rays_per_second ratio peak_rss_mb same_rays_limit_rays_per_second \
+  same_rays_ratio ray_order_ratio; do
   check "bench reports $key" grep -q "\"$key\"" "$tmp/out"
 done
 
@@ -62,6 +63,13 @@ check "render wrote mask.png" is_png "$tmp/r/mask.png"
 check "render wrote render.json" grep -q '"rays_per_second"' "$tmp/r/render.json"
 check "render wrote image.pfm" test -s "$tmp/r/image.pfm"
 check "render left no temporary files" bash -c "! ls '$tmp/r' | grep -q tmp"
+check "render records the jitter" grep -q '"jitter": "auto"' "$tmp/r/render.json"
+check "render --jitter pixel" run 0 render --display "$tmp/small.json" --spp 4 --jitter pixel \
+  -o "$tmp/rp"
+check "independent jitter is another image" bash -c "! cmp -s '$tmp/r/image.png' '$tmp/rp/image.png'"
+check "unknown --jitter exits 2" run 2 render --display "$tmp/small.json" --jitter some -o "$tmp/rj"
+check "unknown --jitter names the option" one_line_naming "--jitter"
+check "no output after a bad --jitter" test ! -e "$tmp/rj"
 check "render --subpixels" run 0 render --display "$tmp/small.json" --spp 1 --subpixels -o "$tmp/rs"
 check "view --display-eye" run 0 view --display "$tmp/small.json" --display-eye 0,0,600 -o "$tmp/w.png"
 check "window view has the front layer's size" grep -q "96x54" "$tmp/out"

@@ -28,6 +28,7 @@ struct RenderOptions {
   int spp = 16;
   int threads = 0;
   uint64_t seed = 0;
+  std::string jitter = "auto";
   std::string output = "out";
   bool linear = false;
   bool subpixels = false;
@@ -74,6 +75,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
   record.set("/scene", scene.source);
   record.set("/spp", o.spp);
   record.set("/seed", o.seed);
+  record.set("/jitter", o.jitter);
   record.set("/threads", o.threads);
   record.set("/seconds", stats.seconds);
   record.set("/rays", stats.totalRays());
@@ -121,6 +123,7 @@ void runRender(const RenderOptions& o) {
   settings.samplesPerPixel = o.spp;
   settings.threads = o.threads;
   settings.seed = o.seed;
+  settings.jitter = parseJitter(o.jitter);
   if (!o.quilt.empty()) return runQuiltRender(o, layout, design, scene, settings);
   const Accelerator accelerator(scene);
   DisplayLayers layers;
@@ -137,6 +140,7 @@ void runRender(const RenderOptions& o) {
   record.set("/scene", scene.source);
   record.set("/spp", o.spp);
   record.set("/seed", o.seed);
+  record.set("/jitter", o.jitter);
   record.set("/threads", o.threads);
   record.set("/seconds", layers.stats.seconds);
   record.set("/rays", layers.stats.totalRays());
@@ -162,6 +166,10 @@ void registerRenderCommand(CLI::App& cli) {
       ->capture_default_str();
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)");
   cmd->add_option("--seed", options->seed, "Seed of the sample jitter");
+  cmd->add_option("--jitter", options->jitter,
+                  "Within-stratum jitter: auto (shared by the 16 rays of a packet for the barrier "
+                  "camera, which keeps them parallel), pixel (independent), packet (shared)")
+      ->capture_default_str();
   cmd->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
   cmd->add_flag("--linear", options->linear, "Also write image.pfm, linear float");
   CLI::Option* direct =

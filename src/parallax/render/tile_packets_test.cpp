@@ -1,0 +1,170 @@
+// The packet walk: every pixel sample exactly once, its strata as film_sampler.h promises, and
+// for the display camera packets of parallel rays when the jitter is shared.
+#include "parallax/render/tile_packets.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "parallax/camera/display_camera.h"
+#include "parallax/image/metrics.h"
+#include "parallax/render/render.h"
+
+namespace parallax {
+namespace {
+
+DisplaySpec smallDisplay() {
+  DisplaySpec s = defaultDisplaySpec();
+  s.imagePanel.width = s.maskPanel.width = 150;
+  s.imagePanel.height = s.maskPanel.height = 40;
+  return s;
+}
+
+// Every (pixel, sample) of the film once, and lanes outside the film inactive.
+void expectEveryPixelSampleOnce(const Camera& camera, int spp, JitterSharing jitter) {
+  const TileGrid grid(camera);
+  const PacketWalk walk(spp, 3, jitter, camera);
+  std::map<std::tuple<int, int, int>, int> seen;
+  for (int tile = 0; tile < grid.count(); ++tile)
+    forEachPacket(grid, tile, camera, walk, [&](const FilmPacket& p) {
+      for (int lane = 0; lane < 16; ++lane) {
+        const bool inside = p.x[lane] < camera.width() && p.y[lane] < camera.height();
+        EXPECT_EQ(p.rays.active[lane] != 0, inside);
+        if (inside) ++seen[{p.x[lane], p.y[lane], p.sample}];
+      }
+    });
+  EXPECT_EQ(seen.size(), size_t(camera.width()) * size_t(camera.height()) * size_t(spp));
+  for (const auto& [key, count] : seen) EXPECT_EQ(count, 1);
+}
+
+TEST(TilePackets, EveryPixelSampleIsTracedOnce) {
+  const PinholeCamera pinhole({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40.0f, 37, 21);
+  expectEveryPixelSampleOnce(pinhole, 4, JitterSharing::Pixel);
+  const DisplayCamera display(designDisplay(smallDisplay()), {});
+  expectEveryPixelSampleOnce(display, 4, JitterSharing::Auto);
+}
+
+// True if the 16 points (scaled to [0, 4)^2) put one in each of the 4 x 4 cells, allowing for
+// the float rounding of film positions near a cell's edge.
+bool fillsTheStrata(const std::vector<std::pair<float, float>>& points) {
+  if (points.size() != 16) return false;
+  constexpr float slack = 1e-3f;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      bool found = false;
+      for (const auto& [a, b] : points)
+        found |= a > float(i) - slack && a < float(i + 1) + slack && b > float(j) - slack &&
+                 b < float(j + 1) + slack;
+      if (!found) return false;
+    }
+  return true;
+}
+
+TEST(TilePackets, EachPixelKeepsItsStrataWhetherOrNotJitterIsShared) {
+  const DisplayCamera camera(designDisplay(smallDisplay()), {});
+  const TileGrid grid(camera);
+  for (JitterSharing jitter : {JitterSharing::Pixel, JitterSharing::Packet}) {
+    const PacketWalk walk(16, 0, jitter, camera);
+    // pixel -> its samples' (x, apertureU) and (y, apertureV), scaled to strata units.
+    std::map<std::pair<int, int>, std::vector<std::pair<float, float>>> xu, yv;
+    for (int tile = 0; tile < grid.count(); ++tile)
+      forEachPacket(grid, tile, camera, walk, [&](const FilmPacket& p) {
+        for (int lane = 0; lane < 16; ++lane) {
+          if (!p.rays.active[lane]) continue;
+          const float fx = p.film.x[lane] - float(p.x[lane]);
+          const float fy = p.film.y[lane] - float(p.y[lane]);
+          const auto key = std::make_pair(p.x[lane], p.y[lane]);
+          xu[key].push_back({4 * fx, 4 * p.film.apertureU[lane]});
+          yv[key].push_back({4 * fy, 4 * p.film.apertureV[lane]});
+        }
+      });
+    // 16 samples fill the 4 x 4 strata of both pairs (film_sampler.h).
+    EXPECT_EQ(xu.size(), size_t(camera.width()) * size_t(camera.height()));
+    for (const auto& [pixel, points] : xu) EXPECT_TRUE(fillsTheStrata(points));
+    for (const auto& [pixel, points] : yv) EXPECT_TRUE(fillsTheStrata(points));
+  }
+}
+
+// The largest difference in horizontal slope dx/dz between the active lanes of a packet, in
+// the display's frame (a default placement: display mm = scene units / width).
+double widestHorizontalSpread(const Camera& camera, JitterSharing jitter) {
+  const TileGrid grid(camera);
+  const PacketWalk walk(16, 5, jitter, camera);
+  double widest = 0.0;
+  for (int tile = 0; tile < grid.count(); ++tile)
+    forEachPacket(grid, tile, camera, walk, [&](const FilmPacket& p) {
+      double lo = INFINITY, hi = -INFINITY;
+      for (int lane = 0; lane < 16; ++lane) {
+        if (!p.rays.active[lane]) continue;
+        const double slope = double(p.rays.dx[lane]) / double(p.rays.dz[lane]);
+        lo = std::min(lo, slope), hi = std::max(hi, slope);
+      }
+      widest = std::max(widest, hi - lo);
+    });
+  return widest;
+}
+
+TEST(TilePackets, SharedJitterKeepsADisplayPacketsRaysParallel) {
+  // A display packet is one film column over 16 rows: one pixel column, one aperture. With the
+  // jitter shared, every lane crosses the image layer at the same x and its aperture cell at
+  // the same x, so the horizontal slopes agree (to float rounding). With independent jitter
+  // they spread by up to a quarter of the aperture period over the gap:
+  // 0.25 * 9 * 0.2745 mm / 3 mm = 0.21, less the jitter's own randomness.
+  const DisplayDesign design = designDisplay(smallDisplay());
+  const DisplayCamera camera(design, {});
+  EXPECT_TRUE(camera.packetShape().shareJitter);
+  EXPECT_LT(widestHorizontalSpread(camera, JitterSharing::Auto), 1e-5);
+  const double quarterCell = 0.25 * design.screenPeriodMm / design.spec.gapMm;
+  const double independent = widestHorizontalSpread(camera, JitterSharing::Pixel);
+  EXPECT_GT(independent, 0.5 * quarterCell);
+  EXPECT_LT(independent, 1.3 * quarterCell);  // the quarter cell plus a quarter pixel
+}
+
+TEST(TilePackets, SharedJitterConvergesAsIndependentJitterDoes) {
+  // Sharing changes which pixels' errors are correlated, not how large each pixel's error
+  // is: at 16 spp both images sit as far from a 256-spp reference, and the same image on
+  // average.
+  const DisplayDesign design = designDisplay(smallDisplay());
+  Scene scene = defaultScene();
+  scene.display.width = 1.5f;
+  const Accelerator accel(scene);
+  const DisplayCamera camera(design, scene.display);
+  RenderSettings settings;
+  settings.samplesPerPixel = 256;
+  settings.jitter = JitterSharing::Pixel;
+  settings.seed = 11;
+  const Image reference = render(scene, accel, camera, settings);
+  settings.samplesPerPixel = 16;
+  settings.seed = 0;
+  const Image independent = render(scene, accel, camera, settings);
+  settings.jitter = JitterSharing::Packet;
+  const Image shared = render(scene, accel, camera, settings);
+  double errorIndependent = 0, errorShared = 0, meanReference = 0, meanShared = 0;
+  for (size_t i = 0; i < reference.pixels().size(); ++i) {
+    const Vec3f r = reference.pixels()[i];
+    const Vec3f a = independent.pixels()[i] - r, b = shared.pixels()[i] - r;
+    errorIndependent += dot(a, a), errorShared += dot(b, b);
+    meanReference += r.x + r.y + r.z;
+    meanShared += shared.pixels()[i].x + shared.pixels()[i].y + shared.pixels()[i].z;
+  }
+  EXPECT_GT(errorShared, 0.0);
+  EXPECT_LT(errorShared, 1.25 * errorIndependent);
+  EXPECT_GT(errorShared, 0.8 * errorIndependent);
+  EXPECT_NEAR(meanShared / meanReference, 1.0, 0.01);
+}
+
+TEST(TilePackets, DisplayImageIsTheSameForAnyThreadCount) {
+  const DisplayCamera camera(designDisplay(smallDisplay()), {});
+  const Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  RenderSettings one, two;
+  one.samplesPerPixel = two.samplesPerPixel = 4;
+  one.threads = 1, two.threads = 2;
+  EXPECT_EQ(render(scene, accel, camera, one).pixels(), render(scene, accel, camera, two).pixels());
+}
+
+}  // namespace
+}  // namespace parallax
