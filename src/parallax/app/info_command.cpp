@@ -6,6 +6,7 @@
 
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/camera/display_camera.h"
 #include "parallax/io/json_writer.h"
 
 namespace parallax::app {
@@ -24,6 +25,11 @@ const char* lightKindName(Light::Kind kind) {
       return "mesh";
   }
   return "?";
+}
+
+// The scene's display width, fitted to the built-in display when the scene does not fix it.
+float builtInDisplayWidth(const Scene& scene) {
+  return fitDisplayWidth(scene.display, displayWindow(designDisplay(defaultDisplaySpec())));
 }
 
 void printJson(const Scene& scene) {
@@ -57,7 +63,8 @@ void printJson(const Scene& scene) {
   json.set("/display/center", scene.display.center);
   json.set("/display/normal", scene.display.normal);
   json.set("/display/up", scene.display.up);
-  json.set("/display/width", double(scene.display.width));
+  json.set("/display/width", double(builtInDisplayWidth(scene)));
+  json.set("/display/fitted", scene.display.fit.has_value());
   json.set("/warnings", scene.warnings);
   std::printf("%s\n", json.dump().c_str());
 }
@@ -82,8 +89,10 @@ void printText(const Scene& scene) {
   std::printf("lights:\n");
   for (const auto& l : scene.lights) std::printf("  %s\n", lightKindName(l.kind));
   const auto& d = scene.display;
-  std::printf("display   centre (%g, %g, %g), normal (%g, %g, %g), width %g\n", d.center.x,
-              d.center.y, d.center.z, d.normal.x, d.normal.y, d.normal.z, d.width);
+  std::printf("display   centre (%g, %g, %g), normal (%g, %g, %g), width %g%s\n", d.center.x,
+              d.center.y, d.center.z, d.normal.x, d.normal.y, d.normal.z,
+              builtInDisplayWidth(scene),
+              d.fit ? " (fitted to the built-in display's window)" : "");
   for (const auto& w : scene.warnings) std::printf("warning: %s\n", w.c_str());
 }
 

@@ -9,6 +9,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/camera/lenticular_camera.h"
 #include "parallax/core/error.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
@@ -67,7 +68,7 @@ void runRender(const LenticularRenderOptions& o) {
   record.set("/scene_display/center", scene.display.center);
   record.set("/scene_display/normal", scene.display.normal);
   record.set("/scene_display/up", scene.display.up);
-  record.set("/scene_display/width", double(scene.display.width));
+  record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
   writeLenticularDesignJson(record, "/design", design);
 
   const std::string dir = o.output.empty() ? "." : o.output;

@@ -12,6 +12,7 @@
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/app/layer_output.h"
+#include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
@@ -148,7 +149,7 @@ void runRender(const RenderOptions& o) {
   record.set("/scene_display/center", scene.display.center);
   record.set("/scene_display/normal", scene.display.normal);
   record.set("/scene_display/up", scene.display.up);
-  record.set("/scene_display/width", double(scene.display.width));
+  record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
   writeDisplayLayers(o.output, layers.image, layers.mask, design, o.linear, record);
   std::printf("%d spp in %.2f s, %s\n", o.spp, layers.stats.seconds,
               formatRate(raysPerSecond).c_str());

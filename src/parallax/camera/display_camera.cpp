@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace parallax {
 
@@ -12,23 +13,83 @@ Vec3f toFloat(const Vec3d& v) {
 }
 }  // namespace
 
-Transform worldFromDisplay(const DisplayPlacement& placement, double frontWidthMm) {
-  const Vec3f normal = normalize(placement.normal);
-  const Vec3f right = normalize(cross(placement.up, normal));
-  const Vec3f up = cross(normal, right);
+namespace {
+
+// The display's axes in the scene: x = up x normal, y = up, z = normal (unit).
+struct DisplayAxes {
+  Vec3f right, up, normal;
+  explicit DisplayAxes(const DisplayPlacement& placement)
+      : right(normalize(cross(placement.up, normalize(placement.normal)))),
+        up(cross(normalize(placement.normal), right)),
+        normal(normalize(placement.normal)) {}
+};
+
+// True if every corner of `corners` (display axes, scene units from the display's centre) seen
+// from the window's eye at `mmPerUnit` lands inside the window, `margin` in from each edge.
+bool fitsInside(const std::vector<Vec3d>& corners, const DisplayWindow& window, double mmPerUnit,
+                double margin) {
+  const Vec3d& e = window.eyeMm;
+  const double halfW = 0.5 * window.widthMm * (1 - 2 * margin);
+  const double halfH = 0.5 * window.heightMm * (1 - 2 * margin);
+  for (const Vec3d& c : corners) {
+    const double x = c.x * mmPerUnit, y = c.y * mmPerUnit, z = c.z * mmPerUnit;
+    if (!(z < e.z)) return false;  // at or behind the eye
+    // The line from the eye through the corner meets the front layer (z = 0) at e + (p - e) s.
+    const double s = e.z / (e.z - z);
+    if (std::abs(e.x + (x - e.x) * s) > halfW || std::abs(e.y + (y - e.y) * s) > halfH)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+DisplayWindow displayWindow(const DisplayDesign& design) {
+  return {design.frontWidthMm(),
+          design.frontHeightMm(),
+          {design.spec.viewZoneCenterXMm, design.spec.viewZoneHeightMm, design.viewDistanceMm}};
+}
+
+float fitDisplayWidth(const DisplayPlacement& placement, const DisplayWindow& window) {
+  if (!placement.fit || placement.fit->empty()) return placement.width;
+  const DisplayAxes axes(placement);
+  std::vector<Vec3d> corners;
+  for (int i = 0; i < 8; ++i) {
+    const Bounds3f& b = *placement.fit;
+    const Vec3f p{i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z};
+    const Vec3f d = p - placement.center;
+    corners.push_back({dot(d, axes.right), dot(d, axes.up), dot(d, axes.normal)});
+  }
+  constexpr double margin = 0.05;
+  // Bigger scales push the corners outward; find the largest that still fits by bisection
+  // between a scale that fits and one that does not.
+  double fits = window.widthMm / placement.width * 1e-6;
+  if (!fitsInside(corners, window, fits, margin)) return placement.width;  // eye off the window
+  double fails = fits;
+  for (int i = 0; i < 80 && fitsInside(corners, window, fails, margin); ++i) fails *= 2;
+  if (fitsInside(corners, window, fails, margin)) return placement.width;  // a flat point
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (fits + fails);
+    (fitsInside(corners, window, mid, margin) ? fits : fails) = mid;
+  }
+  return float(window.widthMm / fits);
+}
+
+Transform worldFromDisplay(const DisplayPlacement& placement, const DisplayWindow& window) {
+  const DisplayAxes axes(placement);
   Mat4 m = Mat4::identity();
-  const float scale = float(placement.width / frontWidthMm);
+  const float scale = fitDisplayWidth(placement, window) / float(window.widthMm);
   for (int i = 0; i < 3; ++i) {
-    m.m[i][0] = right[i] * scale;
-    m.m[i][1] = up[i] * scale;
-    m.m[i][2] = normal[i] * scale;
+    m.m[i][0] = axes.right[i] * scale;
+    m.m[i][1] = axes.up[i] * scale;
+    m.m[i][2] = axes.normal[i] * scale;
     m.m[i][3] = placement.center[i];
   }
   return Transform(m);
 }
 
 DisplayCamera::DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement)
-    : rays_(design), worldFromDisplay_(worldFromDisplay(placement, design.frontWidthMm())) {
+    : rays_(design), worldFromDisplay_(worldFromDisplay(placement, displayWindow(design))) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) affine_[r][c] = worldFromDisplay_.matrix().m[r][c];
 }
@@ -78,7 +139,7 @@ WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design,
   if (width <= 0 || height <= 0) throw std::invalid_argument("camera size must be positive");
   if (!(eyeMm.z > 0))
     throw std::invalid_argument("the eye must be in front of the display (z > 0)");
-  const Transform world = worldFromDisplay(placement, design.frontWidthMm());
+  const Transform world = worldFromDisplay(placement, displayWindow(design));
   const float w = float(design.frontWidthMm()), h = float(design.frontHeightMm());
   eye_ = world.point(toFloat(eyeMm));
   corner_ = world.point({-0.5f * w, 0.5f * h, 0.0f});

@@ -9,10 +9,24 @@
 
 namespace parallax {
 
+// The window a viewer looks through: the front layer's size, and the eye that content is
+// framed for (the view-zone centre), in display millimetres.
+struct DisplayWindow {
+  double widthMm = 0, heightMm = 0;
+  Vec3d eyeMm;
+};
+DisplayWindow displayWindow(const DisplayDesign& design);
+
+// The placement's width for this window: placement.width, unless placement.fit is set; then
+// the smallest width (the largest picture) at which every corner of the fit bounds, seen from
+// the eye, falls inside the window with a 5 % margin on each side. Content pops out toward the
+// eye, so this also keeps the near half of a deep object from filling the view.
+float fitDisplayWidth(const DisplayPlacement& placement, const DisplayWindow& window);
+
 // Display millimetres (docs/display-geometry.md) to scene units: the front layer's centre goes
 // to placement.center, x to right = up x normal, y to up, z to normal, and the front layer's
-// width in mm to placement.width scene units.
-Transform worldFromDisplay(const DisplayPlacement& placement, double frontWidthMm);
+// width in mm to fitDisplayWidth() scene units.
+Transform worldFromDisplay(const DisplayPlacement& placement, const DisplayWindow& window);
 
 // One ray per image-layer film column (pixel, or subpixel in subpixel mode) through its
 // aperture; see BarrierRayGenerator for the geometry.

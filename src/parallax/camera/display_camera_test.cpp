@@ -10,12 +10,12 @@ namespace {
 
 DisplayPlacement tiltedPlacement() {
   // A display at (1, 2, 3), facing +x, 4 units wide, upright.
-  return {{1, 2, 3}, {1, 0, 0}, {0, 1, 0}, 4.0f};
+  return {{1, 2, 3}, {1, 0, 0}, {0, 1, 0}, 4.0f, std::nullopt};
 }
 
 TEST(WorldFromDisplay, MapsTheFrontLayerOntoThePlacement) {
   const DisplayDesign d = designDisplay(defaultDisplaySpec());
-  const Transform t = worldFromDisplay(tiltedPlacement(), d.frontWidthMm());
+  const Transform t = worldFromDisplay(tiltedPlacement(), displayWindow(d));
   const Vec3f centre = t.point({0, 0, 0});
   EXPECT_NEAR(length(centre - Vec3f(1, 2, 3)), 0.0f, 1e-6f);
   // The right edge is half the width away along right = up x normal = (0, 0, -1).
@@ -24,6 +24,35 @@ TEST(WorldFromDisplay, MapsTheFrontLayerOntoThePlacement) {
   // The viewer's side (+z in mm) is the normal's side.
   EXPECT_GT(t.point({0, 0, 100}).x, 1.0f);
   EXPECT_GT(t.point({0, 100, 0}).y, 2.0f);
+}
+
+TEST(FitDisplayWidth, AFlatPictureFillsTheWindowLessItsMargin) {
+  // A 2 x 2 square in the display plane, seen from straight in front: its projection is itself,
+  // so it fits when 2 k <= 0.9 H (the window is wider than high): width = W / k.
+  const DisplayWindow window{500, 300, {0, 0, 600}};
+  DisplayPlacement placement;
+  placement.fit = Bounds3f{{-1, -1, 0}, {1, 1, 0}};
+  EXPECT_NEAR(fitDisplayWidth(placement, window), 500.0 / (0.9 * 300 / 2), 1e-3);
+  placement.fit.reset();
+  placement.width = 7.0f;
+  EXPECT_EQ(fitDisplayWidth(placement, window), 7.0f);  // a given width is kept
+}
+
+TEST(FitDisplayWidth, TheNearFaceOfADeepObjectSetsTheScale) {
+  // A cube of side 2 centred on the display: its near face (z = +1) is magnified by
+  // D / (D - k). Its corner x = k D / (D - k) reaches 0.45 W (the margin) when
+  // k = 0.45 W D / (D + 0.45 W), taking the narrower of width and height.
+  const DisplayWindow window{400, 300, {0, 0, 600}};
+  DisplayPlacement placement;
+  placement.center = {5, 5, 5};
+  placement.fit = Bounds3f{{4, 4, 4}, {6, 6, 6}};
+  const double half = 0.45 * 300, d = 600;
+  const double k = half * d / (d + half);
+  EXPECT_NEAR(fitDisplayWidth(placement, window), 400.0 / k, 1e-3);
+  // The transform puts that near corner on the margin, seen from the eye.
+  const Transform world = worldFromDisplay(placement, window);
+  const Vec3f corner = world.inverse().point({6, 6, 6});  // display mm
+  EXPECT_NEAR(corner.y * d / (d - corner.z), half, 1e-2);
 }
 
 // Where a world-space ray crosses the display plane, in display millimetres.
@@ -36,7 +65,7 @@ Vec3f crossingInMm(const Transform& worldFromDisplay, const Ray& ray) {
 TEST(WindowCamera, FilmIsTheFrontLayerAndRaysStartAtTheEye) {
   const DisplayDesign d = designDisplay(defaultDisplaySpec());
   const DisplayPlacement placement = tiltedPlacement();
-  const Transform t = worldFromDisplay(placement, d.frontWidthMm());
+  const Transform t = worldFromDisplay(placement, displayWindow(d));
   const Vec3d eye{100, -40, 500};
   const WindowCamera camera(eye, d, placement, 64, 36);
   const Ray corner = camera.generateRay({0, 0});
@@ -53,7 +82,7 @@ TEST(WindowCamera, HorizontalOnlyMeetsTheViewLineInY) {
   spec.viewZoneHeightMm = 25.0;
   const DisplayDesign d = designDisplay(spec);
   const DisplayPlacement placement = tiltedPlacement();
-  const Transform displayFromWorld = worldFromDisplay(placement, d.frontWidthMm()).inverse();
+  const Transform displayFromWorld = worldFromDisplay(placement, displayWindow(d)).inverse();
   const Vec3d eye{60, -80, 450};
   const WindowCamera camera(eye, d, placement, 40, 30, true);
   for (float y : {0.5f, 10.5f, 29.5f}) {

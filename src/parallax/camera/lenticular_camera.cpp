@@ -8,7 +8,7 @@ namespace parallax {
 
 LenticularCamera::LenticularCamera(const LenticularDesign& design,
                                    const DisplayPlacement& placement)
-    : design_(design), worldFromDisplay_(worldFromDisplay(placement, design.widthMm)) {}
+    : design_(design), worldFromDisplay_(worldFromDisplay(placement, displayWindow(design))) {}
 
 Ray LenticularCamera::generateRay(const FilmSample& s) const {
   const int column = int(std::floor(s.x));
@@ -19,6 +19,10 @@ Ray LenticularCamera::generateRay(const FilmSample& s) const {
   const Vec3f origin{float(r.origin.x), float(r.origin.y), float(r.origin.z)};
   const Vec3f direction{float(r.direction.x), float(r.direction.y), float(r.direction.z)};
   return {worldFromDisplay_.point(origin), worldFromDisplay_.vector(direction)};
+}
+
+DisplayWindow displayWindow(const LenticularDesign& design) {
+  return {design.widthMm, design.heightMm, {0, 0, design.viewDistanceMm}};
 }
 
 DisplayDesign lenticularWindowDesign(const LenticularDesign& d) {

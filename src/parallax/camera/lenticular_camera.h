@@ -3,6 +3,7 @@
 #pragma once
 
 #include "parallax/camera/camera.h"
+#include "parallax/camera/display_camera.h"
 #include "parallax/core/transform.h"
 #include "parallax/display/display.h"
 #include "parallax/display/lenticular.h"
@@ -29,6 +30,9 @@ class LenticularCamera final : public Camera {
   LenticularDesign design_;
   Transform worldFromDisplay_;
 };
+
+// The lenticular panel's window, framed for the design viewer straight in front of it.
+DisplayWindow displayWindow(const LenticularDesign& design);
 
 // A stand-in two-layer design with the lenticular panel's size and the design viewer's distance
 // and eye line, for WindowCamera: the ideal view through the panel's window from one eye.

@@ -43,7 +43,7 @@ TEST(LenticularCamera, RayPassesThroughItsSubpixelInItsViewDirection) {
   const LenticularDesign d = smallDesign();
   const DisplayPlacement placement = tiltedPlacement();
   const LenticularCamera camera(d, placement);
-  const Transform world = worldFromDisplay(placement, d.widthMm);
+  const Transform world = worldFromDisplay(placement, displayWindow(d));
   const Transform display = world.inverse();
   for (const auto& [x, y, channel] : {std::array<int, 3>{0, 0, 0}, std::array<int, 3>{90, 60, 1},
                                       std::array<int, 3>{179, 119, 2}}) {
@@ -65,7 +65,7 @@ TEST(LenticularCamera, RayPassesThroughItsSubpixelInItsViewDirection) {
 TEST(LenticularCamera, SamplesSpreadOverTheSubpixel) {
   const LenticularDesign d = smallDesign();
   const LenticularCamera camera(d, DisplayPlacement{});
-  const Transform display = worldFromDisplay(DisplayPlacement{}, d.widthMm).inverse();
+  const Transform display = worldFromDisplay(DisplayPlacement{}, displayWindow(d)).inverse();
   const Vec3d centre = subpixelPointMm(d, 40.5, 30.5, 1);
   for (const float within : {0.01f, 0.99f}) {
     const Ray ray = camera.generateRay({3 * 40 + 1 + within, 30.5f, 0.5f, 0.5f});

@@ -72,7 +72,7 @@ float extentAlong(const Bounds3f& bounds, const Vec3f& axis) {
 }
 
 // Where the display goes when the file does not say: at the centre of `bounds`, facing +z,
-// as wide as the bounds are along the display's horizontal axis.
+// its width fitted to each display so that the bounds are seen whole (fitDisplayWidth).
 DisplayPlacement placeDisplay(const Bounds3f& bounds, const Vec3f& normal, const Vec3f& up) {
   DisplayPlacement display;
   display.normal = normal;
@@ -82,6 +82,9 @@ DisplayPlacement placeDisplay(const Bounds3f& bounds, const Vec3f& normal, const
   const float width = extentAlong(bounds, normalize(cross(up, normal)));
   const float largest = maxComponent(bounds.diagonal());
   display.width = width > 0 ? width : (largest > 0 ? largest : 1.0f);
+  // The width actually used is fitted to each display's window (fitDisplayWidth); the extent
+  // above stands in where no fit exists (a flat point, an eye outside the window).
+  display.fit = bounds;
   return display;
 }
 
@@ -522,7 +525,10 @@ class SceneFileLoader {
     scene_.display = placeDisplay(bounds, normal, *up);
     if (!value) return;
     scene_.display.center = value->vec3("center", scene_.display.center);
-    scene_.display.width = value->positive("width", scene_.display.width);
+    if (value->find("width")) {
+      scene_.display.width = value->positive("width", scene_.display.width);
+      scene_.display.fit.reset();
+    }
   }
 
   CameraSpec readCamera(const JsonReader& value) const {

@@ -118,6 +118,7 @@ TEST_F(SceneFileTest, ReadsTopLevelSettingsAndSpheres) {
   EXPECT_EQ(scene.display.normal, Vec3f(0, 0, 1));
   EXPECT_EQ(scene.display.up, Vec3f(0, 1, 0));  // made perpendicular to the normal
   EXPECT_EQ(scene.display.width, 3.0f);
+  EXPECT_FALSE(scene.display.fit);  // a given width is used as it is
   EXPECT_TRUE(scene.warnings.empty());
 }
 
@@ -130,6 +131,10 @@ TEST_F(SceneFileTest, DefaultsFrameTheSceneAndPlaceTheDisplayAtItsBounds) {
   EXPECT_EQ(scene.display.normal, Vec3f(0, 0, 1));
   EXPECT_EQ(scene.display.up, Vec3f(0, 1, 0));
   EXPECT_FLOAT_EQ(scene.display.width, 3.5f);
+  // Without a width the display is fitted to each display's window around these bounds.
+  ASSERT_TRUE(scene.display.fit);
+  expectNear(scene.display.fit->lo, {-2, 0, 0});
+  expectNear(scene.display.fit->hi, {1.5f, 2.5f, 3.5f});
   const CameraSpec framed = frameScene(scene);
   ASSERT_TRUE(scene.camera);
   EXPECT_EQ(scene.camera->eye, framed.eye);
@@ -320,6 +325,7 @@ TEST_F(SceneFileTest, BareMeshFilesGetLightsDisplayAndCamera) {
   expectNear(scene.display.center, {0.5f, 0.5f, 0});
   EXPECT_EQ(scene.display.normal, Vec3f(0, 0, 1));
   EXPECT_FLOAT_EQ(scene.display.width, 1.0f);
+  EXPECT_TRUE(scene.display.fit);
   ASSERT_TRUE(scene.camera);
   EXPECT_EQ(scene.camera->eye, frameScene(scene).eye);
 }

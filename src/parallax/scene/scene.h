@@ -71,6 +71,9 @@ struct DisplayPlacement {
   Vec3f normal{0, 0, 1};
   Vec3f up{0, 1, 0};
   float width = 1.0f;
+  // Set when the scene gives no width: these bounds should be seen whole through the window,
+  // so `width` is fitted to each display (fitDisplayWidth in camera/display_camera.h).
+  std::optional<Bounds3f> fit;
 };
 
 // An ordinary pinhole camera for `parallax view`.
