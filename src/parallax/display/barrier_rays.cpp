@@ -90,11 +90,14 @@ void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], c
   const double eyeY = eyeY_, inverseGap = inverseVirtualGap_, inverseDepth = inverseViewDepth_;
   const double pitch = p.pitchMm;
   const int lastColumn = filmWidth_ - 1;
+  const double* cells = apertureCellLeft_.data();
   alignas(64) double fx[16], fy[16], fu[16], cell[16], o[3][16], d[2][16];
+  alignas(64) int column[16];
   for (int i = 0; i < 16; ++i) {
     fx[i] = filmX[i], fy[i] = filmY[i], fu[i] = u[i];
-    cell[i] = apertureCellLeft_[size_t(std::clamp(int(std::floor(filmX[i])), 0, lastColumn))];
+    column[i] = std::min(std::max(int(filmX[i]), 0), lastColumn);  // film x >= 0: floor
   }
+  for (int i = 0; i < 16; ++i) cell[i] = cells[column[i]];
   for (int i = 0; i < 16; ++i) {
     const double sampleX = left + fx[i] * columnWidth;
     const double sampleY = top - fy[i] * pitch;

@@ -133,17 +133,35 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
     const Vec3f cA = isChecker ? g.texture->color : Vec3f(0.0f);
     const Vec3f cB = isChecker ? g.texture->color2 : Vec3f(0.0f);
     const float scale = isChecker ? 1.0f / g.texture->checkerSize : 0.0f;
+    // Selects rather than a `continue`, so that the loop compiles to masked SIMD moves.
+    const float d0 = m.diffuse.x, d1 = m.diffuse.y, d2 = m.diffuse.z;
+    const float m0 = m.mirror.x, m1 = m.mirror.y, m2 = m.mirror.z;
+    const float e0 = m.emission.x, e1 = m.emission.y, e2 = m.emission.z;
+    const int32_t checkerFlag = isChecker;
     PARALLAX_SIMD
     for (int i = 0; i < 16; ++i) {
-      if (geometry[i] != id) continue;
-      for (int c = 0; c < 3; ++c) {
-        albedo[c][i] = m.diffuse[c], mirror[c][i] = m.mirror[c], emission[c][i] = m.emission[c];
-        checkerA[c][i] = cA[c], checkerB[c][i] = cB[c];
-      }
-      checker[i] = isChecker, checkerScale[i] = scale;
+      const bool mine = geometry[i] == id;
+      albedo[0][i] = mine ? d0 : albedo[0][i];
+      albedo[1][i] = mine ? d1 : albedo[1][i];
+      albedo[2][i] = mine ? d2 : albedo[2][i];
+      mirror[0][i] = mine ? m0 : mirror[0][i];
+      mirror[1][i] = mine ? m1 : mirror[1][i];
+      mirror[2][i] = mine ? m2 : mirror[2][i];
+      emission[0][i] = mine ? e0 : emission[0][i];
+      emission[1][i] = mine ? e1 : emission[1][i];
+      emission[2][i] = mine ? e2 : emission[2][i];
+      checkerA[0][i] = mine ? cA.x : checkerA[0][i];
+      checkerA[1][i] = mine ? cA.y : checkerA[1][i];
+      checkerA[2][i] = mine ? cA.z : checkerA[2][i];
+      checkerB[0][i] = mine ? cB.x : checkerB[0][i];
+      checkerB[1][i] = mine ? cB.y : checkerB[1][i];
+      checkerB[2][i] = mine ? cB.z : checkerB[2][i];
+      checker[i] = mine ? checkerFlag : checker[i];
+      checkerScale[i] = mine ? scale : checkerScale[i];
     }
-    for (int i = first; i < 16; ++i)
-      if (geometry[i] == id) pending &= ~(1u << i);
+    uint32_t done = 0;
+    for (int i = 0; i < 16; ++i) done |= geometry[i] == id ? 1u << i : 0u;
+    pending &= ~done;
     if (!g.sphere && !g.smoothNormals && (!g.texture || isChecker)) continue;
     for (int i = first; i < 16; ++i) {
       if (geometry[i] != id) continue;
