@@ -188,14 +188,24 @@ std::string pngBytes(const Image& image) {
   if (image.empty()) throw std::invalid_argument("pngBytes: empty image");
   std::vector<unsigned char> codes;
   codes.reserve(image.pixels().size() * 3);
-  for (const Vec3f& p : image.pixels())
+  bool grey = true;
+  for (const Vec3f& p : image.pixels()) {
+    grey &= p.x == p.y && p.y == p.z;
     for (int c = 0; c < 3; ++c) codes.push_back(linearToSrgb8(p[c]));
+  }
+  // A grey picture (a mask layer, a calibration pattern) as one channel: a third of the bytes
+  // to compress, and a file that says what it is.
+  int channels = 3;
+  if (grey) {
+    for (size_t i = 0; i < image.pixels().size(); ++i) codes[i] = codes[3 * i];
+    channels = 1;
+  }
   std::string out;
   auto append = [](void* context, void* bytes, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(bytes), size_t(size));
   };
-  if (!stbi_write_png_to_func(append, &out, image.width(), image.height(), 3, codes.data(),
-                              image.width() * 3))
+  if (!stbi_write_png_to_func(append, &out, image.width(), image.height(), channels, codes.data(),
+                              image.width() * channels))
     throw std::runtime_error("PNG encoding failed");
   return out;
 }

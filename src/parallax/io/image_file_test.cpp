@@ -133,6 +133,22 @@ TEST_F(ImageFileTest, PngHoldsHandComputedSrgbCodes) {
   stbi_image_free(codes);
 }
 
+TEST_F(ImageFileTest, GreyPicturesAreWrittenAsOneChannelAndReadBackTheSame) {
+  Image grey(256, 1), colour(2, 1);
+  for (int x = 0; x < 256; ++x) grey.at(x, 0) = Vec3f(srgb8ToLinear(uint8_t(x)));
+  colour.at(0, 0) = Vec3f(0.5f);
+  colour.at(1, 0) = {0.5f, 0.5f, 0.51f};  // one channel off: stays RGB
+  writeImage(path("grey.png"), grey);
+  writeImage(path("colour.png"), colour);
+  int w = 0, h = 0, channels = 0;
+  ASSERT_TRUE(stbi_info(path("grey.png").c_str(), &w, &h, &channels));
+  EXPECT_EQ(channels, 1);
+  ASSERT_TRUE(stbi_info(path("colour.png").c_str(), &w, &h, &channels));
+  EXPECT_EQ(channels, 3);
+  const Image back = readImage(path("grey.png"));
+  for (int x = 0; x < 256; ++x) EXPECT_EQ(back.at(x, 0), grey.at(x, 0)) << x;
+}
+
 TEST_F(ImageFileTest, ReadsGreyAlphaPngByDroppingAlpha) {
   const unsigned char greyAlpha[] = {0, 255, 128, 0, 255, 10};  // three pixels, 1 row
   ASSERT_TRUE(stbi_write_png(path("ga.png").c_str(), 3, 1, 2, greyAlpha, 6));
