@@ -151,6 +151,40 @@ void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float
     (void)u3;
     return;
   }
+  if (light.kind == Light::Kind::Directional || light.kind == Light::Kind::Point) {
+    // Lane loops of sample()'s first two cases: E = I cos(theta) along a fixed direction, or
+    // E = I cos(theta) / r^2 toward a point.
+    const bool point = light.kind == Light::Kind::Point;
+    const Vec3f toward = -light.direction, at = light.position, I = light.intensity;
+    const float tMax = point ? kShadowShorten : std::numeric_limits<float>::infinity();
+    alignas(64) float px[16], py[16], pz[16], nx[16], ny[16], nz[16];
+    alignas(64) int32_t shade[16];
+    for (int i = 0; i < 16; ++i) {
+      px[i] = sp.px[i], py[i] = sp.py[i], pz[i] = sp.pz[i];
+      nx[i] = sp.nx[i], ny[i] = sp.ny[i], nz[i] = sp.nz[i], shade[i] = sp.shade[i];
+    }
+    alignas(64) float tx[16], ty[16], tz[16], er[16], eg[16], eb[16];
+    alignas(64) int32_t valid[16];
+    PARALLAX_SIMD
+    for (int i = 0; i < 16; ++i) {
+      tx[i] = point ? at.x - px[i] : toward.x;
+      ty[i] = point ? at.y - py[i] : toward.y;
+      tz[i] = point ? at.z - pz[i] : toward.z;
+      const float r2 = point ? tx[i] * tx[i] + ty[i] * ty[i] + tz[i] * tz[i] : 1.0f;
+      const float cosTheta = (nx[i] * tx[i] + ny[i] * ty[i] + nz[i] * tz[i]) / std::sqrt(r2);
+      const int32_t ok = int32_t(shade[i] != 0) & int32_t(cosTheta > 0.0f);
+      const float scale = ok ? cosTheta / r2 : 0.0f;
+      er[i] = I.x * scale, eg[i] = I.y * scale, eb[i] = I.z * scale;
+      valid[i] = ok;
+    }
+    for (int i = 0; i < 16; ++i) {
+      out.tx[i] = tx[i], out.ty[i] = ty[i], out.tz[i] = tz[i];
+      out.tMax[i] = tMax;
+      out.irradiance.r[i] = er[i], out.irradiance.g[i] = eg[i], out.irradiance.b[i] = eb[i];
+      out.valid[i] = valid[i];
+    }
+    return;
+  }
   PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
     out.valid[i] = 0;

@@ -66,6 +66,11 @@ TEST(LightSampler, PacketMatchesScalar) {
   p.position = {0.5f, 1, 0};
   p.intensity = Vec3f(2.0f);
   scene.lights.push_back(p);
+  Light d;
+  d.kind = Light::Kind::Directional;
+  d.direction = normalize(Vec3f{0.3f, -1.0f, 0.2f});
+  d.intensity = {1.0f, 2.0f, 3.0f};
+  scene.lights.push_back(d);
   const LightSampler sampler(scene);
   Rng rng(3);
   SurfacePacket16 sp{};
@@ -77,7 +82,7 @@ TEST(LightSampler, PacketMatchesScalar) {
     sp.hit[i] = sp.shade[i] = i % 5 != 0;
     u1[i] = rng.uniform(), u2[i] = rng.uniform(), u3[i] = rng.uniform();
   }
-  for (size_t light = 0; light < 2; ++light) {
+  for (size_t light = 0; light < sampler.lightCount(); ++light) {
     LightPacket16 out;
     sampler.sample16(light, sp, u1, u2, u3, out);
     for (int i = 0; i < 16; ++i) {
@@ -90,7 +95,9 @@ TEST(LightSampler, PacketMatchesScalar) {
       ASSERT_EQ(bool(out.valid[i]), s.valid) << i;
       if (!s.valid) continue;
       EXPECT_NEAR(out.irradiance.r[i], s.irradiance.x, 1e-5f * (1 + s.irradiance.x));
+      EXPECT_NEAR(out.irradiance.b[i], s.irradiance.z, 1e-5f * (1 + s.irradiance.z));
       EXPECT_NEAR(out.tx[i], s.toLight.x, 1e-5f);
+      EXPECT_NEAR(out.tz[i], s.toLight.z, 1e-5f);
       EXPECT_EQ(out.tMax[i], s.tMax);
     }
   }
