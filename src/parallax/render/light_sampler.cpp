@@ -126,20 +126,26 @@ void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float
     }
     alignas(64) float tx[16], ty[16], tz[16], er[16], eg[16], eb[16];
     alignas(64) int32_t valid[16];
+    // Plain scalars for the loop's constants (members of a struct in memory kept it scalar).
+    const float cx = c.x, cy = c.y, cz = c.z, ux = eu.x, uy = eu.y, uz = eu.z;
+    const float vx = ev.x, vy = ev.y, vz = ev.z, lx = ln.x, ly = ln.y, lz = ln.z;
+    const float Lr = L.x, Lg = L.y, Lb = L.z, sign = twoSided ? -1.0f : 1.0f;
     PARALLAX_SIMD
     for (int i = 0; i < 16; ++i) {
-      tx[i] = c.x + eu.x * a1[i] + ev.x * a2[i] - px[i];
-      ty[i] = c.y + eu.y * a1[i] + ev.y * a2[i] - py[i];
-      tz[i] = c.z + eu.z * a1[i] + ev.z * a2[i] - pz[i];
-      const float r2 = tx[i] * tx[i] + ty[i] * ty[i] + tz[i] * tz[i];
+      const float x = cx + ux * a1[i] + vx * a2[i] - px[i];
+      const float y = cy + uy * a1[i] + vy * a2[i] - py[i];
+      const float z = cz + uz * a1[i] + vz * a2[i] - pz[i];
+      const float r2 = x * x + y * y + z * z;
       const float invR = 1.0f / std::sqrt(r2);
-      const float cosTheta = (nx[i] * tx[i] + ny[i] * ty[i] + nz[i] * tz[i]) * invR;
-      const float facing = -(ln.x * tx[i] + ln.y * ty[i] + ln.z * tz[i]) * invR;
-      const float cosLight = twoSided ? std::abs(facing) : facing;
+      const float cosTheta = (nx[i] * x + ny[i] * y + nz[i] * z) * invR;
+      const float facing = -(lx * x + ly * y + lz * z) * invR;
+      // Two-sided lights count either face: |facing| = max(facing, -facing).
+      const float cosLight = std::max(facing, sign * facing);
       const int32_t ok =
           int32_t(shade[i] != 0) & int32_t(cosTheta > 0.0f) & int32_t(cosLight > 0.0f);
       const float scale = ok ? cosTheta * cosLight * area / r2 : 0.0f;
-      er[i] = L.x * scale, eg[i] = L.y * scale, eb[i] = L.z * scale;
+      tx[i] = x, ty[i] = y, tz[i] = z;
+      er[i] = Lr * scale, eg[i] = Lg * scale, eb[i] = Lb * scale;
       valid[i] = ok;
     }
     for (int i = 0; i < 16; ++i) {

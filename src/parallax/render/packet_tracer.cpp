@@ -38,6 +38,11 @@ void PacketTracer::trace(const RayPacket16& rays, const Color16& weight, std::ar
 
   // Mirror bounces, still as a packet: neighbouring rays reflect off neighbouring points.
   if (depth >= scene_.maxDepth) return;
+  int mirrors = 0;
+  PARALLAX_SIMD_SUM(mirrors)
+  for (int i = 0; i < 16; ++i)
+    mirrors += sp.hit[i] & int32_t(sp.mirror.r[i] + sp.mirror.g[i] + sp.mirror.b[i] > 0.0f);
+  if (mirrors == 0) return;
   RayPacket16 bounce;
   Color16 bounceWeight;
   bool any = false;
@@ -105,15 +110,17 @@ void PacketTracer::addDirectLight(const SurfacePacket16& sp, const Color16& weig
       bool occluded[16];
       accelerator_.occluded16(shadow, occluded);
       stats.shadowRays += uint64_t(count);
+      // The lit lanes' weights as floats first: a bool array in the arithmetic loop below kept
+      // it from vectorising.
+      alignas(64) float lit[16];
+      for (int i = 0; i < 16; ++i) lit[i] = shadow.active[i] && !occluded[i] ? perSample : 0.0f;
       PARALLAX_SIMD
       for (int i = 0; i < 16; ++i) {
-        const bool lit = shadow.active[i] && !occluded[i];
-        radiance.r[i] +=
-            lit ? weight.r[i] * sp.diffuse.r[i] * light.irradiance.r[i] * perSample : 0.0f;
-        radiance.g[i] +=
-            lit ? weight.g[i] * sp.diffuse.g[i] * light.irradiance.g[i] * perSample : 0.0f;
-        radiance.b[i] +=
-            lit ? weight.b[i] * sp.diffuse.b[i] * light.irradiance.b[i] * perSample : 0.0f;
+        // Selects, not products with 0: an unlit lane's irradiance may be unset.
+        const bool on = lit[i] > 0.0f;
+        radiance.r[i] += on ? weight.r[i] * sp.diffuse.r[i] * light.irradiance.r[i] * lit[i] : 0.f;
+        radiance.g[i] += on ? weight.g[i] * sp.diffuse.g[i] * light.irradiance.g[i] * lit[i] : 0.f;
+        radiance.b[i] += on ? weight.b[i] * sp.diffuse.b[i] * light.irradiance.b[i] * lit[i] : 0.f;
       }
     }
   }
