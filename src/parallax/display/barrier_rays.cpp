@@ -97,7 +97,14 @@ void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], c
     fx[i] = filmX[i], fy[i] = filmY[i], fu[i] = u[i];
     column[i] = std::min(std::max(int(filmX[i]), 0), lastColumn);  // film x >= 0: floor
   }
-  for (int i = 0; i < 16; ++i) cell[i] = cells[column[i]];
+  // The render loop's packets are one film column (a broadcast); a gather is slow here.
+  bool oneColumn = true;
+  for (int i = 1; i < 16; ++i) oneColumn &= column[i] == column[0];
+  if (oneColumn) {
+    for (int i = 0; i < 16; ++i) cell[i] = cells[column[0]];
+  } else {
+    for (int i = 0; i < 16; ++i) cell[i] = cells[column[i]];
+  }
   for (int i = 0; i < 16; ++i) {
     const double sampleX = left + fx[i] * columnWidth;
     const double sampleY = top - fy[i] * pitch;

@@ -18,40 +18,25 @@ namespace parallax {
 
 namespace {
 
+// A packet's pixels come through all their samples in a row (tile_packets.h), so each lane
+// adds its samples' radiance up in the packet itself, and the pixel is written once, after the
+// last sample.
 void renderTile(int tile, const TileGrid& grid, const Camera& camera, const PacketTracer& tracer,
                 const PacketWalk& walk, Image& image, RenderStats& stats) {
-  const int x0 = grid.x0(tile), y0 = grid.y0(tile);
-  // The tile's sums per channel. Every lane of a packet lies inside the tile's rectangle, and
-  // inactive lanes carry zero radiance, so all sixteen add without a branch.
-  const size_t size = size_t(grid.width) * TileGrid::kRows;
-  std::vector<float> sums(3 * size, 0.0f);
-  float* sumR = sums.data();
-  float* sumG = sumR + size;
-  float* sumB = sumG + size;
-  Color16 radiance, weight;
+  Color16 sum, weight;
+  sum.fill(0.0f);
   weight.fill(1.0f);
-  const int width = grid.width;
+  const int last = walk.samplesPerPixel - 1;
+  const float perSample = 1.0f / float(walk.samplesPerPixel);
   forEachPacket(grid, tile, camera, walk, [&](FilmPacket& packet) {
     stats.cameraRays += uint64_t(packet.activeCount);
-    radiance.fill(0.0f);
-    tracer.trace(packet.rays, weight, packet.rngs, radiance, 0, stats);
-    alignas(64) int index[16];
-    PARALLAX_SIMD
+    tracer.trace(packet.rays, weight, packet.rngs, sum, 0, stats);
+    if (packet.sample != last) return;
     for (int lane = 0; lane < 16; ++lane)
-      index[lane] = (packet.y[lane] - y0) * width + (packet.x[lane] - x0);
-    for (int lane = 0; lane < 16; ++lane) {
-      const size_t i = size_t(index[lane]);
-      sumR[i] += radiance.r[lane], sumG[i] += radiance.g[lane], sumB[i] += radiance.b[lane];
-    }
+      if (packet.rays.active[lane])
+        image.at(packet.x[lane], packet.y[lane]) = sum.at(lane) * perSample;
+    sum.fill(0.0f);
   });
-  const float perSample = 1.0f / float(walk.samplesPerPixel);
-  const int x1 = std::min(x0 + grid.width, grid.filmWidth);
-  const int y1 = std::min(y0 + TileGrid::kRows, grid.filmHeight);
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) {
-      const size_t i = size_t(y - y0) * size_t(width) + size_t(x - x0);
-      image.at(x, y) = Vec3f(sumR[i], sumG[i], sumB[i]) * perSample;
-    }
 }
 
 }  // namespace

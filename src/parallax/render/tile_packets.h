@@ -63,8 +63,9 @@ struct PacketWalk {
 };
 
 // Calls visit(FilmPacket&) for every packet of `tile`: a packet's pixels through all their
-// sample indices in a row, then the next packet. Consecutive packets then revisit the same
-// part of the BVH while it is in cache (worth 10-20 % of Embree's time here).
+// sample indices in a row (0 .. spp-1), then the next packet. Consecutive packets then revisit
+// the same part of the BVH while it is in cache (worth 10-20 % of Embree's time here), and the
+// renderer sums a pixel's samples in the packet itself (render.cpp relies on this order).
 template <class Visit>
 void forEachPacket(const TileGrid& grid, int tile, const Camera& camera, const PacketWalk& walk,
                    Visit&& visit);

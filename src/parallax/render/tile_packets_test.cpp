@@ -28,8 +28,19 @@ void expectEveryPixelSampleOnce(const Camera& camera, int spp, JitterSharing jit
   const TileGrid grid(camera);
   const PacketWalk walk(spp, 3, jitter, camera);
   std::map<std::tuple<int, int, int>, int> seen;
+  // A packet's pixels come through samples 0 .. spp-1 in a row (the renderer sums in place).
+  int expectedSample = 0;
+  int previousX[16] = {}, previousY[16] = {};
   for (int tile = 0; tile < grid.count(); ++tile)
     forEachPacket(grid, tile, camera, walk, [&](const FilmPacket& p) {
+      EXPECT_EQ(p.sample, expectedSample);
+      for (int lane = 0; lane < 16 && p.sample > 0; ++lane) {
+        EXPECT_EQ(p.x[lane], previousX[lane]);
+        EXPECT_EQ(p.y[lane], previousY[lane]);
+      }
+      expectedSample = (expectedSample + 1) % spp;
+      for (int lane = 0; lane < 16; ++lane)
+        previousX[lane] = p.x[lane], previousY[lane] = p.y[lane];
       for (int lane = 0; lane < 16; ++lane) {
         const bool inside = p.x[lane] < camera.width() && p.y[lane] < camera.height();
         EXPECT_EQ(p.rays.active[lane] != 0, inside);
