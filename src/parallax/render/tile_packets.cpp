@@ -1,11 +1,15 @@
 #include "parallax/render/tile_packets.h"
 
+#include <stdexcept>
+
 #include "parallax/render/packet_types.h"
 
 namespace parallax {
 
 TileGrid::TileGrid(const Camera& camera)
     : shape(camera.packetShape()), filmWidth(camera.width()), filmHeight(camera.height()) {
+  if (shape.columns * shape.rows != 16 || kRows % shape.rows != 0 || shape.stride < 1)
+    throw std::logic_error("packet shape must be 16 lanes, its rows dividing a tile's 16");
   // At least 16 columns per tile, so that a tile is worth a task.
   const int footprint = shape.columns * shape.stride;
   width = footprint * std::max(1, (16 + footprint - 1) / footprint);
