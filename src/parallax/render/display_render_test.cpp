@@ -10,20 +10,14 @@
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/image/metrics.h"
+#include "parallax/render/display_test_support.h"
 #include "parallax/sim/simulator.h"
 
 namespace parallax {
 namespace {
 
-DisplaySpec smallBarrierBack() {
-  DisplaySpec s = defaultDisplaySpec();
-  s.imagePanel.width = s.maskPanel.width = 180;
-  s.imagePanel.height = s.maskPanel.height = 60;
-  return s;
-}
-
 TEST(DisplayRender, SeenThroughTheMaskTheImageIsTheWindowView) {
-  const DisplayDesign d = designDisplay(smallBarrierBack());
+  const DisplayDesign d = designDisplay(smallDisplaySpec());
   Scene scene = defaultScene();
   // 180 pixels of 0.2745 mm: the display is 49.4 mm wide; the box is about 0.9 units.
   scene.display.width = 1.5f;
@@ -60,7 +54,7 @@ TEST(DisplayRender, SeenThroughTheMaskTheImageIsTheWindowView) {
 }
 
 TEST(DisplayRender, SubpixelChannelsComeFromTheirOwnRays) {
-  DisplaySpec s = smallBarrierBack();
+  DisplaySpec s = smallDisplaySpec();
   s.subpixelRays = true;
   const DisplayDesign d = designDisplay(s);
   Scene scene = defaultScene();
@@ -83,7 +77,7 @@ TEST(DisplayRender, DirectMappingAtOneSampleCastsTheBarrierCamerasRays) {
   // At spp = 1 the display ray of a pixel passes through the pixel centre and its view's
   // design eye position, which is exactly the ray of that view's ordinary (one-axis) camera
   // through the same pixel: two code paths, one image.
-  const DisplayDesign d = designDisplay(smallBarrierBack());
+  const DisplayDesign d = designDisplay(smallDisplaySpec());
   Scene scene = defaultScene();
   scene.display.width = 1.5f;
   const Accelerator accel(scene);
@@ -117,7 +111,7 @@ double psnrToReference(const Scene& scene, const Accelerator& accel, const Displ
 }
 
 TEST(DisplayRender, SimulatedViewMatchesItsReferenceBestInsideTheViewZone) {
-  const DisplayDesign d = designDisplay(smallBarrierBack());
+  const DisplayDesign d = designDisplay(smallDisplaySpec());
   Scene scene = defaultScene();
   scene.display.width = 1.5f;
   const Accelerator accel(scene);
@@ -158,7 +152,7 @@ TEST(DisplayRender, SceneInTheAperturePlaneAgreesWithItsReference) {
   // full spatial resolution from every eye (depth 0 in G4): every pixel of a group shows the
   // point at its aperture, which is the point each design eye sees there. The same checker
   // far beyond the depth of field (G4: 27 mm) is not.
-  const DisplayDesign d = designDisplay(smallBarrierBack());
+  const DisplayDesign d = designDisplay(smallDisplaySpec());
   const BarrierRayGenerator rays(d);
   RenderSettings settings;
   settings.samplesPerPixel = 4;
@@ -178,7 +172,7 @@ TEST(DisplayRender, SceneInTheAperturePlaneAgreesWithItsReference) {
 }
 
 TEST(DisplayRender, MaskLayerImageIsTheRaster) {
-  const DisplayDesign d = designDisplay(smallBarrierBack());
+  const DisplayDesign d = designDisplay(smallDisplaySpec());
   const Image mask = maskLayerImage(d);
   double mean = 0;
   for (const Vec3f& p : mask.pixels()) mean += p.x;

@@ -103,92 +103,98 @@ LightSample LightSampler::sample(size_t index, const Vec3f& p, const Vec3f& n, f
   return s;
 }
 
-void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float u1[16],
-                            const float u2[16], const float u3[16], LightPacket16& out) const {
-  const Entry& e = lights_[index];
-  const Light& light = e.light;
-  if (light.kind == Light::Kind::Quad) {
-    // The common case, written as straight-line lane loops that compile to SIMD: a uniform
-    // point on the parallelogram, E = L cos(theta) cos(theta_light) A / r^2.
-    const Vec3f c = light.corner, eu = light.edgeU, ev = light.edgeV;
-    const Vec3f ln = e.triangles.front().normal;
-    const Vec3f L = light.intensity;
-    const bool twoSided = light.twoSided;
-    const float area = e.totalArea;
-    // Locals for everything the loop touches: the compiler then knows nothing aliases `out`,
-    // and the & (not &&) keeps the loop free of branches, so it vectorises.
-    alignas(64) float px[16], py[16], pz[16], nx[16], ny[16], nz[16], a1[16], a2[16];
-    alignas(64) int32_t shade[16];
-    for (int i = 0; i < 16; ++i) {
-      px[i] = sp.px[i], py[i] = sp.py[i], pz[i] = sp.pz[i];
-      nx[i] = sp.nx[i], ny[i] = sp.ny[i], nz[i] = sp.nz[i];
-      a1[i] = u1[i], a2[i] = u2[i], shade[i] = sp.shade[i];
-    }
-    alignas(64) float tx[16], ty[16], tz[16], er[16], eg[16], eb[16];
-    alignas(64) int32_t valid[16];
-    // Plain scalars for the loop's constants (members of a struct in memory kept it scalar).
-    const float cx = c.x, cy = c.y, cz = c.z, ux = eu.x, uy = eu.y, uz = eu.z;
-    const float vx = ev.x, vy = ev.y, vz = ev.z, lx = ln.x, ly = ln.y, lz = ln.z;
-    const float Lr = L.x, Lg = L.y, Lb = L.z, sign = twoSided ? -1.0f : 1.0f;
-    PARALLAX_SIMD
-    for (int i = 0; i < 16; ++i) {
-      const float x = cx + ux * a1[i] + vx * a2[i] - px[i];
-      const float y = cy + uy * a1[i] + vy * a2[i] - py[i];
-      const float z = cz + uz * a1[i] + vz * a2[i] - pz[i];
-      const float r2 = x * x + y * y + z * z;
-      const float invR = 1.0f / std::sqrt(r2);
-      const float cosTheta = (nx[i] * x + ny[i] * y + nz[i] * z) * invR;
-      const float facing = -(lx * x + ly * y + lz * z) * invR;
-      // Two-sided lights count either face: |facing| = max(facing, -facing).
-      const float cosLight = std::max(facing, sign * facing);
-      const int32_t ok =
-          int32_t(shade[i] != 0) & int32_t(cosTheta > 0.0f) & int32_t(cosLight > 0.0f);
-      const float scale = ok ? cosTheta * cosLight * area / r2 : 0.0f;
-      tx[i] = x, ty[i] = y, tz[i] = z;
-      er[i] = Lr * scale, eg[i] = Lg * scale, eb[i] = Lb * scale;
-      valid[i] = ok;
-    }
-    for (int i = 0; i < 16; ++i) {
-      out.tx[i] = tx[i], out.ty[i] = ty[i], out.tz[i] = tz[i];
-      out.tMax[i] = kShadowShorten;
-      out.irradiance.r[i] = er[i], out.irradiance.g[i] = eg[i], out.irradiance.b[i] = eb[i];
-      out.valid[i] = valid[i];
-    }
-    (void)u3;
-    return;
-  }
-  if (light.kind == Light::Kind::Directional || light.kind == Light::Kind::Point) {
-    // Lane loops of sample()'s first two cases: E = I cos(theta) along a fixed direction, or
-    // E = I cos(theta) / r^2 toward a point.
-    const bool point = light.kind == Light::Kind::Point;
-    const Vec3f toward = -light.direction, at = light.position, I = light.intensity;
-    const float tMax = point ? kShadowShorten : std::numeric_limits<float>::infinity();
-    alignas(64) float px[16], py[16], pz[16], nx[16], ny[16], nz[16];
-    alignas(64) int32_t shade[16];
+namespace {
+
+// The receivers of a packet as plain local arrays, and the lane results before they go into
+// a LightPacket16: with nothing that can alias `out`, and & (not &&) in the conditions, the lane
+// loops between them compile to SIMD.
+struct Receivers16 {
+  alignas(64) float px[16], py[16], pz[16], nx[16], ny[16], nz[16];
+  alignas(64) int32_t shade[16];
+  explicit Receivers16(const SurfacePacket16& sp) {
     for (int i = 0; i < 16; ++i) {
       px[i] = sp.px[i], py[i] = sp.py[i], pz[i] = sp.pz[i];
       nx[i] = sp.nx[i], ny[i] = sp.ny[i], nz[i] = sp.nz[i], shade[i] = sp.shade[i];
     }
-    alignas(64) float tx[16], ty[16], tz[16], er[16], eg[16], eb[16];
-    alignas(64) int32_t valid[16];
-    PARALLAX_SIMD
-    for (int i = 0; i < 16; ++i) {
-      tx[i] = point ? at.x - px[i] : toward.x;
-      ty[i] = point ? at.y - py[i] : toward.y;
-      tz[i] = point ? at.z - pz[i] : toward.z;
-      const float r2 = point ? tx[i] * tx[i] + ty[i] * ty[i] + tz[i] * tz[i] : 1.0f;
-      const float cosTheta = (nx[i] * tx[i] + ny[i] * ty[i] + nz[i] * tz[i]) / std::sqrt(r2);
-      const int32_t ok = int32_t(shade[i] != 0) & int32_t(cosTheta > 0.0f);
-      const float scale = ok ? cosTheta / r2 : 0.0f;
-      er[i] = I.x * scale, eg[i] = I.y * scale, eb[i] = I.z * scale;
-      valid[i] = ok;
-    }
+  }
+};
+
+struct LightLanes16 {
+  alignas(64) float tx[16], ty[16], tz[16], er[16], eg[16], eb[16];
+  alignas(64) int32_t valid[16];
+  void store(float tMax, LightPacket16& out) const {
     for (int i = 0; i < 16; ++i) {
       out.tx[i] = tx[i], out.ty[i] = ty[i], out.tz[i] = tz[i];
       out.tMax[i] = tMax;
       out.irradiance.r[i] = er[i], out.irradiance.g[i] = eg[i], out.irradiance.b[i] = eb[i];
       out.valid[i] = valid[i];
     }
+  }
+};
+
+}  // namespace
+
+void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float u1[16],
+                            const float u2[16], const float u3[16], LightPacket16& out) const {
+  const Entry& e = lights_[index];
+  const Light& light = e.light;
+  if (light.kind == Light::Kind::Quad) {
+    // The common case: a uniform point on the parallelogram, E = L cos(theta) cos(theta_light)
+    // A / r^2. Plain scalars for the constants (struct members read in the loop kept it scalar).
+    const Receivers16 r(sp);
+    alignas(64) float a1[16], a2[16];
+    for (int i = 0; i < 16; ++i) a1[i] = u1[i], a2[i] = u2[i];
+    const Vec3f c = light.corner, eu = light.edgeU, ev = light.edgeV;
+    const Vec3f ln = e.triangles.front().normal, L = light.intensity;
+    const float cx = c.x, cy = c.y, cz = c.z, ux = eu.x, uy = eu.y, uz = eu.z;
+    const float vx = ev.x, vy = ev.y, vz = ev.z, lx = ln.x, ly = ln.y, lz = ln.z;
+    const float Lr = L.x, Lg = L.y, Lb = L.z, sign = light.twoSided ? -1.0f : 1.0f;
+    const float area = e.totalArea;
+    LightLanes16 lanes;
+    PARALLAX_SIMD
+    for (int i = 0; i < 16; ++i) {
+      const float x = cx + ux * a1[i] + vx * a2[i] - r.px[i];
+      const float y = cy + uy * a1[i] + vy * a2[i] - r.py[i];
+      const float z = cz + uz * a1[i] + vz * a2[i] - r.pz[i];
+      const float r2 = x * x + y * y + z * z;
+      const float invR = 1.0f / std::sqrt(r2);
+      const float cosTheta = (r.nx[i] * x + r.ny[i] * y + r.nz[i] * z) * invR;
+      const float facing = -(lx * x + ly * y + lz * z) * invR;
+      // Two-sided lights count either face: |facing| = max(facing, -facing).
+      const float cosLight = std::max(facing, sign * facing);
+      const int32_t ok =
+          int32_t(r.shade[i] != 0) & int32_t(cosTheta > 0.0f) & int32_t(cosLight > 0.0f);
+      const float scale = ok ? cosTheta * cosLight * area / r2 : 0.0f;
+      lanes.tx[i] = x, lanes.ty[i] = y, lanes.tz[i] = z;
+      lanes.er[i] = Lr * scale, lanes.eg[i] = Lg * scale, lanes.eb[i] = Lb * scale;
+      lanes.valid[i] = ok;
+    }
+    lanes.store(kShadowShorten, out);
+    (void)u3;
+    return;
+  }
+  if (light.kind == Light::Kind::Directional || light.kind == Light::Kind::Point) {
+    // Lane loops of sample()'s first two cases: E = I cos(theta) along a fixed direction, or
+    // E = I cos(theta) / r^2 toward a point.
+    const Receivers16 r(sp);
+    const float point = light.kind == Light::Kind::Point ? 1.0f : 0.0f;
+    // toLight = at - point * p: the light's position, or the fixed direction.
+    const Vec3f at = point > 0 ? light.position : -light.direction;
+    const float ax = at.x, ay = at.y, az = at.z;
+    const float Ir = light.intensity.x, Ig = light.intensity.y, Ib = light.intensity.z;
+    LightLanes16 lanes;
+    PARALLAX_SIMD
+    for (int i = 0; i < 16; ++i) {
+      const float x = ax - point * r.px[i], y = ay - point * r.py[i], z = az - point * r.pz[i];
+      const float r2 = point > 0 ? x * x + y * y + z * z : 1.0f;
+      const float cosTheta = (r.nx[i] * x + r.ny[i] * y + r.nz[i] * z) / std::sqrt(r2);
+      const int32_t ok = int32_t(r.shade[i] != 0) & int32_t(cosTheta > 0.0f);
+      const float scale = ok ? cosTheta / r2 : 0.0f;
+      lanes.tx[i] = x, lanes.ty[i] = y, lanes.tz[i] = z;
+      lanes.er[i] = Ir * scale, lanes.eg[i] = Ig * scale, lanes.eb[i] = Ib * scale;
+      lanes.valid[i] = ok;
+    }
+    lanes.store(point > 0 ? kShadowShorten : std::numeric_limits<float>::infinity(), out);
     return;
   }
   PARALLAX_SIMD

@@ -11,6 +11,7 @@
 
 #include "parallax/core/error.h"
 #include "parallax/render/display_render.h"
+#include "parallax/render/display_test_support.h"
 
 namespace parallax {
 namespace {
@@ -20,11 +21,7 @@ Image solid(int width, int height, float value) {
 }
 
 DisplaySpec smallDisplay(LayerOrder order) {
-  DisplaySpec s = defaultDisplaySpec();  // 9 views, D = 600 mm, g = 3 mm
-  s.order = order;
-  s.imagePanel.width = s.maskPanel.width = 180;
-  s.imagePanel.height = s.maskPanel.height = 60;
-  return s;
+  return smallDisplaySpec(180, 60, order);
 }
 
 TEST(QuiltName, ParsesTheLayout) {

@@ -11,16 +11,14 @@
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/image/metrics.h"
+#include "parallax/render/display_test_support.h"
 #include "parallax/render/render.h"
 
 namespace parallax {
 namespace {
 
 DisplaySpec smallDisplay() {
-  DisplaySpec s = defaultDisplaySpec();
-  s.imagePanel.width = s.maskPanel.width = 150;
-  s.imagePanel.height = s.maskPanel.height = 40;
-  return s;
+  return smallDisplaySpec(150, 40);
 }
 
 // Every (pixel, sample) of the film once, and lanes outside the film inactive.
