@@ -5,22 +5,13 @@
 #include <cmath>
 
 #include "parallax/camera/display_camera.h"
+#include "parallax/display/lenticular_test_support.h"
 
 namespace parallax {
 namespace {
 
 LenticularDesign smallDesign() {
-  LenticularCalibration c;
-  c.source = "small.json";
-  c.pitch = 7.0;
-  c.slope = -6.0;
-  c.center = 0.3;
-  c.viewConeDegrees = 40;
-  c.dpi = 40;
-  c.screenW = 180;
-  c.screenH = 120;
-  c.invView = true;
-  return designLenticular(c);
+  return smallLenticularDesign();
 }
 
 DisplayPlacement tiltedPlacement() {

@@ -9,6 +9,7 @@
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/lenticular_camera.h"
+#include "parallax/display/lenticular_test_support.h"
 #include "parallax/image/metrics.h"
 #include "parallax/sim/lenticular_sim.h"
 
@@ -18,17 +19,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 LenticularDesign smallDesign() {
-  LenticularCalibration c;
-  c.source = "small.json";
-  c.pitch = 7.0;  // about 5.8 pixels per lens on a 40 DPI panel
-  c.slope = -6.0;
-  c.center = 0.3;
-  c.viewConeDegrees = 40;
-  c.dpi = 40;
-  c.screenW = 180;
-  c.screenH = 120;
-  c.invView = true;
-  return designLenticular(c);
+  return smallLenticularDesign();
 }
 
 Scene smallScene() {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "parallax/core/error.h"
+#include "parallax/display/lenticular_test_support.h"
 
 namespace parallax {
 namespace {
@@ -12,18 +13,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 LenticularDesign smallDesign(bool flipImageX = false) {
-  LenticularCalibration c;
-  c.source = "small.json";
-  c.pitch = 7.0;
-  c.slope = -6.0;
-  c.center = 0.3;
-  c.viewConeDegrees = 40;
-  c.dpi = 40;
-  c.screenW = 180;
-  c.screenH = 60;
-  c.invView = true;
-  c.flipImageX = flipImageX;
-  return designLenticular(c);
+  return smallLenticularDesign(60, flipImageX);
 }
 
 // Each subpixel shows its own view fraction (in its own channel): the eye should see the view
