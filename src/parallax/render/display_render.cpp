@@ -19,14 +19,8 @@ DisplayLayers renderDisplay(const Scene& scene, const Accelerator& accelerator,
   if (!rays.subpixelMode()) {
     layers.image = std::move(film);
   } else {
-    // Each subpixel column rendered its own ray; its channel keeps only its own colour.
-    const Panel& panel = design.spec.imagePanel;
-    layers.image = Image(panel.width, panel.height);
-    for (int y = 0; y < panel.height; ++y)
-      for (int column = 0; column < film.width(); ++column) {
-        const int channel = rays.channelOfColumn(column);
-        layers.image.at(column / 3, y)[channel] = film.at(column, y)[channel];
-      }
+    layers.image =
+        panelFromSubpixelFilm(film, [&rays](int column) { return rays.channelOfColumn(column); });
   }
   layers.mask = maskLayerImage(design);
   return layers;

@@ -10,14 +10,8 @@ LenticularRender renderLenticular(const Scene& scene, const Accelerator& acceler
   const LenticularCamera camera(design, scene.display);
   LenticularRender out;
   const Image film = render(scene, accelerator, camera, settings, &out.stats, progress);
-  // Film column 3x + c is channel c of pixel x; like the subpixel mode of renderDisplay, each
-  // subpixel keeps only its own colour.
-  out.image = Image(design.calibration.screenW, design.calibration.screenH);
-  for (int y = 0; y < film.height(); ++y)
-    for (int column = 0; column < film.width(); ++column) {
-      const int channel = LenticularCamera::channelOfColumn(column);
-      out.image.at(column / 3, y)[channel] = film.at(column, y)[channel];
-    }
+  // Film column 3x + c is channel c of pixel x, as in the subpixel mode of renderDisplay.
+  out.image = panelFromSubpixelFilm(film, LenticularCamera::channelOfColumn);
   return out;
 }
 

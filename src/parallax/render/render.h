@@ -32,6 +32,19 @@ struct RenderStats {
 // Called from worker threads with the number of finished and total tiles.
 using ProgressCallback = std::function<void(int done, int total)>;
 
+// A subpixel film (three columns per panel pixel, one ray each) as the panel's picture: film
+// column c is channel channelOfColumn(c) of pixel c / 3, and keeps only that channel's colour.
+template <class ChannelOfColumn>
+Image panelFromSubpixelFilm(const Image& film, ChannelOfColumn channelOfColumn) {
+  Image panel(film.width() / 3, film.height());
+  for (int y = 0; y < film.height(); ++y)
+    for (int column = 0; column < 3 * panel.width(); ++column) {
+      const int channel = channelOfColumn(column);
+      panel.at(column / 3, y)[channel] = film.at(column, y)[channel];
+    }
+  return panel;
+}
+
 Image render(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
              const RenderSettings& settings, RenderStats* stats = nullptr,
              const ProgressCallback& progress = {});
