@@ -11,15 +11,8 @@ if [ ! -x "$chromium" ]; then
   echo "FAIL: $chromium not found: run tools/install-deps (it installs the chromium package)" >&2
   exit 1
 fi
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-passes=0
-check() {  # check NAME CONDITION...
-  local name=$1
-  shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name" >&2; failures=$((failures + 1)); fi
-}
+# tmp, check and cli_summary (the binary under test is make_slider_page).
+source "$(dirname "$0")/cli_lib.sh" "$make_page" ""
 
 if ! "$make_page" "$tmp/page.html"; then
   echo "FAIL: make_slider_page could not write the page" >&2
@@ -75,5 +68,4 @@ src2=$(attribute src "$(element "$tmp/dom-frame=2.html" img frame)")
 check "frame 0's image is a PNG data URI" grep -q '^data:image/png;base64,iVBORw0KGgo' <<<"$src0"
 check "frame 2 shows a different image than frame 0" [ "$src0" != "$src2" ]
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+cli_summary
