@@ -65,27 +65,21 @@ struct BenchOptions {
   std::string camera = "pinhole";
   std::string scene, display;
   std::string size = "1920x1080";
-  int spp = 16;
+  SamplingOptions sampling;
   int repeats = 2;
-  int threads = 0;
   bool json = false;
   int simulateViews = 0;
-  std::string jitter = "auto";
 };
 
 void runBench(const BenchOptions& o) {
   if (o.simulateViews > 0) return benchSimulator(o.display, o.scene, o.simulateViews, o.json);
   int width = 0, height = 0;
   parseSize("--size", o.size, width, height);
-  if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
+  const RenderSettings settings = o.sampling.settings();
   if (o.camera != "pinhole" && o.camera != "display")
     throw InputError("command line", "--camera",
                      "unknown camera '" + o.camera + "' (pinhole or display)");
   const Scene scene = loadSceneOrDefault(o.scene);
-  RenderSettings settings;
-  settings.samplesPerPixel = o.spp;
-  settings.threads = o.threads;
-  settings.jitter = parseJitter(o.jitter);
   std::unique_ptr<Camera> camera;
   std::optional<PinholeGrid> limitGrid;
   if (o.camera == "display") {
@@ -97,11 +91,11 @@ void runBench(const BenchOptions& o) {
     width = camera->width(), height = camera->height();
     const Vec3d eye{design.spec.viewZoneCenterXMm, design.spec.viewZoneHeightMm,
                     design.viewDistanceMm};
-    limitGrid = WindowCamera(eye, design, scene.display, width, height).grid(o.spp);
+    limitGrid = WindowCamera(eye, design, scene.display, width, height).grid(o.sampling.spp);
   }
   const CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
   const PinholeCamera pinhole(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
-  if (!limitGrid) limitGrid = pinhole.grid(o.spp);
+  if (!limitGrid) limitGrid = pinhole.grid(o.sampling.spp);
   const Accelerator accelerator(scene);
   const Camera& measured = camera ? static_cast<const Camera&>(*camera) : pinhole;
   const BenchResult r = benchmark(scene, accelerator, measured, *limitGrid, settings, o.repeats);
@@ -117,8 +111,8 @@ void runBench(const BenchOptions& o) {
     json.set("/triangles", uint64_t(scene.triangleCount()));
     json.set("/width", width);
     json.set("/height", height);
-    json.set("/spp", o.spp);
-    json.set("/jitter", o.jitter);
+    json.set("/spp", o.sampling.spp);
+    json.set("/jitter", o.sampling.jitter);
     json.set("/rays", r.ours.rays);
     json.set("/seconds", r.ours.seconds);
     json.set("/rays_per_second", r.ours.perSecond());
@@ -136,7 +130,7 @@ void runBench(const BenchOptions& o) {
     return;
   }
   std::printf("scene        %s (%zu triangles), %s camera, %dx%d, %d spp\n", scene.source.c_str(),
-              scene.triangleCount(), o.camera.c_str(), width, height, o.spp);
+              scene.triangleCount(), o.camera.c_str(), width, height, o.sampling.spp);
   std::printf("parallax     %12llu rays in %.3f s  %s\n", (unsigned long long)r.ours.rays,
               r.ours.seconds, formatRate(r.ours.perSecond()).c_str());
   std::printf("raw Embree   %12llu rays in %.3f s  %s (coherent pinhole rays)\n",
@@ -163,16 +157,11 @@ void registerBenchCommand(CLI::App& cli) {
   cmd->add_option("--size", options->size,
                   "Image size WIDTHxHEIGHT (pinhole; the display camera uses the panel's)")
       ->capture_default_str();
-  cmd->add_option("--spp", options->spp, "Rays per pixel")->capture_default_str();
+  addSamplingOptions(*cmd, options->sampling, "Rays per pixel");
   cmd->add_option("--repeats", options->repeats, "Alternating runs; the fastest of each counts")
       ->capture_default_str();
-  cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)");
   cmd->add_option("--simulate", options->simulateViews,
                   "Instead: time a sweep of N simulated views of the display (9 is the goal)");
-  cmd->add_option("--jitter", options->jitter,
-                  "Within-stratum jitter: auto (the camera's choice), pixel (independent) or "
-                  "packet (shared)")
-      ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });
 }

@@ -1,6 +1,7 @@
 #include "parallax/app/cli_support.h"
 
 #include <unistd.h>
+#include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <sstream>
@@ -31,6 +32,8 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
   height = h;
 }
 
+namespace {
+
 JitterSharing parseJitter(const std::string& text) {
   if (text == "auto") return JitterSharing::Auto;
   if (text == "pixel") return JitterSharing::Pixel;
@@ -39,8 +42,37 @@ JitterSharing parseJitter(const std::string& text) {
                    "expected auto, pixel or packet, got '" + text + "'");
 }
 
+}  // namespace
+
+RenderSettings SamplingOptions::settings() const {
+  if (spp < 1) throw InputError("command line", "--spp", "must be at least 1");
+  RenderSettings s;
+  s.samplesPerPixel = spp;
+  s.threads = threads;
+  s.seed = seed;
+  s.jitter = parseJitter(jitter);
+  return s;
+}
+
+void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::string& sppHelp) {
+  cmd.add_option("--spp", options.spp, sppHelp)->capture_default_str();
+  cmd.add_option("--threads", options.threads, "Worker threads (0: all cores)");
+  cmd.add_option("--seed", options.seed, "Seed of the sample jitter");
+  cmd.add_option("--jitter", options.jitter,
+                 "Within-stratum jitter: auto (the camera's choice: shared by the 16 rays of a "
+                 "packet for the barrier camera, which keeps them parallel), pixel (independent) "
+                 "or packet (shared)")
+      ->capture_default_str();
+}
+
 Scene loadSceneOrDefault(const std::string& path) {
   return path.empty() ? defaultScene() : loadScene(path);
+}
+
+Scene loadSceneReportingWarnings(const std::string& path) {
+  Scene scene = loadSceneOrDefault(path);
+  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  return scene;
 }
 
 DisplayDesign loadDesignOrDefault(const std::string& path) {

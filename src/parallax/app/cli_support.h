@@ -8,8 +8,12 @@
 
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
-#include "parallax/render/tile_packets.h"
+#include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
+
+namespace CLI {
+class App;
+}
 
 namespace parallax::app {
 
@@ -20,11 +24,23 @@ Vec3f parseVec3(const std::string& option, const std::string& text);
 // "WxH" -> (W, H) with both positive; throws InputError naming the option.
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);
 
-// "auto", "pixel" or "packet" (--jitter) -> JitterSharing; throws InputError naming the option.
-JitterSharing parseJitter(const std::string& text);
+// --spp, --threads, --seed and --jitter: how every rendering command samples.
+struct SamplingOptions {
+  int spp = 16;
+  int threads = 0;
+  uint64_t seed = 0;
+  std::string jitter = "auto";
+  // The render settings; throws InputError naming --spp (below 1) or --jitter (not auto,
+  // pixel or packet).
+  RenderSettings settings() const;
+};
+// Adds the four options to `cmd`; what one sample is differs between commands: `sppHelp`.
+void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::string& sppHelp);
 
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
 Scene loadSceneOrDefault(const std::string& path);
+// The same, with the scene's warnings printed to stderr (for the commands that render it).
+Scene loadSceneReportingWarnings(const std::string& path);
 
 // The built-in display when `path` is empty, otherwise the display file; checked (G1-G4).
 DisplayDesign loadDesignOrDefault(const std::string& path);

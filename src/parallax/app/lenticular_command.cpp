@@ -25,8 +25,7 @@ namespace fs = std::filesystem;
 
 struct LenticularRenderOptions {
   std::string calibration, scene, output = "out";
-  int spp = 1, threads = 0;
-  uint64_t seed = 0;
+  SamplingOptions sampling{1};
   double distance = 0;
 };
 
@@ -37,17 +36,12 @@ struct LenticularSimulateOptions {
 };
 
 void runRender(const LenticularRenderOptions& o) {
-  if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
+  const RenderSettings settings = o.sampling.settings();
   if (o.distance < 0) throw InputError("command line", "--distance", "must be positive");
   const LenticularDesign design =
       designLenticular(loadLenticularCalibration(o.calibration), o.distance);
-  const Scene scene = loadSceneOrDefault(o.scene);
-  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const Scene scene = loadSceneReportingWarnings(o.scene);
   const Accelerator accelerator(scene);
-  RenderSettings settings;
-  settings.samplesPerPixel = o.spp;
-  settings.threads = o.threads;
-  settings.seed = o.seed;
   LenticularRender out;
   {
     ProgressBar bar("lenticular render");
@@ -59,8 +53,8 @@ void runRender(const LenticularRenderOptions& o) {
   record.set("/version", PARALLAX_VERSION);
   record.set("/method", "lenticular: one ray per subpixel along its view");
   record.set("/scene", scene.source);
-  record.set("/spp", o.spp);
-  record.set("/seed", o.seed);
+  record.set("/spp", o.sampling.spp);
+  record.set("/seed", o.sampling.seed);
   record.set("/seconds", out.stats.seconds);
   record.set("/rays", out.stats.totalRays());
   record.set("/outputs/image", "image.png");
@@ -79,7 +73,8 @@ void runRender(const LenticularRenderOptions& o) {
   std::printf("wrote %s/image.png (%dx%d), %s/visual.json, %s/render.json\n", dir.c_str(),
               out.image.width(), out.image.height(), dir.c_str(), dir.c_str());
   std::printf("%.2f pixels per lens, views over %.0f degrees; %d spp in %.2f s, %s\n",
-              design.pixelsPerLens, design.calibration.viewConeDegrees, o.spp, out.stats.seconds,
+              design.pixelsPerLens, design.calibration.viewConeDegrees, o.sampling.spp,
+              out.stats.seconds,
               formatRate(double(out.stats.totalRays()) / out.stats.seconds).c_str());
 }
 
@@ -125,12 +120,10 @@ void registerLenticularCommand(CLI::App& cli) {
       "render", "The panel image: one ray per subpixel along its calibrated view");
   render->add_option("calibration", r->calibration, "Calibration file (visual.json)")->required();
   render->add_option("scene", r->scene, "Scene or mesh file (built-in scene if omitted)");
-  render->add_option("--spp", r->spp, "Rays per subpixel (n*n over its area; 1: exact formula)")
-      ->capture_default_str();
+  addSamplingOptions(*render, r->sampling,
+                     "Rays per subpixel (n*n over its area; 1: exact formula)");
   render->add_option("--distance", r->distance,
                      "Design viewer distance in mm (default: the cone spans 1 m)");
-  render->add_option("--threads", r->threads, "Worker threads (0: all cores)");
-  render->add_option("--seed", r->seed, "Seed of the sample jitter");
   render->add_option("-o,--output", r->output, "Output folder")->capture_default_str();
   render->callback([r] { runRender(*r); });
 

@@ -26,10 +26,7 @@ namespace {
 
 struct RenderOptions {
   std::string scene, display;
-  int spp = 16;
-  int threads = 0;
-  uint64_t seed = 0;
-  std::string jitter = "auto";
+  SamplingOptions sampling;
   std::string output = "out";
   bool linear = false;
   bool subpixels = false;
@@ -74,10 +71,10 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
   JsonWriter record;
   startRenderRecord(record, "quilt", o.display);
   record.set("/scene", scene.source);
-  record.set("/spp", o.spp);
-  record.set("/seed", o.seed);
-  record.set("/jitter", o.jitter);
-  record.set("/threads", o.threads);
+  record.set("/spp", o.sampling.spp);
+  record.set("/seed", o.sampling.seed);
+  record.set("/jitter", o.sampling.jitter);
+  record.set("/threads", o.sampling.threads);
   record.set("/seconds", stats.seconds);
   record.set("/rays", stats.totalRays());
   record.set("/rays_per_second", raysPerSecond);
@@ -102,11 +99,12 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
   writeFileAtomically(dir + "/render.json", record.dump() + "\n");
   std::printf("wrote %s/%s (%d views of %dx%d), %s/render.json\n", dir.c_str(), name.c_str(),
               layout.views(), width, height, dir.c_str());
-  std::printf("%d spp in %.2f s, %s\n", o.spp, stats.seconds, formatRate(raysPerSecond).c_str());
+  std::printf("%d spp in %.2f s, %s\n", o.sampling.spp, stats.seconds,
+              formatRate(raysPerSecond).c_str());
 }
 
 void runRender(const RenderOptions& o) {
-  if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
+  const RenderSettings settings = o.sampling.settings();
   if (!o.size.empty() && o.quilt.empty())
     throw InputError("command line", "--size", "sets the size of one quilt view: needs --quilt");
   QuiltLayout layout;
@@ -118,13 +116,7 @@ void runRender(const RenderOptions& o) {
     spec.subpixelRays = true;
     design = designDisplay(spec);
   }
-  const Scene scene = loadSceneOrDefault(o.scene);
-  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  RenderSettings settings;
-  settings.samplesPerPixel = o.spp;
-  settings.threads = o.threads;
-  settings.seed = o.seed;
-  settings.jitter = parseJitter(o.jitter);
+  const Scene scene = loadSceneReportingWarnings(o.scene);
   if (!o.quilt.empty()) return runQuiltRender(o, layout, design, scene, settings);
   const Accelerator accelerator(scene);
   DisplayLayers layers;
@@ -139,10 +131,10 @@ void runRender(const RenderOptions& o) {
   JsonWriter record;
   startRenderRecord(record, o.directMapping ? "direct-mapping" : "barrier-camera", o.display);
   record.set("/scene", scene.source);
-  record.set("/spp", o.spp);
-  record.set("/seed", o.seed);
-  record.set("/jitter", o.jitter);
-  record.set("/threads", o.threads);
+  record.set("/spp", o.sampling.spp);
+  record.set("/seed", o.sampling.seed);
+  record.set("/jitter", o.sampling.jitter);
+  record.set("/threads", o.sampling.threads);
   record.set("/seconds", layers.stats.seconds);
   record.set("/rays", layers.stats.totalRays());
   record.set("/rays_per_second", raysPerSecond);
@@ -151,7 +143,7 @@ void runRender(const RenderOptions& o) {
   record.set("/scene_display/up", scene.display.up);
   record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
   writeDisplayLayers(o.output, layers.image, layers.mask, design, o.linear, record);
-  std::printf("%d spp in %.2f s, %s\n", o.spp, layers.stats.seconds,
+  std::printf("%d spp in %.2f s, %s\n", o.sampling.spp, layers.stats.seconds,
               formatRate(raysPerSecond).c_str());
 }
 
@@ -163,14 +155,8 @@ void registerRenderCommand(CLI::App& cli) {
       cli.add_subcommand("render", "Render the image and mask layers of a parallax display");
   cmd->add_option("scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
   cmd->add_option("--display", options->display, "Display file (built-in display if omitted)");
-  cmd->add_option("--spp", options->spp, "Rays per pixel: n*n stratified over pixel and aperture")
-      ->capture_default_str();
-  cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)");
-  cmd->add_option("--seed", options->seed, "Seed of the sample jitter");
-  cmd->add_option("--jitter", options->jitter,
-                  "Within-stratum jitter: auto (shared by the 16 rays of a packet for the barrier "
-                  "camera, which keeps them parallel), pixel (independent), packet (shared)")
-      ->capture_default_str();
+  addSamplingOptions(*cmd, options->sampling,
+                     "Rays per pixel: n*n stratified over pixel and aperture");
   cmd->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
   cmd->add_flag("--linear", options->linear, "Also write image.pfm, linear float");
   CLI::Option* direct =

@@ -21,9 +21,7 @@ struct ViewOptions {
   std::string eye, lookAt, up, size;
   std::string displayEye, display;
   float fov = 0.0f;
-  int spp = 16;
-  int threads = 0;
-  uint64_t seed = 0;
+  SamplingOptions sampling;
   std::string output = "out/view.png";
 };
 
@@ -60,15 +58,10 @@ std::unique_ptr<Camera> makeCamera(const ViewOptions& o, const Scene& scene) {
 }
 
 void runView(const ViewOptions& o) {
-  if (o.spp < 1) throw InputError("command line", "--spp", "must be at least 1");
-  Scene scene = loadSceneOrDefault(o.scene);
-  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const RenderSettings settings = o.sampling.settings();
+  Scene scene = loadSceneReportingWarnings(o.scene);
   const std::unique_ptr<Camera> camera = makeCamera(o, scene);
   const Accelerator accelerator(scene);
-  RenderSettings settings;
-  settings.samplesPerPixel = o.spp;
-  settings.threads = o.threads;
-  settings.seed = o.seed;
   RenderStats stats;
   Image image;
   {
@@ -78,7 +71,7 @@ void runView(const ViewOptions& o) {
   }
   writeImage(o.output, image);
   std::printf("wrote %s (%dx%d, %d spp) in %.2f s, %s\n", o.output.c_str(), camera->width(),
-              camera->height(), o.spp, stats.seconds,
+              camera->height(), o.sampling.spp, stats.seconds,
               formatRate(double(stats.totalRays()) / stats.seconds).c_str());
 }
 
@@ -100,10 +93,7 @@ void registerViewCommand(CLI::App& cli) {
                   "Ideal view through the display window from this eye X,Y,Z (display mm, "
                   "origin at the front layer's centre, z toward the viewer)");
   cmd->add_option("--display", options->display, "Display file for --display-eye");
-  cmd->add_option("--spp", options->spp, "Samples per pixel (n*n is stratified)")
-      ->capture_default_str();
-  cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)");
-  cmd->add_option("--seed", options->seed, "Seed of the sample jitter");
+  addSamplingOptions(*cmd, options->sampling, "Samples per pixel (n*n is stratified)");
   cmd->add_option("-o,--output", options->output, "Output image (.png, or .pfm linear float)")
       ->capture_default_str();
   cmd->callback([options] { runView(*options); });
