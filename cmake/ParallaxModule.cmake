@@ -1,8 +1,11 @@
-# parallax_module(NAME DEPS <parallax modules> PRIVATE_LIBS <third-party targets>)
+# parallax_module(NAME DEPS <parallax modules> PRIVATE_LIBS <third-party targets> [NARROW_ISA])
 # Builds src/parallax/NAME/*.cpp (except *_test.cpp) into parallax_NAME and every
 # NAME/*_test.cpp into one GoogleTest executable parallax_NAME_test registered with CTest.
+# NARROW_ISA registers the tests a second time (prefix "isa-sse4.2/") with Embree forced to its
+# SSE4.2 kernels, as a CPU without AVX-512 runs them: without native 16-wide kernels Embree
+# traces packets differently, and an AVX-512 machine would hide bugs there.
 function(parallax_module name)
-  cmake_parse_arguments(PM "" "" "DEPS;PRIVATE_LIBS;TEST_LIBS" ${ARGN})
+  cmake_parse_arguments(PM "NARROW_ISA" "" "DEPS;PRIVATE_LIBS;TEST_LIBS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*.cpp")
   file(GLOB tests CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*_test.cpp")
   list(REMOVE_ITEM sources ${tests} "${CMAKE_CURRENT_SOURCE_DIR}/main.cpp")
@@ -29,5 +32,10 @@ function(parallax_module name)
       PARALLAX_DATA_DIR="${PARALLAX_DATA_DIR}" PARALLAX_SOURCE_DIR="${PARALLAX_SOURCE_DIR}")
     gtest_discover_tests(parallax_${name}_test DISCOVERY_TIMEOUT 60
       PROPERTIES ENVIRONMENT "PARALLAX_DATA_DIR=${PARALLAX_DATA_DIR}")
+    if(PM_NARROW_ISA)
+      gtest_discover_tests(parallax_${name}_test DISCOVERY_TIMEOUT 60 TEST_PREFIX "isa-sse4.2/"
+        PROPERTIES ENVIRONMENT
+          "PARALLAX_DATA_DIR=${PARALLAX_DATA_DIR};PARALLAX_EMBREE_CONFIG=isa=sse4.2")
+    endif()
   endif()
 endfunction()

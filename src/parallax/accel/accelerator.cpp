@@ -5,11 +5,15 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+
+#include "parallax/core/error.h"
 
 namespace parallax {
 
@@ -36,8 +40,28 @@ const char* errorName(RTCError code) {
 
 }  // namespace
 
-// Embree device configuration: defaults (all cores through Embree's TBB tasking, best ISA).
-constexpr const char* kEmbreeDeviceConfig = "";
+// Embree device configuration: defaults (all cores through Embree's TBB tasking, best ISA),
+// unless PARALLAX_EMBREE_CONFIG holds one (Embree's own syntax, e.g. "isa=avx2" or
+// "isa=sse4.2"), so that tests and benchmarks can run the kernels a narrower CPU would.
+constexpr const char* kEmbreeConfigVariable = "PARALLAX_EMBREE_CONFIG";
+
+// Embree 3 quietly falls back to its best ISA for a name it does not know ("isa=avx-2"), so a
+// test meant for narrower kernels would pass on the wrong ones; the names it knows are checked
+// here (Embree 3's State::parseString).
+void checkIsaName(const std::string& config, const char* source) {
+  static const char* const known[] = {"sse", "sse2", "sse3", "ssse3",  "sse4.1",    "sse4.2",
+                                      "avx", "avxi", "avx2", "avx512", "avx512knl", "avx512skx"};
+  for (size_t at = config.find("isa"); at != std::string::npos; at = config.find("isa", at + 1)) {
+    if (at > 0 && config[at - 1] != ',' && config[at - 1] != ' ') continue;  // e.g. max_isa
+    size_t value = config.find_first_not_of(" =", at + 3);
+    if (value == std::string::npos || config.compare(at + 3, 1, "=") != 0) continue;
+    const std::string name = config.substr(value, config.find_first_of(", ", value) - value);
+    if (std::find_if(std::begin(known), std::end(known),
+                     [&](const char* k) { return name == k; }) == std::end(known))
+      throw InputError(source, "",
+                       "unknown Embree ISA '" + name + "'; use sse2, sse4.2, avx, avx2 or avx512");
+  }
+}
 
 struct Accelerator::Impl {
   RTCDevice device = nullptr;
@@ -118,6 +142,48 @@ void fillRay(const Ray& ray, RTCRay& out) {
   out.flags = 0;
 }
 
+// The one seam between our rays and Embree's packet kernels. Embree 3 checks every ray it
+// traces (Debian's build asserts `ray.valid()`: finite origin and direction below FLT_LARGE,
+// tnear and tfar not NaN), and on CPUs without native 16-wide kernels (AVX2, SSE) it serves
+// rtcIntersect16 / rtcOccluded16 through a fallback that ignores the valid mask and traces
+// every lane whose tnear <= tfar. So every lane that is not to be traced gets a harmless ray
+// that no kernel traces (origin 0, direction +z, tnear 1 > tfar 0), and an active lane whose
+// ray Embree would reject (non-finite or huge numbers, an empty or negative interval) is
+// turned off and reads as a miss: it cannot hit anything meaningful.
+constexpr float kLargestCoordinate = 1e18f;  // below Embree's FLT_LARGE (1.844e18)
+
+bool traceable(float ox, float oy, float oz, float dx, float dy, float dz, float tMin, float tMax) {
+  auto small = [](float value) { return std::abs(value) <= kLargestCoordinate; };  // NaN: false
+  return small(ox) && small(oy) && small(oz) && small(dx) && small(dy) && small(dz) &&
+         (dx != 0.0f || dy != 0.0f || dz != 0.0f) && tMin >= 0.0f && tMin <= tMax;
+}
+
+bool traceable(const Ray& ray) {
+  return traceable(ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y,
+                   ray.direction.z, ray.tMin, ray.tMax);
+}
+
+void disableLane(RTCRay16& ray, int lane) {
+  ray.org_x[lane] = 0.0f, ray.org_y[lane] = 0.0f, ray.org_z[lane] = 0.0f;
+  ray.dir_x[lane] = 0.0f, ray.dir_y[lane] = 0.0f, ray.dir_z[lane] = 1.0f;
+  ray.tnear[lane] = 1.0f, ray.tfar[lane] = 0.0f;
+}
+
+// Makes `ray` safe for rtcIntersect16 / rtcOccluded16 under any ISA: clears `valid` for lanes
+// Embree cannot trace and disarms every lane `valid` leaves out. Returns the active count.
+int guardPacket(RTCRay16& ray, int valid[16]) {
+  int count = 0;
+  for (int lane = 0; lane < 16; ++lane) {
+    const bool trace = valid[lane] != 0 &&
+                       traceable(ray.org_x[lane], ray.org_y[lane], ray.org_z[lane], ray.dir_x[lane],
+                                 ray.dir_y[lane], ray.dir_z[lane], ray.tnear[lane], ray.tfar[lane]);
+    valid[lane] = trace ? -1 : 0;
+    count += int(trace);
+    if (!trace) disableLane(ray, lane);
+  }
+  return count;
+}
+
 void fillRays(const RayPacket16& rays, RTCRay16& out) {
   for (int lane = 0; lane < 16; ++lane) {
     out.org_x[lane] = rays.ox[lane], out.org_y[lane] = rays.oy[lane];
@@ -150,16 +216,24 @@ void Accelerator::Impl::throwIfError(const char* stage) {
   if (!message.empty()) throw std::runtime_error(std::string("Embree ") + stage + ": " + message);
 }
 
-Accelerator::Accelerator(const Scene& scene) : impl_(std::make_unique<Impl>()) {
+Accelerator::Accelerator(const Scene& scene, const std::optional<std::string>& embreeConfig)
+    : impl_(std::make_unique<Impl>()) {
   for (size_t i = 0; i < scene.meshes.size(); ++i) checkMesh(scene.meshes[i], i);
   if (scene.meshes.size() + scene.spheres.size() >= RTC_INVALID_GEOMETRY_ID)
     throw std::runtime_error("Embree: too many geometries");
 
   Impl& impl = *impl_;
-  impl.device = rtcNewDevice(kEmbreeDeviceConfig);
-  if (!impl.device)
-    throw std::runtime_error(std::string("Embree: cannot create device: ") +
-                             errorName(rtcGetDeviceError(nullptr)));
+  const char* environment = std::getenv(kEmbreeConfigVariable);
+  const std::string config = embreeConfig ? *embreeConfig : environment ? environment : "";
+  checkIsaName(config, embreeConfig ? "Embree configuration" : kEmbreeConfigVariable);
+  impl.device = rtcNewDevice(config.c_str());
+  if (!impl.device) {
+    const std::string reason = errorName(rtcGetDeviceError(nullptr));
+    if (config.empty()) throw std::runtime_error("Embree: cannot create device: " + reason);
+    throw InputError(embreeConfig ? "Embree configuration" : kEmbreeConfigVariable, "",
+                     "Embree refuses '" + config + "' (" + reason +
+                         "); use e.g. isa=avx2 or isa=sse4.2, or leave it unset");
+  }
   rtcSetDeviceErrorFunction(impl.device, Impl::recordError, &impl);
   impl.meshCount = uint32_t(scene.meshes.size());
   impl.sphereCount = uint32_t(scene.spheres.size());
@@ -193,6 +267,7 @@ Accelerator::Accelerator(const Scene& scene) : impl_(std::make_unique<Impl>()) {
 Accelerator::~Accelerator() = default;
 
 Hit Accelerator::intersect(const Ray& ray) const {
+  if (!traceable(ray)) return Hit{};
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayHit;
@@ -206,6 +281,7 @@ Hit Accelerator::intersect(const Ray& ray) const {
 }
 
 bool Accelerator::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay shadow;
@@ -225,10 +301,12 @@ void Accelerator::intersect16(const RayPacket16& rays, HitPacket16& hits) const 
     rayHit.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
     rayHit.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
   }
-  rtcIntersect16(rays.active, impl_->scene, &context, &rayHit);
+  alignas(64) int valid[16];
+  std::memcpy(valid, rays.active, sizeof(valid));
+  if (guardPacket(rayHit.ray, valid) > 0) rtcIntersect16(valid, impl_->scene, &context, &rayHit);
   const RTCHit16& h = rayHit.hit;
   for (int lane = 0; lane < 16; ++lane) {
-    const bool hit = rays.active[lane] != 0 && h.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
+    const bool hit = valid[lane] != 0 && h.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
     // Misses and inactive lanes look exactly like a default Hit, as intersect() returns.
     hits.t[lane] = hit ? rayHit.ray.tfar[lane] : 0.0f;
     hits.geometry[lane] = hit ? h.geomID[lane] : kNoHit;
@@ -247,10 +325,12 @@ void Accelerator::occluded16(const RayPacket16& rays, bool occludedOut[16]) cons
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRay16 shadow;
   fillRays(rays, shadow);
-  rtcOccluded16(rays.active, impl_->scene, &context, &shadow);
+  alignas(64) int valid[16];
+  std::memcpy(valid, rays.active, sizeof(valid));
+  if (guardPacket(shadow, valid) > 0) rtcOccluded16(valid, impl_->scene, &context, &shadow);
   for (int lane = 0; lane < 16; ++lane)
     occludedOut[lane] =
-        rays.active[lane] != 0 && shadow.tfar[lane] == -std::numeric_limits<float>::infinity();
+        valid[lane] != 0 && shadow.tfar[lane] == -std::numeric_limits<float>::infinity();
 }
 
 SurfaceRef Accelerator::surface(uint32_t geometry) const {
@@ -304,6 +384,7 @@ uint32_t traceRawShadows(RTCScene scene, RTCIntersectContext& context, RTCRayHit
     shadow.id[lane] = unsigned(lane);
     shadow.flags[lane] = 0;
   }
+  shadowCount = uint32_t(guardPacket(shadow, shadowValid));
   if (shadowCount == 0) return 0;
   rtcOccluded16(shadowValid, scene, &context, &shadow);
   // The occlusion results are otherwise unused; a volatile store keeps them observable.
@@ -335,11 +416,9 @@ uint64_t Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int r
       for (int sample = 0; sample < n * n; ++sample) {
         const float jx = (float(sample % n) + 0.5f) / float(n);
         const float jy = (float(sample / n) + 0.5f) / float(n);
-        int primaryCount = 0;
         for (int lane = 0; lane < 16; ++lane) {
           const int x = x0 + lane % 4, y = y0 + lane / 4;
           primaryValid[lane] = (x < grid.width && y < rowEnd) ? -1 : 0;
-          primaryCount += primaryValid[lane] != 0;
           const Vec3f target =
               grid.pixel00 + (float(x) + jx) * grid.pixelDx + (float(y) + jy) * grid.pixelDy;
           const Vec3f direction = target - grid.eye;
@@ -356,6 +435,7 @@ uint64_t Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int r
           primary.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
           primary.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
         }
+        const int primaryCount = guardPacket(primary.ray, primaryValid);
         rtcIntersect16(primaryValid, impl_->scene, &context, &primary);
         rayCount += uint64_t(primaryCount);
         rayCount += traceRawShadows(impl_->scene, context, primary, primaryValid, lightPosition);
@@ -369,14 +449,15 @@ uint64_t Accelerator::traceRawPacket(const RayPacket16& rays, const Vec3f& light
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRayHit16 primary;
   fillRays(rays, primary.ray);
-  uint64_t rayCount = 0;
   for (int lane = 0; lane < 16; ++lane) {
     primary.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
     primary.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
-    rayCount += rays.active[lane] != 0;
   }
-  rtcIntersect16(rays.active, impl_->scene, &context, &primary);
-  return rayCount + traceRawShadows(impl_->scene, context, primary, rays.active, lightPosition);
+  alignas(64) int valid[16];
+  std::memcpy(valid, rays.active, sizeof(valid));
+  const uint64_t rayCount = uint64_t(guardPacket(primary.ray, valid));
+  rtcIntersect16(valid, impl_->scene, &context, &primary);
+  return rayCount + traceRawShadows(impl_->scene, context, primary, valid, lightPosition);
 }
 
 }  // namespace parallax

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "parallax/core/math.h"
 #include "parallax/core/ray.h"
@@ -79,14 +81,21 @@ class Accelerator {
   // Builds the Embree scene from every mesh and sphere: geometry IDs 0..M-1 are the meshes,
   // M..M+S-1 the spheres. Throws std::runtime_error with Embree's message if the device or the
   // build fails, or naming the mesh if one has an index out of range or a ragged index list.
-  explicit Accelerator(const Scene& scene);
+  // `embreeConfig` is Embree's device configuration ("isa=avx2", "isa=sse4.2", ...); without
+  // one, the environment's PARALLAX_EMBREE_CONFIG, else Embree's defaults (the best ISA). A
+  // configuration Embree refuses is an InputError naming it.
+  explicit Accelerator(const Scene& scene,
+                       const std::optional<std::string>& embreeConfig = std::nullopt);
   ~Accelerator();
   Accelerator(const Accelerator&) = delete;
   Accelerator& operator=(const Accelerator&) = delete;
 
   Hit intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
-  // Packet forms: inactive lanes are not traced; their hits read as misses (a default Hit).
+  // A ray Embree cannot trace (a non-finite or huge origin or direction, a zero direction, a
+  // negative tMin or tMin > tMax) misses everything and is not occluded.
+  // Packet forms: inactive lanes are not traced, whatever they hold, on every ISA; their hits
+  // read as misses (a default Hit).
   void intersect16(const RayPacket16& rays, HitPacket16& hits) const;
   // occludedOut[lane] is true if something lies within (tMin, tMax) of an active lane.
   void occluded16(const RayPacket16& rays, bool occludedOut[16]) const;

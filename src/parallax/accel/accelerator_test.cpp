@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "parallax/core/error.h"
 #include "parallax/core/random.h"
 
 namespace parallax {
@@ -379,13 +380,48 @@ TEST(AcceleratorTriangles, MatchBruteForceOnRandomSoup) {
 
 // ---- Packets against single rays ----
 
-TEST(AcceleratorPackets, AgreeWithSingleRaysLaneByLane) {
+// Inactive lanes hold whatever a caller left there: stale rays, NaN, infinities, empty
+// intervals. Embree 3 without native 16-wide kernels (AVX2, SSE) ignores the valid mask, so
+// each packet test runs on every kernel width this CPU can run: Embree's best, AVX2 (8 wide)
+// and SSE4.2 (4 wide); each must give the single-ray answers lane by lane.
+void scribble(RayPacket16& rays, int lane, uint32_t kind) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  switch (kind % 5) {
+    case 0:
+      rays.ox[lane] = nan;
+      break;
+    case 1:
+      rays.dx[lane] = rays.dy[lane] = rays.dz[lane] = 0.0f;
+      break;
+    case 2:
+      rays.oy[lane] = kInf, rays.dz[lane] = -kInf;
+      break;
+    case 3:
+      rays.tMin[lane] = -1.0f, rays.tMax[lane] = nan;
+      break;
+    default:
+      break;  // a stale but well-formed ray: still must not be traced
+  }
+}
+
+class AcceleratorIsa : public ::testing::TestWithParam<const char*> {};
+
+std::string kernelName(const ::testing::TestParamInfo<const char*>& param) {
+  const std::string config = param.param;
+  if (config.empty()) return "best";
+  return config == "isa=sse4.2" ? "sse42" : config.substr(4);
+}
+
+INSTANTIATE_TEST_SUITE_P(Kernels, AcceleratorIsa, ::testing::Values("", "isa=avx2", "isa=sse4.2"),
+                         kernelName);
+
+TEST_P(AcceleratorIsa, PacketsAgreeWithSingleRaysLaneByLane) {
   Rng rng(15);
   std::vector<SoupTriangle> soup;
   Scene scene = randomSoup(rng, 500, soup);
   for (int i = 0; i < 6; ++i)
     scene.spheres.push_back({"s", 0, uniformBox(rng, -1.5f, 1.5f), uniform(rng, 0.1f, 0.4f)});
-  const Accelerator accel(scene);
+  const Accelerator accel(scene, std::string(GetParam()));
   int activeLanes = 0, hitLanes = 0, occludedLanes = 0;
   for (int p = 0; p < 400; ++p) {
     RayPacket16 rays;
@@ -393,7 +429,7 @@ TEST(AcceleratorPackets, AgreeWithSingleRaysLaneByLane) {
       rays.set(lane, randomSoupRay(rng));
       if (rng.next() % 4 == 0) {
         rays.deactivate(lane);
-        rays.ox[lane] = std::numeric_limits<float>::quiet_NaN();  // must be ignored
+        scribble(rays, lane, uint32_t(rng.next()));  // must be ignored
       }
     }
     HitPacket16 hits;
@@ -426,6 +462,55 @@ TEST(AcceleratorPackets, AgreeWithSingleRaysLaneByLane) {
   EXPECT_GT(activeLanes, 4000);
   EXPECT_GT(hitLanes, 1000);
   EXPECT_EQ(occludedLanes, hitLanes);
+}
+
+// Active lanes Embree cannot trace (NaN, huge or zero directions, tMin > tMax, tMin < 0) read
+// as misses and are never occluded, in packets and single rays alike, on every kernel width;
+// their neighbours are traced as usual.
+TEST_P(AcceleratorIsa, UntraceableActiveLanesMiss) {
+  Scene scene;
+  scene.spheres.push_back({"s", 0, {0, 0, 0}, 1.0f});
+  const Accelerator accel(scene, std::string(GetParam()));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const Ray good{{0, 0, 5}, {0, 0, -1}};
+  std::vector<Ray> bad(8, good);
+  bad[0].origin.x = nan;
+  bad[1].direction = {0, 0, 0};
+  bad[2].direction.z = -kInf;
+  bad[3].origin.z = 1e30f;
+  bad[4].tMin = 3.0f, bad[4].tMax = 2.0f;
+  bad[5].tMin = -1.0f;
+  bad[6].tMax = nan;
+  bad[7].direction.y = 1e19f;
+  RayPacket16 rays;
+  for (int lane = 0; lane < 16; ++lane) rays.set(lane, lane % 2 ? bad[size_t(lane / 2)] : good);
+  HitPacket16 hits;
+  bool occludedOut[16];
+  accel.intersect16(rays, hits);
+  accel.occluded16(rays, occludedOut);
+  for (int lane = 0; lane < 16; ++lane) {
+    const bool traceable = lane % 2 == 0;
+    EXPECT_EQ(hits.hit(lane).valid(), traceable) << "lane " << lane;
+    EXPECT_EQ(occludedOut[lane], traceable) << "lane " << lane;
+    EXPECT_EQ(accel.intersect(rays.ray(lane)).valid(), traceable) << "lane " << lane;
+    EXPECT_EQ(accel.occluded(rays.ray(lane)), traceable) << "lane " << lane;
+    if (traceable) {
+      EXPECT_NEAR(hits.t[lane], 4.0f, 1e-5f);
+    }
+  }
+}
+
+TEST(AcceleratorConfig, RefusedConfigurationIsAnInputErrorNamingIt) {
+  const Scene scene;
+  for (const std::string config : {"isa=nonsense", "threads=abc", "isa="}) {
+    try {
+      const Accelerator accel(scene, config);
+      ADD_FAILURE() << "accepted " << config;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("Embree"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(Accelerator(scene, std::string("isa=sse4.2,verbose=0")));
 }
 
 // ---- Geometry IDs, empty scenes and bad meshes ----
@@ -523,12 +608,12 @@ uint64_t expectedRawRays(const Accelerator& accel, const PinholeGrid& grid, int 
   return rays;
 }
 
-TEST(AcceleratorRawLimit, CountsPrimaryRaysAndOneShadowRayPerHit) {
+TEST_P(AcceleratorIsa, RawLimitCountsPrimaryRaysAndOneShadowRayPerHit) {
   Scene scene;
   addQuad(scene, "floor", {-5, -1, 5}, {10, 0, 0}, {0, 0, -10}, 0);
   addBox(scene, "box", {-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, 0);
   scene.spheres.push_back({"ball", 0, {1.2f, 0.0f, 0.3f}, 0.6f});
-  const Accelerator accel(scene);
+  const Accelerator accel(scene, std::string(GetParam()));
   // 37 x 23 pixels: partial 4x4 blocks on the right and at the bottom.
   const PinholeGrid grid{{0, 1, 6}, {-1.5f, 1.4f, 4}, {3.0f / 37, 0, 0}, {0, -2.0f / 23, 0}, 37, 23,
                          5};

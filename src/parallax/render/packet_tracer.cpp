@@ -43,8 +43,12 @@ void PacketTracer::trace(const RayPacket16& rays, const Color16& weight, std::ar
   for (int i = 0; i < 16; ++i)
     mirrors += sp.hit[i] & int32_t(sp.mirror.r[i] + sp.mirror.g[i] + sp.mirror.b[i] > 0.0f);
   if (mirrors == 0) return;
-  RayPacket16 bounce;
+  // Every lane of the bounce packet is defined: an inactive lane's weight multiplies its zero
+  // radiance below, and uninitialised memory there (NaN, inf) turned whole channels into NaN
+  // (red and yellow speckles on the bunny's mirror porcelain).
+  RayPacket16 bounce{};
   Color16 bounceWeight;
+  bounceWeight.fill(0.0f);
   bool any = false;
   for (int lane = 0; lane < 16; ++lane) {
     bounce.deactivate(lane);
