@@ -48,16 +48,48 @@ DisplayDesign designDisplay(const DisplaySpec& spec) {
   const auto fail = [&spec](const std::string& key, const std::string& message) {
     return InputError(spec.source, key, message);
   };
+  // A quantity outside its physically sensible range (display.h, "Ranges").
+  const auto requireRange = [&fail](const std::string& key, double v, const DisplayRange& r) {
+    if (!(v >= r.lowest && v <= r.highest) || (r.openBelow && v == r.lowest))
+      throw fail(key, std::string("must be ") + (r.openBelow ? "above " : "from ") +
+                          number(r.lowest) + (r.openBelow ? " and up to " : " to ") +
+                          number(r.highest) + " " + r.unit + " (got " + number(v) + ")");
+  };
   for (const auto& [key, panel] :
        {std::pair{"/image_layer", &spec.imagePanel}, std::pair{"/mask_layer", &spec.maskPanel}}) {
-    if (panel->width < 1 || panel->height < 1)
-      throw fail(std::string(key) + "/resolution", "must be at least 1x1 pixels");
+    if (panel->width < 1 || panel->height < 1 || panel->width > kMaxPanelPixels ||
+        panel->height > kMaxPanelPixels)
+      throw fail(std::string(key) + "/resolution", "must be from 1x1 to " +
+                                                       std::to_string(kMaxPanelPixels) + "x" +
+                                                       std::to_string(kMaxPanelPixels) + " pixels");
     if (!(panel->pitchMm > 0) || !std::isfinite(panel->pitchMm))
       throw fail(std::string(key) + "/pixel_pitch_mm", "must be a positive number");
+    requireRange(std::string(key) + "/pixel_pitch_mm", panel->pitchMm, kPixelPitchRange);
   }
   const double g = spec.gapMm;
   if (!(g > 0) || !std::isfinite(g))
     throw fail("/gap_mm", "must be positive (got " + number(g) + ")");
+  requireRange("/gap_mm", g, kGapRange);
+  if (spec.viewDistanceMm) requireRange("/view_distance_mm", *spec.viewDistanceMm, kDistanceRange);
+  requireRange("/view_zone/center_x_mm", spec.viewZoneCenterXMm, kOffsetRange);
+  requireRange("/view_zone/height_mm", spec.viewZoneHeightMm, kOffsetRange);
+  if (spec.viewZoneWidthMm)
+    requireRange("/view_zone/width_mm", *spec.viewZoneWidthMm, kZoneWidthRange);
+  if (spec.views) requireRange("/views", *spec.views, kPeriodPxRange);
+  if (spec.screenPeriodPx) requireRange("/screen_period_px", *spec.screenPeriodPx, kPeriodPxRange);
+  if (spec.slitPeriodPx) requireRange("/slit_period_px", *spec.slitPeriodPx, kPeriodPxRange);
+  {
+    const MaskSpec& m = spec.mask;
+    requireRange("/mask/phase_px", m.phasePx, kShiftPxRange);
+    requireRange("/mask/panel_offset_px", m.panelOffsetPx, kShiftPxRange);
+    requireRange("/mask/amplitude_mm", m.wiggleAmplitudeMm, kWiggleRange);
+    requireRange("/mask/wavelength_mm", m.wiggleWavelengthMm, kWiggleRange);
+    requireRange("/mask/vertical_period_px", m.verticalPeriodPx,
+                 DisplayRange{0, kPeriodPxRange.highest, "mask pixels", false});
+  }
+  if (spec.virtualGapMm) requireRange("/virtual/gap_mm", *spec.virtualGapMm, kGapRange);
+  if (spec.virtualDistanceMm && !std::isinf(*spec.virtualDistanceMm))
+    requireRange("/virtual/distance_mm", *spec.virtualDistanceMm, kDistanceRange);
 
   DisplayDesign d;
   d.spec = spec;
@@ -85,6 +117,11 @@ DisplayDesign designDisplay(const DisplaySpec& spec) {
                      " (got Tx = " + number(d.screenPeriodMm) +
                      " mm, Tv = " + number(d.slitPeriodMm) + " mm)");
     d.viewDistanceMm = g / (rear / front - 1.0);
+    if (!(d.viewDistanceMm >= kDistanceRange.lowest && d.viewDistanceMm <= kDistanceRange.highest))
+      throw fail("/slit_period_px", "the measured periods give a viewing distance of " +
+                                        number(d.viewDistanceMm) + " mm (G1), outside " +
+                                        number(kDistanceRange.lowest) + " to " +
+                                        number(kDistanceRange.highest) + " mm");
     if (spec.viewDistanceMm &&
         std::abs(*spec.viewDistanceMm - d.viewDistanceMm) > 0.01 * d.viewDistanceMm)
       throw fail("/view_distance_mm", "contradicts the measured periods, which give D = " +

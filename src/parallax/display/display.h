@@ -65,6 +65,33 @@ struct DisplaySpec {
 
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+// Ranges. designDisplay refuses, naming the key, any quantity outside its physically sensible
+// range, so that no nonsense (a 1e-300 mm pixel, a 1e300 mm gap) reaches the rays:
+//   pixel_pitch_mm      1e-3 .. 10 mm          resolution     1 .. 65536 pixels a side
+//   gap_mm, virtual/gap_mm  above 0, up to 1000 mm
+//   view_distance_mm, virtual/distance_mm  10 mm .. 100 m (virtual: or "infinity"), and the
+//                       distance the measured periods give (G1)
+//   view_zone/center_x_mm, view_zone/height_mm  -100 m .. 100 m
+//   view_zone/width_mm  above 0, up to 100 m
+//   views, screen_period_px, slit_period_px  above 0, up to 65536 pixels
+//   mask/phase_px, mask/panel_offset_px  -1e6 .. 1e6 pixels
+//   mask/amplitude_mm, mask/wavelength_mm  0 .. 1e5 mm   mask/vertical_period_px  0 .. 65536
+//   (and, for their mask types: angle_deg -80 .. 80, jitter 0 .. 0.5 periods)
+struct DisplayRange {
+  double lowest, highest;
+  const char* unit;
+  bool openBelow;  // lowest itself is refused
+};
+inline constexpr int kMaxPanelPixels = 1 << 16;
+inline constexpr DisplayRange kPixelPitchRange{1e-3, 10, "mm", false};
+inline constexpr DisplayRange kGapRange{0, 1000, "mm", true};
+inline constexpr DisplayRange kDistanceRange{10, 1e5, "mm", false};
+inline constexpr DisplayRange kOffsetRange{-1e5, 1e5, "mm", false};
+inline constexpr DisplayRange kZoneWidthRange{0, 1e5, "mm", true};
+inline constexpr DisplayRange kPeriodPxRange{0, 65536, "pixels", true};
+inline constexpr DisplayRange kShiftPxRange{-1e6, 1e6, "pixels", false};
+inline constexpr DisplayRange kWiggleRange{0, 1e5, "mm", false};
+
 struct DisplayDesign {
   DisplaySpec spec;
   double gapMm = 0, viewDistanceMm = 0;

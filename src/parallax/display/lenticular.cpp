@@ -1,6 +1,8 @@
 #include "parallax/display/lenticular.h"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "parallax/core/error.h"
 
@@ -10,6 +12,12 @@ namespace {
 
 constexpr double kMmPerInch = 25.4;
 constexpr double kPi = 3.14159265358979323846;
+
+std::string shortNumber(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
 
 double radians(double degrees) {
   return degrees * kPi / 180.0;
@@ -55,6 +63,26 @@ LenticularDesign designLenticular(const LenticularCalibration& c, double viewDis
   if (!(c.viewConeDegrees > 0 && c.viewConeDegrees < 180))
     throw fail("/viewCone", "must be between 0 and 180 degrees");
   if (c.screenW < 1 || c.screenH < 1) throw fail("/screenW", "the screen must have pixels");
+  // Physically sensible ranges, so that no nonsense reaches the rays (lenticular.h).
+  const auto range = [&fail](const char* key, double v, double lowest, double highest,
+                             const char* unit) {
+    if (!(v >= lowest && v <= highest))
+      throw fail(key, "must be from " + shortNumber(lowest) + " to " + shortNumber(highest) + " " +
+                          unit + " (got " + shortNumber(v) + ")");
+  };
+  range("/pitch", c.pitch, 0.1, 1e4, "lenses per inch");
+  range("/DPI", c.dpi, 10, 1e5, "pixels per inch");
+  range("/slope", std::fabs(c.slope), 1e-3, 1e4, "(absolute value)");
+  range("/center", c.center, -1e6, 1e6, "");
+  range("/viewCone", c.viewConeDegrees, 1, 179, "degrees");
+  if (c.screenW > 65536 || c.screenH > 65536)
+    throw fail("/screenW", "the screen must be at most 65536 pixels a side");
+  for (size_t i = 0; i < c.subpixelCells.size(); ++i)
+    for (size_t ch = 0; ch < 3; ++ch)
+      for (const double v : {c.subpixelCells[i].offsetX[ch], c.subpixelCells[i].offsetY[ch]})
+        if (!(std::fabs(v) <= 1))
+          throw InputError(c.source, "/subpixelCells/" + std::to_string(i),
+                           "subpixel offsets must be from -1 to 1 (screen fractions)");
   if (c.cellPatternMode < 0 || c.cellPatternMode > 1)
     throw fail("/CellPatternMode", "only 0 (one cell) and 1 (checkerboard) are supported");
   if (c.cellPatternMode == 1 && c.subpixelCells.size() < 2)

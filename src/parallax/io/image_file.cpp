@@ -12,6 +12,7 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +22,7 @@
 #include <system_error>
 
 #include "parallax/core/error.h"
+#include "parallax/io/input_file.h"
 
 namespace parallax {
 namespace {
@@ -34,14 +36,103 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-std::string readFileBytes(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path, "", "file not found");
-  if (fs::is_directory(path, ec)) throw InputError(path, "", "is a folder, not an image file");
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  if (!(in && bytes << in.rdbuf())) throw InputError(path, "", "cannot read file");
-  return bytes.str();
+// ---- What the bytes are, and whether the name agrees -----------------------------------
+
+enum class Format { Png, Jpeg, Pfm, Hdr, Bmp, Gif, Psd, Pnm, Tga, Unknown };
+
+const char* formatName(Format f) {
+  switch (f) {
+    case Format::Png:
+      return "PNG";
+    case Format::Jpeg:
+      return "JPEG";
+    case Format::Pfm:
+      return "PFM";
+    case Format::Hdr:
+      return "Radiance HDR";
+    case Format::Bmp:
+      return "BMP";
+    case Format::Gif:
+      return "GIF";
+    case Format::Psd:
+      return "PSD";
+    case Format::Pnm:
+      return "PNM";
+    case Format::Tga:
+      return "TGA";
+    case Format::Unknown:
+      break;
+  }
+  return "unknown";
+}
+
+// The format the first bytes announce. TGA has no signature: it is what the name says.
+Format sniffFormat(std::string_view b) {
+  const auto starts = [&b](std::string_view magic) { return b.substr(0, magic.size()) == magic; };
+  if (starts("\x89PNG\r\n\x1a\n")) return Format::Png;
+  if (starts("\xff\xd8\xff")) return Format::Jpeg;
+  if (b.size() >= 2 && b[0] == 'P' && (b[1] == 'F' || b[1] == 'f')) return Format::Pfm;
+  if (starts("#?RADIANCE") || starts("#?RGBE")) return Format::Hdr;
+  if (starts("BM")) return Format::Bmp;
+  if (starts("GIF8")) return Format::Gif;
+  if (starts("8BPS")) return Format::Psd;
+  if (b.size() >= 2 && b[0] == 'P' && (b[1] == '5' || b[1] == '6')) return Format::Pnm;
+  return Format::Unknown;
+}
+
+// The format an image extension claims, or Unknown for a name that claims none.
+Format claimedFormat(const std::string& ext) {
+  if (ext == ".png") return Format::Png;
+  if (ext == ".jpg" || ext == ".jpeg") return Format::Jpeg;
+  if (ext == ".pfm") return Format::Pfm;
+  if (ext == ".hdr") return Format::Hdr;
+  if (ext == ".bmp") return Format::Bmp;
+  if (ext == ".gif") return Format::Gif;
+  if (ext == ".psd") return Format::Psd;
+  if (ext == ".pnm" || ext == ".ppm" || ext == ".pgm") return Format::Pnm;
+  if (ext == ".tga") return Format::Tga;
+  return Format::Unknown;
+}
+
+// The format to decode `bytes` as, or an InputError when they are no supported image or are
+// another format than the file's extension claims.
+Format checkedFormat(std::string_view bytes, const std::string& name) {
+  const Format claimed = claimedFormat(lowerExtension(name));
+  Format found = sniffFormat(bytes);
+  if (found == Format::Unknown && claimed == Format::Tga) found = Format::Tga;
+  if (found == Format::Unknown)
+    throw inputError(name, "",
+                     "not a readable image (unknown format; PNG, JPEG, PFM and HDR are read)");
+  if (claimed != Format::Unknown && claimed != found)
+    throw inputError(name, "",
+                     std::string("not a readable image: the name says ") + formatName(claimed) +
+                         " but the contents are " + formatName(found));
+  return found;
+}
+
+std::string gibText(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f GiB", bytes / double(1ull << 30));
+  return text;
+}
+
+// Refuses, from the header alone, an image whose pixels would take more memory than
+// kMaxImageDecodeBytes (decoded codes plus the linear float image) or more than
+// kMaxImageSide pixels a side: a small crafted file can announce gigabytes.
+void checkImageSize(const std::string& name, int64_t width, int64_t height,
+                    double bytesPerPixelDecoded) {
+  if (width < 1 || height < 1)
+    throw inputError(
+        name, "",
+        "image size " + std::to_string(width) + "x" + std::to_string(height) + " has no pixels");
+  const double needed =
+      double(width) * double(height) * (bytesPerPixelDecoded + double(sizeof(Vec3f)));
+  if (width > kMaxImageSide || height > kMaxImageSide || needed > double(kMaxImageDecodeBytes))
+    throw inputError(name, "",
+                     "needs about " + gibText(needed) + " to decode " + std::to_string(width) +
+                         "x" + std::to_string(height) + " pixels (limit " +
+                         gibText(double(kMaxImageDecodeBytes)) + ", at most " +
+                         std::to_string(kMaxImageSide) + " pixels a side)");
 }
 
 // ---- PFM (Portable Float Map) -------------------------------------------------------------
@@ -56,46 +147,45 @@ struct PfmHeader {
   size_t dataOffset = 0;
 };
 
-PfmHeader parsePfmHeader(const std::string& bytes, const std::string& path) {
+PfmHeader parsePfmHeader(std::string_view bytes, const std::string& path) {
   PfmHeader header;
   header.color = bytes[1] == 'F';
   size_t pos = 2;
   auto isSpace = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
   auto nextToken = [&]() {
     if (pos >= bytes.size() || !isSpace(bytes[pos]))
-      throw InputError(path, "", "malformed PFM header");
+      throw inputError(path, "", "malformed PFM header");
     while (pos < bytes.size() && isSpace(bytes[pos])) ++pos;
     const size_t start = pos;
     while (pos < bytes.size() && !isSpace(bytes[pos])) ++pos;
-    return std::string_view(bytes).substr(start, pos - start);
+    return bytes.substr(start, pos - start);
   };
   auto parse = [&](std::string_view token, auto& value) {
     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
     if (ec != std::errc() || end != token.data() + token.size())
-      throw InputError(path, "", "malformed PFM header near '" + std::string(token) + "'");
+      throw inputError(path, "", "malformed PFM header near '" + std::string(token) + "'");
   };
   parse(nextToken(), header.width);
   parse(nextToken(), header.height);
   double scale = 0;
   parse(nextToken(), scale);
-  if (header.width <= 0 || header.height <= 0 || header.width > (1 << 16) ||
-      header.height > (1 << 16))
-    throw InputError(path, "", "PFM size out of range");
+  if (header.width <= 0 || header.height <= 0) throw inputError(path, "", "PFM size out of range");
+  checkImageSize(path, header.width, header.height, header.color ? 12.0 : 4.0);
   if (scale == 0 || !std::isfinite(scale))
-    throw InputError(path, "", "PFM scale must be non-zero (its sign gives the byte order)");
+    throw inputError(path, "", "PFM scale must be non-zero (its sign gives the byte order)");
   header.littleEndian = scale < 0;
-  if (pos >= bytes.size()) throw InputError(path, "", "truncated PFM: no pixel data");
+  if (pos >= bytes.size()) throw inputError(path, "", "truncated PFM: no pixel data");
   header.dataOffset = pos + 1;  // the single whitespace character after the scale
   return header;
 }
 
-Image decodePfm(const std::string& bytes, const std::string& path) {
+Image decodePfm(std::string_view bytes, const std::string& path) {
   const PfmHeader header = parsePfmHeader(bytes, path);
   const int channels = header.color ? 3 : 1;
   const size_t expected = size_t(header.width) * size_t(header.height) * size_t(channels) * 4;
   const size_t available = bytes.size() - header.dataOffset;
   if (available < expected)
-    throw InputError(path, "",
+    throw inputError(path, "",
                      "truncated PFM: " + std::to_string(available) +
                          " bytes of pixel data, expected " + std::to_string(expected));
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data() + header.dataOffset);
@@ -120,6 +210,10 @@ Image decodePfm(const std::string& bytes, const std::string& path) {
       } else {
         p = Vec3f(readFloat(index++));
       }
+      if (!isFinite(p))
+        throw inputError(path, "",
+                         "pixel (" + std::to_string(x) + ", " + std::to_string(fileRow) +
+                             ") of the PFM (counted from its first row) is NaN or infinite");
     }
   }
   return image;
@@ -154,31 +248,44 @@ Image imageFromCodes(const Code* codes, int width, int height, int channels, Dec
   return image;
 }
 
-Image decodeWithStb(const std::string& bytes, const std::string& path) {
-  if (bytes.size() > size_t(INT_MAX)) throw InputError(path, "", "image file too large");
+Image decodeWithStb(std::string_view bytes, const std::string& path) {
+  if (bytes.size() > size_t(INT_MAX)) throw inputError(path, "", "image file too large");
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = int(bytes.size());
-  int width = 0, height = 0, channels = 0;
   auto fail = [&]() -> InputError {
-    return InputError(path, "",
+    return inputError(path, "",
                       std::string("not a readable image (") + stbi_failure_reason() + ")");
   };
-  if (stbi_is_hdr_from_memory(data, size)) {  // Radiance .hdr: already linear
+  // The header first: stb_image would otherwise allocate whatever the file announces.
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info_from_memory(data, size, &width, &height, &channels)) throw fail();
+  const bool hdr = stbi_is_hdr_from_memory(data, size) != 0;
+  const bool wide = !hdr && stbi_is_16_bit_from_memory(data, size) != 0;
+  checkImageSize(path, width, height, double(std::max(channels, 1)) * (hdr ? 4 : wide ? 2 : 1));
+  const int expectedWidth = width, expectedHeight = height;
+  const auto sameSize = [&]() {
+    if (width != expectedWidth || height != expectedHeight || channels < 1 || channels > 4)
+      throw inputError(path, "", "not a readable image (decoded size differs from its header)");
+  };
+  if (hdr) {  // Radiance .hdr: already linear
     std::unique_ptr<float, void (*)(void*)> pixels(
         stbi_loadf_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
     if (!pixels) throw fail();
+    sameSize();
     return imageFromCodes(pixels.get(), width, height, channels, [](float v) { return v; });
   }
-  if (stbi_is_16_bit_from_memory(data, size)) {
+  if (wide) {
     std::unique_ptr<stbi_us, void (*)(void*)> pixels(
         stbi_load_16_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
     if (!pixels) throw fail();
+    sameSize();
     return imageFromCodes(pixels.get(), width, height, channels,
                           [](stbi_us code) { return srgbToLinear(float(code) / 65535.0f); });
   }
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
   if (!pixels) throw fail();
+  sameSize();
   return imageFromCodes(pixels.get(), width, height, channels, srgb8ToLinear);
 }
 
@@ -219,11 +326,13 @@ std::runtime_error ioFailure(const std::string& what, const std::string& path, i
 
 }  // namespace
 
+Image decodeImage(std::string_view bytes, const std::string& name) {
+  if (checkedFormat(bytes, name) == Format::Pfm) return decodePfm(bytes, name);
+  return decodeWithStb(bytes, name);
+}
+
 Image readImage(const std::string& path) {
-  const std::string bytes = readFileBytes(path);
-  if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == 'F' || bytes[1] == 'f'))
-    return decodePfm(bytes, path);
-  return decodeWithStb(bytes, path);
+  return decodeImage(readInputFile(path), path);
 }
 
 void writeImage(const std::string& path, const Image& image) {
@@ -234,7 +343,7 @@ void writeImage(const std::string& path, const Image& image) {
   else if (ext == ".pfm")
     writeFileAtomically(path, encodePfm(image));
   else
-    throw InputError(path, "", "unknown image format '" + ext + "' (write .png or .pfm)");
+    throw inputError(path, "", "unknown image format '" + ext + "' (write .png or .pfm)");
 }
 
 void writeFileAtomically(const std::string& path, std::string_view bytes) {

@@ -3,6 +3,7 @@
 // name beside the target and are renamed into place, so no half-written file is ever left.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -10,8 +11,19 @@
 
 namespace parallax {
 
-// Throws InputError (naming the file) if it is missing, unreadable or not an image.
+// Images larger than this are refused from their header, before decoding: at most
+// kMaxImageSide pixels a side and about kMaxImageDecodeBytes for the decoded pixels plus the
+// linear image (a few hundred bytes can announce gigabytes).
+inline constexpr int64_t kMaxImageSide = 1 << 16;
+inline constexpr int64_t kMaxImageDecodeBytes = int64_t(2) << 30;
+
+// Throws InputError (naming the file) if it is missing, not a regular file, unreadable, not
+// an image, another format than its extension claims, too large (see above), or a PFM with
+// NaN or infinite pixels.
 Image readImage(const std::string& path);
+// The same for bytes in memory (an image embedded in a glTF file); `name` names them in
+// errors, and its extension, if any, must agree with the contents.
+Image decodeImage(std::string_view bytes, const std::string& name);
 // Throws InputError for an unknown extension and std::runtime_error for an I/O failure.
 void writeImage(const std::string& path, const Image& image);
 // The bytes of an 8-bit sRGB PNG of `image` (linear light, clamped to [0,1]), in memory.

@@ -2,13 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <cstdio>
+#include <functional>
+#include <limits>
 #include <unordered_set>
 
 #include <nlohmann/json.hpp>
 
 #include "parallax/core/error.h"
+#include "parallax/io/input_file.h"
 
 namespace parallax {
 namespace {
@@ -33,9 +35,10 @@ std::string escapePointerToken(std::string_view token) {
   return out;
 }
 
-// Tracks where the parser is so that a duplicate key can be reported at its JSON pointer.
-// nlohmann calls the callback with object_start/array_start before a container, key before
-// each member and value after each scalar.
+// Tracks where the parser is so that a duplicate key, a too deep nesting or a number out of
+// range can be reported at its JSON pointer. nlohmann calls the callback with
+// object_start/array_start before a container, key before each member and value after each
+// scalar.
 class DuplicateKeyCheck {
  public:
   explicit DuplicateKeyCheck(const std::string& file) : file_(file) {}
@@ -46,13 +49,17 @@ class DuplicateKeyCheck {
       case Event::object_start:
       case Event::array_start:
         countArrayElement();
+        if (frames_.size() >= kMaxJsonDepth)
+          throw inputError(file_, pointer(),
+                           "nested more than " + std::to_string(kMaxJsonDepth) +
+                               " levels deep (arrays and objects inside each other)");
         frames_.push_back({event == Event::array_start, -1, "", {}});
         break;
       case Event::key: {
         Frame& top = frames_.back();
         top.key = parsed.get<std::string>();
         if (!top.keys.insert(top.key).second)
-          throw InputError(file_, pointer(), "duplicate key '" + top.key + "'");
+          throw inputError(file_, pointer(), "duplicate key '" + top.key + "'");
         break;
       }
       case Event::value:
@@ -64,6 +71,17 @@ class DuplicateKeyCheck {
         break;
     }
     return true;
+  }
+
+  // Where the value being parsed goes: the last key of an object, the next index of an array.
+  std::string pendingPointer() const {
+    std::string p;
+    for (size_t i = 0; i < frames_.size(); ++i) {
+      const Frame& f = frames_[i];
+      const bool last = i + 1 == frames_.size();
+      p += "/" + (f.isArray ? std::to_string(f.index + (last ? 1 : 0)) : escapePointerToken(f.key));
+    }
+    return p;
   }
 
  private:
@@ -108,6 +126,15 @@ size_t editDistance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+// Compact JSON text for a message, cut short (a value may be a megabyte of numbers).
+std::string shortDump(const Json& value) {
+  constexpr size_t kMaxChars = 60;
+  std::string text =
+      value.dump(-1, ' ', /*ensure_ascii=*/false, nlohmann::json::error_handler_t::replace);
+  if (text.size() > kMaxChars) text = text.substr(0, kMaxChars - 3) + "...";
+  return text;
+}
+
 std::string describeJsonType(const Json& value) {
   if (value.is_object()) return "an object";
   if (value.is_array()) return "an array";
@@ -132,21 +159,27 @@ JsonDocument::~JsonDocument() = default;
 JsonDocument JsonDocument::parseText(const std::string& text, const std::string& file) {
   auto impl = std::make_unique<Impl>();
   impl->file = std::make_shared<const std::string>(file);
+  DuplicateKeyCheck check(file);
+  const std::function<bool(int, nlohmann::detail::parse_event_t, Json&)> callback =
+      [&check](int depth, nlohmann::detail::parse_event_t event, Json& parsed) {
+        return check(depth, event, parsed);
+      };
   try {
-    impl->json = Json::parse(text, DuplicateKeyCheck(file), /*allow_exceptions=*/true,
-                             /*ignore_comments=*/true);
+    impl->json = Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
   } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(file, "", "invalid JSON: " + parseErrorMessage(e.what()));
+    throw inputError(file, "", "invalid JSON: " + parseErrorMessage(e.what()));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond double range (1e400): nlohmann says "number overflow parsing '1e400'".
+    throw inputError(file, check.pendingPointer(),
+                     "number out of range (" + parseErrorMessage(e.what()) + ")");
+  } catch (const nlohmann::json::exception& e) {
+    throw inputError(file, check.pendingPointer(), "invalid JSON: " + parseErrorMessage(e.what()));
   }
   return JsonDocument(std::move(impl));
 }
 
 JsonDocument JsonDocument::parseFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open file (missing or unreadable)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseText(text.str(), path);
+  return parseText(readInputFile(path), path);
 }
 
 JsonReader JsonDocument::root() const {
@@ -167,7 +200,7 @@ std::string closestMatch(std::string_view word, const std::vector<std::string>& 
 }
 
 void JsonReader::fail(const std::string& message) const {
-  throw InputError(*file_, pointer_, message);
+  throw inputError(*file_, pointer_, message);
 }
 
 JsonReader JsonReader::child(const void* node, std::string_view token) const {
@@ -190,7 +223,7 @@ size_t JsonReader::size() const {
   return asJson(node_).is_structured() ? asJson(node_).size() : 0;
 }
 std::string JsonReader::dump() const {
-  return asJson(node_).dump();
+  return shortDump(asJson(node_));
 }
 std::string JsonReader::typeName() const {
   return describeJsonType(asJson(node_));
@@ -270,23 +303,47 @@ double JsonReader::number() const {
   return v;
 }
 
-float JsonReader::positive() const {
+namespace {
+std::string shortNumber(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+}  // namespace
+
+double JsonReader::number(double lowest, double highest) const {
   const double v = number();
-  if (!(v > 0)) fail("expected a positive number, found " + asJson(node_).dump());
+  if (!(v >= lowest && v <= highest))
+    fail("expected a number from " + shortNumber(lowest) + " to " + shortNumber(highest) +
+         ", found " + shortDump(asJson(node_)));
+  return v;
+}
+
+float JsonReader::real() const {
+  const double v = number();
+  if (!(std::abs(v) <= double(std::numeric_limits<float>::max())))
+    fail("number too large (beyond the float range, about 3.4e38), found " +
+         shortDump(asJson(node_)));
   return float(v);
 }
 
+float JsonReader::positive() const {
+  const float v = real();
+  if (!(v > 0)) fail("expected a positive number, found " + shortDump(asJson(node_)));
+  return v;
+}
+
 float JsonReader::nonNegative() const {
-  const double v = number();
-  if (v < 0) fail("expected a number >= 0, found " + asJson(node_).dump());
-  return float(v);
+  const float v = real();
+  if (v < 0) fail("expected a number >= 0, found " + shortDump(asJson(node_)));
+  return v;
 }
 
 int JsonReader::integer(int lowest, int highest) const {
   if (!asJson(node_).is_number_integer() || asJson(node_).get<double>() < lowest ||
       asJson(node_).get<double>() > highest)
     fail("expected an integer from " + std::to_string(lowest) + " to " + std::to_string(highest) +
-         ", found " + asJson(node_).dump());
+         ", found " + shortDump(asJson(node_)));
   return asJson(node_).get<int>();
 }
 
@@ -294,15 +351,17 @@ Vec3f JsonReader::vec3() const {
   if (!asJson(node_).is_array() || asJson(node_).size() != 3 ||
       !std::all_of(asJson(node_).begin(), asJson(node_).end(),
                    [](const Json& v) { return v.is_number(); }))
-    fail("expected 3 numbers [x, y, z], found " + asJson(node_).dump());
+    fail("expected 3 numbers [x, y, z], found " + shortDump(asJson(node_)));
   const auto e = elements();
-  return {float(e[0].number()), float(e[1].number()), float(e[2].number())};
+  return {e[0].real(), e[1].real(), e[2].real()};
 }
 
 Vec3f JsonReader::direction() const {
   const Vec3f v = vec3();
-  if (!(length(v) > 0)) fail("expected a non-zero direction");
-  return normalize(v);
+  // In double: the squares of large floats would overflow.
+  const double len = std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
+  if (!(len > 0)) fail("expected a non-zero direction");
+  return {float(v.x / len), float(v.y / len), float(v.z / len)};
 }
 
 Vec3f JsonReader::color() const {
@@ -311,7 +370,7 @@ Vec3f JsonReader::color() const {
                    std::all_of(asJson(node_).begin(), asJson(node_).end(),
                                [](const Json& v) { return v.is_number(); });
   if (!grey && !rgb)
-    fail("expected 3 numbers [r, g, b] or one number for grey, found " + asJson(node_).dump());
+    fail("expected 3 numbers [r, g, b] or one number for grey, found " + shortDump(asJson(node_)));
   if (grey) return Vec3f(nonNegative());
   const auto e = elements();
   return {e[0].nonNegative(), e[1].nonNegative(), e[2].nonNegative()};

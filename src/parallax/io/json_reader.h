@@ -18,12 +18,18 @@ namespace parallax {
 
 class JsonReader;
 
+// Arrays and objects nested deeper than this are refused while parsing (a deep file would
+// otherwise exhaust the stack of whatever walks it).
+inline constexpr size_t kMaxJsonDepth = 256;
+
 // A parsed document. Comments (// and /* */) are allowed; duplicate keys are rejected. Keys
 // keep the order of the file, so errors and named entries come out in the author's order.
 class JsonDocument {
  public:
-  // Throw InputError for a missing or unreadable file and for malformed JSON (with the line
-  // and column of the problem). `file` only names the text in errors.
+  // Throw InputError for a missing, unreadable or non-regular file (a folder, a device, a
+  // FIFO), for malformed JSON (with the line and column of the problem), for nesting deeper
+  // than kMaxJsonDepth and for a number beyond double range (at its JSON pointer). `file`
+  // only names the text in errors.
   static JsonDocument parseFile(const std::string& path);
   static JsonDocument parseText(const std::string& text, const std::string& file);
 
@@ -70,14 +76,18 @@ class JsonReader {
   // Arrays (fails if this is not an array).
   std::vector<JsonReader> elements() const;
 
-  // Values; each fails with "expected ..." when the type or range is wrong.
+  // Values; each fails with "expected ..." when the type or range is wrong. Every float
+  // result is finite as a float (a number beyond 3.4e38 fails rather than becoming inf), and
+  // a positive float is not rounded to 0.
   std::string string() const;
   bool boolean() const;
-  double number() const;  // finite
+  double number() const;                               // finite
+  double number(double lowest, double highest) const;  // in [lowest, highest]
+  float real() const;                                  // finite in float
   float positive() const;
   float nonNegative() const;
   int integer(int lowest, int highest) const;
-  Vec3f vec3() const;       // [x, y, z], finite
+  Vec3f vec3() const;       // [x, y, z], finite in float
   Vec3f direction() const;  // a non-zero [x, y, z], normalised
   // A linear RGB colour: [r, g, b] or one number for grey, every channel >= 0.
   Vec3f color() const;

@@ -14,18 +14,18 @@
 #include <map>
 #include <sstream>
 
+#include "parallax/io/input_file.h"
 #include "parallax/io/mesh_formats.h"
 
 namespace parallax {
 namespace meshio {
 
+void fail(const std::string& path, const std::string& message) {
+  throw inputError(path, "", message);
+}
+
 std::string readFileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open the file");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) fail(path, "error while reading the file");
-  return std::move(bytes).str();
+  return readInputFile(path);
 }
 
 void TextTokens::skipSpace() {
@@ -222,7 +222,11 @@ class SceneAppender {
   // `part` must have passed validate().
   void add(FilePart& part) {
     const Transform worldFromPart = options_.worldFromFile * part.fileFromPart;
-    for (Vec3f& p : part.positions) p = worldFromPart.point(p);
+    for (Vec3f& p : part.positions) {
+      p = worldFromPart.point(p);
+      if (!isFinite(p))
+        fail(path_, where(part) + "a vertex moved to world space overflows (transform too large)");
+    }
     transformNormals(worldFromPart, part);
     const bool flip = worldFromPart.swapsHandedness();
 
@@ -343,9 +347,8 @@ bool isMeshFile(const std::string& path) {
 }
 
 void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene& scene) {
+  requireRegularFile(path);
   std::error_code error;
-  if (!std::filesystem::exists(path, error)) fail(path, "file not found");
-  if (!std::filesystem::is_regular_file(path, error)) fail(path, "not a regular file");
   if (std::filesystem::file_size(path, error) == 0) fail(path, "file is empty");
   if (options.materialOverride && *options.materialOverride >= scene.materials.size())
     throw std::invalid_argument("loadMeshFile: material override " +

@@ -51,11 +51,10 @@ FileContents readGltf(const std::string& path);
 void triangulatePolygon(const std::vector<Vec3f>& positions, const std::vector<uint32_t>& corners,
                         std::vector<uint32_t>& out);
 
-[[noreturn]] inline void fail(const std::string& path, const std::string& message) {
-  throw InputError(path, "", message);
-}
+// Throws the InputError for `path`, with control characters in the message escaped.
+[[noreturn]] void fail(const std::string& path, const std::string& message);
 
-// The whole file; throws InputError if it cannot be opened or read.
+// The whole file; throws InputError if it is not a regular file or cannot be opened or read.
 std::string readFileBytes(const std::string& path);
 
 // Whitespace-separated tokens of a text, with the line each one is on (for messages).

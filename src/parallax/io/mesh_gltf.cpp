@@ -7,16 +7,83 @@
 
 #include <bit>
 #include <cstring>
-#include <fstream>
+#include <filesystem>
 #include <map>
 #include <sstream>
 
+#include "parallax/io/image_file.h"
+#include "parallax/io/input_file.h"
 #include "parallax/io/mesh_formats.h"
 
 namespace parallax::meshio {
 namespace {
 
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
+
+constexpr size_t kMaxNodeDepth = 1000;
+constexpr size_t kMaxNodeInstances = 1000000;
+
+// Our image loader (tinygltf::TinyGLTF::SetImageLoader): checks that an image's buffer view
+// lies inside its buffer before reading it, and decodes through decodeImage, which refuses
+// absurd sizes from the header. The decoded images are kept here by glTF image index.
+struct ImageLoader {
+  const tinygltf::Model* model = nullptr;  // buffers and buffer views are parsed before images
+  std::map<int, Image> decoded;
+  std::string problem;  // an InputError message to report as it is
+
+  static bool load(tinygltf::Image* image, const int index, std::string* err, std::string*, int,
+                   int, const unsigned char* bytes, int size, void* user) {
+    auto& self = *static_cast<ImageLoader*>(user);
+    const std::string where = "image " + std::to_string(index);
+    const auto refuse = [&](const std::string& message) {
+      self.problem = where + ": " + message;
+      if (err) *err += self.problem + "\n";
+      return false;
+    };
+    if (image->bufferView >= 0) {
+      const auto& views = self.model->bufferViews;
+      if (size_t(image->bufferView) >= views.size())
+        return refuse("its buffer view does not exist");
+      const tinygltf::BufferView& view = views[size_t(image->bufferView)];
+      if (view.buffer < 0 || size_t(view.buffer) >= self.model->buffers.size())
+        return refuse("its buffer view has no valid buffer");
+      const size_t available = self.model->buffers[size_t(view.buffer)].data.size();
+      if (view.byteOffset > available || view.byteLength > available - view.byteOffset)
+        return refuse("its buffer view (" + std::to_string(view.byteLength) + " bytes at " +
+                      std::to_string(view.byteOffset) + ") extends past the end of its buffer (" +
+                      std::to_string(available) + " bytes; truncated?)");
+    }
+    if (!bytes || size <= 0) return refuse("no image data");
+    try {
+      Image decoded =
+          decodeImage(std::string_view(reinterpret_cast<const char*>(bytes), size_t(size)), where);
+      image->width = decoded.width();
+      image->height = decoded.height();
+      image->component = 3;
+      image->bits = 8;
+      self.decoded[index] = std::move(decoded);
+    } catch (const InputError& e) {
+      // decodeImage names `where` as its file; keep only the message after it.
+      const std::string what = e.what();
+      return refuse(what.substr(std::min(what.size(), where.size() + 2)));
+    }
+    return true;
+  }
+};
+
+// tinygltf's file reading for buffers and images given by URI, through the same gate as
+// every other input (a FIFO or a device would hang or never end).
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& file,
+                   void*) {
+  try {
+    const std::string bytes = readInputFile(file);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const InputError& e) {
+    if (err) *err += std::string(e.what()) + "\n";
+    return false;
+  }
+}
 
 // Extensions in extensionsRequired that we honour (or that need nothing from us).
 bool isSupportedExtension(const std::string& name) {
@@ -51,33 +118,10 @@ Mat4 nodeMatrix(const tinygltf::Node& node) {
   return m;
 }
 
-// Converts a decoded glTF image (8 or 16 bits per channel, sRGB-encoded as the spec requires
-// for base colour textures) to linear RGB.
-Image linearImage(const tinygltf::Image& source) {
-  const size_t channels = size_t(source.component);
-  const size_t bytesPerChannel = source.bits == 16 ? 2 : 1;
-  Image image(source.width, source.height);
-  for (size_t i = 0; i < image.pixels().size(); ++i) {
-    float rgb[3];
-    for (size_t c = 0; c < 3; ++c) {
-      const size_t channel = channels >= 3 ? c : 0;  // grey images repeat their one value
-      const size_t offset = (i * channels + channel) * bytesPerChannel;
-      if (bytesPerChannel == 1) {
-        rgb[c] = srgb8ToLinear(source.image[offset]);
-      } else {
-        uint16_t value;
-        std::memcpy(&value, &source.image[offset], 2);
-        rgb[c] = srgbToLinear(float(value) / 65535.0f);
-      }
-    }
-    image.pixels()[i] = {rgb[0], rgb[1], rgb[2]};
-  }
-  return image;
-}
-
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {}
+  GltfReader(const std::string& path, const tinygltf::Model& model, std::map<int, Image>& images)
+      : path_(path), model_(model), decodedImages_(images) {}
 
   FileContents read() {
     if (model_.asset.version.empty() || model_.asset.version[0] != '2')
@@ -86,7 +130,7 @@ class GltfReader {
       if (!isSupportedExtension(name)) fail(path_, "requires the unsupported extension " + name);
     readMaterials();
     onPath_.assign(model_.nodes.size(), false);
-    for (int root : rootNodes()) visit(root, Mat4::identity());
+    for (int root : rootNodes()) visitTree(root);
     if (skippedPrimitives_ > 0)
       contents_.warnings.push_back("skipped " + std::to_string(skippedPrimitives_) +
                                    " point or line primitives");
@@ -118,17 +162,46 @@ class GltfReader {
     return roots;
   }
 
-  void visit(int nodeIndex, const Mat4& fileFromParent) {
-    if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size())
-      fail(path_, "node index " + std::to_string(nodeIndex) + " does not exist");
-    if (onPath_[size_t(nodeIndex)])
-      fail(path_, "node " + std::to_string(nodeIndex) + " is its own ancestor");
-    onPath_[size_t(nodeIndex)] = true;
-    const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
-    const Mat4 fileFromNode = fileFromParent * nodeMatrix(node);
-    if (node.mesh >= 0) addMesh(node.mesh, fileFromNode);
-    for (int child : node.children) visit(child, fileFromNode);
-    onPath_[size_t(nodeIndex)] = false;
+  // Walks the tree under `root` depth first, without recursion (a file may chain thousands of
+  // nodes), refusing a node that is its own ancestor, chains deeper than kMaxNodeDepth and
+  // trees that expand (through shared children) to more than kMaxNodeInstances nodes.
+  void visitTree(int root) {
+    struct Frame {
+      int node;
+      Mat4 fileFromNode;
+      size_t nextChild;
+    };
+    std::vector<Frame> stack;
+    const auto enter = [&](int nodeIndex, const Mat4& fileFromParent) {
+      if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size())
+        fail(path_, "node index " + std::to_string(nodeIndex) + " does not exist");
+      if (onPath_[size_t(nodeIndex)])
+        fail(path_, "node " + std::to_string(nodeIndex) + " is its own ancestor");
+      if (stack.size() >= kMaxNodeDepth)
+        fail(path_, "the node tree is more than " + std::to_string(kMaxNodeDepth) +
+                        " levels deep (at node " + std::to_string(nodeIndex) + ")");
+      if (++nodeInstances_ > kMaxNodeInstances)
+        fail(path_, "the node tree expands to more than " + std::to_string(kMaxNodeInstances) +
+                        " node instances (shared children)");
+      onPath_[size_t(nodeIndex)] = true;
+      const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
+      const Mat4 fileFromNode = fileFromParent * nodeMatrix(node);
+      if (node.mesh >= 0) addMesh(node.mesh, fileFromNode);
+      stack.push_back({nodeIndex, fileFromNode, 0});
+    };
+    enter(root, Mat4::identity());
+    while (!stack.empty()) {
+      Frame& top = stack.back();
+      const std::vector<int>& children = model_.nodes[size_t(top.node)].children;
+      if (top.nextChild < children.size()) {
+        const int child = children[top.nextChild++];
+        const Mat4 fileFromParent = top.fileFromNode;  // `top` may move when the stack grows
+        enter(child, fileFromParent);
+      } else {
+        onPath_[size_t(top.node)] = false;
+        stack.pop_back();
+      }
+    }
   }
 
   void addMesh(int meshIndex, const Mat4& fileFromNode) {
@@ -349,25 +422,24 @@ class GltfReader {
     }
     auto [it, inserted] = imageIndex.try_emplace(source, -1);
     if (!inserted) return it->second;
-    const tinygltf::Image& image = model_.images[size_t(source)];
-    const size_t bytes = size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) *
-                         size_t(std::max(image.component, 0)) * (image.bits == 16 ? 2 : 1);
-    if (image.image.empty() || bytes == 0 || image.image.size() < bytes ||
-        (image.bits != 8 && image.bits != 16)) {
+    const auto decoded = decodedImages_.find(source);
+    if (decoded == decodedImages_.end()) {
       contents_.warnings.push_back(where + "image " + std::to_string(source) +
                                    " could not be decoded; ignoring it");
       return -1;
     }
-    contents_.images.push_back(linearImage(image));
+    contents_.images.push_back(std::move(decoded->second));
     it->second = int(contents_.images.size()) - 1;
     return it->second;
   }
 
   const std::string& path_;
   const tinygltf::Model& model_;
+  std::map<int, Image>& decodedImages_;  // by glTF image index, from ImageLoader
   FileContents contents_;
   std::vector<int> uvSets_;   // TEXCOORD set of each material's base colour texture
   std::vector<bool> onPath_;  // nodes between the root and the one being visited
+  size_t nodeInstances_ = 0;
   size_t skippedPrimitives_ = 0;
 };
 
@@ -385,19 +457,34 @@ FileContents readGltf(const std::string& path) {
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
   std::string error, warning;
+  ImageLoader images;
+  images.model = &model;
+  loader.SetImageLoader(&ImageLoader::load, &images);
+  tinygltf::FsCallbacks fs{};
+  fs.FileExists = &tinygltf::FileExists;
+  fs.ExpandFilePath = &tinygltf::ExpandFilePath;
+  fs.ReadWholeFile = &readWholeFile;
+  fs.WriteWholeFile = &tinygltf::WriteWholeFile;
+  fs.user_data = nullptr;
+  loader.SetFsCallbacks(fs);
+  const std::string bytes = readFileBytes(path);
   // A .glb starts with the magic "glTF" (specification, "GLB File Format"); anything else is
   // read as JSON.
-  char magic[4] = {};
-  std::ifstream(path, std::ios::binary).read(magic, sizeof magic);
-  const bool binary = std::string_view(magic, sizeof magic) == "glTF";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                         : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  if (bytes.size() > size_t(UINT32_MAX)) fail(path, "file too large for glTF");
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, data,
+                                                       unsigned(bytes.size()), folder)
+                         : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(),
+                                                      unsigned(bytes.size()), folder);
+  if (!ok && !images.problem.empty()) fail(path, images.problem);
   if (!ok) {
     std::string message;
     for (const std::string& line : lines(error)) message += (message.empty() ? "" : "; ") + line;
     fail(path, message.empty() ? "cannot parse the glTF file" : message);
   }
-  FileContents contents = GltfReader(path, model).read();
+  FileContents contents = GltfReader(path, model, images.decoded).read();
   for (const std::string& line : lines(warning)) contents.warnings.push_back(line);
   return contents;
 }

@@ -4,7 +4,6 @@
 // Materials: Kd -> diffuse, map_Kd -> diffuse texture (path relative to the OBJ's folder),
 // Ke -> emission, Ks -> mirror for illum 3 and 5 (the MTL "ray-traced reflection" models).
 // Polygons are split by triangulatePolygon, so concave ones come out right.
-#include <stb_image.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -14,6 +13,8 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "parallax/io/image_file.h"
+#include "parallax/io/input_file.h"
 #include "parallax/io/mesh_formats.h"
 
 namespace parallax::meshio {
@@ -21,7 +22,7 @@ namespace {
 
 // Checks that the numbers of every v, vn and vt line parse and are finite, and that there
 // are enough of them, so that no bad value reaches tinyobjloader (which would read it as 0).
-void checkNumbers(const std::string& path, const std::string& text) {
+void checkNumbers(const std::string& path, const std::string& folder, const std::string& text) {
   size_t lineNumber = 0;
   for (size_t pos = 0; pos < text.size();) {
     const size_t end = std::min(text.find('\n', pos), text.size());
@@ -37,7 +38,15 @@ void checkNumbers(const std::string& path, const std::string& text) {
       needed = 3, what = "normal";
     else if (keyword == "vt")
       needed = 1, what = "texture coordinate";
-    else
+    else if (keyword == "mtllib") {
+      // tinyobjloader opens these itself: a folder, a device or a FIFO must not reach it.
+      for (std::string_view name = words.next(); !name.empty(); name = words.next()) {
+        const std::string file = (std::filesystem::path(folder) / std::string(name)).string();
+        std::error_code error;
+        if (std::filesystem::exists(file, error)) requireRegularFile(file);
+      }
+      continue;
+    } else
       continue;
     const std::string at = "line " + std::to_string(lineNumber) + ": ";
     size_t count = 0;
@@ -54,25 +63,12 @@ void checkNumbers(const std::string& path, const std::string& text) {
   }
 }
 
-// 8-bit images are sRGB-encoded; HDR (.hdr) images are already linear.
+// A missing texture is a warning (the colour alone is used); a texture that is there but is
+// no regular file, too large or not an image is an error naming it (readImage).
 bool loadTexture(const std::string& file, Image& image, std::string& problem) {
-  int width = 0, height = 0, channels = 0;
-  if (stbi_is_hdr(file.c_str())) {
-    float* pixels = stbi_loadf(file.c_str(), &width, &height, &channels, 3);
-    if (!pixels) return problem = stbi_failure_reason(), false;
-    image = Image(width, height);
-    for (size_t i = 0; i < image.pixels().size(); ++i)
-      image.pixels()[i] = {pixels[3 * i], pixels[3 * i + 1], pixels[3 * i + 2]};
-    stbi_image_free(pixels);
-    return true;
-  }
-  unsigned char* pixels = stbi_load(file.c_str(), &width, &height, &channels, 3);
-  if (!pixels) return problem = stbi_failure_reason(), false;
-  image = Image(width, height);
-  for (size_t i = 0; i < image.pixels().size(); ++i)
-    image.pixels()[i] = {srgb8ToLinear(pixels[3 * i]), srgb8ToLinear(pixels[3 * i + 1]),
-                         srgb8ToLinear(pixels[3 * i + 2])};
-  stbi_image_free(pixels);
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) return problem = "file not found", false;
+  image = readImage(file);
   return true;
 }
 
@@ -175,8 +171,8 @@ void checkIndex(const std::string& path, size_t face, const char* what, int inde
 }  // namespace
 
 FileContents readObj(const std::string& path) {
-  checkNumbers(path, readFileBytes(path));
   const std::string folder = std::filesystem::path(path).parent_path().string();
+  checkNumbers(path, folder.empty() ? "." : folder, readFileBytes(path));
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;

@@ -140,7 +140,8 @@ Header parseHeader(const std::string& path, const std::string& bytes,
     }
   }
   if (!sawFormat) fail(path, "the header has no format line");
-  header.dataOffset = pos;
+  // "end_header" may be the file's last bytes, without a newline: no data follows.
+  header.dataOffset = std::min(pos, bytes.size());
   header.dataLine = lineNumber + 1;
   return header;
 }
@@ -264,6 +265,12 @@ class PlyParser {
     vertexCount_ = vertex->count;
     if (!VertexLayout(*vertex).hasPosition())
       fail(path_, "the vertex element lacks one of the properties x, y, z");
+    // Face indices refer to the one vertex element: a second one (or a second face element)
+    // makes the file ambiguous.
+    for (const char* name : {"vertex", "face"})
+      if (std::count_if(header_.elements.begin(), header_.elements.end(),
+                        [name](const Element& e) { return e.name == name; }) > 1)
+        fail(path_, std::string("the header declares more than one '") + name + "' element");
     for (const Element& element : header_.elements) {
       if (element.name == "vertex")
         readVertices(element);
@@ -306,6 +313,8 @@ class PlyParser {
   void readVertices(const Element& element) {
     checkCountFits(element);
     const VertexLayout layout(element);
+    if (!layout.hasPosition())
+      fail(path_, "the vertex element lacks one of the properties x, y, z");
     FilePart& part = this->part();
     part.positions.resize(element.count);
     if (layout.hasNormal()) part.normals.resize(element.count);

@@ -11,6 +11,7 @@
 #include "parallax/core/error.h"
 #include "parallax/core/transform.h"
 #include "parallax/io/image_file.h"
+#include "parallax/io/input_file.h"
 #include "parallax/io/json_reader.h"
 #include "parallax/io/mesh_file.h"
 
@@ -106,16 +107,73 @@ std::string listOrNone(const std::map<std::string, int>& named, const char* what
           ")");
 }
 
+// Ranges (documented here and in docs/scene-format.md): every coordinate, size and length is
+// within kMaxCoordinate scene units of zero (float keeps about 7 digits, so a scene spanning
+// more than this cannot be rendered sensibly anyway), sizes above kMinSize, scale factors
+// within [1/kMaxScale, kMaxScale], colours and intensities at most kMaxRadiance, rotation
+// angles within +-kMaxAngle degrees and the camera's field of view in (0.01, 179) degrees.
+constexpr double kMaxCoordinate = 1e6;
+constexpr double kMinSize = 1e-6;
+constexpr double kMaxScale = 1e6;
+constexpr double kMaxRadiance = 1e9;
+constexpr double kMaxAngle = 1e6;
+constexpr double kMinFov = 0.01, kMaxFov = 179;
+
+// A position or a vector in scene units: [x, y, z], each within kMaxCoordinate.
+Vec3f point(const JsonReader& value) {
+  const Vec3f p = value.vec3();
+  for (int axis = 0; axis < 3; ++axis)
+    if (!(std::abs(p[axis]) <= kMaxCoordinate))
+      value.fail("coordinates must be within -1e6 to 1e6 scene units, found " + value.dump());
+  return p;
+}
+
+Vec3f point(const JsonReader& object, std::string_view key, const Vec3f& fallback) {
+  const auto v = object.find(key);
+  return v ? point(*v) : fallback;
+}
+
+// A length or size in scene units: positive, from kMinSize to kMaxCoordinate.
+float sizeValue(const JsonReader& value) {
+  const float v = value.positive();
+  if (!(v >= kMinSize && v <= kMaxCoordinate))
+    value.fail("expected a size from 1e-6 to 1e6 scene units, found " + value.dump());
+  return v;
+}
+
+// A colour, light intensity or emission: every channel from 0 to kMaxRadiance.
+Vec3f radiance(const JsonReader& value) {
+  const Vec3f c = value.color();
+  if (!(maxComponent(c) <= kMaxRadiance))
+    value.fail("expected values from 0 to 1e9, found " + value.dump());
+  return c;
+}
+
+Vec3f radiance(const JsonReader& object, std::string_view key, const Vec3f& fallback) {
+  const auto v = object.find(key);
+  return v ? radiance(*v) : fallback;
+}
+
+// Every entry of a transform must stay finite (a product of large scales can overflow).
+void requireFinite(const JsonReader& at, const Transform& t) {
+  for (const Mat4* m : {&t.matrix(), &t.inverseMatrix()})
+    for (const auto& row : m->m)
+      for (const float v : row)
+        if (!std::isfinite(v)) at.fail("the transform overflows (scales too large or too small)");
+}
+
 Transform readMatrix(const JsonReader& value) {
   const std::vector<JsonReader> items = value.elements();
   Mat4 m;
   if (items.size() == 16) {
-    for (size_t i = 0; i < 16; ++i) m.m[i / 4][i % 4] = float(items[i].number());
+    for (size_t i = 0; i < 16; ++i)
+      m.m[i / 4][i % 4] = float(items[i].number(-kMaxScale, kMaxScale));
   } else if (items.size() == 4) {
     for (size_t row = 0; row < 4; ++row) {
       const std::vector<JsonReader> cells = items[row].elements();
       if (cells.size() != 4) items[row].fail("expected a row of 4 numbers");
-      for (size_t col = 0; col < 4; ++col) m.m[row][col] = float(cells[col].number());
+      for (size_t col = 0; col < 4; ++col)
+        m.m[row][col] = float(cells[col].number(-kMaxScale, kMaxScale));
     }
   } else {
     value.fail("expected 16 numbers (row-major) or 4 rows of 4 numbers");
@@ -131,16 +189,20 @@ Transform readStep(const JsonReader& step) {
   step.expectObject({"translate", "rotate", "scale", "matrix"});
   if (step.size() != 1) step.fail("a step has exactly one of translate, rotate, scale, matrix");
   const auto [kind, value] = step.members().front();
-  if (kind == "translate") return Transform::translate(value.vec3());
+  if (kind == "translate") return Transform::translate(point(value));
   if (kind == "rotate") {
     value.expectObject({"angle", "axis"});
-    return Transform::rotate(float(value["angle"].number()), value["axis"].direction());
+    return Transform::rotate(float(value["angle"].number(-kMaxAngle, kMaxAngle)),
+                             value["axis"].direction());
   }
   if (kind == "scale") {
     if (!value.isNumber() && !value.isArray())
       value.fail("expected a number or 3 numbers [x, y, z], found " + value.typeName());
     const Vec3f s = value.isNumber() ? Vec3f(float(value.number())) : value.vec3();
     if (s.x == 0 || s.y == 0 || s.z == 0) value.fail("singular transform: scale by zero");
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(std::abs(s[axis]) >= 1 / kMaxScale && std::abs(s[axis]) <= kMaxScale))
+        value.fail("scale factors must be within 1e-6 to 1e6 in size, found " + value.dump());
     return Transform::scale(s);
   }
   return readMatrix(value);
@@ -159,8 +221,10 @@ Transform readTransform(const JsonReader& value) {
         "expected a list of steps like [{\"scale\": 2}, {\"translate\": [0, 1, 0]}] or "
         "{\"matrix\": [...]}");
   Transform worldFromObject;
-  for (const JsonReader& step : value.elements())
+  for (const JsonReader& step : value.elements()) {
     worldFromObject = readStep(step) * worldFromObject;
+    requireFinite(step, worldFromObject);
+  }
   return worldFromObject;
 }
 
@@ -172,9 +236,11 @@ Vec3f reflectance(const JsonReader& value) {
 }
 
 Vec3f positiveSize(const JsonReader& value) {
-  if (value.isNumber()) return Vec3f(value.positive());
-  const Vec3f s = value.vec3();
+  if (value.isNumber()) return Vec3f(sizeValue(value));
+  const Vec3f s = point(value);
   if (!(s.x > 0 && s.y > 0 && s.z > 0)) value.fail("every size must be positive");
+  if (!(s.x >= kMinSize && s.y >= kMinSize && s.z >= kMinSize))
+    value.fail("expected sizes from 1e-6 to 1e6 scene units, found " + value.dump());
   return s;
 }
 
@@ -193,8 +259,8 @@ class SceneFileLoader {
         version->fail("unsupported version " + version->dump() + " (this build reads version " +
                       std::to_string(kFormatVersion) + ")");
     scene_.source = path_;
-    scene_.ambient = root.color("ambient", Vec3f(0.0f));
-    scene_.background = root.color("background", Vec3f(0.0f));
+    scene_.ambient = radiance(root, "ambient", Vec3f(0.0f));
+    scene_.background = radiance(root, "background", Vec3f(0.0f));
     scene_.maxDepth = root.integer("max_depth", scene_.maxDepth, 0, 64);
     if (const auto textures = root.find("textures"))
       for (const auto& [name, texture] : textures->members()) {
@@ -255,7 +321,7 @@ class SceneFileLoader {
       texture.kind = Texture::Kind::Checker;
       if (const auto c = value.find("color1")) texture.color = reflectance(*c);
       if (const auto c = value.find("color2")) texture.color2 = reflectance(*c);
-      texture.checkerSize = value.positive("size", texture.checkerSize);
+      if (const auto size = value.find("size")) texture.checkerSize = sizeValue(*size);
     } else if (type == "image") {
       value.expectObject({"type", "file"});
       texture.kind = Texture::Kind::Image;
@@ -293,8 +359,14 @@ class SceneFileLoader {
     if (const auto c = value.find("diffuse")) material.diffuse = reflectance(*c);
     if (const auto c = value.find("mirror")) material.mirror = reflectance(*c);
     const auto strength = value.find("emission_strength");
-    material.emission = value.color("emission", Vec3f(strength ? 1.0f : 0.0f));
-    if (strength) material.emission *= strength->nonNegative();
+    material.emission = radiance(value, "emission", Vec3f(strength ? 1.0f : 0.0f));
+    if (strength) {
+      const float factor = strength->nonNegative();
+      if (!(factor <= kMaxRadiance)) strength->fail("expected a number from 0 to 1e9");
+      material.emission *= factor;
+      if (!(maxComponent(material.emission) <= kMaxRadiance))
+        strength->fail("emission times emission_strength must stay at most 1e9");
+    }
     return material;
   }
 
@@ -369,13 +441,19 @@ class SceneFileLoader {
       Sphere sphere;
       sphere.name = name;
       sphere.material = *material;
-      sphere.center = worldFromObject.point(object.vec3("center", Vec3f(0.0f)));
+      sphere.center = worldFromObject.point(point(object, "center", Vec3f(0.0f)));
       const std::optional<float> scale = uniformScale(worldFromObject);
       if (!scale)
         transformKey->fail(
             "a sphere can only be moved, rotated, mirrored and scaled uniformly; "
             "this transform scales unevenly or shears (use a mesh for ellipsoids)");
-      sphere.radius = object["radius"].positive() * *scale;
+      sphere.radius = sizeValue(object["radius"]) * *scale;
+      if (!isFinite(sphere.center) ||
+          !(std::abs(sphere.center.x) <= kMaxCoordinate &&
+            std::abs(sphere.center.y) <= kMaxCoordinate &&
+            std::abs(sphere.center.z) <= kMaxCoordinate) ||
+          !(sphere.radius <= kMaxCoordinate))
+        object.fail("the transformed sphere lies beyond 1e6 scene units");
       if (maxComponent(scene_.materials[*material].emission) > 0)
         scene_.warnings.push_back(path_ + ": " + object.pointer() +
                                   ": emissive spheres glow "
@@ -398,27 +476,27 @@ class SceneFileLoader {
         if (object.has("min") || object.has("max"))
           object["size"].fail("give either 'size' (and 'center') or 'min' and 'max'");
         const Vec3f half = positiveSize(object["size"]) * 0.5f;
-        const Vec3f center = object.vec3("center", Vec3f(0.0f));
+        const Vec3f center = point(object, "center", Vec3f(0.0f));
         lo = center - half;
         hi = center + half;
       } else {
         if (object.has("center")) object["center"].fail("'center' goes with 'size'");
         if (!object.has("min") || !object.has("max"))
           object.fail("a box needs 'min' and 'max', or 'size'");
-        lo = object["min"].vec3();
-        hi = object["max"].vec3();
+        lo = point(object["min"]);
+        hi = point(object["max"]);
         if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
           object["max"].fail("'max' must exceed 'min' on every axis");
       }
       addBox(scene_, name, lo, hi, material);
     } else if (shape == "quad") {
-      const Vec3f corner = object["corner"].vec3();
-      const Vec3f u = object["edge_u"].vec3(), v = object["edge_v"].vec3();
+      const Vec3f corner = point(object["corner"]);
+      const Vec3f u = point(object["edge_u"]), v = point(object["edge_v"]);
       if (!(length(cross(u, v)) > 0))
         object.fail("zero-area quad (edge_u and edge_v are zero or parallel)");
       addQuad(scene_, name, corner, u, v, material);
     } else {  // plane: a finite square or rectangle around `center`
-      const Vec3f center = object.vec3("center", Vec3f(0.0f));
+      const Vec3f center = point(object, "center", Vec3f(0.0f));
       const Vec3f normal = object.direction("normal", {0, 1, 0});
       const auto upKey = object.find("up");
       const std::optional<Vec3f> v =
@@ -428,11 +506,11 @@ class SceneFileLoader {
       const JsonReader sizeKey = object["size"];
       Vec2f size;
       if (sizeKey.isNumber()) {
-        size.x = size.y = sizeKey.positive();
+        size.x = size.y = sizeValue(sizeKey);
       } else {
         const auto wh = sizeKey.elements();
         if (wh.size() != 2) sizeKey.fail("expected a number or 2 numbers [width, height]");
-        size = {wh[0].positive(), wh[1].positive()};
+        size = {sizeValue(wh[0]), sizeValue(wh[1])};
       }
       const Vec3f edgeU = u * size.x, edgeV = *v * size.y;
       addQuad(scene_, name, center - edgeU * 0.5f - edgeV * 0.5f, edgeU, edgeV, material);
@@ -443,6 +521,11 @@ class SceneFileLoader {
                    const Transform& worldFromObject, std::optional<uint32_t> material) {
     const std::string file = resolve(fileKey.string());
     if (!fs::exists(file)) fileKey.fail("mesh file not found: " + file);
+    try {
+      requireRegularFile(file);
+    } catch (const InputError& e) {
+      fileKey.fail(e.what());
+    }
     if (!isMeshFile(file))
       fileKey.fail("not a mesh file this build reads (.obj, .ply, .stl, .gltf, .glb): " + file);
     MeshLoadOptions options;
@@ -463,23 +546,23 @@ class SceneFileLoader {
     if (type == "point") {
       value.expectObject({"type", "name", "position", "intensity"});
       light.kind = Light::Kind::Point;
-      light.position = value["position"].vec3();
-      light.intensity = value["intensity"].color();
+      light.position = point(value["position"]);
+      light.intensity = radiance(value["intensity"]);
     } else if (type == "directional") {
       value.expectObject({"type", "name", "direction", "irradiance"});
       light.kind = Light::Kind::Directional;
       light.direction = value["direction"].direction();
-      light.intensity = value["irradiance"].color();
+      light.intensity = radiance(value["irradiance"]);
     } else if (type == "quad") {
       value.expectObject(
           {"type", "name", "corner", "edge_u", "edge_v", "radiance", "samples", "two_sided"});
       light.kind = Light::Kind::Quad;
-      light.corner = value["corner"].vec3();
-      light.edgeU = value["edge_u"].vec3();
-      light.edgeV = value["edge_v"].vec3();
+      light.corner = point(value["corner"]);
+      light.edgeU = point(value["edge_u"]);
+      light.edgeV = point(value["edge_v"]);
       if (!(length(cross(light.edgeU, light.edgeV)) > 0))
         value.fail("zero-area quad light (edge_u and edge_v are zero or parallel)");
-      light.intensity = value["radiance"].color();
+      light.intensity = radiance(value["radiance"]);
       light.samples = value.integer("samples", light.samples, 1, 4096);
       light.twoSided = value.boolean("two_sided", false);
       // The light is also a visible surface: an emissive quad that cameras and mirrors see.
@@ -524,9 +607,9 @@ class SceneFileLoader {
     if (!up) upKey->fail("'up' is parallel to the display normal");
     scene_.display = placeDisplay(bounds, normal, *up);
     if (!value) return;
-    scene_.display.center = value->vec3("center", scene_.display.center);
+    scene_.display.center = point(*value, "center", scene_.display.center);
     if (value->find("width")) {
-      scene_.display.width = value->positive("width", scene_.display.width);
+      scene_.display.width = sizeValue((*value)["width"]);
       scene_.display.fit.reset();
     }
   }
@@ -534,8 +617,8 @@ class SceneFileLoader {
   CameraSpec readCamera(const JsonReader& value) const {
     value.expectObject({"eye", "look_at", "up", "fov"});
     CameraSpec camera;
-    camera.eye = value["eye"].vec3();
-    camera.lookAt = value["look_at"].vec3();
+    camera.eye = point(value["eye"]);
+    camera.lookAt = point(value["look_at"]);
     if (!(length(camera.lookAt - camera.eye) > 0)) value["look_at"].fail("'look_at' equals 'eye'");
     camera.up = value.direction("up", camera.up);
     if (!perpendicularUp(camera.up, normalize(camera.lookAt - camera.eye)))
@@ -543,8 +626,9 @@ class SceneFileLoader {
           .fail("'up' is parallel to the viewing direction (give an 'up' across it)");
     if (const auto fov = value.find("fov")) {
       camera.fovDegrees = float(fov->number());
-      if (!(camera.fovDegrees > 0 && camera.fovDegrees < 180))
-        fov->fail("expected a vertical field of view between 0 and 180 degrees");
+      if (!(camera.fovDegrees > kMinFov && camera.fovDegrees < kMaxFov))
+        fov->fail("expected a vertical field of view between 0.01 and 179 degrees, found " +
+                  fov->dump());
     }
     return camera;
   }
