@@ -1,10 +1,12 @@
 # The two commands of README.md: `make run` and `make test`. Everything else is a step of them.
 BUILD ?= build
 BUILD_ASAN ?= build-asan
+BUILD_FUZZ ?= build-fuzz
+FUZZ_SECONDS ?= 7
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps data build run test test-release test-asan bench format clean
+.PHONY: all deps data build run test test-release test-asan test-fuzz bench format clean
 
 all: build
 
@@ -27,6 +29,7 @@ run: build
 	./$(BUILD)/parallax view -o out/view.png
 
 test: test-release test-asan
+	$(MAKE) test-fuzz
 
 test-release: data build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -37,6 +40,10 @@ test-asan: data deps
 	  -DPARALLAX_SANITIZE=ON -DPARALLAX_NATIVE=OFF $(CMAKE_FLAGS)
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS)
+
+# Every fuzz target of fuzz/ for FUZZ_SECONDS seconds (clang, libFuzzer, ASan + UBSan; fuzz/README.md).
+test-fuzz: data deps
+	BUILD_FUZZ=$(BUILD_FUZZ) JOBS=$(JOBS) tools/fuzz --ci $(FUZZ_SECONDS)
 
 bench: build
 	./$(BUILD)/parallax bench
