@@ -8,6 +8,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/layer_output.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
@@ -17,6 +18,7 @@
 #include "parallax/sim/simulator.h"
 
 #include <chrono>
+#include <climits>
 
 namespace parallax::app {
 
@@ -72,10 +74,24 @@ struct BenchOptions {
 };
 
 void runBench(const BenchOptions& o) {
-  if (o.simulateViews > 0) return benchSimulator(o.display, o.scene, o.simulateViews, o.json);
+  if (o.simulateViews > 0) {
+    const DisplayDesign design = loadDesignOrDefault(o.display);
+    const Panel& panel = design.spec.imagePanel;
+    checkLayerMemory(design, panel.width * (design.spec.subpixelRays ? 3.0 : 1.0), 1,
+                     o.display.empty() ? "<built-in display>" : o.display);
+    checkTimeEstimate(double(o.simulateViews) * panel.width * panel.height, o.sampling.threads,
+                      "--simulate " + std::to_string(o.simulateViews), "time fewer views");
+    return benchSimulator(o.display, o.scene, o.simulateViews, o.json);
+  }
   int width = 0, height = 0;
   parseSize("--size", o.size, width, height);
   const RenderSettings settings = o.sampling.settings();
+  // Before anything is allocated: the film and the limit's ray buffers (a few per pixel), and
+  // the time of `repeats` alternating runs of ours and the two limits.
+  checkMemoryEstimate(imageBytes(width, height) * 4, "--size " + o.size, "the film and rays",
+                      "use a smaller size");
+  checkPixelCount(double(width) * height, "--size " + o.size);
+  o.sampling.checkWork(width, height, 3.0 * o.repeats);
   if (o.camera != "pinhole" && o.camera != "display")
     throw InputError("command line", "--camera",
                      "unknown camera '" + o.camera + "' (pinhole or display)");
@@ -159,9 +175,11 @@ void registerBenchCommand(CLI::App& cli) {
       ->capture_default_str();
   addSamplingOptions(*cmd, options->sampling, "Rays per pixel");
   cmd->add_option("--repeats", options->repeats, "Alternating runs; the fastest of each counts")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(integerIn(1, INT_MAX));
   cmd->add_option("--simulate", options->simulateViews,
-                  "Instead: time a sweep of N simulated views of the display (9 is the goal)");
+                  "Instead: time a sweep of N simulated views of the display (9 is the goal)")
+      ->check(integerIn(0, INT_MAX));
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });
 }

@@ -4,6 +4,7 @@
 // into a display file.
 #include <CLI/CLI.hpp>
 
+#include <climits>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -11,7 +12,9 @@
 
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/layer_output.h"
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
@@ -48,9 +51,23 @@ struct PatternsOptions {
 
 void runPatterns(const PatternsOptions& o) {
   const DisplaySpec display = loadSpecOrDefault(o.display);
+  const Panel& maskPanel = display.maskPanel;
+  if (o.settings.labelScale > maskPanel.height)
+    throw InputError(
+        "--label-scale " + std::to_string(o.settings.labelScale), "",
+        "is more than the panel's height of " + std::to_string(maskPanel.height) + " pixels");
+  // One pattern at a time: its picture and the writer's 8-bit copy; every pixel of every
+  // pattern drawn (a few more than the steps: the phase sweep and the tests).
+  const double pixels = double(maskPanel.width) * maskPanel.height;
+  checkMemoryEstimate(pixels * (kFloatRgbPixelBytes + kRgba8PixelBytes),
+                      o.display.empty() ? "<built-in display>" : o.display, "one pattern",
+                      "use a smaller display");
+  checkTimeEstimate(pixels * (double(o.settings.periodSteps) + 8), 0,
+                    "--steps " + std::to_string(o.settings.periodSteps), "use fewer steps");
   // Everything is checked here, before the first file is written.
   const std::vector<PatternDescription> set = calibrationPatternSet(display, o.settings);
-  const fs::path dir(o.output);
+  OutputSet out(o.output);
+  const fs::path dir(out.path(""));
   const Panel &image = display.imagePanel, &mask = display.maskPanel;
   JsonWriter index;
   index.set("/display", display.source);
@@ -90,8 +107,9 @@ void runPatterns(const PatternsOptions& o) {
   }
   writeFileAtomically((dir / "index.json").string(), index.dump() + "\n");
   writeFileAtomically((dir / "README.txt").string(), readme);
+  out.commit();
   std::printf("wrote %zu patterns, index.json and README.txt to %s\n", set.size(),
-              dir.string().c_str());
+              out.dir().c_str());
 }
 
 // ---- predict -----------------------------------------------------------------------------
@@ -111,6 +129,10 @@ void runPredict(const PredictOptions& o) {
     if (!(e.z > 0)) throw InputError("command line", "--eye", "the eye must be in front (z > 0)");
     eye = {e.x, e.y, e.z};
   }
+  // Each candidate period simulates every front pixel `samples` times.
+  checkTimeEstimate(
+      double(o.settings.samplesPerPixel) * spec.imagePanel.width * spec.imagePanel.height, 0,
+      "--samples " + std::to_string(o.settings.samplesPerPixel), "use fewer samples");
   const CalibrationPrediction p = predictCalibration(spec, design, eye, o.settings);
   const double distance = p.distanceOverGap * design.gapMm;
   if (o.json) {
@@ -190,17 +212,29 @@ void registerCalibrateCommand(CLI::App& cli) {
   p->add_option("--display", patterns->display, "Display file (built-in display if omitted)");
   p->add_option("-o,--output", patterns->output, "Output folder")->capture_default_str();
   p->add_option("--screen-period", s.screenPeriodPx,
-                "Integer screen period Tx in image pixels (default: the design's, rounded)");
+                "Integer screen period Tx in image pixels (default: the design's, rounded)")
+      ->check(integerIn(0, INT_MAX));
   p->add_option("--slit-period", s.slitPeriodPx,
-                "Slit period Tv (mask px) of the phase sweep and tests (default: G1's for Tx)");
-  p->add_option("--phase", s.phasePx, "Mask phase (mask px) of the period sweep and tests");
-  p->add_option("--from", s.fromPx, "First slit period of the sweep (default: Tv - |Tv - Tx|/2)");
-  p->add_option("--to", s.toPx, "Last slit period of the sweep (default: Tv + |Tv - Tx|/2)");
-  p->add_option("--steps", s.periodSteps, "Slit periods in the sweep")->capture_default_str();
-  p->add_option("--phase-step", s.phaseStepPx, "Phase sweep step (mask px, default 0.5)");
-  p->add_option("--duty", s.duty, "Slit width / period on both layers (default: one pixel)");
+                "Slit period Tv (mask px) of the phase sweep and tests (default: G1's for Tx)")
+      ->check(realIn(0, kInfinity));
+  p->add_option("--phase", s.phasePx, "Mask phase (mask px) of the period sweep and tests")
+      ->check(realIn(-kInfinity, kInfinity));
+  p->add_option("--from", s.fromPx, "First slit period of the sweep (default: Tv - |Tv - Tx|/2)")
+      ->check(realIn(0, kInfinity));
+  p->add_option("--to", s.toPx, "Last slit period of the sweep (default: Tv + |Tv - Tx|/2)")
+      ->check(realIn(0, kInfinity));
+  p->add_option("--steps", s.periodSteps, "Slit periods in the sweep")
+      ->capture_default_str()
+      ->check(integerIn(1, INT_MAX));
+  p->add_option("--phase-step", s.phaseStepPx, "Phase sweep step (mask px, default 0.5)")
+      ->check(realIn(0, kInfinity, Bound::Open));
+  p->add_option("--duty", s.duty, "Slit width / period on both layers (default: one pixel)")
+      ->check(realIn(0, 1, Bound::Open));
   p->add_option("--label-scale", s.labelScale,
-                "Label font scale (default: panel height / 180, at least 1)");
+                "Label font scale, 1 to the panel's height (default: panel height / 180, at "
+                "least 1)")
+      ->check(integerIn(1, INT_MAX));
+  addLimitOptions(*p);
   p->callback([patterns] { runPatterns(*patterns); });
 
   auto predict = std::make_shared<PredictOptions>();
@@ -210,28 +244,38 @@ void registerCalibrateCommand(CLI::App& cli) {
   q->add_option("--eye", predict->eye,
                 "Eye position X,Y,Z in display mm (default: the view-zone centre at D)");
   q->add_option("--screen-period", predict->settings.screenPeriodPx,
-                "Integer screen period Tx (default: the design's, rounded)");
+                "Integer screen period Tx (default: the design's, rounded)")
+      ->check(integerIn(0, INT_MAX));
   q->add_option("--from", predict->settings.fromPx,
-                "Smallest slit period searched (default: g/D a quarter of the design's)");
+                "Smallest slit period searched (default: g/D a quarter of the design's)")
+      ->check(realIn(0, kInfinity));
   q->add_option("--to", predict->settings.toPx,
-                "Largest slit period searched (default: g/D twice the design's)");
-  q->add_option("--duty", predict->settings.duty, "Slit width / period (default: one pixel)");
+                "Largest slit period searched (default: g/D twice the design's)")
+      ->check(realIn(0, kInfinity));
+  q->add_option("--duty", predict->settings.duty, "Slit width / period (default: one pixel)")
+      ->check(realIn(0, 1, Bound::Open));
   q->add_option("--samples", predict->settings.samplesPerPixel,
                 "Simulated samples across each front pixel")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(integerIn(1, INT_MAX));
+  addLimitOptions(*q);
   q->add_flag("--json", predict->json, "Print one JSON object");
   q->callback([predict] { runPredict(*predict); });
 
   auto apply = std::make_shared<ApplyOptions>();
   CLI::App* a = cmd->add_subcommand("apply", "Write a display file with the measured periods");
   a->add_option("--screen-period", apply->screenPeriod, "Measured screen period Tx (image px)")
-      ->required();
+      ->required()
+      ->check(realIn(0, kInfinity, Bound::Open));
   a->add_option("--slit-period", apply->slitPeriod, "Measured slit period Tv (mask px)")
-      ->required();
+      ->required()
+      ->check(realIn(0, kInfinity, Bound::Open));
   a->add_option("--phase", apply->phase,
                 "Mask phase (mask px) that looked right from the view-zone centre: written as "
-                "the mask panel's offset (moves the drawn mask, not the traced apertures)");
-  a->add_option("--gap", apply->gap, "Gap g in mm (default: the base display's)");
+                "the mask panel's offset (moves the drawn mask, not the traced apertures)")
+      ->check(realIn(-kInfinity, kInfinity));
+  a->add_option("--gap", apply->gap, "Gap g in mm, above 0 (default: the base display's)")
+      ->check(realIn(0, kInfinity, Bound::Open));
   a->add_option("--display", apply->display, "Base display file (built-in display if omitted)");
   a->add_option("-o,--output", apply->output, "Display file to write")->required();
   a->callback([apply] { runApply(*apply); });

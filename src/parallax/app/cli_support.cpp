@@ -3,10 +3,17 @@
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <climits>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <sstream>
+#include <thread>
 
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/scene_file.h"
 
@@ -21,15 +28,189 @@ Vec3f parseVec3(const std::string& option, const std::string& text) {
   return v;
 }
 
+namespace {
+
+// The text as a number, or nothing: decimal digits with an optional leading minus, no spaces.
+bool parseInteger(const std::string& text, int64_t& value) {
+  if (text.empty() || text.size() > 20) return false;
+  for (size_t i = 0; i < text.size(); ++i)
+    if (!(std::isdigit(static_cast<unsigned char>(text[i])) || (i == 0 && text[i] == '-')))
+      return false;
+  errno = 0;
+  char* end = nullptr;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (errno != 0 || end != text.c_str() + text.size()) return false;
+  value = v;
+  return true;
+}
+
+bool parseReal(const std::string& text, double& value) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return false;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(v)) return false;
+  value = v;
+  return true;
+}
+
+std::string number(double v) {
+  if (std::isinf(v)) return v > 0 ? "infinity" : "-infinity";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+}  // namespace
+
 void parseSize(const std::string& option, const std::string& text, int& width, int& height) {
-  char x = 0;
-  std::istringstream in(text);
-  int w = 0, h = 0;
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w <= 0 || h <= 0 ||
-      w > 65536 || h > 65536)
-    throw InputError("command line", option, "expected WIDTHxHEIGHT, got '" + text + "'");
-  width = w;
-  height = h;
+  const size_t x = text.find_first_of("xX");
+  int64_t w = 0, h = 0;
+  if (x == std::string::npos || !parseInteger(text.substr(0, x), w) ||
+      !parseInteger(text.substr(x + 1), h) || w <= 0 || h <= 0)
+    throw InputError(option, "",
+                     "expected WIDTHxHEIGHT (positive whole numbers), got '" + text + "'");
+  if (w > INT_MAX || h > INT_MAX)
+    throw InputError(option + " " + text, "", "is more pixels across than an int holds");
+  width = int(w);
+  height = int(h);
+}
+
+CLI::Validator realIn(double lo, double hi, Bound lower, Bound upper) {
+  std::string range;
+  if (std::isinf(lo) && std::isinf(hi))
+    range = "that is finite";
+  else if (std::isinf(hi))
+    range = lower == Bound::Open ? "above " + number(lo) : "at least " + number(lo);
+  else
+    range = std::string(lower == Bound::Open ? "above " : "from ") + number(lo) +
+            (lower == Bound::Open ? " and " : " ") +
+            (upper == Bound::Open   ? "below "
+             : lower == Bound::Open ? "at most "
+                                    : "to ") +
+            number(hi);
+  const std::string description =
+      std::isinf(lo) && std::isinf(hi) ? std::string("a finite number") : "a number " + range;
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0;
+        const bool ok = parseReal(text, v) && (lower == Bound::Open ? v > lo : v >= lo) &&
+                        (upper == Bound::Open ? v < hi : v <= hi);
+        return ok ? std::string() : "must be " + description + ", got '" + text + "'";
+      },
+      "REAL");
+}
+
+CLI::Validator integerIn(int64_t lo, int64_t hi) {
+  const std::string description =
+      hi == std::numeric_limits<int64_t>::max() || hi == INT_MAX
+          ? "a whole number, at least " + std::to_string(lo)
+          : "a whole number from " + std::to_string(lo) + " to " + std::to_string(hi);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        int64_t v = 0;
+        const bool ok = parseInteger(text, v) && v >= lo && v <= hi;
+        return ok ? std::string() : "must be " + description + ", got '" + text + "'";
+      },
+      "INT");
+}
+
+CLI::Validator squareCount(bool zeroAllowed) {
+  return CLI::Validator(
+      [zeroAllowed](std::string& text) -> std::string {
+        int64_t v = 0;
+        if (parseInteger(text, v) && v >= (zeroAllowed ? 0 : 1) && v <= INT_MAX) {
+          const int64_t n = std::llround(std::sqrt(double(v)));
+          if (n * n == v) return {};
+        }
+        return std::string("must be a square whole number n*n (") + (zeroAllowed ? "0, " : "") +
+               "1, 4, 9, 16, ...), got '" + text + "'";
+      },
+      "N*N");
+}
+
+CLI::Validator threadCount() {
+  const int64_t cores = std::max(1u, std::thread::hardware_concurrency());
+  return CLI::Validator(
+      [cores](std::string& text) -> std::string {
+        int64_t v = 0;
+        if (parseInteger(text, v) && v >= 0 && v <= cores) return {};
+        return "must be 0 (all cores) to " + std::to_string(cores) +
+               " (this machine's hardware threads), got '" + text + "'";
+      },
+      "INT");
+}
+
+CLI::Validator seedValue() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits = !text.empty() && text.size() <= 20 &&
+                            text.find_first_not_of("0123456789") == std::string::npos;
+        errno = 0;
+        if (digits) (void)std::strtoull(text.c_str(), nullptr, 10);
+        if (digits && errno == 0) return {};
+        return "must be a whole number from 0 to 2^64-1, got '" + text + "'";
+      },
+      "UINT");
+}
+
+namespace {
+
+double gMaxMemoryGiB = 0;  // 0: the default share of physical memory
+double gMaxSeconds = 0;    // 0: kDefaultMaxSeconds
+
+}  // namespace
+
+double memoryLimitBytes() {
+  return gMaxMemoryGiB > 0 ? gMaxMemoryGiB * kGiB : defaultMemoryLimitBytes(physicalMemoryBytes());
+}
+
+void addMemoryLimitOption(CLI::App& cmd) {
+  const uint64_t physical = physicalMemoryBytes();
+  const double physicalGiB = physical > 0 ? double(physical) / kGiB : 1e6;
+  cmd.add_option("--max-memory", gMaxMemoryGiB,
+                 "Memory limit in GiB for what the command allocates (default: 3/4 of the "
+                 "physical memory); refused before allocating when the estimate exceeds it")
+      ->check(realIn(0, physicalGiB, Bound::Open))
+      ->type_name("GiB");
+}
+
+void checkPixelCount(double pixels, const std::string& subject) {
+  if (pixels > double(INT_MAX))
+    throw InputError(subject, "",
+                     "more than 2^31 pixels, the most the renderer can index; use a smaller size");
+}
+
+void checkMemoryEstimate(double bytes, const std::string& subject, const std::string& what,
+                         const std::string& advice) {
+  checkMemory(bytes, memoryLimitBytes(), subject, what, advice + ", or raise --max-memory");
+}
+
+void addTimeLimitOption(CLI::App& cmd) {
+  cmd.add_option("--max-time", gMaxSeconds,
+                 "Time limit in seconds: work estimated (at an optimistic rate) to take longer is "
+                 "refused before it starts (default: one day)")
+      ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open))
+      ->type_name("SECONDS");
+}
+
+void addLimitOptions(CLI::App& cmd) {
+  addMemoryLimitOption(cmd);
+  addTimeLimitOption(cmd);
+}
+
+void checkTimeEstimate(double samples, int threads, const std::string& subject,
+                       const std::string& advice) {
+  const double cores = std::max(1u, std::thread::hardware_concurrency());
+  const double used = threads > 0 ? std::min(double(threads), cores) : cores;
+  const double seconds = samples / (kSamplesPerSecondPerThread * used);
+  const double limit = gMaxSeconds > 0 ? gMaxSeconds : kDefaultMaxSeconds;
+  if (seconds <= limit) return;
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "needs %.3g samples, at least %s at %.0f M samples/s on %.0f threads (limit %s); ",
+                samples, formatDuration(seconds).c_str(), kSamplesPerSecondPerThread / 1e6, used,
+                formatDuration(limit).c_str());
+  throw InputError(subject, "", text + advice + ", or raise --max-time");
 }
 
 namespace {
@@ -44,6 +225,11 @@ JitterSharing parseJitter(const std::string& text) {
 
 }  // namespace
 
+void SamplingOptions::checkWork(double width, double height, double passes) const {
+  checkTimeEstimate(width * height * double(spp) * passes, threads, "--spp " + std::to_string(spp),
+                    "use fewer samples");
+}
+
 RenderSettings SamplingOptions::settings() const {
   if (spp < 1) throw InputError("command line", "--spp", "must be at least 1");
   RenderSettings s;
@@ -55,14 +241,19 @@ RenderSettings SamplingOptions::settings() const {
 }
 
 void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::string& sppHelp) {
-  cmd.add_option("--spp", options.spp, sppHelp)->capture_default_str();
-  cmd.add_option("--threads", options.threads, "Worker threads (0: all cores)");
-  cmd.add_option("--seed", options.seed, "Seed of the sample jitter");
+  cmd.add_option("--spp", options.spp, sppHelp)
+      ->capture_default_str()
+      ->check(integerIn(1, INT_MAX));
+  cmd.add_option("--threads", options.threads, "Worker threads (0: all cores)")
+      ->check(threadCount());
+  cmd.add_option("--seed", options.seed, "Seed of the sample jitter")->check(seedValue());
+  addLimitOptions(cmd);
   cmd.add_option("--jitter", options.jitter,
                  "Within-stratum jitter: auto (the camera's choice: shared by the 16 rays of a "
                  "packet for the barrier camera, which keeps them parallel), pixel (independent) "
                  "or packet (shared)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "pixel", "packet"}));
 }
 
 Scene loadSceneOrDefault(const std::string& path) {
@@ -106,6 +297,19 @@ void ProgressBar::update(int done, int total) {
   std::fprintf(stderr, "\r%s [%s] %3d%%  %.1fs left\033[K", label_.c_str(), bar.c_str(),
                int(fraction * 100), remaining);
   std::fflush(stderr);
+}
+
+std::string formatDuration(double seconds) {
+  char text[64];
+  if (seconds < 120)
+    std::snprintf(text, sizeof text, "%.0f s", seconds);
+  else if (seconds < 7200)
+    std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
+  else if (seconds < 3 * 86400)
+    std::snprintf(text, sizeof text, "%.0f h", seconds / 3600);
+  else
+    std::snprintf(text, sizeof text, "%.3g days", seconds / 86400);
+  return text;
 }
 
 std::string formatRate(double raysPerSecond) {

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
+#include <limits>
 #include <mutex>
 #include <string>
 
@@ -13,15 +15,60 @@
 
 namespace CLI {
 class App;
-}
+class Validator;
+}  // namespace CLI
 
 namespace parallax::app {
 
 inline constexpr int kExitInputError = 2;
 
+// ---- Ranges of numeric options (docs/inputs.md) -----------------------------------------
+// Validators that read the option's text themselves, so that garbage, NaN and infinity get the
+// same one-line message naming the option ("--fov: must be a number above 0 and below 180, got
+// 'nan'") as a value out of range. Upper bounds that depend on the work (sizes, samples,
+// sweeps) are checked later against the memory and time estimates below.
+enum class Bound { Closed, Open };
+// A finite real number in [lo, hi] (Open: the end itself is excluded); either may be infinite.
+CLI::Validator realIn(double lo, double hi, Bound lower = Bound::Closed,
+                      Bound upper = Bound::Closed);
+// A whole number in [lo, hi] written in decimal digits (an optional leading minus).
+CLI::Validator integerIn(int64_t lo, int64_t hi);
+// A whole number n*n in [1, INT_MAX] (samples per pixel of an n x n grid), or 0 as well.
+CLI::Validator squareCount(bool zeroAllowed = false);
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// 0 (all cores) up to the machine's hardware threads.
+CLI::Validator threadCount();
+// --seed: any unsigned 64-bit number.
+CLI::Validator seedValue();
+
+// ---- Memory and time limits -------------------------------------------------------------
+// The memory limit in bytes: --max-memory GiB when given (globally or on the command), else
+// 3/4 of physical memory.
+double memoryLimitBytes();
+// Adds --max-memory GiB to `cmd`; the last one given wins.
+void addMemoryLimitOption(CLI::App& cmd);
+// Refuses pictures of more than 2^31 pixels (the renderer's pixel index is an int); call it
+// after the memory estimate, which refuses them first where memory is smaller.
+void checkPixelCount(double pixels, const std::string& subject);
+// Refuses (InputError naming `subject`) when `bytes` exceed memoryLimitBytes().
+void checkMemoryEstimate(double bytes, const std::string& subject, const std::string& what,
+                         const std::string& advice);
+// The time estimate: `samples` camera samples (pixel x sample, each at least one ray) on
+// `threads` threads (0: all) at kSamplesPerSecondPerThread, an optimistic rate (the fastest
+// bench figure on a simple scene, rounded up), so that only work certain to take longer than
+// the time limit (--max-time, default kDefaultMaxSeconds) is refused.
+inline constexpr double kSamplesPerSecondPerThread = 1e8;
+inline constexpr double kDefaultMaxSeconds = 24 * 3600.0;
+void addTimeLimitOption(CLI::App& cmd);
+void checkTimeEstimate(double samples, int threads, const std::string& subject,
+                       const std::string& advice);
+// Both limit options at once.
+void addLimitOptions(CLI::App& cmd);
+
 // "X,Y,Z" -> Vec3f; throws InputError naming the option.
 Vec3f parseVec3(const std::string& option, const std::string& text);
-// "WxH" -> (W, H) with both positive; throws InputError naming the option.
+// "WxH" -> (W, H) with both positive; throws InputError naming the option. Memory (and the
+// pixel count) are checked separately, with the estimate.
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);
 
 // --spp, --threads, --seed and --jitter: how every rendering command samples.
@@ -33,6 +80,8 @@ struct SamplingOptions {
   // The render settings; throws InputError naming --spp (below 1) or --jitter (not auto,
   // pixel or packet).
   RenderSettings settings() const;
+  // Refuses --spp when width x height x spp x `passes` samples exceed the time limit.
+  void checkWork(double width, double height, double passes = 1.0) const;
 };
 // Adds the four options to `cmd`; what one sample is differs between commands: `sppHelp`.
 void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::string& sppHelp);
@@ -61,5 +110,7 @@ class ProgressBar {
 };
 
 std::string formatRate(double raysPerSecond);
+// "45 s", "12 min", "5 h", "58 days".
+std::string formatDuration(double seconds);
 
 }  // namespace parallax::app

@@ -55,7 +55,8 @@ void registerDesignCommand(CLI::App& cli) {
   cmd->add_option("display", options->display, "Display file (built-in display if omitted)");
   cmd->add_option("--depth", options->depth,
                   "Depth (mm, + toward the viewer) for the disparity figure; default: the depth "
-                  "of field");
+                  "of field")
+      ->check(realIn(-kInfinity, kInfinity));
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] {
     const DisplayDesign d = loadDesignOrDefault(options->display);

@@ -83,6 +83,8 @@ void runInterlace(const InterlaceOptions& o) {
     spec.subpixelRays = true;
     design = designDisplay(spec);
   }
+  checkLayerMemory(design, design.spec.imagePanel.width, 1,
+                   o.display.empty() ? "<built-in display>" : o.display);
   const bool fromQuilt = o.inputs.size() == 1;
   QuiltLayout layout;
   const std::vector<Image> views =

@@ -1,14 +1,30 @@
 #include "parallax/app/layer_output.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
+#include <vector>
 
+#include "parallax/app/cli_support.h"
+#include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
 
 namespace parallax::app {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 std::string utcNow() {
   const std::time_t now = std::time(nullptr);
@@ -17,7 +33,120 @@ std::string utcNow() {
   return text;
 }
 
+// ".NAME" KIND SUFFIX: the temporary (".tmp-") and old (".old-") folders beside NAME.
+std::string sibling(const std::string& name, const char* kind, const std::string& suffix) {
+  std::string text(".");
+  text.append(name).append(kind).append(suffix);
+  return text;
+}
+
+bool processAlive(long pid) {
+  return kill(pid_t(pid), 0) == 0 || errno == EPERM;
+}
+
+// Removes .NAME.tmp-PID and .NAME.old-PID folders in `parent` whose process is gone.
+void removeStaleTemporaries(const fs::path& parent, const std::string& name) {
+  std::vector<fs::path> stale;
+  std::error_code ec;
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string entry = it->path().filename().string();
+    for (const char* kind : {".tmp-", ".old-"}) {
+      const std::string prefix = sibling(name, kind, "");
+      if (entry.rfind(prefix, 0) != 0) continue;
+      const std::string pid = entry.substr(prefix.size());
+      if (pid.empty() || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos)
+        continue;
+      if (!processAlive(std::stol(pid))) stale.push_back(it->path());
+    }
+  }
+  for (const fs::path& path : stale) fs::remove_all(path, ec);
+}
+
+// The old folder's files that the new set does not replace, linked (or copied) into it.
+void carryOverOtherFiles(const fs::path& from, const fs::path& to) {
+  for (fs::recursive_directory_iterator it(from), end; it != end; ++it) {
+    const fs::path destination = to / fs::relative(it->path(), from);
+    const fs::file_status existing = fs::symlink_status(destination);
+    if (fs::exists(existing)) {
+      // The new set has this name: it wins (and a new file hides an old folder's contents).
+      if (!(fs::is_directory(existing) && it->is_directory() && !it->is_symlink()))
+        it.disable_recursion_pending();
+      continue;
+    }
+    std::error_code ec;
+    if (it->is_symlink()) {
+      fs::copy_symlink(it->path(), destination);
+      it.disable_recursion_pending();
+    } else if (it->is_directory()) {
+      fs::create_directory(destination);
+    } else if (fs::create_hard_link(it->path(), destination, ec); ec) {
+      fs::copy_file(it->path(), destination);
+    }
+  }
+}
+
 }  // namespace
+
+OutputSet::OutputSet(const std::string& dir) : dir_(dir.empty() ? "." : dir) {
+  fs::path target = fs::absolute(dir_).lexically_normal();
+  if (!target.has_filename()) target = target.parent_path();
+  const std::string name = target.filename().string();
+  const bool inPlace = name.empty() || name == "." || name == ".." ||
+                       target == fs::current_path() || target == target.root_path() ||
+                       fs::is_symlink(target);
+  try {
+    if (fs::exists(target) && !fs::is_directory(target))
+      throw InputError(dir_, "", "is a file; the output must be a folder");
+    if (inPlace) {
+      fs::create_directories(target);
+      temporary_ = target.string();
+      committed_ = true;  // nothing to move
+      return;
+    }
+    fs::create_directories(target.parent_path());
+    removeStaleTemporaries(target.parent_path(), name);
+    target_ = target.string();
+    temporary_ = (target.parent_path() / sibling(name, ".tmp-", std::to_string(getpid()))).string();
+    fs::remove_all(temporary_);
+    fs::create_directory(temporary_);
+  } catch (const fs::filesystem_error& e) {
+    throw InputError(dir_, "",
+                     std::string("cannot create the output folder: ") + e.code().message());
+  }
+}
+
+OutputSet::~OutputSet() {
+  if (committed_) return;
+  std::error_code ec;
+  fs::remove_all(temporary_, ec);
+}
+
+std::string OutputSet::path(const std::string& name) const {
+  return (fs::path(temporary_) / name).string();
+}
+
+void OutputSet::commit() {
+  if (committed_) return;
+  const fs::path target(target_), temporary(temporary_);
+  if (!fs::exists(fs::symlink_status(target))) {
+    fs::rename(temporary, target);
+  } else {
+    carryOverOtherFiles(target, temporary);
+    // One step: the new folder takes the old one's place and the old one the temporary's.
+    if (renameat2(AT_FDCWD, temporary.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) != 0) {
+      // A file system without the exchange: the old folder aside, the new one in.
+      const fs::path old = target.parent_path() /
+                           sibling(target.filename().string(), ".old-", std::to_string(getpid()));
+      fs::remove_all(old);
+      fs::rename(target, old);
+      fs::rename(temporary, target);
+      fs::remove_all(old);
+    } else {
+      fs::remove_all(temporary);  // now the old set
+    }
+  }
+  committed_ = true;
+}
 
 void startRenderRecord(JsonWriter& record, const std::string& method,
                        const std::string& displayFile) {
@@ -26,6 +155,46 @@ void startRenderRecord(JsonWriter& record, const std::string& method,
   record.set("/created", utcNow());
   record.set("/method", method);
   record.set("/display_file", displayFile.empty() ? std::string("<built-in>") : displayFile);
+}
+
+void checkLayerMemory(const DisplayDesign& design, double filmColumns, double views,
+                      const std::string& subject) {
+  const Panel &image = design.spec.imagePanel, &mask = design.spec.maskPanel;
+  const double bytes = imageBytes(filmColumns, image.height, kFloatRgbPixelBytes, views) +
+                       imageBytes(image.width, image.height) + imageBytes(mask.width, mask.height) +
+                       imageBytes(image.width, image.height, kRgba8PixelBytes) +
+                       imageBytes(mask.width, mask.height, kRgba8PixelBytes);
+  checkMemoryEstimate(bytes, subject,
+                      "the layers (" + std::to_string(image.width) + "x" +
+                          std::to_string(image.height) + " image, " + std::to_string(mask.width) +
+                          "x" + std::to_string(mask.height) + " mask" +
+                          (views > 1 ? ", " + std::to_string(int64_t(views)) + " views" : "") + ")",
+                      "use a smaller display");
+}
+
+void checkLayerWork(const DisplayDesign& design, bool directMapping, int spp, int threads,
+                    const std::string& displayPath) {
+  const Panel& panel = design.spec.imagePanel;
+  const double subpixel = design.spec.subpixelRays ? 3.0 : 1.0;
+  const double views =
+      directMapping ? std::max(1.0, std::round(design.screenPeriodPx * subpixel)) : 1.0;
+  const double columns = directMapping ? panel.width : panel.width * subpixel;
+  const std::string subject = displayPath.empty() ? "<built-in display>" : displayPath;
+  checkLayerMemory(design, columns, views, subject);
+  checkTimeEstimate(columns * panel.height * views * spp, threads, "--spp " + std::to_string(spp),
+                    "use fewer samples");
+}
+
+void checkQuiltWork(int columns, int rows, int width, int height, int spp, int threads,
+                    const std::string& sizeText) {
+  const double views = double(columns) * rows;
+  const std::string subject = "--quilt " + std::to_string(columns) + "x" + std::to_string(rows) +
+                              (sizeText.empty() ? "" : " --size " + sizeText);
+  const double bytes = imageBytes(width, height, kFloatRgbPixelBytes, views) * 2 +
+                       imageBytes(width, height, kRgba8PixelBytes, views);
+  checkMemoryEstimate(bytes, subject, "the quilt", "use fewer views or a smaller --size");
+  checkPixelCount(views * width * height, subject);
+  checkTimeEstimate(views * width * height * spp, threads, subject, "use fewer views or samples");
 }
 
 // DIR/image.png, mask.png (image.pfm with `linear`), display.json and
@@ -38,15 +207,17 @@ void writeDisplayLayers(const std::string& output, const Image& image, const Ima
   if (linear) record.set("/outputs/image_linear", "image.pfm");
   writeDesignJson(record, "/design", design);
 
-  const std::string dir = output.empty() ? "." : output;
-  writeImage(dir + "/image.png", image);
-  writeImage(dir + "/mask.png", mask);
-  if (linear) writeImage(dir + "/image.pfm", image);
+  OutputSet set(output);
+  writeImage(set.path("image.png"), image);
+  writeImage(set.path("mask.png"), mask);
+  if (linear) writeImage(set.path("image.pfm"), image);
   // The display as a display file, so that `simulate DIR` and other tools can read it back.
-  writeFileAtomically(dir + "/display.json", displayFileText(design.spec));
-  writeFileAtomically(dir + "/render.json", record.dump() + "\n");
-  std::printf("wrote %s/image.png (%dx%d), %s/mask.png (%dx%d), %s/render.json\n", dir.c_str(),
-              image.width(), image.height(), dir.c_str(), mask.width(), mask.height(), dir.c_str());
+  writeFileAtomically(set.path("display.json"), displayFileText(design.spec));
+  writeFileAtomically(set.path("render.json"), record.dump() + "\n");
+  set.commit();
+  const char* dir = set.dir().c_str();
+  std::printf("wrote %s/image.png (%dx%d), %s/mask.png (%dx%d), %s/render.json\n", dir,
+              image.width(), image.height(), dir, mask.width(), mask.height(), dir);
 }
 
 }  // namespace parallax::app

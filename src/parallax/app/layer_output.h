@@ -1,5 +1,6 @@
-// The outputs shared by `render`, `render --quilt` and `interlace`: the display's two layer
-// images with display.json and a render.json record of how they were made.
+// The outputs shared by `render`, `render --quilt`, `interlace` and `lenticular render`: the
+// display's two layer images with display.json and a render.json record of how they were made,
+// written as one set.
 #pragma once
 
 #include <string>
@@ -10,12 +11,56 @@
 
 namespace parallax::app {
 
+// A set of output files that replaces the folder's old set in one step. The files are written
+// into a temporary sibling folder (.NAME.tmp-PID); commit() moves the folder's other files in
+// beside them (hard links: a kill leaves the originals where they were) and exchanges the two
+// folders atomically, then deletes the old one. Without commit (an exception), the temporary
+// folder is removed and the old set is untouched. Temporaries of killed runs (their process is
+// gone) are removed when the next set for the same folder starts.
+//
+// Create it only when everything has been read and computed: creating it makes the parent
+// folders. A folder that cannot be renamed (".", "/") is written in place, file by file.
+class OutputSet {
+ public:
+  explicit OutputSet(const std::string& dir);
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  // Where to write `name` now.
+  std::string path(const std::string& name) const;
+  // The folder as the user named it, for messages.
+  const std::string& dir() const { return dir_; }
+  void commit();
+
+ private:
+  std::string dir_, target_, temporary_;
+  bool committed_ = false;
+};
+
 // Program, version, time, method and display file at the top of a render.json record.
 void startRenderRecord(JsonWriter& record, const std::string& method,
                        const std::string& displayFile);
 
+// Refuses (naming `subject`) layers that would not fit in memory: the image layer's film
+// (`filmColumns` wide: three per pixel with subpixel rays, times `views` for N ordinary views),
+// the two layers and their 8-bit copies for the PNG writer.
+void checkLayerMemory(const DisplayDesign& design, double filmColumns, double views,
+                      const std::string& subject);
+
+// Both estimates of `render` before it allocates: the layers (checkLayerMemory; with
+// `directMapping` one ordinary view per interleaved view) and the time of `spp` samples per
+// film pixel. `displayPath` names the display ("" = built-in) in the refusal.
+void checkLayerWork(const DisplayDesign& design, bool directMapping, int spp, int threads,
+                    const std::string& displayPath);
+
+// The quilt of `render --quilt`: the views and the assembled quilt with its 8-bit copy, and
+// the time; refusals name "--quilt CxR" and the size.
+void checkQuiltWork(int columns, int rows, int width, int height, int spp, int threads,
+                    const std::string& sizeText);
+
 // Writes DIR/image.png, mask.png (image.pfm with `linear`), display.json and render.json (the
-// record, with /outputs and /design added), each atomically, and says where on stdout.
+// record, with /outputs and /design added) as one set, and says where on stdout.
 void writeDisplayLayers(const std::string& output, const Image& image, const Image& mask,
                         const DisplayDesign& design, bool linear, JsonWriter& record);
 

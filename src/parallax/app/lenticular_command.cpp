@@ -4,13 +4,16 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/layer_output.h"
 #include "parallax/camera/lenticular_camera.h"
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
@@ -37,9 +40,14 @@ struct LenticularSimulateOptions {
 
 void runRender(const LenticularRenderOptions& o) {
   const RenderSettings settings = o.sampling.settings();
-  if (o.distance < 0) throw InputError("command line", "--distance", "must be positive");
   const LenticularDesign design =
       designLenticular(loadLenticularCalibration(o.calibration), o.distance);
+  // Before anything is allocated: the subpixel film (three columns per pixel), the panel
+  // image and its 8-bit copy; and the time of one sample per subpixel and spp.
+  const double w = design.calibration.screenW, h = design.calibration.screenH;
+  checkMemoryEstimate(imageBytes(3 * w, h) + imageBytes(w, h) + imageBytes(w, h, kRgba8PixelBytes),
+                      o.calibration, "the panel image", "use a smaller panel");
+  o.sampling.checkWork(3 * w, h);
   const Scene scene = loadSceneReportingWarnings(o.scene);
   const Accelerator accelerator(scene);
   LenticularRender out;
@@ -65,13 +73,15 @@ void runRender(const LenticularRenderOptions& o) {
   record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
   writeLenticularDesignJson(record, "/design", design);
 
-  const std::string dir = o.output.empty() ? "." : o.output;
-  writeImage(dir + "/image.png", out.image);
+  OutputSet set(o.output);
+  const char* dir = set.dir().c_str();
+  writeImage(set.path("image.png"), out.image);
   // The calibration beside the image, so that `lenticular simulate DIR` finds it.
-  writeFileAtomically(dir + "/visual.json", lenticularCalibrationText(design.calibration));
-  writeFileAtomically(dir + "/render.json", record.dump() + "\n");
-  std::printf("wrote %s/image.png (%dx%d), %s/visual.json, %s/render.json\n", dir.c_str(),
-              out.image.width(), out.image.height(), dir.c_str(), dir.c_str());
+  writeFileAtomically(set.path("visual.json"), lenticularCalibrationText(design.calibration));
+  writeFileAtomically(set.path("render.json"), record.dump() + "\n");
+  set.commit();
+  std::printf("wrote %s/image.png (%dx%d), %s/visual.json, %s/render.json\n", dir,
+              out.image.width(), out.image.height(), dir, dir);
   std::printf("%.2f pixels per lens, views over %.0f degrees; %d spp in %.2f s, %s\n",
               design.pixelsPerLens, design.calibration.viewConeDegrees, o.sampling.spp,
               out.stats.seconds,
@@ -92,9 +102,11 @@ void runSimulate(const LenticularSimulateOptions& o) {
     calibrationPath =
         o.inputs.size() == 2 ? o.inputs[1] : (fs::path(o.inputs[0]) / "visual.json").string();
   }
-  if (o.distance < 0) throw InputError("command line", "--distance", "must be positive");
   const LenticularDesign design =
       designLenticular(loadLenticularCalibration(calibrationPath), o.distance);
+  const double w = design.calibration.screenW, h = design.calibration.screenH;
+  checkMemoryEstimate(imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
+                      calibrationPath, "the panel and the view", "use a smaller panel");
   const Image panel = readImage(imagePath);
   Vec3d eye{0, 0, design.viewDistanceMm};
   if (!o.eye.empty()) {
@@ -122,8 +134,10 @@ void registerLenticularCommand(CLI::App& cli) {
   render->add_option("scene", r->scene, "Scene or mesh file (built-in scene if omitted)");
   addSamplingOptions(*render, r->sampling,
                      "Rays per subpixel (n*n over its area; 1: exact formula)");
-  render->add_option("--distance", r->distance,
-                     "Design viewer distance in mm (default: the cone spans 1 m)");
+  render
+      ->add_option("--distance", r->distance,
+                   "Design viewer distance in mm, above 0 (default: the cone spans 1 m)")
+      ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open));
   render->add_option("-o,--output", r->output, "Output folder")->capture_default_str();
   render->callback([r] { runRender(*r); });
 
@@ -136,7 +150,10 @@ void registerLenticularCommand(CLI::App& cli) {
   simulate->add_option("--eye", s->eye,
                        "Eye X,Y,Z in mm (origin: panel centre, z toward the viewer; default: "
                        "the centre of the view cone at the design distance)");
-  simulate->add_option("--distance", s->distance, "Design viewer distance in mm (default eye)");
+  simulate
+      ->add_option("--distance", s->distance, "Design viewer distance in mm, above 0 (default eye)")
+      ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open));
+  addLimitOptions(*simulate);
   simulate->add_option("-o,--output", s->output, "Output image (.png or .pfm)")
       ->capture_default_str();
   simulate->callback([s] { runSimulate(*s); });

@@ -2,11 +2,15 @@
 // Figs. 7 and 8) as an SVG.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <climits>
 #include <cstdio>
 #include <memory>
 
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/io/image_file.h"
 #include "parallax/sim/lightfield.h"
 
@@ -23,15 +27,37 @@ void registerLightfieldCommand(CLI::App& cli) {
       "lightfield", "Plot the display's rays in two-plane (x, v) space as an SVG (Figs. 7, 8)");
   cmd->add_option("display", options->display, "Display file (built-in display if omitted)");
   cmd->add_option("--from", options->plot.fromMm, "Left end of the stretch on the image layer (mm)")
-      ->capture_default_str();
-  cmd->add_option("--to", options->plot.toMm, "Right end of the stretch (mm)")
-      ->capture_default_str();
-  cmd->add_option("--row", options->plot.row, "Image row (default: the middle row)");
+      ->capture_default_str()
+      ->check(realIn(-kInfinity, kInfinity));
+  cmd->add_option("--to", options->plot.toMm, "Right end of the stretch (mm), above --from")
+      ->capture_default_str()
+      ->check(realIn(-kInfinity, kInfinity));
+  cmd->add_option("--row", options->plot.row,
+                  "Image row, 0 to the panel's height - 1 (default: the middle row)")
+      ->check(integerIn(0, INT_MAX));
   cmd->add_option("--spp", options->plot.samplesPerPixel,
-                  "Also draw the n x n sub-ray samples of each cell (spp = n*n)");
+                  "Also draw the n x n sub-ray samples of each cell (spp = n*n; 0: none)")
+      ->check(squareCount(true));
+  addLimitOptions(*cmd);
   cmd->add_option("-o,--output", options->output, "Output SVG")->capture_default_str();
   cmd->callback([options] {
     const DisplayDesign design = loadDesignOrDefault(options->display);
+    const LightFieldOptions& plot = options->plot;
+    const Panel& panel = design.spec.imagePanel;
+    if (!(plot.fromMm < plot.toMm)) throw InputError("--to", "", "must be above --from");
+    if (plot.row >= panel.height)
+      throw InputError("--row " + std::to_string(plot.row), "",
+                       "is off the panel (rows 0 to " + std::to_string(panel.height - 1) + ")");
+    // The plot's cells: the film columns of the stretch (at most the panel's), each drawn with
+    // its n x n samples; a few hundred bytes of SVG and of ray records apiece.
+    const double columnsPerPixel = design.spec.subpixelRays ? 3.0 : 1.0;
+    const double columns =
+        std::min(panel.width * columnsPerPixel,
+                 (plot.toMm - plot.fromMm) / panel.pitchMm * columnsPerPixel + 1);
+    constexpr double kBytesPerCell = 400;
+    checkMemoryEstimate(columns * (1.0 + plot.samplesPerPixel) * kBytesPerCell,
+                        "--spp " + std::to_string(plot.samplesPerPixel), "the plot",
+                        "use fewer samples or a shorter stretch");
     writeFileAtomically(options->output, lightFieldSvg(design, options->plot));
     std::printf("wrote %s\n", options->output.c_str());
   });

@@ -3,12 +3,14 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/io/image_file.h"
 #include "parallax/render/render.h"
 
@@ -20,7 +22,7 @@ struct ViewOptions {
   std::string scene;
   std::string eye, lookAt, up, size;
   std::string displayEye, display;
-  float fov = 0.0f;
+  std::optional<float> fov;
   SamplingOptions sampling;
   std::string output = "out/view.png";
 };
@@ -46,11 +48,7 @@ std::unique_ptr<Camera> makeCamera(const ViewOptions& o, const Scene& scene) {
   if (!o.eye.empty()) spec.eye = parseVec3("--eye", o.eye);
   if (!o.lookAt.empty()) spec.lookAt = parseVec3("--look-at", o.lookAt);
   if (!o.up.empty()) spec.up = parseVec3("--up", o.up);
-  if (o.fov != 0.0f) {
-    if (!(o.fov > 0.0f && o.fov < 180.0f))
-      throw InputError("command line", "--fov", "must be between 0 and 180 degrees");
-    spec.fovDegrees = o.fov;
-  }
+  if (o.fov) spec.fovDegrees = *o.fov;  // (0, 180), checked by the option
   if (length(cross(spec.lookAt - spec.eye, spec.up)) == 0.0f)
     throw InputError("command line", "--up", "must not be parallel to the view direction");
   return std::make_unique<PinholeCamera>(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width,
@@ -61,6 +59,14 @@ void runView(const ViewOptions& o) {
   const RenderSettings settings = o.sampling.settings();
   Scene scene = loadSceneReportingWarnings(o.scene);
   const std::unique_ptr<Camera> camera = makeCamera(o, scene);
+  // Before anything is allocated: the film and the writer's 8-bit copy, and the time.
+  const std::string size = std::to_string(camera->width()) + "x" + std::to_string(camera->height());
+  checkMemoryEstimate(imageBytes(camera->width(), camera->height()) +
+                          imageBytes(camera->width(), camera->height(), kRgba8PixelBytes),
+                      (o.size.empty() ? "image " : "--size ") + size, "the film",
+                      "use a smaller size");
+  checkPixelCount(double(camera->width()) * camera->height(), "--size " + size);
+  o.sampling.checkWork(camera->width(), camera->height());
   const Accelerator accelerator(scene);
   RenderStats stats;
   Image image;
@@ -86,7 +92,8 @@ void registerViewCommand(CLI::App& cli) {
   cmd->add_option("--eye", options->eye, "Camera position X,Y,Z (scene units)");
   cmd->add_option("--look-at", options->lookAt, "Point the camera looks at, X,Y,Z");
   cmd->add_option("--up", options->up, "Up direction X,Y,Z");
-  cmd->add_option("--fov", options->fov, "Vertical field of view in degrees");
+  cmd->add_option("--fov", options->fov, "Vertical field of view in degrees, above 0 and below 180")
+      ->check(realIn(0, 180, Bound::Open, Bound::Open));
   cmd->add_option("--size", options->size,
                   "Image size WIDTHxHEIGHT (960x540; the front layer's with --display-eye)");
   cmd->add_option("--display-eye", options->displayEye,

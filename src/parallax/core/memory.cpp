@@ -1,6 +1,13 @@
 #include "parallax/core/memory.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "parallax/core/error.h"
 
 namespace parallax {
 
@@ -8,6 +15,42 @@ double peakResidentMiB() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return double(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
+
+uint64_t physicalMemoryBytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  uint64_t bytes = pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) : 0;
+  // A container's limit (cgroup v2), when it is lower: "max" or a number of bytes.
+  std::ifstream cgroup("/sys/fs/cgroup/memory.max");
+  unsigned long long limit = 0;
+  if (cgroup >> limit && limit > 0 && (bytes == 0 || limit < bytes)) bytes = limit;
+  return bytes;
+}
+
+double defaultMemoryLimitBytes(uint64_t physicalBytes) {
+  return physicalBytes == 0 ? 4.0 * kGiB : 0.75 * double(physicalBytes);
+}
+
+double imageBytes(double width, double height, double bytesPerPixel, double count) {
+  return width * height * bytesPerPixel * count;
+}
+
+std::string formatGiB(double bytes) {
+  const double gib = bytes / kGiB;
+  char text[64];
+  if (gib >= 9.5)
+    std::snprintf(text, sizeof text, "%.0f GiB", gib);
+  else
+    std::snprintf(text, sizeof text, "%.2g GiB", gib);
+  return text;
+}
+
+void checkMemory(double bytes, double limitBytes, const std::string& subject,
+                 const std::string& what, const std::string& advice) {
+  if (bytes <= limitBytes) return;
+  throw InputError(subject, "",
+                   "needs about " + formatGiB(bytes) + " for " + what + " (limit " +
+                       formatGiB(limitBytes) + "); " + advice);
 }
 
 }  // namespace parallax

@@ -1,9 +1,43 @@
-// Process memory figures for benchmarks.
+// Process memory figures for benchmarks, and the estimates that keep a command from allocating
+// more than the machine has (docs/inputs.md): a command adds up what it will allocate before it
+// allocates it and checks the sum against a limit (by default 3/4 of physical memory).
 #pragma once
+
+#include <cstdint>
+#include <string>
 
 namespace parallax {
 
 // Peak resident set size of this process so far, in MiB (from getrusage).
 double peakResidentMiB();
+
+inline constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+
+// Bytes per pixel of the program's float RGB images (parallax::Image: three floats).
+inline constexpr double kFloatRgbPixelBytes = 12.0;
+// Bytes per pixel of an 8-bit RGBA picture (the PNG writer's buffer, an upper bound).
+inline constexpr double kRgba8PixelBytes = 4.0;
+
+// Physical memory of the machine in bytes (sysconf), lowered to the cgroup's memory.max when a
+// container sets one; 0 when unknown.
+uint64_t physicalMemoryBytes();
+
+// 3/4 of `physicalBytes` (the rest is left to the system and other programs); 4 GiB when the
+// physical memory is unknown (0).
+double defaultMemoryLimitBytes(uint64_t physicalBytes);
+
+// Bytes of `count` pictures of width x height pixels of `bytesPerPixel` each, as a double (no
+// overflow for any int sizes).
+double imageBytes(double width, double height, double bytesPerPixel = kFloatRgbPixelBytes,
+                  double count = 1.0);
+
+// "51 GiB", "2.5 GiB", "0.04 GiB": bytes in GiB with two significant digits below 10.
+std::string formatGiB(double bytes);
+
+// The refusal when `bytes` exceed `limitBytes`: throws InputError(subject, "", "needs about
+// X GiB for WHAT (limit Y GiB); ADVICE"). `subject` is the option that asked for it with its
+// value ("--size 65536x65536").
+void checkMemory(double bytes, double limitBytes, const std::string& subject,
+                 const std::string& what, const std::string& advice);
 
 }  // namespace parallax

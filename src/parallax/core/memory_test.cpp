@@ -5,6 +5,8 @@
 #include <cstring>
 #include <memory>
 
+#include "parallax/core/error.h"
+
 namespace parallax {
 namespace {
 
@@ -17,6 +19,44 @@ TEST(Memory, PeakGrowsWhenWeTouch64MiB) {
   EXPECT_GT(before, 0.0);
   EXPECT_GE(after, before + 60.0) << "before " << before << " after " << after;
   EXPECT_EQ(block[bytes - 1], 1);
+}
+
+TEST(Memory, ImageBytesByHand) {
+  // 1920 x 1080 float RGB: 2073600 pixels x 12 bytes.
+  EXPECT_DOUBLE_EQ(imageBytes(1920, 1080), 24883200.0);
+  // 65536^2 pixels x 12 bytes = 2^32 x 12 = 48 GiB, without int overflow.
+  EXPECT_DOUBLE_EQ(imageBytes(65536, 65536), 48.0 * kGiB);
+  // Nine 8-bit RGBA views of 100 x 50: 9 x 5000 x 4.
+  EXPECT_DOUBLE_EQ(imageBytes(100, 50, kRgba8PixelBytes, 9), 180000.0);
+}
+
+TEST(Memory, FormatGiB) {
+  EXPECT_EQ(formatGiB(48.0 * kGiB), "48 GiB");
+  EXPECT_EQ(formatGiB(18.4 * kGiB), "18 GiB");
+  EXPECT_EQ(formatGiB(2.5 * kGiB), "2.5 GiB");
+  EXPECT_EQ(formatGiB(0.5 * kGiB), "0.5 GiB");
+  EXPECT_EQ(formatGiB(24883200.0), "0.023 GiB");
+}
+
+TEST(Memory, DefaultLimitIsThreeQuartersOfPhysical) {
+  EXPECT_DOUBLE_EQ(defaultMemoryLimitBytes(uint64_t(24) << 30), 18.0 * kGiB);
+  EXPECT_DOUBLE_EQ(defaultMemoryLimitBytes(0), 4.0 * kGiB);
+  EXPECT_GT(physicalMemoryBytes(), uint64_t(0));
+}
+
+TEST(Memory, CheckRefusesAboveTheLimitWithTheEstimate) {
+  EXPECT_NO_THROW(checkMemory(kGiB, 2 * kGiB, "--size 1x1", "the film", "use a smaller size"));
+  EXPECT_NO_THROW(checkMemory(2 * kGiB, 2 * kGiB, "--size 1x1", "the film", "x"));
+  try {
+    checkMemory(imageBytes(65536, 65536), 18.0 * kGiB, "--size 65536x65536", "the film",
+                "use a smaller size");
+    FAIL() << "no refusal";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "--size 65536x65536: needs about 48 GiB for the film (limit 18 GiB); use a "
+                 "smaller size");
+    EXPECT_EQ(e.file(), "--size 65536x65536");
+  }
 }
 
 }  // namespace
