@@ -88,7 +88,7 @@ check "periods that break G1 exit 2" run 2 calibrate apply --screen-period 9 --s
 check "the error names the key" one_line_naming "/slit_period_px"
 check "a zero gap exits 2" run 2 calibrate apply --screen-period 9 --slit-period 9.04 --gap 0 \
   -o "$tmp/cal/bad.json"
-check "the error names the gap" one_line_naming "/gap_mm"
+check "the error names the gap" one_line_naming "--gap"
 check "no file after the errors" test ! -e "$tmp/cal/bad.json"
 check "apply without a slit period exits 2" run 2 calibrate apply --screen-period 9 \
   -o "$tmp/cal/bad.json"
