@@ -256,7 +256,17 @@ Image decodeWithStb(std::string_view bytes, const std::string& path) {
     return inputError(path, "",
                       std::string("not a readable image (") + stbi_failure_reason() + ")");
   };
-  // The header first: stb_image would otherwise allocate whatever the file announces.
+  // The header first: stb_image would otherwise allocate whatever the file announces. A PNG's
+  // IHDR is read here, since stb_image's own check of it ends in a vague "unknown image type".
+  if (bytes.size() >= 26 && sniffFormat(bytes) == Format::Png && bytes.substr(12, 4) == "IHDR") {
+    const auto u8 = [&bytes](size_t i) { return uint32_t(static_cast<unsigned char>(bytes[i])); };
+    const auto be32 = [&u8](size_t i) {
+      return u8(i) << 24 | u8(i + 1) << 16 | u8(i + 2) << 8 | u8(i + 3);
+    };
+    const uint32_t colourType = u8(25);
+    const double pngChannels = colourType == 0 ? 1 : colourType == 4 ? 2 : colourType == 6 ? 4 : 3;
+    checkImageSize(path, be32(16), be32(20), pngChannels * (u8(24) == 16 ? 2 : 1));
+  }
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(data, size, &width, &height, &channels)) throw fail();
   const bool hdr = stbi_is_hdr_from_memory(data, size) != 0;

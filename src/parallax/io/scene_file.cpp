@@ -627,8 +627,9 @@ class SceneFileLoader {
     if (const auto fov = value.find("fov")) {
       camera.fovDegrees = float(fov->number());
       if (!(camera.fovDegrees > kMinFov && camera.fovDegrees < kMaxFov))
-        fov->fail("expected a vertical field of view between 0.01 and 179 degrees, found " +
-                  fov->dump());
+        fov->fail(
+            "expected a vertical field of view between 0 and 180 degrees (0.01 to 179), found " +
+            fov->dump());
     }
     return camera;
   }
@@ -644,7 +645,7 @@ class SceneFileLoader {
 }  // namespace
 
 Scene sceneFromMesh(const std::string& path) {
-  if (!fs::exists(path)) throw InputError(path, "", "file not found");
+  requireRegularFile(path);
   Scene scene;
   scene.source = path;
   loadMeshFile(path, MeshLoadOptions{}, scene);
@@ -674,7 +675,7 @@ Scene sceneFromMesh(const std::string& path) {
 }
 
 Scene loadScene(const std::string& path) {
-  if (!fs::exists(path)) throw InputError(path, "", "file not found");
+  requireRegularFile(path);
   if (lowerExtension(path) == ".json") return SceneFileLoader(path).load();
   if (isMeshFile(path)) return sceneFromMesh(path);
   throw InputError(path, "", "unknown scene format (expected a .json scene or a mesh file)");
