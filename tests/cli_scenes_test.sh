@@ -24,7 +24,7 @@ for scene in "$src"/scenes/*.json; do
   check "$name: view is a PNG" is_png "$tmp/$name-view.png"
   check "$name: render" run 0 render "$scene" --spp 4 -o "$tmp/$name"
   check "$name: render wrote both layers" is_png "$tmp/$name/image.png"
-  check "$name: simulate --reference" run 0 simulate "$tmp/$name" --reference --json \
+  check "$name: simulate --reference" run 0 simulate "$tmp/$name" --reference --eye 0,0,600 --json \
     --reference-spp 4 -o "$tmp/$name/sim.png"
   check "$name: centre eye above $floor_db dB" psnr_above_floor
 done

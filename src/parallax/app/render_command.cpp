@@ -32,7 +32,23 @@ struct RenderOptions {
   bool subpixels = false;
   bool directMapping = false;
   std::string quilt, size;  // --quilt CxR, --size WxH of one quilt view
+  std::string filter = viewFilterName(ViewFilter{}.kind);
+  double filterWidth = ViewFilter{}.widthViews;
 };
+
+// --filter and --filter-width as the camera's ViewFilter.
+ViewFilter viewFilterOption(const RenderOptions& o) {
+  ViewFilter filter;
+  if (!parseViewFilterKind(o.filter, filter.kind))
+    throw InputError("command line", "--filter",
+                     "expected none, view, tent, gaussian or period, got '" + o.filter + "'");
+  if (!(o.filterWidth >= 0.05 && o.filterWidth <= 20))
+    throw InputError(
+        "command line", "--filter-width",
+        "expected a width in views between 0.05 and 20, got " + std::to_string(o.filterWidth));
+  filter.widthViews = o.filterWidth;
+  return filter;
+}
 
 }  // namespace
 
@@ -45,9 +61,8 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
                     const Scene& scene, const RenderSettings& settings) {
   int width = design.spec.imagePanel.width, height = design.spec.imagePanel.height;
   if (!o.size.empty()) parseSize("--size", o.size, width, height);
-  if (int64_t(width) * layout.columns > 65536 || int64_t(height) * layout.rows > 65536)
-    throw InputError("command line", "--quilt",
-                     "the quilt would be wider or taller than 65536 pixels; give a smaller --size");
+  checkQuiltWork(layout.columns, layout.rows, width, height, settings.samplesPerPixel,
+                 settings.threads, o.size);
   layout.aspect = double(width) / height;
   const double windowAspect = design.frontWidthMm() / design.frontHeightMm();
   if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01)
@@ -92,11 +107,13 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
   const std::string linearName = quiltFileName("quilt", layout, ".pfm");
   if (o.linear) record.set("/outputs/quilt_linear", linearName);
 
-  const std::string dir = o.output.empty() ? "." : o.output;
-  writeImage(dir + "/" + name, quilt);
-  if (o.linear) writeImage(dir + "/" + linearName, quilt);
-  writeFileAtomically(dir + "/display.json", displayFileText(design.spec));
-  writeFileAtomically(dir + "/render.json", record.dump() + "\n");
+  OutputSet set(o.output);
+  const std::string dir = set.dir();
+  writeImage(set.path(name), quilt);
+  if (o.linear) writeImage(set.path(linearName), quilt);
+  writeFileAtomically(set.path("display.json"), displayFileText(design.spec));
+  writeFileAtomically(set.path("render.json"), record.dump() + "\n");
+  set.commit();
   std::printf("wrote %s/%s (%d views of %dx%d), %s/render.json\n", dir.c_str(), name.c_str(),
               layout.views(), width, height, dir.c_str());
   std::printf("%d spp in %.2f s, %s\n", o.sampling.spp, stats.seconds,
@@ -104,7 +121,11 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
 }
 
 void runRender(const RenderOptions& o) {
-  const RenderSettings settings = o.sampling.settings();
+  RenderSettings settings = o.sampling.settings();
+  const ViewFilter filter = viewFilterOption(o);
+  // The central ray is one ray: more samples of it would all be the same.
+  if (filter.kind == ViewFilterKind::None && !o.directMapping && o.quilt.empty())
+    settings.samplesPerPixel = 1;
   if (!o.size.empty() && o.quilt.empty())
     throw InputError("command line", "--size", "sets the size of one quilt view: needs --quilt");
   QuiltLayout layout;
@@ -116,6 +137,8 @@ void runRender(const RenderOptions& o) {
     spec.subpixelRays = true;
     design = designDisplay(spec);
   }
+  if (o.quilt.empty())
+    checkLayerWork(design, o.directMapping, settings.samplesPerPixel, settings.threads, o.display);
   const Scene scene = loadSceneReportingWarnings(o.scene);
   if (!o.quilt.empty()) return runQuiltRender(o, layout, design, scene, settings);
   const Accelerator accelerator(scene);
@@ -123,18 +146,23 @@ void runRender(const RenderOptions& o) {
   {
     ProgressBar bar("render");
     const auto onProgress = [&bar](int done, int total) { bar.update(done, total); };
-    layers = o.directMapping ? renderDirectMapping(scene, accelerator, design, settings, onProgress)
-                             : renderDisplay(scene, accelerator, design, settings, onProgress);
+    layers = o.directMapping
+                 ? renderDirectMapping(scene, accelerator, design, settings, onProgress)
+                 : renderDisplay(scene, accelerator, design, settings, onProgress, filter);
   }
   const double raysPerSecond = double(layers.stats.totalRays()) / layers.stats.seconds;
 
   JsonWriter record;
   startRenderRecord(record, o.directMapping ? "direct-mapping" : "barrier-camera", o.display);
   record.set("/scene", scene.source);
-  record.set("/spp", o.sampling.spp);
+  record.set("/spp", settings.samplesPerPixel);
   record.set("/seed", o.sampling.seed);
   record.set("/jitter", o.sampling.jitter);
   record.set("/threads", o.sampling.threads);
+  if (!o.directMapping) {
+    record.set("/filter/kind", viewFilterName(filter.kind));
+    record.set("/filter/width_views", filter.widthViews);
+  }
   record.set("/seconds", layers.stats.seconds);
   record.set("/rays", layers.stats.totalRays());
   record.set("/rays_per_second", raysPerSecond);
@@ -143,7 +171,7 @@ void runRender(const RenderOptions& o) {
   record.set("/scene_display/up", scene.display.up);
   record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
   writeDisplayLayers(o.output, layers.image, layers.mask, design, o.linear, record);
-  std::printf("%d spp in %.2f s, %s\n", o.sampling.spp, layers.stats.seconds,
+  std::printf("%d spp in %.2f s, %s\n", settings.samplesPerPixel, layers.stats.seconds,
               formatRate(raysPerSecond).c_str());
 }
 
@@ -157,6 +185,16 @@ void registerRenderCommand(CLI::App& cli) {
   cmd->add_option("--display", options->display, "Display file (built-in display if omitted)");
   addSamplingOptions(*cmd, options->sampling,
                      "Rays per pixel: n*n stratified over pixel and aperture");
+  cmd->add_option("--filter", options->filter,
+                  "How a pixel's rays spread in angle (docs/display-geometry.md, "
+                  "\"Super-sampling\"): none (the central ray, 1 spp), view (a box one view "
+                  "wide), tent (the pixel-times-opening fan), gaussian, or period (a whole "
+                  "aperture period: the old cell, for comparison)")
+      ->capture_default_str();
+  cmd->add_option("--filter-width", options->filterWidth,
+                  "The filter's width in views (box width; tent and Gaussian: full width at "
+                  "half maximum)")
+      ->capture_default_str();
   cmd->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
   cmd->add_flag("--linear", options->linear, "Also write image.pfm, linear float");
   CLI::Option* direct =

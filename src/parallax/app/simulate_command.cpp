@@ -2,16 +2,20 @@
 // sweeps (contact sheet, animation, slider page), and quality figures against the ideal view.
 #include <CLI/CLI.hpp>
 
+#include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/image/contact_sheet.h"
 #include "parallax/image/metrics.h"
 #include "parallax/io/animation.h"
@@ -21,6 +25,7 @@
 #include "parallax/io/json_reader.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/render/render.h"
+#include "parallax/render/viewer_quality.h"
 #include "parallax/sim/crosstalk.h"
 #include "parallax/sim/simulator.h"
 
@@ -47,6 +52,8 @@ struct SimulateOptions {
   double sweepDistance = 0.0;
   bool reference = false;
   int referenceSpp = 16;
+  int eyesPerView = 4;
+  std::string distances = "0.8,1,1.25";
   bool json = false;
   int threads = 0;
   bool rawPixels = false;
@@ -84,6 +91,10 @@ std::vector<Vec3d> eyePositions(const SimulateOptions& o, const DisplayDesign& d
   }
   const double centre = d.spec.viewZoneCenterXMm, y = d.spec.viewZoneHeightMm;
   if (o.sweep > 0) {
+    if (o.sweepDistance > 100 * d.viewDistanceMm)
+      throw InputError("--sweep-distance", "",
+                       "must be at most 100 times the design distance D = " +
+                           std::to_string(int(d.viewDistanceMm)) + " mm");
     const double z = o.sweepDistance > 0 ? o.sweepDistance : d.viewDistanceMm;
     // Across the view zone (scaled by --sweep-range), scaled to the distance so that a
     // farther sweep covers the same views.
@@ -117,35 +128,133 @@ struct Quality {
   int ownView = 0;
 };
 
-// One screen period in output pixels: the display's spatial resolution, at which both the
-// simulated and the ideal view are compared (a pinhole eye sees one lit pixel per group).
-double periodInPixels(const DisplayDesign& d, int width) {
-  return d.screenPeriodMm / (d.frontWidthMm() / double(width));
-}
-
-// An image at the display's spatial resolution: integrated over one group, across (and, for
-// pinhole grids, also down: one vertical pinhole period seen on the image layer).
-Image atDisplayResolution(const DisplayDesign& d, const Image& image) {
-  Image out = boxFilterX(image, periodInPixels(d, image.width()));
-  if (d.spec.mask.kind == MaskKind::Pinholes) {
-    const double rowPeriodMm = d.spec.mask.verticalPeriodPx * d.spec.maskPanel.pitchMm *
-                               (d.viewDistanceMm - d.imageLayerZ()) /
-                               (d.viewDistanceMm - d.maskLayerZ());
-    out = boxFilterY(out, rowPeriodMm / (d.frontHeightMm() / double(image.height())));
+// "0.8,1,1.25": eye distances in units of the design distance D.
+std::vector<double> parseDistances(const std::string& text) {
+  std::vector<double> distances;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t end = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, end - start);
+    char* rest = nullptr;
+    const double f = std::strtod(item.c_str(), &rest);
+    if (item.empty() || *rest != '\0' || !(f >= 0.1 && f <= 10))
+      throw InputError("command line", "--distances",
+                       "expected distances in units of D between 0.1 and 10, separated by commas, "
+                       "got '" +
+                           text + "'");
+    distances.push_back(f);
+    start = end + 1;
   }
-  return out;
+  return distances;
 }
 
-// The ideal view of the scene from the eye (one-axis perspective for slit displays), brought
-// to the display's spatial resolution by a box filter one screen period wide.
-Image referenceView(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& d,
-                    const Vec3d& eye, int width, int height, int spp, int threads) {
-  const bool horizontalOnly = d.spec.mask.kind != MaskKind::Pinholes;
-  const WindowCamera camera(eye, d, scene.display, width, height, horizontalOnly);
-  RenderSettings settings;
-  settings.samplesPerPixel = spp;
-  settings.threads = threads;
-  return atDisplayResolution(d, render(scene, accelerator, camera, settings));
+void printSummaryRow(const char* label, const QualitySummary& s) {
+  std::printf("%-22s %5d %9.2f %7.4f %9.2f %9.4f\n", label, s.eyes, s.meanPsnr, s.meanSsim,
+              s.worstPsnr, s.meanFlicker);
+}
+
+void setSummary(JsonWriter& json, const std::string& at, const QualitySummary& s) {
+  json.set(at + "/eyes", s.eyes);
+  json.set(at + "/psnr", s.meanPsnr);
+  json.set(at + "/ssim", s.meanSsim);
+  json.set(at + "/worst_psnr", s.worstPsnr);
+  json.set(at + "/worst_eye", Vec3f{float(s.worstEye.x), float(s.worstEye.y), float(s.worstEye.z)});
+  json.set(at + "/flicker", s.meanFlicker);
+}
+
+// `simulate --reference` without --eye or --sweep: the dense measure (docs/simulator.md), K eyes
+// inside every view's window at several distances, and the design eyes as their own column.
+void runDenseReference(const SimulateOptions& o, const Inputs& in, const SimulationOptions& sim) {
+  const DisplayDesign& d = in.design;
+  if (o.eyesPerView < 1 || o.eyesPerView > 64)
+    throw InputError("command line", "--eyes-per-view",
+                     "expected 1 to 64 eyes per view, got " + std::to_string(o.eyesPerView));
+  const std::vector<double> distances = parseDistances(o.distances);
+  const Scene scene = loadSceneOrDefault(in.scene);
+  const Accelerator accelerator(scene);
+  const DisplaySimulator simulator(d, in.layers, sim);
+  std::vector<DenseEye> eyes = denseEyes(d, o.eyesPerView, distances);
+  for (const DenseEye& eye : designEyes(d)) eyes.push_back(eye);
+  ViewerQuality result;
+  {
+    ProgressBar bar("measure");
+    result = measureViewerQuality(scene, accelerator, simulator, eyes, {o.referenceSpp, o.threads},
+                                  [&bar](int done, int total) { bar.update(done, total); });
+  }
+  if (o.json) {
+    JsonWriter json;
+    json.set("/display", d.spec.source);
+    json.set("/eyes_per_view", o.eyesPerView);
+    for (size_t i = 0; i < result.eyes.size(); ++i) {
+      const EyeQuality& q = result.eyes[i];
+      const std::string at = "/eyes/" + std::to_string(i);
+      const Vec3d& e = q.eye.position;
+      json.set(at + "/eye", Vec3f{float(e.x), float(e.y), float(e.z)});
+      json.set(at + "/distance", q.eye.distance);
+      json.set(at + "/view", q.eye.view);
+      json.set(at + "/design_eye", q.eye.designEye);
+      json.set(at + "/psnr", q.psnr);
+      json.set(at + "/ssim", q.ssim);
+      json.set(at + "/flicker", q.flicker);
+    }
+    setSummary(json, "/mean", result.all);
+    setSummary(json, "/design_eyes", result.designOnly);
+    for (size_t i = 0; i < result.byDistance.size(); ++i) {
+      json.set("/by_distance/" + std::to_string(i) + "/distance", result.byDistance[i].first);
+      setSummary(json, "/by_distance/" + std::to_string(i), result.byDistance[i].second);
+    }
+    std::printf("%s\n", json.dump().c_str());
+    return;
+  }
+  std::printf("%-22s %5s %9s %7s %4s %9s\n", "eye (mm)", "dist", "PSNR dB", "SSIM", "view",
+              "flicker");
+  for (const EyeQuality& q : result.eyes) {
+    char eye[48];
+    std::snprintf(eye, sizeof eye, "%.1f,%.1f,%.1f", q.eye.position.x, q.eye.position.y,
+                  q.eye.position.z);
+    std::printf("%-22s %5.2f %9.2f %7.4f %4d %9.4f%s\n", eye, q.eye.distance, q.psnr, q.ssim,
+                q.eye.view, q.flicker, q.eye.designEye ? "  (design eye)" : "");
+  }
+  std::printf("\n%-22s %5s %9s %7s %9s %9s\n", "summary", "eyes", "mean dB", "SSIM", "worst dB",
+              "flicker");
+  for (const auto& [distance, summary] : result.byDistance) {
+    char label[32];
+    std::snprintf(label, sizeof label, "at %.2f D", distance);
+    printSummaryRow(label, summary);
+  }
+  printSummaryRow("dense eyes", result.all);
+  printSummaryRow("design eyes (biased)", result.designOnly);
+}
+
+// Before the simulator allocates: per eye its view, the picture and the encoded copies of a
+// sweep, beside two copies of the layers (the simulator's, a blurred rear layer); and the
+// time of every sample (spp x pupil samples per output pixel, and the reference views').
+void checkSimulationWork(const SimulateOptions& o, const DisplayDesign& d,
+                         const LayerImages& layers, const SimulationOptions& sim, size_t eyes) {
+  if (o.diffuser > d.frontWidthMm())
+    throw InputError("--diffuser", "",
+                     "a blur wider than the display (" + std::to_string(int(d.frontWidthMm())) +
+                         " mm) is no diffuser");
+  const Panel& front =
+      d.spec.order == LayerOrder::BarrierBack ? d.spec.imagePanel : d.spec.maskPanel;
+  const double w = sim.width > 0 ? sim.width : front.width;
+  const double h = sim.height > 0 ? sim.height : front.height;
+  const double layerBytes = imageBytes(layers.image.width(), layers.image.height()) +
+                            imageBytes(layers.mask.width(), layers.mask.height());
+  const double perEye = imageBytes(w, h, 2 * kFloatRgbPixelBytes + 2 * kRgba8PixelBytes);
+  const std::string subject = o.sweep > 0      ? "--sweep " + std::to_string(o.sweep)
+                              : o.size.empty() ? "--eye"
+                                               : "--size " + o.size;
+  checkMemoryEstimate(2 * layerBytes + double(eyes) * perEye, subject,
+                      std::to_string(eyes) + " simulated views",
+                      o.sweep > 0 ? "use fewer steps" : "use a smaller size or fewer eyes");
+  checkPixelCount(w * h, subject);
+  const double samples = double(eyes) * w * h * o.spp * (o.pupil > 0 ? o.pupilSamples : 1);
+  checkTimeEstimate(samples, o.threads, o.sweep > 0 ? subject : "--spp " + std::to_string(o.spp),
+                    "use fewer samples or eyes");
+  if (o.reference)
+    checkTimeEstimate(double(eyes) * w * h * o.referenceSpp, o.threads,
+                      "--reference-spp " + std::to_string(o.referenceSpp), "use fewer samples");
 }
 
 void runSimulate(const SimulateOptions& o) {
@@ -160,6 +269,11 @@ void runSimulate(const SimulateOptions& o) {
   sim.colourFilters = o.colourFilters;
   sim.normalise = !o.raw;
   sim.threads = o.threads;
+  checkSimulationWork(o, d, in.layers, sim, eyePositions(o, d).size());
+  if (o.reference && o.eyes.empty() && o.sweep == 0) return runDenseReference(o, in, sim);
+  // --reference: the scene is read (and checked) before any picture is written.
+  std::optional<Scene> referenceScene;
+  if (o.reference) referenceScene = loadSceneOrDefault(in.scene);
   const Image maskLayer = in.layers.mask;
   const DisplaySimulator simulator(d, in.layers, sim);
   const std::vector<Vec3d> eyes = eyePositions(o, d);
@@ -198,11 +312,11 @@ void runSimulate(const SimulateOptions& o) {
 
   std::vector<Quality> quality;
   if (o.reference) {
-    const Scene scene = loadSceneOrDefault(in.scene);
+    const Scene& scene = *referenceScene;
     const Accelerator accelerator(scene);
     for (size_t i = 0; i < eyes.size(); ++i) {
-      const Image reference = referenceView(scene, accelerator, d, eyes[i], views[i].width(),
-                                            views[i].height(), o.referenceSpp, o.threads);
+      const Image reference = idealView(scene, accelerator, d, eyes[i], views[i].width(),
+                                        views[i].height(), o.referenceSpp, o.threads);
       Quality q;
       const Image seen = o.rawPixels ? atDisplayResolution(d, views[i]) : pictures[i];
       q.psnr = psnr(seen, reference);
@@ -280,12 +394,18 @@ void registerSimulateCommand(CLI::App& cli) {
   cmd->add_option("-o,--output", o->output,
                   "Output image (several eyes: FILE-K), or the prefix of the sweep's files");
   cmd->add_option("--size", o->size, "Output size WIDTHxHEIGHT (default: the front layer's)");
-  cmd->add_option("--spp", o->spp, "Samples per output pixel (n*n)")->capture_default_str();
-  cmd->add_option("--pupil", o->pupil, "Pupil diameter in mm (0: a pinhole eye)");
+  cmd->add_option("--spp", o->spp, "Samples per output pixel (n*n)")
+      ->capture_default_str()
+      ->check(squareCount());
+  cmd->add_option("--pupil", o->pupil, "Pupil diameter in mm, 0 (a pinhole eye) to 100")
+      ->check(realIn(0, 100));
   cmd->add_option("--pupil-samples", o->pupilSamples, "Points averaged over the pupil")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(integerIn(1, INT_MAX));
   cmd->add_option("--diffuser", o->diffuser,
-                  "Blur of the rear layer by a diffuser foil, Gaussian sigma in mm");
+                  "Blur of the rear layer by a diffuser foil, Gaussian sigma in mm (0 to the "
+                  "display's width)")
+      ->check(realIn(0, kInfinity));
   cmd->add_flag("--color-filters", o->colourFilters,
                 "Model the R, G, B colour-filter stripes of both layers (rainbow fringes)");
   cmd->add_flag("--raw", o->raw, "Raw brightness (default: normalised by the aperture ratio)");
@@ -293,17 +413,34 @@ void registerSimulateCommand(CLI::App& cli) {
                 "Write the pinhole eye's samples unfiltered (default: integrated over one "
                 "screen period, as a viewer at the design distance perceives them)");
   cmd->add_option("--sweep", o->sweep,
-                  "Move the eye across the view zone in N steps: contact sheet, APNG, HTML");
+                  "Move the eye across the view zone in N steps: contact sheet, APNG, HTML")
+      ->check(integerIn(0, INT_MAX));
   cmd->add_option("--sweep-range", o->sweepRange,
-                  "Sweep width in view-zone widths (> 1 goes beyond the zone)")
-      ->capture_default_str();
-  cmd->add_option("--sweep-distance", o->sweepDistance, "Eye distance of the sweep (default D)");
+                  "Sweep width in view-zone widths, above 0 and at most 10 (> 1 goes beyond the "
+                  "zone)")
+      ->capture_default_str()
+      ->check(realIn(0, 10, Bound::Open));
+  cmd->add_option("--sweep-distance", o->sweepDistance,
+                  "Eye distance of the sweep in mm, above 0 and at most 100 D (default D)")
+      ->check(realIn(0, kInfinity, Bound::Open));
   cmd->add_flag("--reference", o->reference,
-                "Quality figures against the ideal view: PSNR, SSIM, brightness, cross-talk");
+                "Quality figures against the ideal view: PSNR, SSIM, brightness, cross-talk at "
+                "the --eye positions; without --eye, the dense measure over the view zone "
+                "(--eyes-per-view, --distances): mean, worst eye, flicker");
   cmd->add_option("--scene", o->scene, "Scene for --reference (default: from render.json)");
   cmd->add_option("--reference-spp", o->referenceSpp, "Samples per pixel of the ideal view")
+      ->capture_default_str()
+      ->check(integerIn(1, INT_MAX));
+  cmd->add_option("--eyes-per-view", o->eyesPerView,
+                  "With --reference and no --eye: eyes evenly inside every view's window "
+                  "(the dense measure)")
       ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)");
+  cmd->add_option("--distances", o->distances,
+                  "With --reference and no --eye: eye distances of the dense measure, in units "
+                  "of the design distance D")
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(threadCount());
+  addLimitOptions(*cmd);
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o] { runSimulate(*o); });
 }

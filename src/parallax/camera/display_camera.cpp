@@ -88,8 +88,9 @@ Transform worldFromDisplay(const DisplayPlacement& placement, const DisplayWindo
   return Transform(m);
 }
 
-DisplayCamera::DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement)
-    : rays_(design), worldFromDisplay_(worldFromDisplay(placement, displayWindow(design))) {
+DisplayCamera::DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement,
+                             const ViewFilter& filter)
+    : rays_(design, filter), worldFromDisplay_(worldFromDisplay(placement, displayWindow(design))) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) affine_[r][c] = worldFromDisplay_.matrix().m[r][c];
 }

@@ -32,7 +32,8 @@ Transform worldFromDisplay(const DisplayPlacement& placement, const DisplayWindo
 // aperture; see BarrierRayGenerator for the geometry.
 class DisplayCamera final : public Camera {
  public:
-  DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement);
+  DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement,
+                const ViewFilter& filter = {});
 
   int width() const override { return rays_.filmWidth(); }
   int height() const override { return rays_.filmHeight(); }

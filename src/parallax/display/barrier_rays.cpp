@@ -5,9 +5,11 @@
 
 namespace parallax {
 
-BarrierRayGenerator::BarrierRayGenerator(const DisplayDesign& design)
+BarrierRayGenerator::BarrierRayGenerator(const DisplayDesign& design, const ViewFilter& filter)
     : design_(design),
       mask_(design),
+      filter_(filter),
+      warp_(filter),
       subpixels_(design.spec.subpixelRays),
       filmWidth_(design.spec.imagePanel.width * (subpixels_ ? 3 : 1)),
       zImage_(design.imageLayerZ()),
@@ -70,7 +72,8 @@ Vec3d BarrierRayGenerator::viewPosition(int view) const {
 void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], const float u[16],
                                  const float v[16], double origin[3][16],
                                  double direction[3][16]) const {
-  if (design_.spec.mask.kind != MaskKind::Slits || std::isinf(virtualDistance_)) {
+  if (design_.spec.mask.kind != MaskKind::Slits || std::isinf(virtualDistance_) ||
+      filter_.kind == ViewFilterKind::None) {
     for (int i = 0; i < 16; ++i) {
       const BarrierRay r = ray(filmX[i], filmY[i], u[i], v[i]);
       origin[0][i] = r.origin.x, origin[1][i] = r.origin.y, origin[2][i] = r.origin.z;
@@ -94,9 +97,16 @@ void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], c
   alignas(64) double fx[16], fy[16], fu[16], cell[16], o[3][16], d[2][16];
   alignas(64) int column[16];
   for (int i = 0; i < 16; ++i) {
-    fx[i] = filmX[i], fy[i] = filmY[i], fu[i] = u[i];
+    fx[i] = filmX[i], fy[i] = filmY[i];
     column[i] = std::min(std::max(int(filmX[i]), 0), lastColumn);  // film x >= 0: floor
   }
+  // The aperture offset of each lane, relative to the cell's left edge (Period) or to the
+  // aperture centre plus the sample's offset from its pixel centre (the view filters).
+  const bool period = filter_.kind == ViewFilterKind::Period;
+  const double sv = virtualMaskFromImage_;
+  for (int i = 0; i < 16; ++i)
+    fu[i] = period ? u[i] * periodX
+                   : 0.5 * periodX + sv * ((fx[i] - column[i] - 0.5) + warp_(u[i])) * columnWidth;
   // The render loop's packets are one film column (a broadcast); a gather is slow here.
   bool oneColumn = true;
   for (int i = 1; i < 16; ++i) oneColumn &= column[i] == column[0];
@@ -108,7 +118,7 @@ void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], c
   for (int i = 0; i < 16; ++i) {
     const double sampleX = left + fx[i] * columnWidth;
     const double sampleY = top - fy[i] * pitch;
-    const double apertureX = cell[i] + fu[i] * periodX;
+    const double apertureX = cell[i] + fu[i];
     const double slopeX = (apertureX - sampleX) * inverseGap;
     const double slopeY = (eyeY - sampleY) * inverseDepth;
     o[0][i] = sampleX + slopeX * t;
@@ -144,21 +154,39 @@ BarrierRayGenerator::Association BarrierRayGenerator::associate(double filmX, do
   return a;
 }
 
+void BarrierRayGenerator::snapToCentre(double& filmX, double& filmY, double& u, double& v) const {
+  if (filter_.kind != ViewFilterKind::None) return;
+  filmX = std::floor(filmX) + 0.5, filmY = std::floor(filmY) + 0.5;
+  u = v = 0.5;
+}
+
 BarrierRay BarrierRayGenerator::ray(double filmX, double filmY, double u, double v) const {
+  snapToCentre(filmX, filmY, u, v);
   BarrierRay r;
   const Association a = associate(filmX, filmY);
   r.aperture = a.aperture;
   r.apertureRow = a.apertureRow;
   const Vec3d sample = imagePoint(filmX, filmY);
+  const Vec3d pixelCentre = imagePoint(std::floor(filmX) + 0.5, std::floor(filmY) + 0.5);
   const double sv = virtualMaskFromImage_;
-  // The sample's point in the virtual aperture cell.
-  const double apertureX = a.cellLeftX + u * design_.screenPeriodMm * sv;
+  const bool period = filter_.kind == ViewFilterKind::Period;
+  // Where the sample's ray crosses the virtual mask (the equation in barrier_rays.h).
+  const double periodX = design_.screenPeriodMm * sv;
+  const double columnWidth = design_.spec.imagePanel.pitchMm / (subpixels_ ? 3.0 : 1.0);
+  const double apertureX = period ? a.cellLeftX + u * periodX
+                                  : a.cellLeftX + 0.5 * periodX +
+                                        sv * ((sample.x - pixelCentre.x) + warp_(u) * columnWidth);
   const double dz = zMaskVirtual_ - zImageVirtual_;
   const double slopeX = (apertureX - sample.x) * inverseVirtualGap_;
   double slopeY = 0.0;
   if (mask_.isPinholeGrid()) {
+    // Pinholes select a view in y too: the same rule down the columns, with the pixel pitch
+    // as one vertical view.
     const double periodY = mask_.verticalPeriodMm() * imageFromMask_ * sv;
-    const double apertureY = eyeY_ + (a.groupY - eyeY_) * sv + (v - 0.5) * periodY;
+    const double centreY = eyeY_ + (a.groupY - eyeY_) * sv;
+    const double apertureY = period ? centreY + (v - 0.5) * periodY
+                                    : centreY + sv * ((sample.y - pixelCentre.y) +
+                                                      warp_(v) * design_.spec.imagePanel.pitchMm);
     slopeY = (apertureY - sample.y) * inverseVirtualGap_;
   } else if (!std::isinf(virtualDistance_)) {
     // One-axis perspective: every ray meets the view line y = y_e at z = D' (section 2.2).

@@ -7,6 +7,7 @@
 
 #include "parallax/display/display.h"
 #include "parallax/display/mask.h"
+#include "parallax/display/view_filter.h"
 
 namespace parallax {
 
@@ -25,7 +26,9 @@ struct BarrierRay {
 
 class BarrierRayGenerator {
  public:
-  explicit BarrierRayGenerator(const DisplayDesign& design);
+  // `filter`: how a pixel's sub-rays spread in angle (view_filter.h); a render setting, not
+  // part of the display.
+  explicit BarrierRayGenerator(const DisplayDesign& design, const ViewFilter& filter = {});
 
   // Film columns: the image layer's pixels, or three per pixel in subpixel mode.
   int filmWidth() const { return filmWidth_; }
@@ -34,11 +37,17 @@ class BarrierRayGenerator {
   // Colour channel (0 R, 1 G, 2 B) that film column `column` carries in subpixel mode.
   int channelOfColumn(int column) const;
 
-  // The ray for a sample at film position (x, y) (continuous film pixels, y down) and
-  // aperture-cell position (u, v) in [0, 1)^2. The pixel is assigned to an aperture by
-  // projecting apertures from the view-zone centre onto the image layer, using the centre of
-  // the film column (so every sample of a pixel uses the same aperture). u, v = 0.5 is the
-  // aperture's centre line.
+  // The ray for a sample at film position (x, y) (continuous film pixels, y down) and angular
+  // sample (u, v) in [0, 1)^2. The pixel is assigned to an aperture by projecting apertures
+  // from the view-zone centre onto the image layer, using the centre of the film column (so
+  // every sample of a pixel uses the same aperture). u, v = 0.5 is the pixel's central ray
+  // (through the aperture's centre line); u, v spread the ray over the filter's angular
+  // window around it (docs/display-geometry.md, "Super-sampling"): with the filter's offset
+  // f(u) in views, the ray crosses the virtual mask at
+  //   x_M = a_c + s' ((x - x_c) + f(u) dx),   s' = (D' - z_M') / (D' - z_I')  (1 for D' = inf)
+  // with a_c the aperture centre, x_c the pixel centre and dx the film column's width: the
+  // line from the sample point to an eye f(u) view widths from the central ray's eye at D'.
+  // The Period filter keeps the old cell instead: x_M = a_c + (u - 0.5) T' (a whole period).
   BarrierRay ray(double filmX, double filmY, double u, double v) const;
 
   // The view a film column serves: its place in its group, 0 .. round(views) - 1 counted in
@@ -60,10 +69,13 @@ class BarrierRayGenerator {
 
   const DisplayDesign& design() const { return design_; }
   const MaskGeometry& mask() const { return mask_; }
+  const ViewFilter& filter() const { return filter_; }
 
  private:
   DisplayDesign design_;
   MaskGeometry mask_;
+  ViewFilter filter_;
+  ViewFilterWarp warp_;
   bool subpixels_;
   int filmWidth_;
   double zImage_, zMask_;                // physical layers
@@ -76,6 +88,9 @@ class BarrierRayGenerator {
   double inverseViewDepth_;      // 1 / (D' - zI'), 0 for D' infinite
   // Vertical slits: the left edge (u = 0) of each film column's virtual aperture cell, x in mm.
   std::vector<double> apertureCellLeft_;
+
+  // The film sample actually traced: the pixel centre for the None filter.
+  void snapToCentre(double& filmX, double& filmY, double& u, double& v) const;
 
   // Which aperture serves a film sample, and where its group and virtual aperture cell lie.
   struct Association {

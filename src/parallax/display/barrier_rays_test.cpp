@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <map>
+#include <string>
+#include <vector>
 
 namespace parallax {
 namespace {
@@ -148,13 +150,115 @@ TEST(BarrierRays, SubpixelsGetTheirOwnRays) {
   EXPECT_NEAR(b.imagePoint.x - a.imagePoint.x, dx / 3.0, 1e-12);
 }
 
-TEST(BarrierRays, JitterSpansOnePixelAndOneApertureCell) {
-  const BarrierRayGenerator gen(designDisplay(narrowDisplay()));
+TEST(BarrierRays, PeriodFilterSpansOnePixelAndOneApertureCell) {
+  const BarrierRayGenerator gen(designDisplay(narrowDisplay()), {ViewFilterKind::Period, 1.0});
   const DisplayDesign& d = gen.design();
   const BarrierRay lo = gen.ray(85.0, 20.5, 0.0, 0.5), hi = gen.ray(85.999999, 20.5, 1.0, 0.5);
   EXPECT_EQ(lo.aperture, hi.aperture);
   EXPECT_NEAR(hi.imagePoint.x - lo.imagePoint.x, d.spec.imagePanel.pitchMm, 1e-5);
   EXPECT_NEAR(hi.aperturePoint.x - lo.aperturePoint.x, d.slitPeriodMm, 1e-5);
+}
+
+// The view filters' footprint (docs/display-geometry.md, "Super-sampling"): every sub-ray of a
+// pixel passes through its sample point and, at the virtual distance D', through an eye inside
+// the pixel's own view window: the window dx (D' - z_M') / g' wide around the central ray's
+// eye (D' infinite: slopes within dx / (2 g') of the central slope). Checked for both layer
+// orders, a virtual gap and distance, subpixel rays, pinholes (in y too) and slanted slits.
+struct FootprintCase {
+  const char* name;
+  DisplaySpec spec;
+};
+
+std::vector<FootprintCase> footprintCases() {
+  std::vector<FootprintCase> cases;
+  cases.push_back({"barrier-back", narrowDisplay()});
+  cases.push_back({"barrier-front", narrowDisplay(LayerOrder::BarrierFront)});
+  DisplaySpec virtualGap = narrowDisplay();
+  virtualGap.virtualGapMm = 5.0, virtualGap.virtualDistanceMm = 900.0;
+  cases.push_back({"virtual g' and D'", virtualGap});
+  DisplaySpec orthographic = narrowDisplay();
+  orthographic.virtualDistanceMm = kInfinity;
+  cases.push_back({"D' infinite", orthographic});
+  DisplaySpec subpixels = narrowDisplay();
+  subpixels.subpixelRays = true;
+  cases.push_back({"subpixels", subpixels});
+  DisplaySpec pinholes = narrowDisplay();
+  pinholes.mask.kind = MaskKind::Pinholes;
+  pinholes.mask.verticalPeriodPx = 9.045;
+  cases.push_back({"pinholes", pinholes});
+  DisplaySpec slanted = narrowDisplay();
+  slanted.mask.kind = MaskKind::Slanted;
+  slanted.mask.slantDegrees = 12.0;
+  cases.push_back({"slanted", slanted});
+  return cases;
+}
+
+TEST(BarrierRays, ViewFilterRaysMeetAnEyeInsideThePixelsViewWindow) {
+  for (const FootprintCase& c : footprintCases()) {
+    const DisplayDesign d = designDisplay(c.spec);
+    for (const ViewFilter filter :
+         {ViewFilter{ViewFilterKind::View, 1.0}, ViewFilter{ViewFilterKind::Tent, 1.0},
+          ViewFilter{ViewFilterKind::Gaussian, 1.5}, ViewFilter{ViewFilterKind::View, 0.5}}) {
+      const BarrierRayGenerator gen(d, filter);
+      const double halfSupport = ViewFilterWarp(filter).halfSupport();
+      const bool subpixel = c.spec.subpixelRays, pinhole = gen.mask().isPinholeGrid();
+      const double dx = d.spec.imagePanel.pitchMm / (subpixel ? 3.0 : 1.0);
+      const double dy = d.spec.imagePanel.pitchMm;
+      const double g = d.virtualGapMm;
+      const bool front = d.spec.order == LayerOrder::BarrierBack;  // image layer in front
+      const double zI = front ? 0.0 : -g, zM = front ? -g : 0.0;
+      const double D = d.virtualDistanceMm;
+      for (int x = 40; x < gen.filmWidth() - 40; x += 13)
+        for (int y : {3, 17, 31}) {
+          const BarrierRay centre = gen.ray(x + 0.5, y + 0.5, 0.5, 0.5);
+          double lo = 1e9, hi = -1e9, loY = 1e9, hiY = -1e9;
+          for (double fx : {0.0, 0.3, 0.999})
+            for (double fy : {0.0, 0.6, 0.999})
+              for (double u : {0.0, 0.2, 0.5, 0.8, 0.9999}) {
+                const double v = pinhole ? u : 0.5;
+                const BarrierRay r = gen.ray(x + fx, y + fy, u, v);
+                ASSERT_EQ(r.aperture, centre.aperture) << c.name;
+                // A slanted slit lies elsewhere at another height: the central ray of the
+                // sample's own height is the reference there.
+                const BarrierRay central = gen.ray(x + 0.5, y + fy, 0.5, 0.5);
+                // Through its sample point on the image layer.
+                const Vec3d sample = gen.imagePoint(x + fx, y + fy);
+                const auto [ix, iy] = at(r, zI);
+                ASSERT_NEAR(ix, sample.x, 1e-9) << c.name;
+                ASSERT_NEAR(iy, sample.y, 1e-9) << c.name;
+                // Offset from the central ray, as an eye offset at D' (or a slope offset).
+                double offset, offsetY = 0;
+                if (std::isinf(D)) {
+                  offset = (r.direction.x - central.direction.x) * g / dx;
+                  offsetY = (r.direction.y - central.direction.y) * g / dy;
+                } else {
+                  const double window = dx * (D - zM) / g;  // one view's window at D'
+                  offset = (at(r, D).first - at(central, D).first) / window;
+                  offsetY = (at(r, D).second - at(central, D).second) / (dy * (D - zM) / g);
+                }
+                lo = std::min(lo, offset), hi = std::max(hi, offset);
+                loY = std::min(loY, offsetY), hiY = std::max(hiY, offsetY);
+              }
+          const std::string where =
+              std::string(c.name) + " " + viewFilterName(filter.kind) + " x " + std::to_string(x);
+          EXPECT_LE(hi, halfSupport + 1e-6) << where;
+          EXPECT_GE(lo, -halfSupport - 1e-6) << where;
+          EXPECT_GT(hi - lo, 0.9 * halfSupport) << where;  // and it does spread
+          if (pinhole) {
+            EXPECT_LE(std::max(hiY, -loY), halfSupport + 1e-6) << where;
+          }
+        }
+    }
+  }
+}
+
+TEST(BarrierRays, NoneFilterTracesOnlyTheCentralRay) {
+  const BarrierRayGenerator gen(designDisplay(narrowDisplay()), {ViewFilterKind::None, 1.0});
+  const BarrierRay centre = gen.ray(85.5, 20.5, 0.5, 0.5);
+  const BarrierRay other = gen.ray(85.1, 20.9, 0.05, 0.95);
+  EXPECT_EQ(other.direction.x, centre.direction.x);
+  EXPECT_EQ(other.origin.x, centre.origin.x);
+  EXPECT_EQ(other.origin.y, centre.origin.y);
 }
 
 TEST(BarrierRays, PinholesGiveFullParallax) {
@@ -192,30 +296,32 @@ namespace parallax {
 namespace {
 
 TEST(BarrierRays, SixteenAtOnceMatchOneByOne) {
-  for (MaskKind kind : {MaskKind::Slits, MaskKind::Slanted}) {
-    DisplaySpec s = defaultDisplaySpec();
-    s.imagePanel.width = s.maskPanel.width = 180;
-    s.imagePanel.height = s.maskPanel.height = 40;
-    s.mask.kind = kind;
-    s.mask.slantDegrees = 10;
-    s.viewZoneHeightMm = 20;
-    s.virtualGapMm = 4.0;
-    const BarrierRayGenerator gen(designDisplay(s));
-    alignas(64) float x[16], y[16], u[16], v[16];
-    for (int i = 0; i < 16; ++i)
-      x[i] = 11.3f * float(i) + 0.37f, y[i] = 2.1f * float(i) + 0.5f, u[i] = 0.06f * float(i),
-      v[i] = 0.5f;
-    alignas(64) double origin[3][16], direction[3][16];
-    gen.rays16(x, y, u, v, origin, direction);
-    for (int i = 0; i < 16; ++i) {
-      const BarrierRay r = gen.ray(x[i], y[i], u[i], v[i]);
-      EXPECT_NEAR(origin[0][i], r.origin.x, 1e-9);
-      EXPECT_NEAR(origin[1][i], r.origin.y, 1e-9);
-      EXPECT_NEAR(origin[2][i], r.origin.z, 1e-9);
-      EXPECT_NEAR(direction[0][i], r.direction.x, 1e-12);
-      EXPECT_NEAR(direction[1][i], r.direction.y, 1e-12);
+  for (MaskKind kind : {MaskKind::Slits, MaskKind::Slanted})
+    for (ViewFilterKind filter : {ViewFilterKind::View, ViewFilterKind::Tent,
+                                  ViewFilterKind::Period, ViewFilterKind::None}) {
+      DisplaySpec s = defaultDisplaySpec();
+      s.imagePanel.width = s.maskPanel.width = 180;
+      s.imagePanel.height = s.maskPanel.height = 40;
+      s.mask.kind = kind;
+      s.mask.slantDegrees = 10;
+      s.viewZoneHeightMm = 20;
+      s.virtualGapMm = 4.0;
+      const BarrierRayGenerator gen(designDisplay(s), {filter, 1.0});
+      alignas(64) float x[16], y[16], u[16], v[16];
+      for (int i = 0; i < 16; ++i)
+        x[i] = 11.3f * float(i) + 0.37f, y[i] = 2.1f * float(i) + 0.5f, u[i] = 0.06f * float(i),
+        v[i] = 0.5f;
+      alignas(64) double origin[3][16], direction[3][16];
+      gen.rays16(x, y, u, v, origin, direction);
+      for (int i = 0; i < 16; ++i) {
+        const BarrierRay r = gen.ray(x[i], y[i], u[i], v[i]);
+        EXPECT_NEAR(origin[0][i], r.origin.x, 1e-9);
+        EXPECT_NEAR(origin[1][i], r.origin.y, 1e-9);
+        EXPECT_NEAR(origin[2][i], r.origin.z, 1e-9);
+        EXPECT_NEAR(direction[0][i], r.direction.x, 1e-12);
+        EXPECT_NEAR(direction[1][i], r.direction.y, 1e-12);
+      }
     }
-  }
 }
 
 }  // namespace

@@ -11,8 +11,8 @@ namespace parallax {
 
 DisplayLayers renderDisplay(const Scene& scene, const Accelerator& accelerator,
                             const DisplayDesign& design, const RenderSettings& settings,
-                            const ProgressCallback& progress) {
-  const DisplayCamera camera(design, scene.display);
+                            const ProgressCallback& progress, const ViewFilter& filter) {
+  const DisplayCamera camera(design, scene.display, filter);
   DisplayLayers layers;
   Image film = render(scene, accelerator, camera, settings, &layers.stats, progress);
   const BarrierRayGenerator& rays = camera.rays();

@@ -6,6 +6,7 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/display/display.h"
+#include "parallax/display/view_filter.h"
 #include "parallax/image/image.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
@@ -18,9 +19,10 @@ struct DisplayLayers {
   RenderStats stats;
 };
 
+// `filter`: how each pixel's sub-rays spread in angle (display/view_filter.h).
 DisplayLayers renderDisplay(const Scene& scene, const Accelerator& accelerator,
                             const DisplayDesign& design, const RenderSettings& settings,
-                            const ProgressCallback& progress = {});
+                            const ProgressCallback& progress = {}, const ViewFilter& filter = {});
 
 // The usual practice the paper improves on (its Fig. 2): render one ordinary picture per view
 // from that view's design eye position (one-axis perspective for slits), then interleave them,

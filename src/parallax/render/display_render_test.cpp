@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/image/metrics.h"
@@ -169,6 +172,57 @@ TEST(DisplayRender, SceneInTheAperturePlaneAgreesWithItsReference) {
       }
     }
   }
+}
+
+// The display's prefilter against a construction made only from ideal views (the truth of
+// docs/display-geometry.md, "Super-sampling"): for every view, ideal views from K eyes evenly
+// inside its window at D, averaged; each pixel then takes the average of its own view. With
+// many rays per pixel the `view` filter must give that picture, and the other filters must
+// not (they integrate over other windows).
+TEST(DisplayRender, ViewFilterEqualsIdealViewsAveragedOverEachPixelsViewWindow) {
+  const DisplayDesign d = designDisplay(smallDisplaySpec());
+  Scene scene = defaultScene();
+  scene.display.width = 1.5f;
+  const Accelerator accel(scene);
+  const BarrierRayGenerator rays(d);
+  const int width = d.spec.imagePanel.width, height = d.spec.imagePanel.height;
+  const int views = 9, eyesPerView = 8;
+  RenderSettings idealSettings;
+  idealSettings.samplesPerPixel = 16;
+  std::vector<Image> perView;
+  for (int v = 0; v < views; ++v) {
+    Image sum(width, height);
+    for (int k = 0; k < eyesPerView; ++k) {
+      const double x =
+          -0.5 * d.viewZoneWidthMm + (v + (k + 0.5) / eyesPerView) * d.viewZoneWidthMm / views;
+      const WindowCamera camera({x, d.spec.viewZoneHeightMm, d.viewDistanceMm}, d, scene.display,
+                                width, height, true);
+      const Image ideal = render(scene, accel, camera, idealSettings);
+      for (size_t i = 0; i < sum.pixels().size(); ++i)
+        sum.pixels()[i] = sum.pixels()[i] + ideal.pixels()[i] * (1.0f / eyesPerView);
+    }
+    perView.push_back(sum);
+  }
+  Image construction(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      construction.at(x, y) = perView[size_t(rays.viewIndex(x, y))].at(x, y);
+
+  RenderSettings settings;
+  settings.samplesPerPixel = 64;
+  const auto score = [&](ViewFilterKind kind) {
+    const DisplayLayers layers = renderDisplay(scene, accel, d, settings, {}, {kind, 1.0});
+    return psnr(layers.image, construction);
+  };
+  const double view = score(ViewFilterKind::View), none = score(ViewFilterKind::None);
+  const double period = score(ViewFilterKind::Period), tent = score(ViewFilterKind::Tent);
+  EXPECT_GT(view, 45.0);
+  EXPECT_GT(view, none + 6.0) << "none " << none;
+  EXPECT_GT(view, tent + 3.0) << "tent " << tent;
+  EXPECT_GT(view, period + 10.0) << "period " << period;
+  RecordProperty("psnr_view", std::to_string(view));
+  std::printf("against the construction: view %.2f dB, tent %.2f, none %.2f, period %.2f\n", view,
+              tent, none, period);
 }
 
 TEST(DisplayRender, MaskLayerImageIsTheRaster) {

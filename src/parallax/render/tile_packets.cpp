@@ -1,5 +1,7 @@
 #include "parallax/render/tile_packets.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "parallax/render/packet_types.h"
@@ -78,8 +80,12 @@ void samplePacket(const PacketWalk& walk, int strata, FilmPacket& packet) {
   alignas(64) float x[16], y[16], u[16], v[16];
   PARALLAX_SIMD
   for (int lane = 0; lane < 16; ++lane) {
-    x[lane] = float(px[lane]) + (sx + jx[lane]) * inv;
-    y[lane] = float(py[lane]) + (sy + jy[lane]) * inv;
+    // In float, px + (a jitter just below 1) can round up to px + 1, the next pixel (and, for
+    // the display camera, the next view's ray); the largest float below px + 1 stays inside.
+    x[lane] = std::min(float(px[lane]) + (sx + jx[lane]) * inv,
+                       std::nextafter(float(px[lane] + 1), 0.0f));
+    y[lane] = std::min(float(py[lane]) + (sy + jy[lane]) * inv,
+                       std::nextafter(float(py[lane] + 1), 0.0f));
     u[lane] = (sy + ju[lane]) * inv;
     v[lane] = (sx + jv[lane]) * inv;
   }

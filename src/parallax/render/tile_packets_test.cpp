@@ -120,16 +120,22 @@ TEST(TilePackets, SharedJitterKeepsADisplayPacketsRaysParallel) {
   // A display packet is one film column over 16 rows: one pixel column, one aperture. With the
   // jitter shared, every lane crosses the image layer at the same x and its aperture cell at
   // the same x, so the horizontal slopes agree (to float rounding). With independent jitter
-  // they spread by up to a quarter of the aperture period over the gap:
-  // 0.25 * 9 * 0.2745 mm / 3 mm = 0.21, less the jitter's own randomness.
+  // they spread by up to one angular stratum: a quarter of the filter's window over the gap
+  // (a quarter view, 0.25 * 0.2745 mm / 3 mm = 0.023, for the one-view box; a quarter period,
+  // 0.21, for the old whole-period cell), less the jitter's own randomness.
   const DisplayDesign design = designDisplay(smallDisplay());
-  const DisplayCamera camera(design, {});
-  EXPECT_TRUE(camera.packetShape().shareJitter);
-  EXPECT_LT(widestHorizontalSpread(camera, JitterSharing::Auto), 1e-5);
-  const double quarterCell = 0.25 * design.screenPeriodMm / design.spec.gapMm;
-  const double independent = widestHorizontalSpread(camera, JitterSharing::Pixel);
-  EXPECT_GT(independent, 0.5 * quarterCell);
-  EXPECT_LT(independent, 1.3 * quarterCell);  // the quarter cell plus a quarter pixel
+  const double dx = design.spec.imagePanel.pitchMm, g = design.spec.gapMm;
+  for (const auto& [filter, window] :
+       {std::pair{ViewFilterKind::View, dx / g},
+        std::pair{ViewFilterKind::Period, design.screenPeriodMm / g}}) {
+    const DisplayCamera camera(design, {}, {filter, 1.0});
+    EXPECT_TRUE(camera.packetShape().shareJitter);
+    EXPECT_LT(widestHorizontalSpread(camera, JitterSharing::Auto), 1e-5);
+    const double quarter = 0.25 * window;
+    const double independent = widestHorizontalSpread(camera, JitterSharing::Pixel);
+    EXPECT_GT(independent, 0.5 * quarter) << viewFilterName(filter);
+    EXPECT_LT(independent, 1.3 * quarter) << viewFilterName(filter);
+  }
 }
 
 TEST(TilePackets, SharedJitterConvergesAsIndependentJitterDoes) {

@@ -19,11 +19,11 @@ const char* const kEdgeStroke = "#c0392b";
 
 // The display's own rays: the camera's virtual gap and distance (section 2.3) reset to the
 // physical ones, so the rays' v is where they really cross the mask.
-BarrierRayGenerator physicalRays(const DisplayDesign& design) {
+BarrierRayGenerator physicalRays(const DisplayDesign& design, const ViewFilter& filter = {}) {
   DisplayDesign d = design;
   d.virtualGapMm = d.gapMm;
   d.virtualDistanceMm = d.viewDistanceMm;
-  return BarrierRayGenerator(d);
+  return BarrierRayGenerator(d, filter);
 }
 
 // The film columns whose centres lie in [fromMm, toMm], of one row; n x n samples each.
@@ -144,12 +144,12 @@ std::vector<LightFieldRay> lightFieldRays(const DisplayDesign& design,
 
 std::vector<LightFieldRay> lightFieldSamples(const DisplayDesign& design,
                                              const LightFieldOptions& options) {
-  const BarrierRayGenerator gen = physicalRays(design);
+  const BarrierRayGenerator gen = physicalRays(design, options.filter);
   const Stretch s = stretchOf(gen, options);
   std::vector<LightFieldRay> samples;
-  // Stratified jitter (docs/display-geometry.md, "Super-sampling"): the (x, v) cell in n x n
-  // strata, x stratum i mod n, aperture stratum i div n. The row stays at its centre: the
-  // plot is one row's slice.
+  // Stratified jitter (docs/display-geometry.md, "Super-sampling"): the (x, f) cell in n x n
+  // strata, x stratum i mod n, angular stratum i div n, spread by the filter. The row stays at its
+  // centre: the plot is one row's slice.
   for (int c = s.first; c <= s.last; ++c)
     for (int i = 0; i < s.n * s.n; ++i) {
       Rng rng = Rng::forSample(uint32_t(c), uint32_t(s.row), uint32_t(i), kSampleSeed);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "parallax/display/display.h"
+#include "parallax/display/view_filter.h"
 
 namespace parallax {
 
@@ -16,6 +17,7 @@ struct LightFieldOptions {
   double fromMm = -5.0, toMm = 5.0;  // stretch of the display (x on the image layer) to plot
   int row = -1;                      // image row (default: the middle row)
   int samplesPerPixel = 0;  // n * n > 0: also draw the n x n sub-ray samples of each cell (Fig. 8)
+  ViewFilter filter;        // how the sub-rays spread in angle, as `render --filter`
   double widthPx = 900, heightPx = 600;
 };
 

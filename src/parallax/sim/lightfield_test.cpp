@@ -197,6 +197,7 @@ TEST(LightField, SamplesAreStratifiedJitteredInTheirCell) {
   const DisplayDesign d = design();
   LightFieldOptions o;
   o.samplesPerPixel = 16;
+  o.filter.kind = ViewFilterKind::Period;  // the whole-period cell: strata of Tv in v
   const std::vector<LightFieldRay> rays = lightFieldRays(d, o);
   const std::vector<LightFieldRay> samples = lightFieldSamples(d, o);
   ASSERT_EQ(samples.size(), 16 * rays.size());
@@ -215,6 +216,18 @@ TEST(LightField, SamplesAreStratifiedJitteredInTheirCell) {
     offCentre += std::abs(xIn - std::floor(xIn) - 0.5);
   }
   EXPECT_GT(offCentre / samples.size(), 0.1);  // jittered, not at the stratum centres
+  // The one-view box: v within a quarter of s' dx of its stratum, around the aperture centre
+  // shifted with the sample (v = v_c + s' ((x - x_c) + f dx), f in [-1/2, 1/2]).
+  o.filter.kind = ViewFilterKind::View;
+  const std::vector<LightFieldRay> view = lightFieldSamples(d, o);
+  const double s = (d.viewDistanceMm - d.maskLayerZ()) / (d.viewDistanceMm - d.imageLayerZ());
+  for (size_t k = 0; k < view.size(); ++k) {
+    const LightFieldRay& cell = rays[k / 16];
+    const int i = int(k % 16);
+    const double f = (view[k].v - cell.v) / (s * dx) - (view[k].x - cell.x) / dx;
+    EXPECT_GE(f, -0.5 + 0.25 * (i / 4) - 1e-9);
+    EXPECT_LE(f, -0.25 + 0.25 * (i / 4) + 1e-9);
+  }
   const std::vector<LightFieldRay> again = lightFieldSamples(d, o);
   for (size_t k = 0; k < samples.size(); ++k) EXPECT_EQ(samples[k].x, again[k].x);
 }

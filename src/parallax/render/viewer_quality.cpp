@@ -1,0 +1,144 @@
+#include "parallax/render/viewer_quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "parallax/camera/display_camera.h"
+#include "parallax/display/mask.h"
+#include "parallax/image/metrics.h"
+#include "parallax/render/render.h"
+
+namespace parallax {
+
+namespace {
+int viewCount(const DisplayDesign& design) {
+  return std::max(1, int(std::lround(design.views)));
+}
+}  // namespace
+
+std::vector<DenseEye> denseEyes(const DisplayDesign& design, int eyesPerView,
+                                const std::vector<double>& distances) {
+  std::vector<DenseEye> eyes;
+  const int views = viewCount(design);
+  const double centre = design.spec.viewZoneCenterXMm, y = design.spec.viewZoneHeightMm;
+  const double zone = design.viewZoneWidthMm, window = zone / views;
+  for (double f : distances)
+    for (int v = 0; v < views; ++v)
+      for (int k = 0; k < eyesPerView; ++k) {
+        const double x = -0.5 * zone + (v + (k + 0.5) / eyesPerView) * window;
+        eyes.push_back({{centre + x * f, y, design.viewDistanceMm * f}, f, v, false});
+      }
+  return eyes;
+}
+
+std::vector<DenseEye> designEyes(const DisplayDesign& design) {
+  DisplaySpec spec = design.spec;
+  spec.subpixelRays = false;  // the panel's pixel views, as the dense eyes count them
+  const BarrierRayGenerator rays(designDisplay(spec));
+  std::vector<DenseEye> eyes;
+  for (int v = 0; v < viewCount(design); ++v) eyes.push_back({rays.viewPosition(v), 1.0, v, true});
+  return eyes;
+}
+
+Image atDisplayResolution(const DisplayDesign& d, const Image& image) {
+  const double periodPx = d.screenPeriodMm / (d.frontWidthMm() / double(image.width()));
+  Image out = boxFilterX(image, periodPx);
+  if (d.spec.mask.kind == MaskKind::Pinholes) {
+    const double rowPeriodMm = d.spec.mask.verticalPeriodPx * d.spec.maskPanel.pitchMm *
+                               (d.viewDistanceMm - d.imageLayerZ()) /
+                               (d.viewDistanceMm - d.maskLayerZ());
+    out = boxFilterY(out, rowPeriodMm / (d.frontHeightMm() / double(image.height())));
+  }
+  return out;
+}
+
+Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& d,
+                const Vec3d& eye, int width, int height, int spp, int threads) {
+  const bool horizontalOnly = d.spec.mask.kind != MaskKind::Pinholes;
+  const WindowCamera camera(eye, d, scene.display, width, height, horizontalOnly);
+  RenderSettings settings;
+  settings.samplesPerPixel = spp;
+  settings.threads = threads;
+  return atDisplayResolution(d, render(scene, accelerator, camera, settings));
+}
+
+double flickerBetween(const Image& simulatedBefore, const Image& idealBefore,
+                      const Image& simulated, const Image& ideal) {
+  // (S_i - S_{i-1}) - (R_i - R_{i-1}) = (S_i - R_i) - (S_{i-1} - R_{i-1}), in sRGB values.
+  const auto encode = [](float linear) {
+    return double(linearToSrgb(std::clamp(linear, 0.f, 1.f)));
+  };
+  double sum = 0;
+  const size_t n = simulated.pixels().size();
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double now = encode(simulated.pixels()[i][c]) - encode(ideal.pixels()[i][c]);
+      const double before =
+          encode(simulatedBefore.pixels()[i][c]) - encode(idealBefore.pixels()[i][c]);
+      sum += (now - before) * (now - before);
+    }
+  return n == 0 ? 0.0 : std::sqrt(sum / double(3 * n));
+}
+
+QualitySummary summarise(const std::vector<EyeQuality>& eyes) {
+  QualitySummary s;
+  s.worstPsnr = std::numeric_limits<double>::infinity();
+  int flickers = 0;
+  for (const EyeQuality& q : eyes) {
+    ++s.eyes;
+    s.meanPsnr += q.psnr;
+    s.meanSsim += q.ssim;
+    if (q.psnr < s.worstPsnr) s.worstPsnr = q.psnr, s.worstEye = q.eye.position;
+    if (!std::isnan(q.flicker)) s.meanFlicker += q.flicker, ++flickers;
+  }
+  if (s.eyes > 0) s.meanPsnr /= s.eyes, s.meanSsim /= s.eyes;
+  s.meanFlicker =
+      flickers > 0 ? s.meanFlicker / flickers : std::numeric_limits<double>::quiet_NaN();
+  return s;
+}
+
+ViewerQuality measureViewerQuality(const Scene& scene, const Accelerator& accelerator,
+                                   const DisplaySimulator& simulator,
+                                   const std::vector<DenseEye>& eyes,
+                                   const ViewerQualityOptions& options,
+                                   const std::function<void(int, int)>& progress) {
+  const DisplayDesign& d = simulator.design();
+  ViewerQuality result;
+  Image previousSimulated, previousIdeal;
+  for (size_t i = 0; i < eyes.size(); ++i) {
+    const DenseEye& eye = eyes[i];
+    const Image simulated = atDisplayResolution(d, simulator.view(eye.position));
+    const Image ideal =
+        idealView(scene, accelerator, d, eye.position, simulated.width(), simulated.height(),
+                  options.referenceSamplesPerPixel, options.threads);
+    EyeQuality q{eye, psnr(simulated, ideal), ssim(simulated, ideal),
+                 std::numeric_limits<double>::quiet_NaN()};
+    // A row is one distance, left to right: the eyes a moving viewer passes in turn.
+    const bool sameRow =
+        i > 0 && eyes[i - 1].distance == eye.distance && !eye.designEye && !eyes[i - 1].designEye;
+    if (sameRow) q.flicker = flickerBetween(previousSimulated, previousIdeal, simulated, ideal);
+    result.eyes.push_back(q);
+    previousSimulated = simulated;
+    previousIdeal = ideal;
+    if (progress) progress(int(i + 1), int(eyes.size()));
+  }
+  std::vector<EyeQuality> dense, design;
+  for (const EyeQuality& q : result.eyes) (q.eye.designEye ? design : dense).push_back(q);
+  result.all = summarise(dense);
+  result.designOnly = summarise(design);
+  for (const EyeQuality& q : dense) {
+    auto it = std::find_if(result.byDistance.begin(), result.byDistance.end(),
+                           [&](const auto& entry) { return entry.first == q.eye.distance; });
+    if (it == result.byDistance.end()) result.byDistance.push_back({q.eye.distance, {}});
+  }
+  for (auto& [distance, summary] : result.byDistance) {
+    std::vector<EyeQuality> row;
+    for (const EyeQuality& q : dense)
+      if (q.eye.distance == distance) row.push_back(q);
+    summary = summarise(row);
+  }
+  return result;
+}
+
+}  // namespace parallax

@@ -1,0 +1,91 @@
+// What viewers see, measured: the simulated display against the ideal view at dense eye
+// positions across the view zone (docs/simulator.md, "The dense measure"). One ray per pixel is
+// exact at the design eyes by construction, so a measure taken only there cannot tell a good
+// prefilter from none; K eyes inside every view's window, at several distances, can.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/display/barrier_rays.h"
+#include "parallax/display/display.h"
+#include "parallax/image/image.h"
+#include "parallax/scene/scene.h"
+#include "parallax/sim/simulator.h"
+
+namespace parallax {
+
+struct DenseEye {
+  Vec3d position;          // display mm
+  double distance = 1.0;   // in units of the design distance D
+  int view = 0;            // the view whose window holds the eye (at D; the same angle elsewhere)
+  bool designEye = false;  // one of the views' design eyes (BarrierRayGenerator::viewPosition)
+};
+
+// K eyes evenly inside every view's window across the zone, at each distance f D: at D the
+// view windows are S / views wide and eye k of view v sits at
+//   x = e_c - S/2 + (v + (k + 1/2) / K) S / views,
+// at f D the same angles from the view-zone centre's line (x scaled by f), so a farther row
+// crosses the same views. Rows are ordered by distance, then left to right (a sweep).
+std::vector<DenseEye> denseEyes(const DisplayDesign& design, int eyesPerView,
+                                const std::vector<double>& distances);
+// The design eyes of every view, at D (where one ray per pixel is exact).
+std::vector<DenseEye> designEyes(const DisplayDesign& design);
+
+// An image at the display's spatial resolution: a box one screen period wide across (and, for
+// pinhole grids, one vertical period down). Both the simulated and the ideal view are brought
+// to it before they are compared, as a viewer at the design distance perceives them.
+Image atDisplayResolution(const DisplayDesign& design, const Image& image);
+
+// The ideal view from one eye through the display's window (one-axis perspective for slit
+// displays), at the display's spatial resolution: the truth the display is judged against.
+Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& design,
+                const Vec3d& eyeMm, int width, int height, int samplesPerPixel, int threads);
+
+struct EyeQuality {
+  DenseEye eye;
+  double psnr = 0, ssim = 0;
+  // How far the change from the previous eye of the row departs from the ideal's change:
+  // RMS over pixels and channels of (S_i - S_{i-1}) - (R_i - R_{i-1}) in sRGB [0, 1] values,
+  // S simulated, R ideal. Angular aliasing (popping, ghosts) while the viewer moves raises it.
+  // Not a number for the first eye of a row.
+  double flicker = 0;
+};
+
+struct QualitySummary {
+  int eyes = 0;
+  double meanPsnr = 0, meanSsim = 0;
+  double worstPsnr = 0;  // the lowest per-eye PSNR (as the ICME 2018 light-field challenge)
+  Vec3d worstEye;
+  double meanFlicker = 0;  // over the eyes that have one
+};
+
+struct ViewerQuality {
+  std::vector<EyeQuality> eyes;
+  QualitySummary all;
+  QualitySummary designOnly;  // the design eyes among `eyes` (biased: exact by construction)
+  std::vector<std::pair<double, QualitySummary>> byDistance;
+};
+
+struct ViewerQualityOptions {
+  int referenceSamplesPerPixel = 16;
+  int threads = 0;
+};
+
+// Scores the simulated views of `simulator` at `eyes` against the ideal views of `scene`,
+// one eye at a time (memory: a few images, whatever the eye count). `progress(done, total)`.
+ViewerQuality measureViewerQuality(const Scene& scene, const Accelerator& accelerator,
+                                   const DisplaySimulator& simulator,
+                                   const std::vector<DenseEye>& eyes,
+                                   const ViewerQualityOptions& options,
+                                   const std::function<void(int, int)>& progress = {});
+
+// The summary of a set of per-eye scores.
+QualitySummary summarise(const std::vector<EyeQuality>& eyes);
+
+// The flicker figure between two consecutive eyes (see EyeQuality::flicker).
+double flickerBetween(const Image& simulatedBefore, const Image& idealBefore,
+                      const Image& simulated, const Image& ideal);
+
+}  // namespace parallax

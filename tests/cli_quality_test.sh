@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# What the viewer sees, from the command line: render --filter and the dense measure of
+# simulate --reference, on a small display (240 x 60 pixels of the built-in pitch, 9 views).
+# Usage: cli_quality_test.sh PARALLAX_BINARY SOURCE_DIR
+set -u
+source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
+
+cat >"$tmp/small.json" <<'JSON'
+{
+  "image_layer": {"resolution": [240, 60], "pixel_pitch_mm": 0.2745, "subpixels": "RGB"},
+  "layer_order": "barrier-back",
+  "gap_mm": 3,
+  "view_distance_mm": 600,
+  "views": 9,
+  "mask": {"type": "slits", "duty_cycle": 0.1111111111}
+}
+JSON
+json_number() {  # json_number KEY_PATH_REGEX: the first number after it in $tmp/out
+  tr -d ' \n' <"$tmp/out" | grep -o "$1" | head -1 | grep -o '[-0-9.e]*$'
+}
+
+for filter in none view tent gaussian period; do
+  check "render --filter $filter" run 0 render --display "$tmp/small.json" --filter "$filter" \
+    --spp 4 -o "$tmp/$filter"
+  check "render.json records the filter $filter" \
+    grep -q "\"kind\": \"$filter\"" "$tmp/$filter/render.json"
+done
+check "--filter none renders one ray per pixel" grep -q '"spp": 1' "$tmp/none/render.json"
+check "unknown filter exits 2" run 2 render --display "$tmp/small.json" --filter box -o "$tmp/x"
+check "unknown filter names the option" one_line_naming "--filter"
+check "unknown filter writes nothing" test ! -e "$tmp/x"
+check "zero filter width exits 2" run 2 render --display "$tmp/small.json" --filter-width 0 \
+  -o "$tmp/x"
+check "zero filter width names the option" one_line_naming "--filter-width"
+
+# The dense measure: 9 views x 2 eyes x 2 distances, plus the 9 design eyes.
+check "dense measure runs" run 0 simulate "$tmp/view" --reference --eyes-per-view 2 \
+  --distances 0.8,1 --reference-spp 1 --json
+check "dense measure scores 45 eyes" \
+  test "$(tr -d ' \n' <"$tmp/out" | grep -o '"design_eye":' | wc -l)" -eq 45
+check "dense measure has a worst eye" grep -q '"worst_psnr"' "$tmp/out"
+check "dense measure has a flicker figure" grep -q '"flicker"' "$tmp/out"
+check "dense measure reports each distance" grep -q '"by_distance"' "$tmp/out"
+worst=$(json_number '"mean":{[^}]*"worst_psnr":[-0-9.e]*')
+mean=$(json_number '"mean":{[^}]*"psnr":[-0-9.e]*')
+check "the worst eye is no better than the mean" awk -v w="$worst" -v m="$mean" \
+  'BEGIN { exit !(w <= m && m > 10) }'
+check "dense text output has the summary rows" run 0 simulate "$tmp/view" --reference \
+  --eyes-per-view 1 --distances 1 --reference-spp 1
+check "summary rows" bash -c "grep -q 'dense eyes' '$tmp/out' && grep -q 'design eyes' '$tmp/out'"
+check "bad --distances exits 2" run 2 simulate "$tmp/view" --reference --distances 0.8,x
+check "bad --distances names the option" one_line_naming "--distances"
+check "bad --eyes-per-view exits 2" run 2 simulate "$tmp/view" --reference --eyes-per-view 0
+check "bad --eyes-per-view names the option" one_line_naming "--eyes-per-view"
+cli_summary
