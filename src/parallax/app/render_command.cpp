@@ -13,6 +13,7 @@
 #include "parallax/app/commands.h"
 #include "parallax/app/layer_output.h"
 #include "parallax/camera/display_camera.h"
+#include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
@@ -34,7 +35,49 @@ struct RenderOptions {
   std::string quilt, size;  // --quilt CxR, --size WxH of one quilt view
   std::string filter = viewFilterName(ViewFilter{}.kind);
   double filterWidth = ViewFilter{}.widthViews;
+  std::string fit, focus, depthBudget;  // empty: the scene's (docs/display-geometry.md)
 };
+
+// The framing in the record: what was asked (fit, focus, depth_budget: simulate --reference
+// frames the scene again from these) and what followed.
+void recordFraming(JsonWriter& record, const Framing& f) {
+  record.set("/framing/fit", displayFitName(f.fit));
+  if (f.focusAuto)
+    record.set("/framing/focus", "auto");
+  else
+    record.set("/framing/focus", f.focusMm);
+  if (f.budgetAuto)
+    record.set("/framing/depth_budget", "auto");
+  else
+    record.set("/framing/depth_budget", f.budgetMm);
+  record.set("/framing/focus_mm", f.focusMm);
+  record.set("/framing/depth_budget_mm", f.budgetMm);
+  record.set("/framing/depth_of_field_mm", f.depthOfFieldMm);
+  record.set("/framing/gap_mm", f.gapMm);
+  record.set("/framing/virtual_gap_mm", f.virtualGapMm);
+  record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
+  record.set("/framing/virtual_depth_of_field_mm", f.depthOfFieldMm * f.virtualGapMm / f.gapMm);
+  record.set("/framing/scale_mm_per_unit", f.scaleMmPerUnit);
+  if (f.hasContent) {
+    record.set("/framing/content_near_mm", f.nearMm);
+    record.set("/framing/content_far_mm", f.farMm);
+    record.set("/framing/shown_near_mm", f.shownNearMm);
+    record.set("/framing/shown_far_mm", f.shownFarMm);
+    record.set("/framing/within_budget", f.withinBudget());
+  }
+}
+
+// Frames the scene for the design (camera/framing.h), reports it, and returns the framing.
+Framing frameAndReport(const RenderOptions& o, Scene& scene, DisplayDesign& design) {
+  applyFramingOptions(scene.display, o.fit, o.focus, o.depthBudget);
+  const Framing framing = frameForDisplay(scene, design);
+  scene.display = framing.placement;
+  design = framing.design;
+  std::printf("%s\n", depthSummary(framing).c_str());
+  const std::string warning = depthWarning(framing);
+  if (!warning.empty()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  return framing;
+}
 
 // --filter and --filter-width as the camera's ViewFilter.
 ViewFilter viewFilterOption(const RenderOptions& o) {
@@ -58,7 +101,7 @@ namespace {
 // across the view zone, tiled from the bottom-left into DIR/quilt_qs{C}x{R}a{aspect}.png
 // (docs/quilts.md).
 void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDesign& design,
-                    const Scene& scene, const RenderSettings& settings) {
+                    const Scene& scene, const RenderSettings& settings, const Framing& framing) {
   int width = design.spec.imagePanel.width, height = design.spec.imagePanel.height;
   if (!o.size.empty()) parseSize("--size", o.size, width, height);
   checkQuiltWork(layout.columns, layout.rows, width, height, settings.samplesPerPixel,
@@ -103,6 +146,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
                Vec3f(float(eye.x), float(eye.y), float(eye.z)));
   }
   record.set("/outputs/quilt", name);
+  recordFraming(record, framing);
   writeDesignJson(record, "/design", design);
   const std::string linearName = quiltFileName("quilt", layout, ".pfm");
   if (o.linear) record.set("/outputs/quilt_linear", linearName);
@@ -139,8 +183,9 @@ void runRender(const RenderOptions& o) {
   }
   if (o.quilt.empty())
     checkLayerWork(design, o.directMapping, settings.samplesPerPixel, settings.threads, o.display);
-  const Scene scene = loadSceneReportingWarnings(o.scene);
-  if (!o.quilt.empty()) return runQuiltRender(o, layout, design, scene, settings);
+  Scene scene = loadSceneReportingWarnings(o.scene);
+  const Framing framing = frameAndReport(o, scene, design);
+  if (!o.quilt.empty()) return runQuiltRender(o, layout, design, scene, settings, framing);
   const Accelerator accelerator(scene);
   DisplayLayers layers;
   {
@@ -159,6 +204,14 @@ void runRender(const RenderOptions& o) {
   record.set("/seed", o.sampling.seed);
   record.set("/jitter", o.sampling.jitter);
   record.set("/threads", o.sampling.threads);
+  record.set("/adaptive", settings.adaptive);
+  if (settings.adaptive) {
+    record.set("/adaptive_threshold_8bit", settings.adaptiveThreshold * 255.0);
+    record.set("/camera_rays", layers.stats.cameraRays);
+    record.set("/mean_spp", double(layers.stats.cameraRays) /
+                                (double(layers.image.width()) * layers.image.height() *
+                                 (design.spec.subpixelRays ? 3.0 : 1.0)));
+  }
   if (!o.directMapping) {
     record.set("/filter/kind", viewFilterName(filter.kind));
     record.set("/filter/width_views", filter.widthViews);
@@ -170,6 +223,7 @@ void runRender(const RenderOptions& o) {
   record.set("/scene_display/normal", scene.display.normal);
   record.set("/scene_display/up", scene.display.up);
   record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
+  recordFraming(record, framing);
   writeDisplayLayers(o.output, layers.image, layers.mask, design, o.linear, record);
   std::printf("%d spp in %.2f s, %s\n", settings.samplesPerPixel, layers.stats.seconds,
               formatRate(raysPerSecond).c_str());
@@ -195,6 +249,21 @@ void registerRenderCommand(CLI::App& cli) {
                   "The filter's width in views (box width; tent and Gaussian: full width at "
                   "half maximum)")
       ->capture_default_str();
+  cmd->add_option("--fit", options->fit,
+                  "How the content is framed: window (the width only), depth (the width, the "
+                  "zero-parallax plane inside the content and the depth compressed into the "
+                  "budget; the default without a display width in the scene), none (the "
+                  "scene's display block as it is), auto")
+      ->type_name("MODE");
+  cmd->add_option("--focus", options->focus,
+                  "The zero-parallax plane: its offset in mm toward the viewer from the scene's "
+                  "display centre, or auto (with --fit depth: the harmonic mean of the "
+                  "content's nearest and farthest distances from the eye)")
+      ->type_name("MM|auto");
+  cmd->add_option("--depth-budget", options->depthBudget,
+                  "With --fit depth: half the displayed depth range in mm, or auto (the "
+                  "display's depth of field, G4)")
+      ->type_name("MM|auto");
   cmd->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
   cmd->add_flag("--linear", options->linear, "Also write image.pfm, linear float");
   CLI::Option* direct =

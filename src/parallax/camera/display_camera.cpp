@@ -88,6 +88,17 @@ Transform worldFromDisplay(const DisplayPlacement& placement, const DisplayWindo
   return Transform(m);
 }
 
+Vec3d virtualEye(const DisplayDesign& d, const Vec3d& eyeMm) {
+  const double g = d.gapMm, gv = d.virtualGapMm, distance = d.viewDistanceMm;
+  if (gv == g || d.virtualDistanceMm != distance || !(eyeMm.z > 0)) return eyeMm;
+  const double r = d.spec.order == LayerOrder::BarrierBack
+                       ? g * (gv + distance) / (gv * (g + distance))
+                       : g / gv;
+  const double z = eyeMm.z * distance / (r * (distance - eyeMm.z) + eyeMm.z);
+  const double centre = d.spec.viewZoneCenterXMm;
+  return {centre + r * (eyeMm.x - centre) * z / eyeMm.z, eyeMm.y, z};
+}
+
 DisplayCamera::DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement,
                              const ViewFilter& filter)
     : rays_(design, filter), worldFromDisplay_(worldFromDisplay(placement, displayWindow(design))) {
@@ -142,12 +153,13 @@ WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design,
     throw std::invalid_argument("the eye must be in front of the display (z > 0)");
   const Transform world = worldFromDisplay(placement, displayWindow(design));
   const float w = float(design.frontWidthMm()), h = float(design.frontHeightMm());
-  eye_ = world.point(toFloat(eyeMm));
+  const Vec3d eyeSeen = virtualEye(design, eyeMm);
+  eye_ = world.point(toFloat(eyeSeen));
   corner_ = world.point({-0.5f * w, 0.5f * h, 0.0f});
   stepX_ = world.vector({w / float(width), 0.0f, 0.0f});
   stepY_ = world.vector({0.0f, -h / float(height), 0.0f});
   worldUp_ = world.vector({0.0f, 1.0f, 0.0f});
-  eyeZ_ = float(eyeMm.z);
+  eyeZ_ = float(eyeSeen.z);
   eyeHeight_ = float(eyeMm.y);
   frontHalfHeight_ = 0.5f * h;
   viewLineY_ = float(design.spec.viewZoneHeightMm);

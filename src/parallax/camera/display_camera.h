@@ -28,6 +28,14 @@ float fitDisplayWidth(const DisplayPlacement& placement, const DisplayWindow& wi
 // width in mm to fitDisplayWidth() scene units.
 Transform worldFromDisplay(const DisplayPlacement& placement, const DisplayWindow& window);
 
+// The eye whose picture of the scene a display rendered with a virtual gap g' != g (and
+// D' = D) shows to an eye at `eyeMm` (display mm): the camera's rays, traced in the scene,
+// meet the eye plane z = D at e_c + r (E - e_c) instead of E, r = g (g' + D) / (g' (g + D))
+// for barrier-back and g / g' for barrier-front, and a point at z lands at
+// z' = z D / (r (D - z) + z), x' = e_c + r (x - e_c) z' / z: the view-zone centre is its own
+// virtual eye. The eye itself for g' = g or D' != D (docs/display-geometry.md, "Depth budget").
+Vec3d virtualEye(const DisplayDesign& design, const Vec3d& eyeMm);
+
 // One ray per image-layer film column (pixel, or subpixel in subpixel mode) through its
 // aperture; see BarrierRayGenerator for the geometry.
 class DisplayCamera final : public Camera {
@@ -50,9 +58,10 @@ class DisplayCamera final : public Camera {
 };
 
 // An off-axis pinhole camera at `eyeMm` (display frame) whose film is the front layer's
-// rectangle: the picture an ideal window would show that eye. With `horizontalOnly`, the
-// vertical perspective is the display's instead of the eye's: every ray meets the view line
-// y = y_e, z = D in y (one-axis perspective, what a slit display can show; section 2.2).
+// rectangle: the picture an ideal window would show that eye (from virtualEye(eyeMm) when the
+// design has a virtual gap: the picture the display means to show that eye). With `horizontalOnly`,
+// the vertical perspective is the display's instead of the eye's: every ray meets the view line y =
+// y_e, z = D in y (one-axis perspective, what a slit display can show; section 2.2).
 class WindowCamera final : public Camera {
  public:
   WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design, const DisplayPlacement& placement,

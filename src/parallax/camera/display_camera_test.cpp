@@ -10,7 +10,11 @@ namespace {
 
 DisplayPlacement tiltedPlacement() {
   // A display at (1, 2, 3), facing +x, 4 units wide, upright.
-  return {{1, 2, 3}, {1, 0, 0}, {0, 1, 0}, 4.0f, std::nullopt};
+  DisplayPlacement placement;
+  placement.center = {1, 2, 3};
+  placement.normal = {1, 0, 0};
+  placement.width = 4.0f;
+  return placement;
 }
 
 TEST(WorldFromDisplay, MapsTheFrontLayerOntoThePlacement) {

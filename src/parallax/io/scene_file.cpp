@@ -86,6 +86,7 @@ DisplayPlacement placeDisplay(const Bounds3f& bounds, const Vec3f& normal, const
   // The width actually used is fitted to each display's window (fitDisplayWidth); the extent
   // above stands in where no fit exists (a flat point, an eye outside the window).
   display.fit = bounds;
+  display.content = bounds;
   return display;
 }
 
@@ -599,7 +600,8 @@ class SceneFileLoader {
   }
 
   void readDisplay(const std::optional<JsonReader>& value, const Bounds3f& bounds) {
-    if (value) value->expectObject({"center", "normal", "up", "width"});
+    if (value)
+      value->expectObject({"center", "normal", "up", "width", "fit", "focus", "depth_budget"});
     const Vec3f normal = value ? value->direction("normal", {0, 0, 1}) : Vec3f(0, 0, 1);
     const auto upKey = value ? value->find("up") : std::nullopt;
     const std::optional<Vec3f> up =
@@ -612,6 +614,37 @@ class SceneFileLoader {
       scene_.display.width = sizeValue((*value)["width"]);
       scene_.display.fit.reset();
     }
+    if (const auto fit = value->find("fit")) {
+      const std::string mode = fit->string();
+      if (mode == "window")
+        scene_.display.fitMode = DisplayFit::Window;
+      else if (mode == "depth")
+        scene_.display.fitMode = DisplayFit::Depth;
+      else if (mode == "none")
+        scene_.display.fitMode = DisplayFit::None;
+      else if (mode != "auto")
+        fit->fail("expected window, depth, none or auto, got '" + mode + "'");
+    }
+    scene_.display.focusMm = millimetresOrAuto(value->find("focus"), -kMaxFocusMm, kMaxFocusMm);
+    scene_.display.depthBudgetMm =
+        millimetresOrAuto(value->find("depth_budget"), 0, kMaxDepthBudgetMm);
+  }
+
+  // A key in display millimetres, or "auto" (unset); `lowest` itself is refused for a budget.
+  static std::optional<double> millimetresOrAuto(const std::optional<JsonReader>& value,
+                                                 double lowest, double highest) {
+    if (!value) return std::nullopt;
+    if (value->isString()) {
+      if (value->string() != "auto")
+        value->fail("expected a number of millimetres or \"auto\", got '" + value->string() + "'");
+      return std::nullopt;
+    }
+    if (!value->isNumber()) value->fail("expected a number of millimetres or \"auto\"");
+    const double mm = value->number();
+    if (!(mm >= lowest && mm <= highest) || (lowest == 0 && !(mm > 0)))
+      value->fail("expected " + std::string(lowest == 0 ? "above 0" : "from -10000") + " up to " +
+                  (lowest == 0 ? "1000" : "10000") + " mm, got " + value->dump());
+    return mm;
   }
 
   CameraSpec readCamera(const JsonReader& value) const {
@@ -679,6 +712,32 @@ Scene loadScene(const std::string& path) {
   if (lowerExtension(path) == ".json") return SceneFileLoader(path).load();
   if (isMeshFile(path)) return sceneFromMesh(path);
   throw InputError(path, "", "unknown scene format (expected a .json scene or a mesh file)");
+}
+
+}  // namespace parallax
+
+namespace parallax {
+
+Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir) {
+  Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath);
+  const fs::path record = fs::path(renderDir) / "render.json";
+  if (renderDir.empty() || !fs::is_regular_file(record)) return scene;
+  const JsonDocument document = JsonDocument::parseFile(record.string());
+  const JsonReader root = document.root();
+  const auto framing = root.find("framing");
+  if (!framing) return scene;
+  DisplayPlacement& p = scene.display;
+  const std::string fit = framing->string("fit", "auto");
+  if (fit == "window") p.fitMode = DisplayFit::Window;
+  if (fit == "depth") p.fitMode = DisplayFit::Depth;
+  if (fit == "none") p.fitMode = DisplayFit::None;
+  const auto millimetres = [&framing](const char* key, std::optional<double>& value) {
+    if (const auto v = framing->find(key))
+      value = v->isNumber() ? std::optional(v->number()) : std::nullopt;
+  };
+  millimetres("focus", p.focusMm);
+  millimetres("depth_budget", p.depthBudgetMm);
+  return scene;
 }
 
 }  // namespace parallax

@@ -18,4 +18,10 @@ Scene loadScene(const std::string& path);
 // the mesh's width, and a camera framing it.
 Scene sceneFromMesh(const std::string& path);
 
+// The scene `render` drew into `renderDir`: loadScene(scenePath) (the built-in scene when
+// empty) with the framing that DIR/render.json records (/framing/fit, /focus, /depth_budget),
+// so that frameForDisplay (camera/framing.h) frames it as the render did. Without a record the
+// scene's own framing is kept.
+Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir);
+
 }  // namespace parallax

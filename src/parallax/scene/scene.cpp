@@ -75,7 +75,8 @@ Scene defaultScene() {
   // Scene units: the display is 4 units wide (a 527 mm panel, so 1 unit is about 132 mm),
   // centred at the origin and facing +z. The box floats in the display plane, inside the
   // depth of field of the default display; the floor recedes behind it.
-  scene.display = {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 4.0f, std::nullopt};
+  scene.display = DisplayPlacement{};
+  scene.display.width = 4.0f;
 
   Texture checker;
   checker.kind = Texture::Kind::Checker;

@@ -62,6 +62,17 @@ struct Light {
   int samples = 1;             // shadow rays per shading point for area lights
 };
 
+// How the content is framed for the display (docs/display-geometry.md, "Depth budget"):
+// Window: the width fitted so that the content's bounds fill the window (the width-only fit);
+// Depth: the window fit with the zero-parallax plane inside the content and the depth
+// compressed (the camera's virtual gap) into the depth budget; None: the display block as it
+// is. Auto: Depth when the scene gives no display width, None when it does.
+enum class DisplayFit { Auto, Window, Depth, None };
+
+// Ranges of the framing's millimetres: the focus offset within +-kMaxFocusMm, the depth budget
+// above 0 and up to kMaxDepthBudgetMm.
+inline constexpr double kMaxFocusMm = 1e4, kMaxDepthBudgetMm = 1000;
+
 // Where the physical display sits in the scene. The display's width (in mm, from the display
 // description) maps onto `width` scene units; `normal` points from the display toward the
 // viewer, `up` is the display's +y. Scene content on the viewer's side of the plane appears in
@@ -74,6 +85,15 @@ struct DisplayPlacement {
   // Set when the scene gives no width: these bounds should be seen whole through the window,
   // so `width` is fitted to each display (fitDisplayWidth in camera/display_camera.h).
   std::optional<Bounds3f> fit;
+  // The framing (camera/framing.h): the mode, the zero-parallax plane's offset from `center`
+  // in display mm toward the viewer (unset: auto, inside the content), and the depth budget,
+  // half the displayed depth range in mm (unset: the display's depth of field, G4).
+  DisplayFit fitMode = DisplayFit::Auto;
+  std::optional<double> focusMm;
+  std::optional<double> depthBudgetMm;
+  // The objects' bounds (what the framing measures), whether or not a width is given; unset:
+  // the whole scene's bounds.
+  std::optional<Bounds3f> content;
 };
 
 // An ordinary pinhole camera for `parallax view`.

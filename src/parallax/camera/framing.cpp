@@ -1,0 +1,256 @@
+#include "parallax/camera/framing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <vector>
+
+#include "parallax/camera/display_camera.h"
+#include "parallax/core/error.h"
+
+namespace parallax {
+
+namespace {
+
+// The content's corners in the display's axes (x = up x normal, y = up, z = normal), scene
+// units from the placement's centre.
+std::vector<Vec3d> contentCorners(const Bounds3f& b, const DisplayPlacement& placement) {
+  const Vec3f normal = normalize(placement.normal);
+  const Vec3f right = normalize(cross(placement.up, normal));
+  const Vec3f up = cross(normal, right);
+  std::vector<Vec3d> corners;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3f p{i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z};
+    const Vec3f d = p - placement.center;
+    corners.push_back({dot(d, right), dot(d, up), dot(d, normal)});
+  }
+  return corners;
+}
+
+// True if every corner at `scale` mm per unit, moved by -shift in z, lies in front of the eye
+// and is seen from it inside the window, `margin` in from each edge.
+bool fitsInside(const std::vector<Vec3d>& corners, const DisplayWindow& window, double scale,
+                double shift, double margin) {
+  const Vec3d& e = window.eyeMm;
+  const double halfW = 0.5 * window.widthMm * (1 - 2 * margin);
+  const double halfH = 0.5 * window.heightMm * (1 - 2 * margin);
+  for (const Vec3d& c : corners) {
+    const double x = c.x * scale, y = c.y * scale, z = c.z * scale - shift;
+    if (!(z < e.z)) return false;
+    const double s = e.z / (e.z - z);  // the line eye -> corner meets z = 0 at e + (p - e) s
+    if (std::abs(e.x + (x - e.x) * s) > halfW || std::abs(e.y + (y - e.y) * s) > halfH)
+      return false;
+  }
+  return true;
+}
+
+// The largest scale at which the corners, moved by -shiftAt(scale), fit (bisection between a
+// scale that fits and one that does not); `fallback` when none or every scale fits.
+double largestScale(const std::vector<Vec3d>& corners, const DisplayWindow& window,
+                    const std::function<double(double)>& shiftAt, double fallback) {
+  constexpr double margin = 0.05;
+  const auto fits = [&](double s) { return fitsInside(corners, window, s, shiftAt(s), margin); };
+  double good = fallback * 1e-6;
+  if (!fits(good)) return fallback;
+  double bad = good;
+  for (int i = 0; i < 80 && fits(bad); ++i) bad *= 2;
+  if (fits(bad)) return fallback;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (good + bad);
+    (fits(mid) ? good : bad) = mid;
+  }
+  return good;
+}
+
+// The shift z0 that puts z = 0 at the harmonic mean of the distances from the eye (z = eyeZ) of
+// z = nearZ - z0 and z = farZ - z0. With u = eyeZ + z0 the condition 1/(u - a) + 1/(u - b) =
+// 2/eyeZ is u^2 - u (a + b + eyeZ) + ab + eyeZ (a + b)/2 = 0, whose discriminant is
+// (a - b)^2 + eyeZ^2; the larger root keeps the content in front of the eye.
+double harmonicShift(double a, double b, double eyeZ) {
+  const double u = 0.5 * ((a + b + eyeZ) + std::sqrt((a - b) * (a - b) + eyeZ * eyeZ));
+  return u - eyeZ;
+}
+
+std::string millimetres(double mm) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%+.0f", std::abs(mm) < 0.5 ? 0.0 : mm);
+  return text;
+}
+
+}  // namespace
+
+double harmonicFocusZ(double nearZ, double farZ, double eyeZ) {
+  const double tn = eyeZ - nearZ, tf = eyeZ - farZ;
+  return eyeZ - 2 * tn * tf / (tn + tf);
+}
+
+bool Framing::withinBudget() const {
+  return std::max(shownNearMm, -shownFarMm) <= budgetMm * 1.005;
+}
+
+Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
+  const DisplayPlacement& given = scene.display;
+  const DisplayWindow window = displayWindow(design);
+  Framing f;
+  f.fit = given.fitMode;
+  if (f.fit == DisplayFit::Auto) f.fit = given.fit ? DisplayFit::Depth : DisplayFit::None;
+  f.focusAuto = !given.focusMm;
+  f.budgetAuto = !given.depthBudgetMm;
+  f.depthOfFieldMm = design.depthOfFieldMm;
+  f.budgetMm = given.depthBudgetMm.value_or(design.depthOfFieldMm);
+  f.gapMm = design.gapMm;
+  f.virtualGapFixed = design.spec.virtualGapMm.has_value();
+  f.design = design;
+
+  const Bounds3f bounds = given.content ? *given.content : scene.bounds();
+  f.hasContent = !bounds.empty();
+  const double givenScale = window.widthMm / double(fitDisplayWidth(given, window));
+  double scale = givenScale, shift = given.focusMm.value_or(0.0);
+  std::vector<Vec3d> corners;
+  if (f.hasContent) {
+    corners = contentCorners(bounds, given);
+    double lo = corners[0].z, hi = corners[0].z;
+    for (const Vec3d& c : corners) lo = std::min(lo, c.z), hi = std::max(hi, c.z);
+    const double eyeZ = window.eyeMm.z;
+    const double fallback = window.widthMm / double(given.width);
+    if (f.fit == DisplayFit::Window && !given.focusMm) {
+      DisplayPlacement today = given;  // exactly today's width-only fit
+      today.fit = bounds;
+      scale = window.widthMm / double(fitDisplayWidth(today, window));
+    } else if (f.fit == DisplayFit::Window || (f.fit == DisplayFit::Depth && given.focusMm)) {
+      scale = largestScale(
+          corners, window, [&](double) { return shift; }, fallback);
+    } else if (f.fit == DisplayFit::Depth) {
+      // The focus plane moves with the scale (a deeper picture puts it elsewhere) and the fit
+      // depends on the focus (content nearer the eye looks larger): solve both at once, the
+      // shift being a function of the scale, for the largest scale that fits.
+      const auto shiftAt = [&](double s) { return harmonicShift(s * hi, s * lo, eyeZ); };
+      scale = largestScale(corners, window, shiftAt, fallback);
+      shift = shiftAt(scale);
+    } else {
+      scale = window.widthMm / double(given.width);  // None: the block as it is
+    }
+    f.nearMm = scale * hi - shift;
+    f.farMm = scale * lo - shift;
+  }
+  f.scaleMmPerUnit = scale;
+  f.focusMm = shift;
+
+  // g': fixed by the display file, or for Depth just enough to flatten the content into the
+  // budget (never below g: shallow content keeps its depth).
+  double virtualGap = design.virtualGapMm;
+  if (f.fit == DisplayFit::Depth && !f.virtualGapFixed && f.hasContent) {
+    const double deepest = std::max(f.nearMm, -f.farMm);
+    virtualGap = std::clamp(design.gapMm * deepest / f.budgetMm, design.gapMm, kGapRange.highest);
+    if (virtualGap > design.gapMm * (1 + 1e-9)) {
+      DisplaySpec spec = design.spec;
+      spec.virtualGapMm = virtualGap;
+      f.design = designDisplay(spec);
+    } else {
+      virtualGap = design.gapMm;
+    }
+  }
+  f.virtualGapMm = virtualGap;
+  f.shownNearMm = f.nearMm * design.gapMm / virtualGap;
+  f.shownFarMm = f.farMm * design.gapMm / virtualGap;
+
+  f.placement = given;
+  const Vec3f normal = normalize(given.normal);
+  f.placement.center = given.center + normal * float(shift / scale);
+  f.placement.width = float(window.widthMm / scale);
+  f.placement.fit.reset();
+  f.placement.fitMode = DisplayFit::None;  // framing the framed placement again changes nothing
+  f.placement.focusMm.reset();
+  f.placement.content = bounds;
+  return f;
+}
+
+Scene framedScene(Scene scene, const DisplayDesign& design) {
+  scene.display = frameForDisplay(scene, design).placement;
+  return scene;
+}
+
+const char* displayFitName(DisplayFit fit) {
+  switch (fit) {
+    case DisplayFit::Auto:
+      return "auto";
+    case DisplayFit::Window:
+      return "window";
+    case DisplayFit::Depth:
+      return "depth";
+    case DisplayFit::None:
+      return "none";
+  }
+  return "auto";
+}
+
+void applyFramingOptions(DisplayPlacement& placement, const std::string& fit,
+                         const std::string& focus, const std::string& depthBudget) {
+  if (!fit.empty()) {
+    bool known = false;
+    for (DisplayFit mode :
+         {DisplayFit::Auto, DisplayFit::Window, DisplayFit::Depth, DisplayFit::None})
+      if (fit == displayFitName(mode)) placement.fitMode = mode, known = true;
+    if (!known)
+      throw InputError("command line", "--fit",
+                       "expected window, depth, none or auto, got '" + fit + "'");
+  }
+  const auto parseMm = [](const std::string& text, const char* option, double lowest,
+                          double highest, bool openBelow) -> std::optional<double> {
+    if (text == "auto") return std::nullopt;
+    char* end = nullptr;
+    const double mm = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(mm))
+      throw InputError("command line", option,
+                       "expected a number of millimetres or auto, got '" + text + "'");
+    if (mm < lowest || mm > highest || (openBelow && !(mm > lowest)))
+      throw InputError("command line", option,
+                       std::string("expected ") + (openBelow ? "above " : "from ") +
+                           millimetres(lowest).substr(lowest == 0 ? 1 : 0) + " up to " +
+                           millimetres(highest).substr(1) + " mm, got " + text);
+    return mm;
+  };
+  if (!focus.empty())
+    placement.focusMm = parseMm(focus, "--focus", -kMaxFocusMm, kMaxFocusMm, false);
+  if (!depthBudget.empty())
+    placement.depthBudgetMm = parseMm(depthBudget, "--depth-budget", 0, kMaxDepthBudgetMm, true);
+}
+
+std::string depthWarning(const Framing& f) {
+  if (!f.hasContent || f.withinBudget()) return {};
+  std::string line = "the content spans " + millimetres(f.shownFarMm) + " to " +
+                     millimetres(f.shownNearMm) + " mm";
+  if (f.virtualGapMm != f.gapMm)
+    line += " as shown (g' = " + millimetres(f.virtualGapMm).substr(1) + " mm)";
+  char sharp[96];
+  std::snprintf(sharp, sizeof sharp, "; the display is sharp within ±%.0f mm (G4)",
+                f.depthOfFieldMm);
+  line += sharp;
+  if (!f.budgetAuto) line += ", the budget is ±" + millimetres(f.budgetMm).substr(1) + " mm";
+  if (f.fit != DisplayFit::Depth)
+    line += "; --fit depth compresses it";
+  else if (f.virtualGapFixed)
+    line += "; the display file fixes the virtual gap (virtual/gap_mm)";
+  else
+    line += "; the virtual gap reached its limit";
+  return line;
+}
+
+std::string depthSummary(const Framing& f) {
+  if (!f.hasContent) return "depth: no content to frame";
+  char text[320];
+  std::snprintf(
+      text, sizeof text,
+      "depth (fit %s): the content spans %s to %s mm, shown %s to %s mm (g' %.2f mm, "
+      "g %.2f mm); focus %s mm (%s); sharp within ±%.1f mm (G4), budget ±%.1f mm",
+      displayFitName(f.fit), millimetres(f.farMm).c_str(), millimetres(f.nearMm).c_str(),
+      millimetres(f.shownFarMm).c_str(), millimetres(f.shownNearMm).c_str(), f.virtualGapMm,
+      f.gapMm, millimetres(f.focusMm).c_str(),
+      f.focusAuto ? (f.fit == DisplayFit::Depth ? "auto: harmonic mean" : "auto: 0") : "given",
+      f.depthOfFieldMm, f.budgetMm);
+  return text;
+}
+
+}  // namespace parallax
