@@ -14,6 +14,7 @@
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/camera/display_camera.h"
+#include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/image/contact_sheet.h"
@@ -24,6 +25,7 @@
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_reader.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/io/scene_file.h"
 #include "parallax/render/render.h"
 #include "parallax/render/viewer_quality.h"
 #include "parallax/sim/crosstalk.h"
@@ -170,7 +172,7 @@ void runDenseReference(const SimulateOptions& o, const Inputs& in, const Simulat
     throw InputError("command line", "--eyes-per-view",
                      "expected 1 to 64 eyes per view, got " + std::to_string(o.eyesPerView));
   const std::vector<double> distances = parseDistances(o.distances);
-  const Scene scene = loadSceneOrDefault(in.scene);
+  const Scene scene = framedScene(loadSceneAsRendered(in.scene, o.dir), d);
   const Accelerator accelerator(scene);
   const DisplaySimulator simulator(d, in.layers, sim);
   std::vector<DenseEye> eyes = denseEyes(d, o.eyesPerView, distances);
@@ -273,7 +275,7 @@ void runSimulate(const SimulateOptions& o) {
   if (o.reference && o.eyes.empty() && o.sweep == 0) return runDenseReference(o, in, sim);
   // --reference: the scene is read (and checked) before any picture is written.
   std::optional<Scene> referenceScene;
-  if (o.reference) referenceScene = loadSceneOrDefault(in.scene);
+  if (o.reference) referenceScene = framedScene(loadSceneAsRendered(in.scene, o.dir), in.design);
   const Image maskLayer = in.layers.mask;
   const DisplaySimulator simulator(d, in.layers, sim);
   const std::vector<Vec3d> eyes = eyePositions(o, d);
