@@ -237,6 +237,8 @@ RenderSettings SamplingOptions::settings() const {
   s.threads = threads;
   s.seed = seed;
   s.jitter = parseJitter(jitter);
+  s.adaptive = adaptive;
+  s.adaptiveThreshold = adaptiveThreshold / 255.0;
   return s;
 }
 
@@ -254,6 +256,14 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
                  "or packet (shared)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "pixel", "packet"}));
+  cmd.add_flag("--adaptive", options.adaptive,
+               "Adaptive sampling: --spp becomes a cap; a pixel stops after a stratified group "
+               "of samples once its mean is certain and its neighbours agree (RenderSettings)");
+  cmd.add_option("--adaptive-threshold", options.adaptiveThreshold,
+                 "With --adaptive: the standard error (in 8-bit sRGB steps of luminance) below "
+                 "which a pixel stops")
+      ->capture_default_str()
+      ->check(realIn(0.0, 255.0));
 }
 
 Scene loadSceneOrDefault(const std::string& path) {

@@ -77,6 +77,8 @@ struct SamplingOptions {
   int threads = 0;
   uint64_t seed = 0;
   std::string jitter = "auto";
+  bool adaptive = false;
+  double adaptiveThreshold = RenderSettings{}.adaptiveThreshold * 255.0;  // in 8-bit steps
   // The render settings; throws InputError naming --spp (below 1) or --jitter (not auto,
   // pixel or packet).
   RenderSettings settings() const;

@@ -56,6 +56,7 @@ struct SimulateOptions {
   int referenceSpp = 16;
   int eyesPerView = 4;
   std::string distances = "0.8,1,1.25";
+  std::vector<std::string> compare;
   bool json = false;
   int threads = 0;
   bool rawPixels = false;
@@ -164,6 +165,35 @@ void setSummary(JsonWriter& json, const std::string& at, const QualitySummary& s
   json.set(at + "/flicker", s.meanFlicker);
 }
 
+// The dense measure of several renders side by side: one row (one JSON entry) each.
+void printComparison(const SimulateOptions& o, const std::vector<std::string>& labels,
+                     const std::vector<ViewerQuality>& results) {
+  if (o.json) {
+    JsonWriter json;
+    json.set("/eyes_per_view", o.eyesPerView);
+    for (size_t k = 0; k < results.size(); ++k) {
+      const std::string at = "/renders/" + std::to_string(k);
+      json.set(at + "/dir", labels[k]);
+      setSummary(json, at + "/mean", results[k].all);
+      setSummary(json, at + "/design_eyes", results[k].designOnly);
+      for (size_t i = 0; i < results[k].byDistance.size(); ++i) {
+        const std::string row = at + "/by_distance/" + std::to_string(i);
+        json.set(row + "/distance", results[k].byDistance[i].first);
+        setSummary(json, row, results[k].byDistance[i].second);
+      }
+    }
+    std::printf("%s\n", json.dump().c_str());
+    return;
+  }
+  std::printf("%-28s %5s %9s %7s %9s %9s %12s\n", "render", "eyes", "mean dB", "SSIM", "worst dB",
+              "flicker", "design eyes");
+  for (size_t k = 0; k < results.size(); ++k) {
+    const QualitySummary& s = results[k].all;
+    std::printf("%-28s %5d %9.2f %7.4f %9.2f %9.4f %12.2f\n", labels[k].c_str(), s.eyes, s.meanPsnr,
+                s.meanSsim, s.worstPsnr, s.meanFlicker, results[k].designOnly.meanPsnr);
+  }
+}
+
 // `simulate --reference` without --eye or --sweep: the dense measure (docs/simulator.md), K eyes
 // inside every view's window at several distances, and the design eyes as their own column.
 void runDenseReference(const SimulateOptions& o, const Inputs& in, const SimulationOptions& sim) {
@@ -174,15 +204,32 @@ void runDenseReference(const SimulateOptions& o, const Inputs& in, const Simulat
   const std::vector<double> distances = parseDistances(o.distances);
   const Scene scene = framedScene(loadSceneAsRendered(in.scene, o.dir), d);
   const Accelerator accelerator(scene);
-  const DisplaySimulator simulator(d, in.layers, sim);
+  // --compare: more renders of the same scene for the same display, scored at the same eyes
+  // against the same ideal views (rendered once).
+  std::vector<std::string> labels{o.dir};
+  std::vector<LayerImages> layers{in.layers};
+  for (const std::string& other : o.compare) {
+    const fs::path dir(other);
+    labels.push_back(other);
+    layers.push_back(
+        {readImage((dir / "image.png").string()), readImage((dir / "mask.png").string())});
+  }
+  std::vector<std::unique_ptr<DisplaySimulator>> simulators;
+  std::vector<const DisplaySimulator*> pointers;
+  for (const LayerImages& l : layers) {
+    simulators.push_back(std::make_unique<DisplaySimulator>(d, l, sim));
+    pointers.push_back(simulators.back().get());
+  }
   std::vector<DenseEye> eyes = denseEyes(d, o.eyesPerView, distances);
   for (const DenseEye& eye : designEyes(d)) eyes.push_back(eye);
-  ViewerQuality result;
+  std::vector<ViewerQuality> results;
   {
     ProgressBar bar("measure");
-    result = measureViewerQuality(scene, accelerator, simulator, eyes, {o.referenceSpp, o.threads},
-                                  [&bar](int done, int total) { bar.update(done, total); });
+    results = measureViewerQuality(scene, accelerator, pointers, eyes, {o.referenceSpp, o.threads},
+                                   [&bar](int done, int total) { bar.update(done, total); });
   }
+  if (results.size() > 1) return printComparison(o, labels, results);
+  const ViewerQuality& result = results.front();
   if (o.json) {
     JsonWriter json;
     json.set("/display", d.spec.source);
@@ -437,6 +484,10 @@ void registerSimulateCommand(CLI::App& cli) {
                   "With --reference and no --eye: eyes evenly inside every view's window "
                   "(the dense measure)")
       ->capture_default_str();
+  cmd->add_option("--compare", o->compare,
+                  "With the dense measure: another render folder of the same scene and display, "
+                  "scored at the same eyes against the same ideal views; repeatable")
+      ->type_name("DIR");
   cmd->add_option("--distances", o->distances,
                   "With --reference and no --eye: eye distances of the dense measure, in units "
                   "of the design distance D")

@@ -134,7 +134,10 @@ TEST(DisplayRender, SimulatedViewMatchesItsReferenceBestInsideTheViewZone) {
 // A checkerboard plane at depth z (mm, display frame), lit uniformly; 1 scene unit = 1 mm.
 Scene checkerPlaneAt(const DisplayDesign& d, float z) {
   Scene scene;
-  scene.display = {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, float(d.frontWidthMm()), std::nullopt};
+  scene.display = DisplayPlacement{};
+  scene.display.center = {0, 0, 0}, scene.display.normal = {0, 0, 1}, scene.display.up = {0, 1, 0};
+  scene.display.width = float(d.frontWidthMm());
+  scene.display.fit = std::nullopt;
   Texture checker;
   checker.kind = Texture::Kind::Checker;
   checker.color = Vec3f(0.9f);

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <numeric>
 #include <stdexcept>
@@ -61,9 +62,11 @@ QuiltLayout parseQuiltName(const std::string& path) {
   QuiltLayout layout;
   if (!aspectOk || !parseColumnsByRows(counts, layout.columns, layout.rows))
     throw InputError(path, "", "malformed quilt layout '" + ending + "': " + kNameConvention);
-  layout.aspect = std::stod(aspect);
-  if (!(layout.aspect > 0) || !std::isfinite(layout.aspect))
-    throw InputError(path, "", "quilt aspect must be positive, got '" + aspect + "'");
+  // strtod, not stod: a long run of digits overflows (or underflows) to a value we refuse
+  // below instead of throwing std::out_of_range (a fuzzing finding, fuzz/regressions).
+  layout.aspect = std::strtod(aspect.c_str(), nullptr);
+  if (!(layout.aspect >= 1e-3 && layout.aspect <= 1e3))
+    throw InputError(path, "", "quilt aspect must be between 0.001 and 1000, got '" + aspect + "'");
   return layout;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "parallax/image/metrics.h"
 #include "parallax/render/render.h"
 
 namespace parallax {
@@ -191,6 +192,44 @@ TEST(Render, SameImageForAnyThreadCount) {
   // A different seed moves the jitter, so some pixel must change.
   many.seed = 7;
   EXPECT_NE(a.pixels(), render(scene, accel, camera, many).pixels());
+}
+
+// Adaptive sampling: a flat picture stops every pixel after its first stratified group (n of
+// n^2 samples: an exact count), the image still equals the flat value, and a scene with edges
+// gives the same image for any thread count, spends more on its edges than on flat regions,
+// and stays close to the fixed-rate render.
+TEST(Render, AdaptiveSamplingStopsFlatPixelsAfterOneGroup) {
+  Scene scene = planeScene(0.25f);
+  scene.ambient = Vec3f(0.8f);
+  const Accelerator accel(scene);
+  RenderSettings settings;
+  settings.samplesPerPixel = 16;
+  settings.adaptive = true;
+  RenderStats stats;
+  const Image flat = render(scene, accel, downCamera(8), settings, &stats);
+  EXPECT_EQ(stats.cameraRays, 8u * 8u * 4u);
+  for (const Vec3f& p : flat.pixels()) EXPECT_NEAR(p.x, 0.25f * 0.8f, 1e-6f);
+}
+
+TEST(Render, AdaptiveSamplingIsDeterministicAndSpendsRaysOnEdges) {
+  const Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  const CameraSpec& c = *scene.camera;
+  const PinholeCamera camera(c.eye, c.lookAt, c.up, c.fovDegrees, 96, 54);
+  RenderSettings fixed, adaptive, reference;
+  fixed.samplesPerPixel = adaptive.samplesPerPixel = 16;
+  reference.samplesPerPixel = 256;
+  adaptive.adaptive = true;
+  adaptive.threads = 1;
+  RenderStats fixedStats, adaptiveStats;
+  const Image truth = render(scene, accel, camera, reference);
+  const Image a = render(scene, accel, camera, fixed, &fixedStats);
+  const Image b = render(scene, accel, camera, adaptive, &adaptiveStats);
+  adaptive.threads = 2;
+  EXPECT_EQ(b.pixels(), render(scene, accel, camera, adaptive).pixels());
+  EXPECT_LT(adaptiveStats.cameraRays, fixedStats.cameraRays * 3 / 4);
+  EXPECT_GT(adaptiveStats.cameraRays, fixedStats.cameraRays / 4);  // edges kept their rays
+  EXPECT_GT(psnr(b, truth), psnr(a, truth) - 0.1);
 }
 
 }  // namespace

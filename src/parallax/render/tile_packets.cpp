@@ -19,11 +19,26 @@ TileGrid::TileGrid(const Camera& camera)
   rows = (filmHeight + kRows - 1) / kRows;
 }
 
-PacketWalk::PacketWalk(int spp, uint64_t renderSeed, JitterSharing jitter, const Camera& camera)
+PacketWalk::PacketWalk(int spp, uint64_t renderSeed, JitterSharing jitter, const Camera& camera,
+                       bool progressive)
     : samplesPerPixel(std::max(1, spp)),
       seed(renderSeed),
       shareJitter(jitter == JitterSharing::Packet ||
-                  (jitter == JitterSharing::Auto && camera.packetShape().shareJitter)) {}
+                  (jitter == JitterSharing::Auto && camera.packetShape().shareJitter)) {
+  const int n = stratificationOrder(samplesPerPixel);
+  groupSize = n > 0 ? n : samplesPerPixel;
+  if (!progressive || n <= 1) {
+    for (int i = 0; i < samplesPerPixel; ++i) order.push_back(i);
+    return;
+  }
+  // Shifts: 0, n/2, then the others in increasing order.
+  std::vector<int> shifts{0};
+  if (n / 2 != 0) shifts.push_back(n / 2);
+  for (int s = 1; s < n; ++s)
+    if (s != n / 2) shifts.push_back(s);
+  for (int shift : shifts)
+    for (int x = 0; x < n; ++x) order.push_back(((x + shift) % n) * n + x);
+}
 
 void samplePacket(const PacketWalk& walk, int strata, FilmPacket& packet) {
   // Plain local arrays and simple lane loops: they vectorise (64-bit multiplies included), which

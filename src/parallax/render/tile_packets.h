@@ -49,17 +49,27 @@ struct FilmPacket {
   std::array<Rng, 16> rngs;  // each lane's own stream for shading
   alignas(64) int x[16], y[16];
   alignas(64) uint64_t pixelStream[16];  // Rng::pixelStream of each lane's pixel
-  int sample = 0;
-  int activeCount = 0;
+  int sample = 0;                        // the sample index (its strata and random streams)
+  int pass = 0;                          // how many samples of these pixels came before this one
+  int activeCount = 0;  // the visitor may turn lanes off (and lower this); at 0 the walk moves on
 };
 
 struct PacketWalk {
   int samplesPerPixel = 1;
   uint64_t seed = 0;
   bool shareJitter = false;
+  // The order the sample indices are visited in. Plain: 0 .. spp-1. Progressive (for adaptive
+  // sampling, which may stop a pixel after any whole group): with spp = n^2, n groups of n
+  // samples, group j holding sample u n + x with u = (x + s_j) mod n for x = 0 .. n-1: each
+  // group is a Latin set (one sample in every x stratum and every angular stratum), so every
+  // prefix of whole groups is itself stratified. The shifts s_j spread the first groups apart
+  // (0, n/2, then the rest).
+  std::vector<int> order;
+  int groupSize = 1;  // samples per group of the progressive order (n, or spp if not square)
 
   // `jitter` resolved against what the camera asks for.
-  PacketWalk(int samplesPerPixel, uint64_t seed, JitterSharing jitter, const Camera& camera);
+  PacketWalk(int samplesPerPixel, uint64_t seed, JitterSharing jitter, const Camera& camera,
+             bool progressive = false);
 };
 
 // Calls visit(FilmPacket&) for every packet of `tile`: a packet's pixels through all their
@@ -108,9 +118,9 @@ void forEachPacket(const TileGrid& grid, int tile, const Camera& camera, const P
           packet.pixelStream[lane] = streams[size_t(y - y0) * size_t(grid.width) + size_t(x - x0)];
         }
         packet.activeCount = active;
-        if (active == 0) continue;
-        for (int sample = 0; sample < walk.samplesPerPixel; ++sample) {
-          packet.sample = sample;
+        for (int pass = 0; pass < walk.samplesPerPixel && packet.activeCount > 0; ++pass) {
+          packet.sample = walk.order[size_t(pass)];
+          packet.pass = pass;
           samplePacket(walk, strata, packet);
           camera.generateRays16(packet.film, packet.rays);
           visit(packet);

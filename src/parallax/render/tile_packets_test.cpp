@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -179,6 +180,37 @@ TEST(TilePackets, DisplayImageIsTheSameForAnyThreadCount) {
   one.samplesPerPixel = two.samplesPerPixel = 4;
   one.threads = 1, two.threads = 2;
   EXPECT_EQ(render(scene, accel, camera, one).pixels(), render(scene, accel, camera, two).pixels());
+}
+
+}  // namespace
+}  // namespace parallax
+
+namespace parallax {
+namespace {
+
+// The progressive order (adaptive sampling): a permutation of the sample indices whose groups
+// of n are Latin sets, one sample in every x stratum (i mod n) and every angular stratum
+// (i div n), so any whole number of groups is stratified.
+TEST(TilePackets, ProgressiveOrderIsAPermutationOfLatinGroups) {
+  const DisplayCamera camera(designDisplay(smallDisplay()), {});
+  for (int n : {2, 3, 4, 5}) {
+    const PacketWalk walk(n * n, 1, JitterSharing::Auto, camera, true);
+    ASSERT_EQ(walk.groupSize, n);
+    std::vector<int> sorted = walk.order;
+    std::sort(sorted.begin(), sorted.end());
+    for (int i = 0; i < n * n; ++i) EXPECT_EQ(sorted[size_t(i)], i);
+    for (int group = 0; group < n; ++group) {
+      std::set<int> xs, us;
+      for (int k = 0; k < n; ++k) {
+        const int index = walk.order[size_t(group * n + k)];
+        xs.insert(index % n), us.insert(index / n);
+      }
+      EXPECT_EQ(int(xs.size()), n) << "n " << n << " group " << group;
+      EXPECT_EQ(int(us.size()), n) << "n " << n << " group " << group;
+    }
+  }
+  const PacketWalk plain(16, 1, JitterSharing::Auto, camera);
+  for (int i = 0; i < 16; ++i) EXPECT_EQ(plain.order[size_t(i)], i);
 }
 
 }  // namespace

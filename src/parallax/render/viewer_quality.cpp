@@ -98,31 +98,10 @@ QualitySummary summarise(const std::vector<EyeQuality>& eyes) {
   return s;
 }
 
-ViewerQuality measureViewerQuality(const Scene& scene, const Accelerator& accelerator,
-                                   const DisplaySimulator& simulator,
-                                   const std::vector<DenseEye>& eyes,
-                                   const ViewerQualityOptions& options,
-                                   const std::function<void(int, int)>& progress) {
-  const DisplayDesign& d = simulator.design();
-  ViewerQuality result;
-  Image previousSimulated, previousIdeal;
-  for (size_t i = 0; i < eyes.size(); ++i) {
-    const DenseEye& eye = eyes[i];
-    const Image simulated = atDisplayResolution(d, simulator.view(eye.position));
-    const Image ideal =
-        idealView(scene, accelerator, d, eye.position, simulated.width(), simulated.height(),
-                  options.referenceSamplesPerPixel, options.threads);
-    EyeQuality q{eye, psnr(simulated, ideal), ssim(simulated, ideal),
-                 std::numeric_limits<double>::quiet_NaN()};
-    // A row is one distance, left to right: the eyes a moving viewer passes in turn.
-    const bool sameRow =
-        i > 0 && eyes[i - 1].distance == eye.distance && !eye.designEye && !eyes[i - 1].designEye;
-    if (sameRow) q.flicker = flickerBetween(previousSimulated, previousIdeal, simulated, ideal);
-    result.eyes.push_back(q);
-    previousSimulated = simulated;
-    previousIdeal = ideal;
-    if (progress) progress(int(i + 1), int(eyes.size()));
-  }
+namespace {
+
+// Splits the per-eye scores into the dense summary, the design eyes' and one per distance.
+void summariseAll(ViewerQuality& result) {
   std::vector<EyeQuality> dense, design;
   for (const EyeQuality& q : result.eyes) (q.eye.designEye ? design : dense).push_back(q);
   result.all = summarise(dense);
@@ -138,7 +117,50 @@ ViewerQuality measureViewerQuality(const Scene& scene, const Accelerator& accele
       if (q.eye.distance == distance) row.push_back(q);
     summary = summarise(row);
   }
-  return result;
+}
+
+}  // namespace
+
+std::vector<ViewerQuality> measureViewerQuality(
+    const Scene& scene, const Accelerator& accelerator,
+    const std::vector<const DisplaySimulator*>& simulators, const std::vector<DenseEye>& eyes,
+    const ViewerQualityOptions& options, const std::function<void(int, int)>& progress) {
+  std::vector<ViewerQuality> results(simulators.size());
+  if (simulators.empty()) return results;
+  const DisplayDesign& d = simulators.front()->design();
+  std::vector<Image> previousSimulated(simulators.size());
+  Image previousIdeal;
+  for (size_t i = 0; i < eyes.size(); ++i) {
+    const DenseEye& eye = eyes[i];
+    Image ideal;
+    // A row is one distance, left to right: the eyes a moving viewer passes in turn.
+    const bool sameRow =
+        i > 0 && eyes[i - 1].distance == eye.distance && !eye.designEye && !eyes[i - 1].designEye;
+    for (size_t s = 0; s < simulators.size(); ++s) {
+      const Image simulated = atDisplayResolution(d, simulators[s]->view(eye.position));
+      if (ideal.empty())
+        ideal = idealView(scene, accelerator, d, eye.position, simulated.width(),
+                          simulated.height(), options.referenceSamplesPerPixel, options.threads);
+      EyeQuality q{eye, psnr(simulated, ideal), ssim(simulated, ideal),
+                   std::numeric_limits<double>::quiet_NaN()};
+      if (sameRow)
+        q.flicker = flickerBetween(previousSimulated[s], previousIdeal, simulated, ideal);
+      results[s].eyes.push_back(q);
+      previousSimulated[s] = simulated;
+    }
+    previousIdeal = std::move(ideal);
+    if (progress) progress(int(i + 1), int(eyes.size()));
+  }
+  for (ViewerQuality& result : results) summariseAll(result);
+  return results;
+}
+
+ViewerQuality measureViewerQuality(const Scene& scene, const Accelerator& accelerator,
+                                   const DisplaySimulator& simulator,
+                                   const std::vector<DenseEye>& eyes,
+                                   const ViewerQualityOptions& options,
+                                   const std::function<void(int, int)>& progress) {
+  return measureViewerQuality(scene, accelerator, {&simulator}, eyes, options, progress).front();
 }
 
 }  // namespace parallax

@@ -80,6 +80,12 @@ ViewerQuality measureViewerQuality(const Scene& scene, const Accelerator& accele
                                    const std::vector<DenseEye>& eyes,
                                    const ViewerQualityOptions& options,
                                    const std::function<void(int, int)>& progress = {});
+// The same for several renders of one scene on one display (filters, sample counts, ...),
+// sharing each eye's ideal view: one result per simulator, in order.
+std::vector<ViewerQuality> measureViewerQuality(
+    const Scene& scene, const Accelerator& accelerator,
+    const std::vector<const DisplaySimulator*>& simulators, const std::vector<DenseEye>& eyes,
+    const ViewerQualityOptions& options, const std::function<void(int, int)>& progress = {});
 
 // The summary of a set of per-eye scores.
 QualitySummary summarise(const std::vector<EyeQuality>& eyes);
