@@ -71,6 +71,7 @@ struct BenchOptions {
   int repeats = 2;
   bool json = false;
   int simulateViews = 0;
+  std::string filter = viewFilterName(ViewFilter{}.kind);
 };
 
 void runBench(const BenchOptions& o) {
@@ -103,7 +104,11 @@ void runBench(const BenchOptions& o) {
     // pinhole at the view-zone centre whose film is the front layer: the same content, seen
     // by the coherent rays of one eye.
     const DisplayDesign design = loadDesignOrDefault(o.display);
-    camera = std::make_unique<DisplayCamera>(design, scene.display);
+    ViewFilter filter;
+    if (!parseViewFilterKind(o.filter, filter.kind))
+      throw InputError("command line", "--filter",
+                       "expected none, view, tent, gaussian or period, got '" + o.filter + "'");
+    camera = std::make_unique<DisplayCamera>(design, scene.display, filter);
     width = camera->width(), height = camera->height();
     const Vec3d eye{design.spec.viewZoneCenterXMm, design.spec.viewZoneHeightMm,
                     design.viewDistanceMm};
@@ -123,6 +128,7 @@ void runBench(const BenchOptions& o) {
   if (o.json) {
     JsonWriter json;
     json.set("/camera", o.camera);
+    if (o.camera == "display") json.set("/filter", o.filter);
     json.set("/scene", scene.source);
     json.set("/triangles", uint64_t(scene.triangleCount()));
     json.set("/width", width);
@@ -169,6 +175,9 @@ void registerBenchCommand(CLI::App& cli) {
                   "Camera to measure: pinhole, or display (the image layer through the barrier)")
       ->capture_default_str();
   cmd->add_option("--display", options->display, "Display file for --camera display");
+  cmd->add_option("--filter", options->filter,
+                  "With --camera display: how a pixel's rays spread in angle, as render --filter")
+      ->capture_default_str();
   cmd->add_option("--scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
   cmd->add_option("--size", options->size,
                   "Image size WIDTHxHEIGHT (pinhole; the display camera uses the panel's)")
