@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/io/display_file.h"
 
@@ -46,7 +48,8 @@ void printDesign(const DisplayDesign& d, double depthMm) {
 
 void registerDesignCommand(CLI::App& cli) {
   struct Options {
-    std::string display;
+    std::string display, scene;
+    std::string fit, focus, depthBudget;
     bool json = false;
     double depth = 0.0;
   };
@@ -58,16 +61,57 @@ void registerDesignCommand(CLI::App& cli) {
                   "of field")
       ->check(realIn(-kInfinity, kInfinity));
   cmd->add_flag("--json", options->json, "Print one JSON object");
+  cmd->add_option("--scene", options->scene,
+                  "Also frame this scene for the display as render does: its depth range "
+                  "against the depth of field");
+  cmd->add_option("--fit", options->fit, "With --scene: the framing, as for render")
+      ->type_name("window|depth|none|auto");
+  cmd->add_option("--focus", options->focus, "With --scene: the focus, as for render")
+      ->type_name("MM|auto");
+  cmd->add_option("--depth-budget", options->depthBudget,
+                  "With --scene: the depth budget, as for render")
+      ->type_name("MM|auto");
   cmd->callback([options] {
     const DisplayDesign d = loadDesignOrDefault(options->display);
+    std::optional<Framing> framing;
+    if (!options->scene.empty()) {
+      Scene scene = loadSceneOrDefault(options->scene);
+      applyFramingOptions(scene.display, options->fit, options->focus, options->depthBudget);
+      framing = frameForDisplay(scene, d);
+    } else if (!options->fit.empty() || !options->focus.empty() || !options->depthBudget.empty()) {
+      throw InputError("command line", "--fit", "--fit, --focus and --depth-budget need --scene");
+    }
     const double depth = options->depth != 0.0 ? options->depth : d.depthOfFieldMm;
     if (!(std::abs(depth) < d.viewDistanceMm))
       throw InputError("command line", "--depth", "must lie between the viewer and -D");
-    if (!options->json) return printDesign(d, depth);
+    if (!options->json) {
+      printDesign(d, depth);
+      if (framing) {
+        std::printf("%s\n", depthSummary(*framing).c_str());
+        const std::string warning = depthWarning(*framing);
+        if (!warning.empty()) std::printf("warning: %s\n", warning.c_str());
+      }
+      return;
+    }
     JsonWriter json;
     writeDesignJson(json, "", d);
     json.set("/disparity_depth_mm", depth);
     json.set("/disparity_mm", d.adjacentViewDisparityMm(depth));
+    if (framing) {
+      const Framing& f = *framing;
+      json.set("/scene/source", options->scene);
+      json.set("/scene/fit", displayFitName(f.fit));
+      json.set("/scene/focus_mm", f.focusMm);
+      json.set("/scene/virtual_gap_mm", f.virtualGapMm);
+      json.set("/scene/depth_budget_mm", f.budgetMm);
+      if (f.hasContent) {
+        json.set("/scene/content_near_mm", f.nearMm);
+        json.set("/scene/content_far_mm", f.farMm);
+        json.set("/scene/shown_near_mm", f.shownNearMm);
+        json.set("/scene/shown_far_mm", f.shownFarMm);
+        json.set("/scene/within_budget", f.withinBudget());
+      }
+    }
     std::printf("%s\n", json.dump().c_str());
   });
 }

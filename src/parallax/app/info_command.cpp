@@ -7,6 +7,7 @@
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/camera/display_camera.h"
+#include "parallax/camera/framing.h"
 #include "parallax/io/json_writer.h"
 
 namespace parallax::app {
@@ -27,9 +28,14 @@ const char* lightKindName(Light::Kind kind) {
   return "?";
 }
 
+// The scene framed for the built-in display as `render` frames it (camera/framing.h).
+Framing builtInFraming(const Scene& scene) {
+  return frameForDisplay(scene, designDisplay(defaultDisplaySpec()));
+}
+
 // The scene's display width, fitted to the built-in display when the scene does not fix it.
 float builtInDisplayWidth(const Scene& scene) {
-  return fitDisplayWidth(scene.display, displayWindow(designDisplay(defaultDisplaySpec())));
+  return builtInFraming(scene).placement.width;
 }
 
 void printJson(const Scene& scene) {
@@ -65,6 +71,19 @@ void printJson(const Scene& scene) {
   json.set("/display/up", scene.display.up);
   json.set("/display/width", double(builtInDisplayWidth(scene)));
   json.set("/display/fitted", scene.display.fit.has_value());
+  const Framing f = builtInFraming(scene);
+  json.set("/depth/fit", displayFitName(f.fit));
+  json.set("/depth/focus_mm", f.focusMm);
+  json.set("/depth/virtual_gap_mm", f.virtualGapMm);
+  json.set("/depth/depth_of_field_mm", f.depthOfFieldMm);
+  json.set("/depth/depth_budget_mm", f.budgetMm);
+  if (f.hasContent) {
+    json.set("/depth/content_near_mm", f.nearMm);
+    json.set("/depth/content_far_mm", f.farMm);
+    json.set("/depth/shown_near_mm", f.shownNearMm);
+    json.set("/depth/shown_far_mm", f.shownFarMm);
+    json.set("/depth/within_budget", f.withinBudget());
+  }
   json.set("/warnings", scene.warnings);
   std::printf("%s\n", json.dump().c_str());
 }
@@ -93,6 +112,10 @@ void printText(const Scene& scene) {
               d.center.y, d.center.z, d.normal.x, d.normal.y, d.normal.z,
               builtInDisplayWidth(scene),
               d.fit ? " (fitted to the built-in display's window)" : "");
+  const Framing f = builtInFraming(scene);
+  std::printf("%s\n", depthSummary(f).c_str());
+  const std::string depthWarningLine = depthWarning(f);
+  if (!depthWarningLine.empty()) std::printf("warning: %s\n", depthWarningLine.c_str());
   for (const auto& w : scene.warnings) std::printf("warning: %s\n", w.c_str());
 }
 

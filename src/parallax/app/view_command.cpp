@@ -9,6 +9,7 @@
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/camera/display_camera.h"
+#include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/image_file.h"
@@ -22,6 +23,7 @@ struct ViewOptions {
   std::string scene;
   std::string eye, lookAt, up, size;
   std::string displayEye, display;
+  std::string fit, focus, depthBudget;  // with --display-eye: framed as render frames it
   std::optional<float> fov;
   SamplingOptions sampling;
   std::string output = "out/view.png";
@@ -40,8 +42,14 @@ std::unique_ptr<Camera> makeCamera(const ViewOptions& o, const Scene& scene) {
     const Vec3f eye = parseVec3("--display-eye", o.displayEye);
     if (!(eye.z > 0))
       throw InputError("command line", "--display-eye", "the eye must be in front (z > 0 mm)");
-    return std::make_unique<WindowCamera>(Vec3d{eye.x, eye.y, eye.z}, design, scene.display, width,
-                                          height);
+    // Framed as `render` frames it (camera/framing.h), so that this is what the render shows.
+    Scene placed;
+    placed.display = scene.display;
+    if (!placed.display.content) placed.display.content = scene.bounds();
+    applyFramingOptions(placed.display, o.fit, o.focus, o.depthBudget);
+    const Framing framing = frameForDisplay(placed, design);
+    return std::make_unique<WindowCamera>(Vec3d{eye.x, eye.y, eye.z}, framing.design,
+                                          framing.placement, width, height);
   }
   if (!o.size.empty()) parseSize("--size", o.size, width, height);
   CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
@@ -100,6 +108,13 @@ void registerViewCommand(CLI::App& cli) {
                   "Ideal view through the display window from this eye X,Y,Z (display mm, "
                   "origin at the front layer's centre, z toward the viewer)");
   cmd->add_option("--display", options->display, "Display file for --display-eye");
+  cmd->add_option("--fit", options->fit, "With --display-eye: the framing, as for render")
+      ->type_name("window|depth|none|auto");
+  cmd->add_option("--focus", options->focus, "With --display-eye: the focus, as for render")
+      ->type_name("MM|auto");
+  cmd->add_option("--depth-budget", options->depthBudget,
+                  "With --display-eye: the depth budget, as for render")
+      ->type_name("MM|auto");
   addSamplingOptions(*cmd, options->sampling, "Samples per pixel (n*n is stratified)");
   cmd->add_option("-o,--output", options->output, "Output image (.png, or .pfm linear float)")
       ->capture_default_str();

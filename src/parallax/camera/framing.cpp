@@ -117,7 +117,7 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
     const double fallback = window.widthMm / double(given.width);
     if (f.fit == DisplayFit::Window && !given.focusMm) {
       DisplayPlacement today = given;  // exactly today's width-only fit
-      today.fit = bounds;
+      today.fit = given.fit ? *given.fit : bounds;
       scale = window.widthMm / double(fitDisplayWidth(today, window));
     } else if (f.fit == DisplayFit::Window || (f.fit == DisplayFit::Depth && given.focusMm)) {
       scale = largestScale(

@@ -467,6 +467,14 @@ class SceneFileLoader {
       transformMesh(scene_.meshes.back(), worldFromObject);
     }
     for (size_t i = firstMesh; i < scene_.meshes.size(); ++i) emitters_[i] = emitter;
+    if (shape == "plane") return;
+    for (size_t i = firstMesh; i < scene_.meshes.size(); ++i)
+      for (const Vec3f& p : scene_.meshes[i].positions) subjects_.extend(p);
+    if (shape == "sphere") {
+      const Sphere& sphere = scene_.spheres.back();
+      subjects_.extend(sphere.center - Vec3f(sphere.radius));
+      subjects_.extend(sphere.center + Vec3f(sphere.radius));
+    }
   }
 
   void addFlatShape(const JsonReader& object, const std::string& shape, const std::string& name,
@@ -608,6 +616,7 @@ class SceneFileLoader {
         perpendicularUp(upKey ? upKey->direction() : defaultUp(normal), normal);
     if (!up) upKey->fail("'up' is parallel to the display normal");
     scene_.display = placeDisplay(bounds, normal, *up);
+    if (!subjects_.empty()) scene_.display.content = subjects_;
     if (!value) return;
     scene_.display.center = point(*value, "center", scene_.display.center);
     if (value->find("width")) {
@@ -673,6 +682,9 @@ class SceneFileLoader {
   std::map<std::string, int> namedTextures_, namedMaterials_, images_;
   std::optional<uint32_t> defaultMaterial_;
   std::map<size_t, EmitterOptions> emitters_;  // by mesh index
+  // The bounds of every object but planes (floors and backdrops recede on purpose): what the
+  // framing measures (DisplayPlacement::content).
+  Bounds3f subjects_;
 };
 
 }  // namespace

@@ -105,6 +105,9 @@ Scene defaultScene() {
                          Transform::rotate(30.0f, {0, 1, 0}) * Transform::rotate(15.0f, {1, 0, 0});
   for (auto& p : scene.meshes.back().positions) p = turn.point(p);
   for (auto& n : scene.meshes.back().normals) n = normalize(turn.normal(n));
+  // The framing measures the box (the subject); the floor recedes behind it on purpose.
+  scene.display.content = Bounds3f{};
+  for (const auto& p : scene.meshes.back().positions) scene.display.content->extend(p);
 
   // A square area light above and to the left, facing down: soft but clearly visible shadows.
   Light light;
