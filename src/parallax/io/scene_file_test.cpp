@@ -507,3 +507,41 @@ TEST(ExampleScenes, AllLoadWithoutWarnings) {
 
 }  // namespace
 }  // namespace parallax
+
+namespace parallax {
+namespace {
+
+TEST_F(SceneFileTest, DisplayFramingKeys) {
+  const Scene scene = load(R"({"objects": [
+    {"shape": "sphere", "center": [0, 0, 0], "radius": 1},
+    {"shape": "plane", "center": [0, -1, 0], "size": 40}],
+    "display": {"width": 3, "fit": "depth", "focus": -12.5, "depth_budget": 20}})");
+  EXPECT_EQ(scene.display.fitMode, DisplayFit::Depth);
+  ASSERT_TRUE(scene.display.focusMm);
+  EXPECT_DOUBLE_EQ(*scene.display.focusMm, -12.5);
+  ASSERT_TRUE(scene.display.depthBudgetMm);
+  EXPECT_DOUBLE_EQ(*scene.display.depthBudgetMm, 20.0);
+  // The content the framing measures leaves out the plane (a floor recedes on purpose).
+  ASSERT_TRUE(scene.display.content);
+  expectNear(scene.display.content->lo, {-1, -1, -1});
+  expectNear(scene.display.content->hi, {1, 1, 1});
+  const Scene automatic = load(R"({"objects": [{"shape": "sphere", "radius": 1}],
+    "display": {"fit": "auto", "focus": "auto", "depth_budget": "auto"}})");
+  EXPECT_EQ(automatic.display.fitMode, DisplayFit::Auto);
+  EXPECT_FALSE(automatic.display.focusMm);
+  EXPECT_FALSE(automatic.display.depthBudgetMm);
+}
+
+TEST_F(SceneFileTest, DisplayFramingKeysAreChecked) {
+  const std::string sphere = R"({"objects": [{"shape": "sphere", "radius": 1}], "display": )";
+  expectError(sphere + R"({"fit": "wide"}})", "/display/fit", "expected window, depth");
+  expectError(sphere + R"({"focus": "near"}})", "/display/focus", "auto");
+  expectError(sphere + R"({"focus": 1e5}})", "/display/focus", "10000 mm");
+  expectError(sphere + R"({"depth_budget": 0}})", "/display/depth_budget", "above 0");
+  expectError(sphere + R"({"depth_budget": 5000}})", "/display/depth_budget", "1000 mm");
+  expectError(sphere + R"({"depth_budget": true}})", "/display/depth_budget", "millimetres");
+  expectError(sphere + R"({"depth": 3}})", "/display/depth", "unknown key");
+}
+
+}  // namespace
+}  // namespace parallax
