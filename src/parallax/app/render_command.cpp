@@ -67,16 +67,21 @@ void recordFraming(JsonWriter& record, const Framing& f) {
   }
 }
 
-// Frames the scene for the design (camera/framing.h), reports it, and returns the framing.
-Framing frameAndReport(const RenderOptions& o, Scene& scene, DisplayDesign& design) {
+// Frames the scene for the design (camera/framing.h) and returns the framing.
+Framing frameForRender(const RenderOptions& o, Scene& scene, DisplayDesign& design) {
   applyFramingOptions(scene.display, o.fit, o.focus, o.depthBudget);
   const Framing framing = frameForDisplay(scene, design);
   scene.display = framing.placement;
   design = framing.design;
+  return framing;
+}
+
+// Once every check has passed: the depth summary, and a warning if the content reaches beyond
+// the budget.
+void reportFraming(const Framing& framing) {
   std::printf("%s\n", depthSummary(framing).c_str());
   const std::string warning = depthWarning(framing);
   if (!warning.empty()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-  return framing;
 }
 
 // --filter and --filter-width as the camera's ViewFilter.
@@ -114,6 +119,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
                  "stretched\n",
                  width, height, layout.aspect, windowAspect);
 
+  reportFraming(framing);
   const Accelerator accelerator(scene);
   RenderStats stats;
   std::vector<Image> views;
@@ -184,8 +190,9 @@ void runRender(const RenderOptions& o) {
   if (o.quilt.empty())
     checkLayerWork(design, o.directMapping, settings.samplesPerPixel, settings.threads, o.display);
   Scene scene = loadSceneReportingWarnings(o.scene);
-  const Framing framing = frameAndReport(o, scene, design);
+  const Framing framing = frameForRender(o, scene, design);
   if (!o.quilt.empty()) return runQuiltRender(o, layout, design, scene, settings, framing);
+  reportFraming(framing);
   const Accelerator accelerator(scene);
   DisplayLayers layers;
   {
