@@ -266,6 +266,22 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
       ->check(realIn(0.0, 255.0));
 }
 
+void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f) {
+  json.set(at + "/fit", displayFitName(f.fit));
+  json.set(at + "/focus_mm", f.focusMm);
+  json.set(at + "/depth_budget_mm", f.budgetMm);
+  json.set(at + "/depth_of_field_mm", f.depthOfFieldMm);
+  json.set(at + "/gap_mm", f.gapMm);
+  json.set(at + "/virtual_gap_mm", f.virtualGapMm);
+  json.set(at + "/virtual_depth_of_field_mm", f.depthOfFieldMm * f.virtualGapMm / f.gapMm);
+  if (!f.hasContent) return;
+  json.set(at + "/content_near_mm", f.nearMm);
+  json.set(at + "/content_far_mm", f.farMm);
+  json.set(at + "/shown_near_mm", f.shownNearMm);
+  json.set(at + "/shown_far_mm", f.shownFarMm);
+  json.set(at + "/within_budget", f.withinBudget());
+}
+
 Scene loadSceneOrDefault(const std::string& path) {
   return path.empty() ? defaultScene() : loadScene(path);
 }

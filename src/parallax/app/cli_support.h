@@ -8,8 +8,10 @@
 #include <mutex>
 #include <string>
 
+#include "parallax/camera/framing.h"
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
+#include "parallax/io/json_writer.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
 
@@ -87,6 +89,11 @@ struct SamplingOptions {
 };
 // Adds the four options to `cmd`; what one sample is differs between commands: `sppHelp`.
 void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::string& sppHelp);
+
+// The framing's figures (camera/framing.h) under `at` ("/framing"): fit, focus, gaps, depth
+// of field and budget, and the content's near and far as given and as shown. render, design
+// and info write the same keys.
+void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& framing);
 
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
 Scene loadSceneOrDefault(const std::string& path);

@@ -100,17 +100,7 @@ void registerDesignCommand(CLI::App& cli) {
     if (framing) {
       const Framing& f = *framing;
       json.set("/scene/source", options->scene);
-      json.set("/scene/fit", displayFitName(f.fit));
-      json.set("/scene/focus_mm", f.focusMm);
-      json.set("/scene/virtual_gap_mm", f.virtualGapMm);
-      json.set("/scene/depth_budget_mm", f.budgetMm);
-      if (f.hasContent) {
-        json.set("/scene/content_near_mm", f.nearMm);
-        json.set("/scene/content_far_mm", f.farMm);
-        json.set("/scene/shown_near_mm", f.shownNearMm);
-        json.set("/scene/shown_far_mm", f.shownFarMm);
-        json.set("/scene/within_budget", f.withinBudget());
-      }
+      setFramingFigures(json, "/scene", f);
     }
     std::printf("%s\n", json.dump().c_str());
   });

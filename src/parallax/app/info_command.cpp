@@ -72,18 +72,7 @@ void printJson(const Scene& scene) {
   json.set("/display/width", double(builtInDisplayWidth(scene)));
   json.set("/display/fitted", scene.display.fit.has_value());
   const Framing f = builtInFraming(scene);
-  json.set("/depth/fit", displayFitName(f.fit));
-  json.set("/depth/focus_mm", f.focusMm);
-  json.set("/depth/virtual_gap_mm", f.virtualGapMm);
-  json.set("/depth/depth_of_field_mm", f.depthOfFieldMm);
-  json.set("/depth/depth_budget_mm", f.budgetMm);
-  if (f.hasContent) {
-    json.set("/depth/content_near_mm", f.nearMm);
-    json.set("/depth/content_far_mm", f.farMm);
-    json.set("/depth/shown_near_mm", f.shownNearMm);
-    json.set("/depth/shown_far_mm", f.shownFarMm);
-    json.set("/depth/within_budget", f.withinBudget());
-  }
+  setFramingFigures(json, "/depth", f);
   json.set("/warnings", scene.warnings);
   std::printf("%s\n", json.dump().c_str());
 }

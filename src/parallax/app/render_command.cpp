@@ -50,21 +50,9 @@ void recordFraming(JsonWriter& record, const Framing& f) {
     record.set("/framing/depth_budget", "auto");
   else
     record.set("/framing/depth_budget", f.budgetMm);
-  record.set("/framing/focus_mm", f.focusMm);
-  record.set("/framing/depth_budget_mm", f.budgetMm);
-  record.set("/framing/depth_of_field_mm", f.depthOfFieldMm);
-  record.set("/framing/gap_mm", f.gapMm);
-  record.set("/framing/virtual_gap_mm", f.virtualGapMm);
+  setFramingFigures(record, "/framing", f);
   record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
-  record.set("/framing/virtual_depth_of_field_mm", f.depthOfFieldMm * f.virtualGapMm / f.gapMm);
   record.set("/framing/scale_mm_per_unit", f.scaleMmPerUnit);
-  if (f.hasContent) {
-    record.set("/framing/content_near_mm", f.nearMm);
-    record.set("/framing/content_far_mm", f.farMm);
-    record.set("/framing/shown_near_mm", f.shownNearMm);
-    record.set("/framing/shown_far_mm", f.shownFarMm);
-    record.set("/framing/within_budget", f.withinBudget());
-  }
 }
 
 // Frames the scene for the design (camera/framing.h) and returns the framing.
