@@ -1,0 +1,95 @@
+// The dense measure against hand-computed truths: eye positions from the view-window formula,
+// design eyes from the ray generator, the flicker figure of known image sequences, summaries,
+// and a display whose layers equal the ideal picture in the aperture plane.
+#include "parallax/render/viewer_quality.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "parallax/image/metrics.h"
+#include "parallax/render/display_render.h"
+#include "parallax/render/display_test_support.h"
+
+namespace parallax {
+namespace {
+
+TEST(ViewerQuality, DenseEyesSitEvenlyInsideEveryViewsWindow) {
+  const DisplayDesign d = designDisplay(smallDisplaySpec());
+  const std::vector<DenseEye> eyes = denseEyes(d, 4, {0.8, 1.0, 1.25});
+  ASSERT_EQ(eyes.size(), 3u * 9u * 4u);
+  const double S = d.viewZoneWidthMm, D = d.viewDistanceMm;
+  for (size_t i = 0; i < eyes.size(); ++i) {
+    const DenseEye& e = eyes[i];
+    const int v = int(i / 4) % 9, k = int(i % 4);
+    const double f = i < 36 ? 0.8 : i < 72 ? 1.0 : 1.25;
+    EXPECT_EQ(e.view, v);
+    EXPECT_DOUBLE_EQ(e.distance, f);
+    EXPECT_NEAR(e.position.x, (-0.5 * S + (v + (k + 0.5) / 4) * S / 9) * f, 1e-9);
+    EXPECT_NEAR(e.position.z, D * f, 1e-9);
+    EXPECT_FALSE(e.designEye);
+  }
+  // At D the K eyes of view v bracket its design eye, which is the window's centre.
+  const std::vector<DenseEye> design = designEyes(d);
+  ASSERT_EQ(design.size(), 9u);
+  for (int v = 0; v < 9; ++v) {
+    EXPECT_NEAR(design[size_t(v)].position.x, -0.5 * S + (v + 0.5) * S / 9, 1e-6);
+    EXPECT_TRUE(design[size_t(v)].designEye);
+  }
+}
+
+TEST(ViewerQuality, FlickerIsTheChangeTheIdealDoesNotHave) {
+  Image ideal0(16, 16, Vec3f(0.2f)), ideal1(16, 16, Vec3f(0.6f));
+  // The display shows the ideal's change exactly, only darker by a constant (in sRGB): 0.
+  const auto shifted = [](const Image& image, float codes) {
+    Image out = image;
+    for (Vec3f& p : out.pixels())
+      for (int c = 0; c < 3; ++c) p[c] = srgbToLinear(linearToSrgb(p[c]) - codes);
+    return out;
+  };
+  EXPECT_NEAR(flickerBetween(shifted(ideal0, 0.1f), ideal0, shifted(ideal1, 0.1f), ideal1), 0.0,
+              1e-6);
+  // The display does not change while the ideal does: the whole sRGB change.
+  const double change = linearToSrgb(0.6f) - linearToSrgb(0.2f);
+  EXPECT_NEAR(flickerBetween(ideal0, ideal0, ideal0, ideal1), change, 1e-6);
+}
+
+TEST(ViewerQuality, SummaryHasTheMeanAndTheWorstEye) {
+  std::vector<EyeQuality> eyes(3);
+  eyes[0].psnr = 30, eyes[1].psnr = 20, eyes[2].psnr = 25;
+  eyes[1].eye.position = {7, 0, 600};
+  eyes[0].flicker = std::nan(""), eyes[1].flicker = 0.1, eyes[2].flicker = 0.3;
+  const QualitySummary s = summarise(eyes);
+  EXPECT_EQ(s.eyes, 3);
+  EXPECT_DOUBLE_EQ(s.meanPsnr, 25.0);
+  EXPECT_DOUBLE_EQ(s.worstPsnr, 20.0);
+  EXPECT_DOUBLE_EQ(s.worstEye.x, 7.0);
+  EXPECT_DOUBLE_EQ(s.meanFlicker, 0.2);  // the first eye of a row has none
+}
+
+TEST(ViewerQuality, SharedIdealViewsGiveTheSameScoresAsSeparateRuns) {
+  const DisplayDesign d = designDisplay(smallDisplaySpec(90, 30));
+  Scene scene = defaultScene();
+  scene.display.width = 0.75f;
+  const Accelerator accel(scene);
+  RenderSettings settings;
+  settings.samplesPerPixel = 4;
+  const DisplayLayers none = renderDisplay(scene, accel, d, {}, {}, {ViewFilterKind::None, 1.0});
+  const DisplayLayers view = renderDisplay(scene, accel, d, settings);
+  const DisplaySimulator a(d, {none.image, none.mask}, {}), b(d, {view.image, view.mask}, {});
+  const std::vector<DenseEye> eyes = denseEyes(d, 1, {1.0});
+  const ViewerQualityOptions options{1, 1};
+  const std::vector<ViewerQuality> both =
+      measureViewerQuality(scene, accel, {&a, &b}, eyes, options);
+  const ViewerQuality alone = measureViewerQuality(scene, accel, b, eyes, options);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_DOUBLE_EQ(both[1].all.meanPsnr, alone.all.meanPsnr);
+  EXPECT_DOUBLE_EQ(both[1].all.meanFlicker, alone.all.meanFlicker);
+  EXPECT_EQ(both[1].eyes.size(), eyes.size());
+  ASSERT_EQ(both[0].byDistance.size(), 1u);
+  EXPECT_TRUE(std::isnan(both[0].eyes.front().flicker));
+  EXPECT_FALSE(std::isnan(both[0].eyes.back().flicker));
+}
+
+}  // namespace
+}  // namespace parallax
