@@ -72,6 +72,7 @@ struct BenchOptions {
   bool json = false;
   int simulateViews = 0;
   std::string filter = viewFilterName(ViewFilter{}.kind);
+  double filterWidth = ViewFilter{}.widthViews;
 };
 
 void runBench(const BenchOptions& o) {
@@ -104,11 +105,8 @@ void runBench(const BenchOptions& o) {
     // pinhole at the view-zone centre whose film is the front layer: the same content, seen
     // by the coherent rays of one eye.
     const DisplayDesign design = loadDesignOrDefault(o.display);
-    ViewFilter filter;
-    if (!parseViewFilterKind(o.filter, filter.kind))
-      throw InputError("command line", "--filter",
-                       "expected none, view, tent, gaussian or period, got '" + o.filter + "'");
-    camera = std::make_unique<DisplayCamera>(design, scene.display, filter);
+    camera = std::make_unique<DisplayCamera>(design, scene.display,
+                                             viewFilterOption(o.filter, o.filterWidth));
     width = camera->width(), height = camera->height();
     const Vec3d eye{design.spec.viewZoneCenterXMm, design.spec.viewZoneHeightMm,
                     design.viewDistanceMm};
@@ -177,6 +175,9 @@ void registerBenchCommand(CLI::App& cli) {
   cmd->add_option("--display", options->display, "Display file for --camera display");
   cmd->add_option("--filter", options->filter,
                   "With --camera display: how a pixel's rays spread in angle, as render --filter")
+      ->capture_default_str();
+  cmd->add_option("--filter-width", options->filterWidth,
+                  "With --camera display: the filter's width in views, as render --filter-width")
       ->capture_default_str();
   cmd->add_option("--scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
   cmd->add_option("--size", options->size,

@@ -282,6 +282,19 @@ void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f
   json.set(at + "/within_budget", f.withinBudget());
 }
 
+ViewFilter viewFilterOption(const std::string& kind, double widthViews) {
+  ViewFilter filter;
+  if (!parseViewFilterKind(kind, filter.kind))
+    throw InputError("command line", "--filter",
+                     "expected none, view, tent, gaussian or period, got '" + kind + "'");
+  if (!(widthViews >= 0.05 && widthViews <= 20))
+    throw InputError(
+        "command line", "--filter-width",
+        "expected a width in views between 0.05 and 20, got " + std::to_string(widthViews));
+  filter.widthViews = widthViews;
+  return filter;
+}
+
 Scene loadSceneOrDefault(const std::string& path) {
   return path.empty() ? defaultScene() : loadScene(path);
 }

@@ -11,6 +11,7 @@
 #include "parallax/camera/framing.h"
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
+#include "parallax/display/view_filter.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
@@ -94,6 +95,10 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
 // of field and budget, and the content's near and far as given and as shown. render, design
 // and info write the same keys.
 void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& framing);
+
+// --filter and --filter-width (render, bench) as the display camera's ViewFilter; throws
+// InputError naming the option for an unknown kind or a width outside [0.05, 20] views.
+ViewFilter viewFilterOption(const std::string& kind, double widthViews);
 
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
 Scene loadSceneOrDefault(const std::string& path);

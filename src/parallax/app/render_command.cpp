@@ -72,20 +72,6 @@ void reportFraming(const Framing& framing) {
   if (!warning.empty()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
 }
 
-// --filter and --filter-width as the camera's ViewFilter.
-ViewFilter viewFilterOption(const RenderOptions& o) {
-  ViewFilter filter;
-  if (!parseViewFilterKind(o.filter, filter.kind))
-    throw InputError("command line", "--filter",
-                     "expected none, view, tent, gaussian or period, got '" + o.filter + "'");
-  if (!(o.filterWidth >= 0.05 && o.filterWidth <= 20))
-    throw InputError(
-        "command line", "--filter-width",
-        "expected a width in views between 0.05 and 20, got " + std::to_string(o.filterWidth));
-  filter.widthViews = o.filterWidth;
-  return filter;
-}
-
 }  // namespace
 
 namespace {
@@ -160,7 +146,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
 
 void runRender(const RenderOptions& o) {
   RenderSettings settings = o.sampling.settings();
-  const ViewFilter filter = viewFilterOption(o);
+  const ViewFilter filter = viewFilterOption(o.filter, o.filterWidth);
   // The central ray is one ray: more samples of it would all be the same.
   if (filter.kind == ViewFilterKind::None && !o.directMapping && o.quilt.empty())
     settings.samplesPerPixel = 1;
