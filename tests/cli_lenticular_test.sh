@@ -21,6 +21,16 @@ check "render wrote the calibration beside it" grep -q '"value"' "$tmp/r/visual.
 check "render left no temporary files" bash -c "! ls '$tmp/r' | grep -q tmp"
 check "render a scene file with spp 4" run 0 lenticular render "$tmp/small.json" \
   "$src/scenes/spheres.json" --spp 4 -o "$tmp/r4"
+check "the default is 16 rays over each subpixel's view window" \
+  bash -c "grep -q '\"spp\": 16' '$tmp/r/render.json' && grep -q '\"kind\": \"view\"' '$tmp/r/render.json'"
+check "render --filter none" run 0 lenticular render "$tmp/small.json" --filter none -o "$tmp/rn"
+check "--filter none casts one ray per subpixel" grep -q '"spp": 1,' "$tmp/rn/render.json"
+check "render --filter tent --filter-width 2" run 0 lenticular render "$tmp/small.json" \
+  --filter tent --filter-width 2 --spp 4 -o "$tmp/rt"
+check "render.json records the filter's width" grep -q '"width_views": 2' "$tmp/rt/render.json"
+check "an unknown --filter exits 2" run 2 lenticular render "$tmp/small.json" --filter box -o "$tmp/bad0"
+check "an unknown --filter names the option" one_line_naming "--filter"
+check "a refused filter writes nothing" test ! -e "$tmp/bad0"
 
 check "simulate DIR" run 0 lenticular simulate "$tmp/r" --eye 0,0,1374 -o "$tmp/v.png"
 check "simulated view has the panel's size" test "$(png_size "$tmp/v.png")" = "96x128"

@@ -33,6 +33,22 @@ check "zero filter width exits 2" run 2 render --display "$tmp/small.json" --fil
   -o "$tmp/x"
 check "zero filter width names the option" one_line_naming "--filter-width"
 
+# Adaptive sampling: fewer rays, recorded, and the same picture for any thread count.
+for threads in 1 2; do
+  check "render --adaptive --threads $threads" run 0 render --display "$tmp/small.json" \
+    --adaptive --spp 16 --threads "$threads" -o "$tmp/adaptive$threads"
+done
+check "render.json records adaptive sampling" grep -q '"adaptive": true' "$tmp/adaptive1/render.json"
+cp "$tmp/adaptive1/render.json" "$tmp/out"
+mean_spp=$(json_number '"mean_spp":[-0-9.e]*')
+check "adaptive sampling spends between 4 and 16 rays per pixel ($mean_spp)" \
+  awk -v m="$mean_spp" 'BEGIN { exit !(m >= 4 && m < 16) }'
+check "adaptive sampling gives the same picture for 1 and 2 threads" \
+  cmp -s "$tmp/adaptive1/image.png" "$tmp/adaptive2/image.png"
+check "negative --adaptive-threshold exits 2" run 2 render --display "$tmp/small.json" \
+  --adaptive --adaptive-threshold -1 -o "$tmp/x"
+check "negative --adaptive-threshold names the option" one_line_naming "--adaptive-threshold"
+
 # The dense measure: 9 views x 2 eyes x 2 distances, plus the 9 design eyes.
 check "dense measure runs" run 0 simulate "$tmp/view" --reference --eyes-per-view 2 \
   --distances 0.8,1 --reference-spp 1 --json

@@ -71,8 +71,7 @@ struct BenchOptions {
   int repeats = 2;
   bool json = false;
   int simulateViews = 0;
-  std::string filter = viewFilterName(ViewFilter{}.kind);
-  double filterWidth = ViewFilter{}.widthViews;
+  FilterOptions filter;
 };
 
 void runBench(const BenchOptions& o) {
@@ -105,8 +104,7 @@ void runBench(const BenchOptions& o) {
     // pinhole at the view-zone centre whose film is the front layer: the same content, seen
     // by the coherent rays of one eye.
     const DisplayDesign design = loadDesignOrDefault(o.display);
-    camera = std::make_unique<DisplayCamera>(design, scene.display,
-                                             viewFilterOption(o.filter, o.filterWidth));
+    camera = std::make_unique<DisplayCamera>(design, scene.display, o.filter.filter());
     width = camera->width(), height = camera->height();
     const Vec3d eye{design.spec.viewZoneCenterXMm, design.spec.viewZoneHeightMm,
                     design.viewDistanceMm};
@@ -126,7 +124,7 @@ void runBench(const BenchOptions& o) {
   if (o.json) {
     JsonWriter json;
     json.set("/camera", o.camera);
-    if (o.camera == "display") json.set("/filter", o.filter);
+    if (o.camera == "display") json.set("/filter", o.filter.kind);
     json.set("/scene", scene.source);
     json.set("/triangles", uint64_t(scene.triangleCount()));
     json.set("/width", width);
@@ -173,12 +171,7 @@ void registerBenchCommand(CLI::App& cli) {
                   "Camera to measure: pinhole, or display (the image layer through the barrier)")
       ->capture_default_str();
   cmd->add_option("--display", options->display, "Display file for --camera display");
-  cmd->add_option("--filter", options->filter,
-                  "With --camera display: how a pixel's rays spread in angle, as render --filter")
-      ->capture_default_str();
-  cmd->add_option("--filter-width", options->filterWidth,
-                  "With --camera display: the filter's width in views, as render --filter-width")
-      ->capture_default_str();
+  addFilterOptions(*cmd, options->filter, "With --camera display: ", "as render --filter-width");
   cmd->add_option("--scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
   cmd->add_option("--size", options->size,
                   "Image size WIDTHxHEIGHT (pinhole; the display camera uses the panel's)")

@@ -258,7 +258,8 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
       ->check(CLI::IsMember({"auto", "pixel", "packet"}));
   cmd.add_flag("--adaptive", options.adaptive,
                "Adaptive sampling: --spp becomes a cap; a pixel stops after a stratified group "
-               "of samples once its mean is certain and its neighbours agree (RenderSettings)");
+               "of samples once its mean is certain (from the spread of its groups' means) and "
+               "its neighbours agree (docs/display-geometry.md, \"Adaptive sampling\")");
   cmd.add_option("--adaptive-threshold", options.adaptiveThreshold,
                  "With --adaptive: the standard error (in 8-bit sRGB steps of luminance) below "
                  "which a pixel stops")
@@ -282,7 +283,7 @@ void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f
   json.set(at + "/within_budget", f.withinBudget());
 }
 
-ViewFilter viewFilterOption(const std::string& kind, double widthViews) {
+ViewFilter FilterOptions::filter() const {
   ViewFilter filter;
   if (!parseViewFilterKind(kind, filter.kind))
     throw InputError("command line", "--filter",
@@ -293,6 +294,21 @@ ViewFilter viewFilterOption(const std::string& kind, double widthViews) {
         "expected a width in views between 0.05 and 20, got " + std::to_string(widthViews));
   filter.widthViews = widthViews;
   return filter;
+}
+
+void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& scope,
+                      const std::string& viewUnit) {
+  cmd.add_option("--filter", options.kind,
+                 scope +
+                     "How a pixel's rays spread in angle (docs/display-geometry.md, "
+                     "\"Super-sampling\"): none (the central ray, 1 spp), view (a box one view "
+                     "wide), tent (the pixel-times-opening fan), gaussian, or period (a whole "
+                     "aperture period: the old cell, for comparison)")
+      ->capture_default_str();
+  cmd.add_option("--filter-width", options.widthViews,
+                 scope + "The filter's width in views (" + viewUnit +
+                     "; box width; tent and Gaussian: full width at half maximum)")
+      ->capture_default_str();
 }
 
 Scene loadSceneOrDefault(const std::string& path) {

@@ -96,9 +96,19 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
 // and info write the same keys.
 void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& framing);
 
-// --filter and --filter-width (render, bench) as the display camera's ViewFilter; throws
-// InputError naming the option for an unknown kind or a width outside [0.05, 20] views.
-ViewFilter viewFilterOption(const std::string& kind, double widthViews);
+// --filter and --filter-width (render, bench, lenticular render): how a display pixel's rays
+// spread in angle (display/view_filter.h).
+struct FilterOptions {
+  std::string kind = viewFilterName(ViewFilter{}.kind);
+  double widthViews = ViewFilter{}.widthViews;
+  // The ViewFilter; throws InputError naming the option for an unknown kind or a width
+  // outside [0.05, 20] views.
+  ViewFilter filter() const;
+};
+// Adds the two options to `cmd`; `scope` begins their help ("" or "With --camera display: "),
+// `viewUnit` says what one view is for this display.
+void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& scope,
+                      const std::string& viewUnit);
 
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
 Scene loadSceneOrDefault(const std::string& path);

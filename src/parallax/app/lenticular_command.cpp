@@ -28,7 +28,8 @@ namespace fs = std::filesystem;
 
 struct LenticularRenderOptions {
   std::string calibration, scene, output = "out";
-  SamplingOptions sampling{1};
+  SamplingOptions sampling;  // 16 rays per subpixel over its view window, as render
+  FilterOptions filter;
   double distance = 0;
 };
 
@@ -39,7 +40,10 @@ struct LenticularSimulateOptions {
 };
 
 void runRender(const LenticularRenderOptions& o) {
-  const RenderSettings settings = o.sampling.settings();
+  RenderSettings settings = o.sampling.settings();
+  const ViewFilter filter = o.filter.filter();
+  // The central ray is one ray: more samples of it would all be the same.
+  if (filter.kind == ViewFilterKind::None) settings.samplesPerPixel = 1;
   const LenticularDesign design =
       designLenticular(loadLenticularCalibration(o.calibration), o.distance);
   // Before anything is allocated: the subpixel film (three columns per pixel), the panel
@@ -53,15 +57,18 @@ void runRender(const LenticularRenderOptions& o) {
   LenticularRender out;
   {
     ProgressBar bar("lenticular render");
-    out = renderLenticular(scene, accelerator, design, settings,
-                           [&bar](int done, int total) { bar.update(done, total); });
+    out = renderLenticular(
+        scene, accelerator, design, settings,
+        [&bar](int done, int total) { bar.update(done, total); }, filter);
   }
   JsonWriter record;
   record.set("/program", "parallax");
   record.set("/version", PARALLAX_VERSION);
-  record.set("/method", "lenticular: one ray per subpixel along its view");
+  record.set("/method", "lenticular: rays per subpixel around its view");
   record.set("/scene", scene.source);
-  record.set("/spp", o.sampling.spp);
+  record.set("/spp", settings.samplesPerPixel);
+  record.set("/filter/kind", viewFilterName(filter.kind));
+  record.set("/filter/width_views", filter.widthViews);
   record.set("/seed", o.sampling.seed);
   record.set("/seconds", out.stats.seconds);
   record.set("/rays", out.stats.totalRays());
@@ -83,7 +90,7 @@ void runRender(const LenticularRenderOptions& o) {
   std::printf("wrote %s/image.png (%dx%d), %s/visual.json, %s/render.json\n", dir,
               out.image.width(), out.image.height(), dir, dir);
   std::printf("%.2f pixels per lens, views over %.0f degrees; %d spp in %.2f s, %s\n",
-              design.pixelsPerLens, design.calibration.viewConeDegrees, o.sampling.spp,
+              design.pixelsPerLens, design.calibration.viewConeDegrees, settings.samplesPerPixel,
               out.stats.seconds,
               formatRate(double(out.stats.totalRays()) / out.stats.seconds).c_str());
 }
@@ -132,8 +139,12 @@ void registerLenticularCommand(CLI::App& cli) {
       "render", "The panel image: one ray per subpixel along its calibrated view");
   render->add_option("calibration", r->calibration, "Calibration file (visual.json)")->required();
   render->add_option("scene", r->scene, "Scene or mesh file (built-in scene if omitted)");
-  addSamplingOptions(*render, r->sampling,
-                     "Rays per subpixel (n*n over its area; 1: exact formula)");
+  addSamplingOptions(
+      *render, r->sampling,
+      "Rays per subpixel (n*n over its area and its view window; 1: the formula's ray)");
+  addFilterOptions(*render, r->filter, "",
+                   "one view: a pixel's step of view fraction, pitch_px / screenW, the spacing "
+                   "of one colour channel's views");
   render
       ->add_option("--distance", r->distance,
                    "Design viewer distance in mm, above 0 (default: the cone spans 1 m)")

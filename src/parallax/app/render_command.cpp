@@ -33,8 +33,7 @@ struct RenderOptions {
   bool subpixels = false;
   bool directMapping = false;
   std::string quilt, size;  // --quilt CxR, --size WxH of one quilt view
-  std::string filter = viewFilterName(ViewFilter{}.kind);
-  double filterWidth = ViewFilter{}.widthViews;
+  FilterOptions filter;
   std::string fit, focus, depthBudget;  // empty: the scene's (docs/display-geometry.md)
 };
 
@@ -146,7 +145,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
 
 void runRender(const RenderOptions& o) {
   RenderSettings settings = o.sampling.settings();
-  const ViewFilter filter = viewFilterOption(o.filter, o.filterWidth);
+  const ViewFilter filter = o.filter.filter();
   // The central ray is one ray: more samples of it would all be the same.
   if (filter.kind == ViewFilterKind::None && !o.directMapping && o.quilt.empty())
     settings.samplesPerPixel = 1;
@@ -220,16 +219,7 @@ void registerRenderCommand(CLI::App& cli) {
   cmd->add_option("--display", options->display, "Display file (built-in display if omitted)");
   addSamplingOptions(*cmd, options->sampling,
                      "Rays per pixel: n*n stratified over pixel and aperture");
-  cmd->add_option("--filter", options->filter,
-                  "How a pixel's rays spread in angle (docs/display-geometry.md, "
-                  "\"Super-sampling\"): none (the central ray, 1 spp), view (a box one view "
-                  "wide), tent (the pixel-times-opening fan), gaussian, or period (a whole "
-                  "aperture period: the old cell, for comparison)")
-      ->capture_default_str();
-  cmd->add_option("--filter-width", options->filterWidth,
-                  "The filter's width in views (box width; tent and Gaussian: full width at "
-                  "half maximum)")
-      ->capture_default_str();
+  addFilterOptions(*cmd, options->filter, "", "one view: a pixel column's angle at the gap");
   cmd->add_option("--fit", options->fit,
                   "How the content is framed: window (the width only), depth (the width, the "
                   "zero-parallax plane inside the content and the depth compressed into the "

@@ -7,19 +7,24 @@
 #include "parallax/core/transform.h"
 #include "parallax/display/display.h"
 #include "parallax/display/lenticular.h"
+#include "parallax/display/view_filter.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax {
 
 // The film has one column per subpixel: column 3x + c is channel c (0 R, 1 G, 2 B) of panel
 // column x, wherever the calibration puts that subpixel. A film sample's position inside its
-// column moves the ray's panel point across the subpixel's area and its view with it (the formula
-// is continuous); the column's centre casts exactly the published formula's ray.
+// column moves the ray's panel point across the subpixel's area; its aperture sample spreads the
+// ray's view around the subpixel's own (the formula at the pixel's centre) by the filter, whose
+// width is in the channel's view steps (channelViewStep: one pixel's worth of view fraction, the
+// spacing at which the panel samples each channel's views, docs/lenticular.md "Prefilter").
+// The column's centre casts exactly the published formula's ray.
 class LenticularCamera final : public Camera {
  public:
   // The panel is the display's front layer: its width in mm (from DPI) maps onto
   // placement.width scene units (worldFromDisplay).
-  LenticularCamera(const LenticularDesign& design, const DisplayPlacement& placement);
+  LenticularCamera(const LenticularDesign& design, const DisplayPlacement& placement,
+                   const ViewFilter& filter = {});
 
   int width() const override { return 3 * design_.calibration.screenW; }
   int height() const override { return design_.calibration.screenH; }
@@ -29,6 +34,8 @@ class LenticularCamera final : public Camera {
  private:
   LenticularDesign design_;
   Transform worldFromDisplay_;
+  ViewFilterKind filterKind_;
+  ViewFilterWarp warp_;  // offsets in view steps
 };
 
 // The lenticular panel's window, framed for the design viewer straight in front of it.

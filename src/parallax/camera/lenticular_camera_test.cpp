@@ -69,6 +69,51 @@ TEST(LenticularCamera, SamplesSpreadOverTheSubpixel) {
   }
 }
 
+// The prefilter's footprint: a sub-ray's view is the subpixel's own plus the filter's offset in
+// channel view steps (pitch_px / screenW), whatever its position on the subpixel; none is the
+// central ray for any sample, and period spreads over the whole lens period.
+TEST(LenticularCamera, FilterFootprintMatchesItsFormula) {
+  const LenticularDesign d = smallDesign();
+  const Transform display = worldFromDisplay(DisplayPlacement{}, displayWindow(d)).inverse();
+  const double step = channelViewStep(d);
+  EXPECT_NEAR(step, d.pitchPx / 180.0, 1e-12);
+  EXPECT_NEAR(step, 1.0 / d.pixelsPerLens, 1e-12);
+  const int x = 70, y = 40, channel = 2;
+  const double own = viewFraction(d, x, y, channel);
+  // The horizontal angle a ray leaves the panel at, as a view fraction (not wrapped).
+  const auto viewOf = [&](const LenticularCamera& camera, float within, float u) {
+    const Ray ray = camera.generateRay({3.0f * x + channel + within, y + 0.3f, u, 0.5f});
+    const Vec3f dir = display.vector(ray.direction);
+    return viewFractionOfAngle(d, std::atan2(-double(dir.x), -double(dir.z)));
+  };
+  // viewFractionOfAngle is not wrapped: compare with the own view modulo whole lens periods.
+  const auto offset = [&](double view) { return view - own - std::round(view - own); };
+  const LenticularCamera box(d, {}, {ViewFilterKind::View, 1.0});
+  const LenticularCamera wideBox(d, {}, {ViewFilterKind::View, 2.5});
+  const LenticularCamera tent(d, {}, {ViewFilterKind::Tent, 1.0});
+  const LenticularCamera none(d, {}, {ViewFilterKind::None, 1.0});
+  const LenticularCamera period(d, {}, {ViewFilterKind::Period, 1.0});
+  for (const float within : {0.05f, 0.5f, 0.95f})
+    for (const float u : {0.0f, 0.25f, 0.5f, 0.75f, 0.999f}) {
+      EXPECT_NEAR(offset(viewOf(box, within, u)), (u - 0.5) * step, 1e-5);
+      EXPECT_NEAR(offset(viewOf(wideBox, within, u)), 2.5 * (u - 0.5) * step, 1e-5);
+      // The tent's inverse CDF: half of its rays within 1 - sqrt(1/2) of a step of the centre.
+      const double t = u < 0.5 ? std::sqrt(2.0 * u) - 1 : 1 - std::sqrt(2.0 * (1 - u));
+      EXPECT_NEAR(offset(viewOf(tent, within, u)), t * step, 1e-5);
+      EXPECT_NEAR(offset(viewOf(none, within, u)), 0.0, 1e-5);
+      // (+-1/2 are the same place in the period.)
+      EXPECT_NEAR(std::remainder(offset(viewOf(period, within, u)) - (u - 0.5), 1.0), 0.0, 1e-5);
+    }
+  // The position still moves over the subpixel's area.
+  const auto hitX = [&](const LenticularCamera& camera, float within) {
+    const Ray ray = camera.generateRay({3.0f * x + channel + within, y + 0.5f, 0.9f, 0.5f});
+    const Vec3f o = display.point(ray.origin), dir = display.vector(ray.direction);
+    return o.x - o.z / dir.z * dir.x;
+  };
+  EXPECT_NEAR(hitX(box, 0.99f) - hitX(box, 0.01f), 0.98 * d.pixelPitchMm / 3, 1e-3);
+  EXPECT_NEAR(hitX(none, 0.99f) - hitX(none, 0.01f), 0.0, 1e-6);
+}
+
 // A second code path: the one-axis window camera placed where a subpixel's ray starts casts the
 // same ray through that subpixel's point.
 TEST(LenticularCamera, AgreesWithTheWindowCameraAtTheRaysEye) {

@@ -158,8 +158,13 @@ double viewFractionOfAngle(const LenticularDesign& d, double angle) {
 }
 
 LenticularRay lenticularRay(const LenticularDesign& d, double filmX, double filmY, int channel) {
+  return lenticularRay(d, filmX, filmY, channel, viewFractionAt(d, filmX, filmY, channel));
+}
+
+LenticularRay lenticularRay(const LenticularDesign& d, double filmX, double filmY, int channel,
+                            double viewFraction) {
   LenticularRay r;
-  r.viewFraction = viewFractionAt(d, filmX, filmY, channel);
+  r.viewFraction = viewFraction;
   r.panelPoint = subpixelPointMm(d, filmX, filmY, channel);
   const double D = d.viewDistanceMm;
   r.origin = {r.panelPoint.x + D * std::tan(viewAngle(d, r.viewFraction)), 0.0, D};

@@ -99,5 +99,16 @@ struct LenticularRay {
 };
 LenticularRay lenticularRay(const LenticularDesign& design, double filmX, double filmY,
                             int channel);
+// The same ray leaving the same panel point, with the view fraction given instead of the
+// formula's (a prefilter's sub-ray; the fraction is not wrapped, so it may pass the cone's edge).
+LenticularRay lenticularRay(const LenticularDesign& design, double filmX, double filmY, int channel,
+                            double viewFraction);
+
+// The view step of one colour channel: neighbouring subpixels of a channel lie one pixel apart
+// along a row, so the panel samples each channel's views every pitch_px / screenW, one
+// pixel's worth of view fraction (the unit of a lenticular ViewFilter's width).
+inline double channelViewStep(const LenticularDesign& design) {
+  return design.pitchPx / design.calibration.screenW;
+}
 
 }  // namespace parallax

@@ -15,10 +15,12 @@ struct LenticularRender {
   RenderStats stats;
 };
 
-// Each subpixel is rendered along its own ray and keeps only its own colour channel; the panel
-// sits where the scene's display placement puts it (its width from DPI).
+// Each subpixel is rendered along its own rays and keeps only its own colour channel; the panel
+// sits where the scene's display placement puts it (its width from DPI). `filter` spreads a
+// subpixel's rays around its view (LenticularCamera).
 LenticularRender renderLenticular(const Scene& scene, const Accelerator& accelerator,
                                   const LenticularDesign& design, const RenderSettings& settings,
-                                  const ProgressCallback& progress = {});
+                                  const ProgressCallback& progress = {},
+                                  const ViewFilter& filter = {});
 
 }  // namespace parallax

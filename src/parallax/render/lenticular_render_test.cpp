@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/lenticular_camera.h"
@@ -71,6 +72,41 @@ TEST(LenticularRender, SeenFromInsideTheConeItIsTheWindowView) {
   const Image level = simulateLenticularView(d, panel, centre);
   const Image raised = simulateLenticularView(d, panel, {0, 80, D});
   EXPECT_EQ(meanSquaredError(level, raised), 0.0);
+}
+
+// What viewers see: eyes spread evenly over the cone (not only where a subpixel's ray points)
+// see the panel closer to the ideal window views when each subpixel's rays cover its own view
+// window (filter view) than with its central ray alone, and much closer than when they cover
+// the whole lens period.
+TEST(LenticularRender, TheViewFilterShowsEyesAcrossTheConeMoreThanTheCentralRay) {
+  const LenticularDesign d = smallDesign();
+  const Scene scene = smallScene();
+  const Accelerator accel(scene);
+  RenderSettings sixteen;
+  sixteen.samplesPerPixel = 16;
+  const Image none = renderLenticular(scene, accel, d, {}, {}, {ViewFilterKind::None, 1}).image;
+  const Image view = renderLenticular(scene, accel, d, sixteen, {}, {}).image;
+  const Image period =
+      renderLenticular(scene, accel, d, sixteen, {}, {ViewFilterKind::Period, 1}).image;
+  const DisplayDesign window = lenticularWindowDesign(d);
+  RenderSettings reference;
+  reference.samplesPerPixel = 4;
+  const double D = d.viewDistanceMm, cone = 40 * kPi / 180;
+  double noneError = 0, viewError = 0, periodError = 0;
+  const int eyes = 13;
+  for (int i = 0; i < eyes; ++i) {
+    const double angle = (-0.4 + 0.8 * i / (eyes - 1)) * cone;
+    const Vec3d eye{D * std::tan(angle), 0, D};
+    const WindowCamera camera(eye, window, scene.display, 180, 120, true);
+    const Image ideal = render(scene, accel, camera, reference);
+    noneError += meanSquaredError(simulateLenticularView(d, none, eye), ideal) / eyes;
+    viewError += meanSquaredError(simulateLenticularView(d, view, eye), ideal) / eyes;
+    periodError += meanSquaredError(simulateLenticularView(d, period, eye), ideal) / eyes;
+  }
+  std::printf("mean squared error over %d eyes: none %.5f, view %.5f, period %.5f\n", eyes,
+              noneError, viewError, periodError);
+  EXPECT_LT(viewError, noneError);
+  EXPECT_LT(2 * viewError, periodError);
 }
 
 }  // namespace

@@ -28,42 +28,62 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
   Color16 sum, weight;
   sum.fill(0.0f);
   weight.fill(1.0f);
-  // Adaptive sampling: running sums of each lane's sample luminance (sRGB-encoded) and its
-  // square, for the standard error of the mean.
-  double lumSum[16] = {}, lumSquares[16] = {};
+  // Adaptive sampling: each lane's sample luminance (sRGB-encoded), summed over the current
+  // group, its squares over the first group, and the sums of its group means and their squares.
+  double groupLum[16] = {}, firstSquares[16] = {}, meanSum[16] = {}, meanSquares[16] = {};
   const int last = walk.samplesPerPixel - 1;
   const double threshold2 = settings.adaptiveThreshold * settings.adaptiveThreshold;
+  const double neighbourLimit =
+      RenderSettings::kNeighbourOverThreshold * settings.adaptiveThreshold;
   forEachPacket(grid, tile, camera, walk, [&](FilmPacket& packet) {
     if (packet.pass == 0) {
       sum.fill(0.0f);
-      std::fill(std::begin(lumSum), std::end(lumSum), 0.0);
-      std::fill(std::begin(lumSquares), std::end(lumSquares), 0.0);
+      for (double* a : {groupLum, firstSquares, meanSum, meanSquares}) std::fill(a, a + 16, 0.0);
     }
     stats.cameraRays += uint64_t(packet.activeCount);
     Color16 before = sum;
     tracer.trace(packet.rays, weight, packet.rngs, sum, 0, stats);
     const int taken = packet.pass + 1;
     if (settings.adaptive) {
+      const int group = walk.groupSize;
       for (int lane = 0; lane < 16; ++lane) {
         if (!packet.rays.active[lane]) continue;
         const Vec3f sample = sum.at(lane) - before.at(lane);
         const double l = linearToSrgb(std::clamp(luminance(sample), 0.0f, 1.0f));
-        lumSum[lane] += l, lumSquares[lane] += l * l;
+        groupLum[lane] += l;
+        if (taken <= group) firstSquares[lane] += l * l;
       }
-      // After each whole group (of at least 3 samples, for a variance to mean something):
-      // stop the pixels whose mean is already certain.
-      const int firstCheck = walk.groupSize >= 3 ? walk.groupSize : 2 * walk.groupSize;
-      if (taken != walk.samplesPerPixel && taken >= firstCheck && taken % walk.groupSize == 0) {
+      if (taken % group == 0) {
+        for (int lane = 0; lane < 16; ++lane) {
+          const double groupMean = groupLum[lane] / group;
+          meanSum[lane] += groupMean, meanSquares[lane] += groupMean * groupMean;
+          groupLum[lane] = 0;
+        }
+      }
+      // After each whole group, stop the pixels whose mean is already certain. The standard
+      // error of the mean comes from the spread of the group means once there are two groups:
+      // each group is stratified (a Latin set), and a stratified mean varies far less than
+      // independent samples would say. After the first group only the samples' own spread
+      // is known (the independent-sample estimate, which overstates the error, so errs on the
+      // safe side); it needs at least 3 samples to mean something.
+      const int groups = taken / group;
+      const bool check =
+          taken != walk.samplesPerPixel && taken % group == 0 && (groups >= 2 || group >= 3);
+      if (check) {
         // A few samples can all land on one side of an edge and agree; an edge that near
         // shows in the neighbouring pixels of the packet (the lanes beside and above or
         // below), so a pixel also stops only when its neighbours' means agree with its own.
         const PacketShape& shape = grid.shape;
         double mean[16];
-        for (int lane = 0; lane < 16; ++lane) mean[lane] = lumSum[lane] / taken;
+        for (int lane = 0; lane < 16; ++lane) mean[lane] = meanSum[lane] / groups;
         for (int lane = 0; lane < 16; ++lane) {
           if (!packet.rays.active[lane]) continue;
-          const double variance = std::max(0.0, lumSquares[lane] / taken - mean[lane] * mean[lane]);
-          if (variance / (taken - 1) > threshold2) continue;  // squared standard error
+          const double squaredError =
+              groups >= 2 ? std::max(0.0, meanSquares[lane] / groups - mean[lane] * mean[lane]) /
+                                (groups - 1)
+                          : std::max(0.0, firstSquares[lane] / group - mean[lane] * mean[lane]) /
+                                (group - 1);
+          if (squaredError > threshold2) continue;
           const int column = lane % shape.columns, row = lane / shape.columns;
           bool neighboursAgree = true;
           for (const auto& [dc, dr] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
@@ -71,7 +91,7 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
             if (c < 0 || c >= shape.columns || r < 0 || r >= shape.rows) continue;
             const int other = r * shape.columns + c;
             if (packet.x[other] >= image.width() || packet.y[other] >= image.height()) continue;
-            neighboursAgree &= std::abs(mean[other] - mean[lane]) <= settings.adaptiveNeighbour;
+            neighboursAgree &= std::abs(mean[other] - mean[lane]) <= neighbourLimit;
           }
           if (!neighboursAgree) continue;
           image.at(packet.x[lane], packet.y[lane]) = sum.at(lane) * (1.0f / float(taken));

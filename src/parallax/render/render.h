@@ -19,16 +19,16 @@ struct RenderSettings {
   int threads = 0;          // 0: all cores. The image does not depend on it.
   JitterSharing jitter = JitterSharing::Auto;  // tile_packets.h
   // Adaptive sampling: samplesPerPixel becomes a cap. A pixel's samples come in stratified
-  // groups (PacketWalk's progressive order); after each group, a pixel whose
-  // estimate is already certain stops: the standard error of the mean of its samples'
-  // luminance, sRGB-encoded, below `adaptiveThreshold` (in [0, 1] code values; 1/255 is one
-  // 8-bit step). Each pixel decides on its own samples only, so the image does not depend on
-  // the thread count.
+  // groups (PacketWalk's progressive order); after each group, a pixel whose estimate is
+  // already certain stops: the standard error of its mean luminance, sRGB-encoded, below
+  // `adaptiveThreshold` (in [0, 1] code values; 1/255 is one 8-bit step), estimated from the
+  // spread of its group means once it has two groups (from its samples' spread after the
+  // first), and the means of its neighbours in the packet within kNeighbourOverThreshold
+  // thresholds of its own (docs/display-geometry.md, "Adaptive sampling"). Each pixel decides
+  // on its own samples and its packet's only, so the image does not depend on the thread count.
   bool adaptive = false;
-  double adaptiveThreshold = 0.5 / 255.0;
-  // ... and whose neighbours in the packet have means within this much of its own (an edge
-  // that its few samples missed shows there).
-  double adaptiveNeighbour = 2.0 / 255.0;
+  double adaptiveThreshold = 2.0 / 255.0;
+  static constexpr double kNeighbourOverThreshold = 2.0;
 };
 
 struct RenderStats {

@@ -211,6 +211,50 @@ TEST(Render, AdaptiveSamplingStopsFlatPixelsAfterOneGroup) {
   for (const Vec3f& p : flat.pixels()) EXPECT_NEAR(p.x, 0.25f * 0.8f, 1e-6f);
 }
 
+// The stopping test after two groups uses the spread of the group means, not of the samples:
+// a stratified group varies far less than independent samples. Every pixel here sees one
+// period of a black-and-white stripe, black on its left half and white on its right: its
+// samples disagree completely (so no pixel stops after the first group), but each Latin group
+// has two samples in each half, so the group means agree and the pixels stop after two groups
+// (a sample that lands on one of the texture's 1/1024-period ramps can make one go on).
+TEST(Render, AdaptiveSamplingStopsStratifiedStripesAfterTwoGroups) {
+  constexpr int kSize = 8;
+  const PinholeCamera camera = downCamera(kSize);
+  const float pixel = 2 * 10 * std::tan(30 * kPi / 180) / kSize;  // a pixel's width on the plane
+  Scene scene;
+  Image stripe(1024, 1);
+  for (int x = 512; x < 1024; ++x) stripe.at(x, 0) = Vec3f(1.0f);
+  scene.images.push_back(stripe);
+  Texture texture;
+  texture.kind = Texture::Kind::Image;
+  texture.image = 0;
+  scene.textures.push_back(texture);
+  Material m;
+  m.diffuse = Vec3f(1.0f);
+  m.diffuseTexture = 0;
+  scene.materials.push_back(m);
+  scene.ambient = Vec3f(1.0f);
+  // Two pixels' margin on each side; u advances one period per pixel, starting on a pixel edge.
+  const float left = -(kSize / 2 + 2) * pixel, across = (kSize + 4) * pixel;
+  TriangleMesh plane;
+  plane.positions = {
+      {left, 0, 50}, {left + across, 0, 50}, {left + across, 0, -50}, {left, 0, -50}};
+  plane.normals.assign(4, Vec3f{0, 1, 0});
+  plane.uvs = {{0, 0}, {float(kSize + 4), 0}, {float(kSize + 4), 1}, {0, 1}};
+  plane.indices = {0, 1, 2, 0, 2, 3};
+  scene.meshes.push_back(plane);
+  const Accelerator accel(scene);
+  RenderSettings settings;
+  settings.samplesPerPixel = 16;
+  settings.adaptive = true;
+  RenderStats stats;
+  const Image img = render(scene, accel, camera, settings, &stats);
+  const uint64_t pixels = kSize * kSize;
+  EXPECT_GE(stats.cameraRays, 8 * pixels);  // none stopped after the first group
+  EXPECT_LE(stats.cameraRays, 9 * pixels);  // nearly all after the second
+  for (const Vec3f& p : img.pixels()) EXPECT_NEAR(p.x, 0.5f, 0.01f);
+}
+
 TEST(Render, AdaptiveSamplingIsDeterministicAndSpendsRaysOnEdges) {
   const Scene scene = defaultScene();
   const Accelerator accel(scene);
