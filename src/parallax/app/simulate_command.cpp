@@ -43,7 +43,7 @@ struct SimulateOptions {
   std::vector<std::string> eyes;
   std::string output;
   std::string size;
-  int spp = 1;
+  int spp = 16;  // 4 x 4 per output pixel: one sample per pixel aliases against the mask
   double pupil = 0.0;
   int pupilSamples = 16;
   double diffuser = 0.0;
@@ -443,7 +443,9 @@ void registerSimulateCommand(CLI::App& cli) {
   cmd->add_option("-o,--output", o->output,
                   "Output image (several eyes: FILE-K), or the prefix of the sweep's files");
   cmd->add_option("--size", o->size, "Output size WIDTHxHEIGHT (default: the front layer's)");
-  cmd->add_option("--spp", o->spp, "Samples per output pixel (n*n)")
+  cmd->add_option("--spp", o->spp,
+                  "Samples per output pixel (n*n; 1: the pixel centre, which aliases against "
+                  "the mask between design eyes)")
       ->capture_default_str()
       ->check(squareCount());
   cmd->add_option("--pupil", o->pupil, "Pupil diameter in mm, 0 (a pinhole eye) to 100")
