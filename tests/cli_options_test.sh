@@ -93,9 +93,14 @@ for bad in 0 -1 nan inf abc 1e9; do
 done
 
 # ---- simulate --------------------------------------------------------------------------------
-for bad in 0 2 -4 abc nan; do
+for bad in 2 -4 abc nan; do
   refuse "simulate --spp '$bad'" --spp simulate "$tmp/set" --spp "$bad" -o "$o.png"
 done
+check "simulate --spp 0 (the exact integral, the default) runs" run 0 simulate "$tmp/set" \
+  --spp 0 -o "$tmp/spp0.png"
+check "simulate --spp 0 is the default" run 0 simulate "$tmp/set" -o "$tmp/sppdefault.png"
+check "simulate --spp 0 and the default write the same picture" \
+  cmp -s "$tmp/spp0.png" "$tmp/sppdefault.png"
 for bad in -1 101 nan inf abc; do
   refuse "simulate --pupil '$bad'" --pupil simulate "$tmp/set" --pupil "$bad" -o "$o.png"
 done

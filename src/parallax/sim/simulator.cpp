@@ -45,8 +45,8 @@ void checkOptions(const SimulationOptions& o) {
   };
   if (o.width < 0 || o.height < 0) throw fail("/width", "must be 0 (native) or positive");
   const int n = int(std::lround(std::sqrt(double(std::max(o.samplesPerPixel, 0)))));
-  if (o.samplesPerPixel < 1 || n * n != o.samplesPerPixel)
-    throw fail("/samples_per_pixel", "must be a square (1, 4, 9, 16, ...)");
+  if (o.samplesPerPixel < 0 || n * n != o.samplesPerPixel)
+    throw fail("/samples_per_pixel", "must be 0 (exact) or a square (1, 4, 9, 16, ...)");
   if (!(o.pupilDiameterMm >= 0) || !std::isfinite(o.pupilDiameterMm))
     throw fail("/pupil_diameter_mm", "must be 0 (a pinhole eye) or positive");
   if (o.pupilSamples < 1) throw fail("/pupil_samples", "must be at least 1");
@@ -58,6 +58,59 @@ void checkOptions(const SimulationOptions& o) {
 // Probability that a normal variable of standard deviation sigma falls below x.
 double normalCdf(double x, double sigma) {
   return 0.5 * std::erfc(-x / (sigma * std::sqrt(2.0)));
+}
+
+// One piece of an output pixel along one axis: the front-layer cell and the rear-layer cell the
+// eye's lines meet over that piece, and the piece's share of the pixel.
+struct Piece {
+  int front = 0, rear = 0;
+  float weight = 0;
+};
+
+// The pieces of output pixels 0 .. count-1 along one axis, in order, with start[i] .. start[i+1]
+// those of pixel i. A position t in [0, 1] across the front layer lies in front cell
+// floor(t frontCells) and meets the rear layer at rear cell coordinate u(t) = u0 + du t (affine:
+// the eye's line through the front point, continued by the gap). samplesPerAxis 0: the pieces
+// between every front and rear cell edge inside the pixel, weighted by length (the exact
+// integral of the two box-pixel layers' product). n > 0: n point samples at the stratum
+// centres, 1/n each. A rear cell outside [0, rearCells) becomes `outside`.
+void piecesAlongAxis(int count, int frontCells, int rearCells, double u0, double du,
+                     int samplesPerAxis, int outside, std::vector<Piece>& pieces,
+                     std::vector<uint32_t>& start) {
+  pieces.clear();
+  start.assign(size_t(count) + 1, 0);
+  const auto add = [&](double t, float weight) {
+    Piece piece;
+    piece.front = std::clamp(int(std::floor(t * frontCells)), 0, frontCells - 1);
+    const double u = std::floor(u0 + du * t);
+    piece.rear = u >= 0 && u < rearCells ? int(u) : outside;
+    piece.weight = weight;
+    pieces.push_back(piece);
+  };
+  std::vector<double> edges;
+  for (int i = 0; i < count; ++i) {
+    start[size_t(i)] = uint32_t(pieces.size());
+    const double t0 = double(i) / count, t1 = double(i + 1) / count;
+    if (samplesPerAxis > 0) {
+      for (int k = 0; k < samplesPerAxis; ++k)
+        add(t0 + (t1 - t0) * (k + 0.5) / samplesPerAxis, 1.0f / float(samplesPerAxis));
+      continue;
+    }
+    edges.assign({t0, t1});
+    for (int k = int(std::ceil(t0 * frontCells)); k < t1 * frontCells; ++k)
+      if (k > t0 * frontCells) edges.push_back(double(k) / frontCells);
+    if (du != 0) {
+      const double ua = u0 + du * t0, ub = u0 + du * t1;
+      for (double m = std::ceil(std::min(ua, ub)); m < std::max(ua, ub); ++m)
+        edges.push_back((m - u0) / du);
+    }
+    std::sort(edges.begin(), edges.end());
+    for (size_t e = 0; e + 1 < edges.size(); ++e) {
+      const double a = std::clamp(edges[e], t0, t1), b = std::clamp(edges[e + 1], t0, t1);
+      if (b > a) add(0.5 * (a + b), float((b - a) / (t1 - t0)));
+    }
+  }
+  start[size_t(count)] = uint32_t(pieces.size());
 }
 
 }  // namespace
@@ -143,7 +196,6 @@ DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages laye
   checkOptions(options);
   threads_ = options.threads > 0 ? options.threads
                                  : int(std::max(1u, std::thread::hardware_concurrency()));
-  samplesPerAxis_ = int(std::lround(std::sqrt(double(options.samplesPerPixel))));
 
   double sum = 0;
   for (const Vec3f& p : layers.mask.pixels()) sum += (double(p.x) + p.y + p.z) / 3.0;
@@ -166,7 +218,7 @@ DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages laye
       if (layer->striped) normaliser *= 3.0;
     if (maskMean_ > 0) normaliser /= maskMean_;  // a black mask has nothing to normalise
   }
-  scale_ = normaliser / (double(options.samplesPerPixel) * double(pupilPoints({}).size()));
+  scale_ = normaliser / double(pupilPoints({}).size());
 }
 
 std::vector<Vec3d> DisplaySimulator::pupilPoints(const Vec3d& eye) const {
@@ -186,40 +238,37 @@ std::vector<Vec3d> DisplaySimulator::pupilPoints(const Vec3d& eye) const {
 Image DisplaySimulator::view(const Vec3d& eye) const {
   if (!(eye.z > 0) || !std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z))
     throw InputError("simulation", "/eye", "the eye must be in front of the display (z > 0)");
-  const int n = samplesPerAxis_;
+  const int n = int(std::lround(std::sqrt(double(options_.samplesPerPixel))));
   const std::vector<Vec3d> eyes = pupilPoints(eye);
   const size_t pupil = eyes.size();
-  const size_t columnSamples = size_t(width_) * size_t(n), rowSamples = size_t(height_) * size_t(n);
 
-  // The eye's line through F meets the rear layer where x and y depend on F.x and F.y alone,
-  // so every lookup reduces to one column table and one row table per pupil point.
-  std::vector<int> frontColumn(columnSamples), frontRow(rowSamples);
-  std::vector<int> rearColumn(pupil * columnSamples), rearRow(pupil * rowSamples);
+  // The eye's line through a front point F meets the rear layer where x depends on F.x alone
+  // and y on F.y alone, so an output pixel's light is a sum over its pieces along x times its
+  // pieces along y (piecesAlongAxis), the same for every row and column, once per pupil point.
   const double frontWidth = front_.columns * front_.cellWidthMm;
   const double frontHeight = front_.rows * front_.cellHeightMm;
   const double rearWidth = rear_.columns * rear_.cellWidthMm;
   const double rearHeight = rear_.rows * rear_.cellHeightMm;
-  for (size_t s = 0; s < columnSamples; ++s) {
-    const double t = (double(s) + 0.5) / double(columnSamples);  // across the front layer
-    frontColumn[s] = std::clamp(int(std::floor(t * front_.columns)), 0, front_.columns - 1);
-    const double frontX = (t - 0.5) * frontWidth;
-    for (size_t p = 0; p < pupil; ++p) {
-      const Vec3d& e = eyes[p];
-      const double rearX = e.x + (frontX - e.x) * (e.z + design_.gapMm) / e.z;
-      const double c = std::floor((rearX + 0.5 * rearWidth) / rear_.cellWidthMm);
-      rearColumn[p * columnSamples + s] = c >= 0 && c < rear_.columns ? int(c) : rear_.columns;
-    }
-  }
-  for (size_t s = 0; s < rowSamples; ++s) {
-    const double t = (double(s) + 0.5) / double(rowSamples);  // down the front layer
-    frontRow[s] = std::clamp(int(std::floor(t * front_.rows)), 0, front_.rows - 1);
-    const double frontY = (0.5 - t) * frontHeight;
-    for (size_t p = 0; p < pupil; ++p) {
-      const Vec3d& e = eyes[p];
-      const double rearY = e.y + (frontY - e.y) * (e.z + design_.gapMm) / e.z;
-      const double r = std::floor((0.5 * rearHeight - rearY) / rear_.cellHeightMm);
-      rearRow[p * rowSamples + s] = r >= 0 && r < rear_.rows ? int(r) : -1;
-    }
+  std::vector<std::vector<Piece>> across(pupil), down(pupil);
+  std::vector<std::vector<uint32_t>> acrossStart(pupil), downStart(pupil);
+  for (size_t p = 0; p < pupil; ++p) {
+    const Vec3d& e = eyes[p];
+    const double stretch = (e.z + design_.gapMm) / e.z;
+    // x across the front layer: frontX = (t - 1/2) frontWidth; rearX = e.x + (frontX - e.x)
+    // stretch; rear column coordinate (rearX + rearWidth / 2) / cell width.
+    const auto column = [&](double t) {
+      const double rearX = e.x + ((t - 0.5) * frontWidth - e.x) * stretch;
+      return (rearX + 0.5 * rearWidth) / rear_.cellWidthMm;
+    };
+    piecesAlongAxis(width_, front_.columns, rear_.columns, column(0), column(1) - column(0), n,
+                    rear_.columns, across[p], acrossStart[p]);
+    // y down the front layer: frontY = (1/2 - t) frontHeight; rear row coordinate from the top.
+    const auto row = [&](double t) {
+      const double rearY = e.y + ((0.5 - t) * frontHeight - e.y) * stretch;
+      return (0.5 * rearHeight - rearY) / rear_.cellHeightMm;
+    };
+    piecesAlongAxis(height_, front_.rows, rear_.rows, row(0), row(1) - row(0), n, -1, down[p],
+                    downStart[p]);
   }
 
   Image out(width_, height_);
@@ -229,18 +278,18 @@ Image DisplaySimulator::view(const Vec3d& eye) const {
     for (int j = begin; j < end; ++j) {
       std::fill(sum.begin(), sum.end(), Vec3f(0.0f));
       for (size_t p = 0; p < pupil; ++p)
-        for (int sy = 0; sy < n; ++sy) {
-          const size_t rowSample = size_t(j) * size_t(n) + size_t(sy);
-          const int rr = rearRow[p * rowSamples + rowSample];
-          if (rr < 0) continue;  // above or below the rear panel: dark
-          const Vec3f* front = front_.row(frontRow[rowSample]);
-          const Vec3f* rear = rear_.row(rr);
-          const int* fc = frontColumn.data();
-          const int* rc = rearColumn.data() + p * columnSamples;
+        for (uint32_t k = downStart[p][size_t(j)]; k < downStart[p][size_t(j) + 1]; ++k) {
+          const Piece& vertical = down[p][k];
+          if (vertical.rear < 0) continue;  // above or below the rear panel: dark
+          const Vec3f* front = front_.row(vertical.front);
+          const Vec3f* rear = rear_.row(vertical.rear);
+          const Piece* piece = across[p].data();
+          const uint32_t* starts = acrossStart[p].data();
           for (int i = 0; i < width_; ++i) {
             Vec3f light(0.0f);
-            for (int sx = 0; sx < n; ++sx, ++fc, ++rc) light += front[*fc] * rear[*rc];
-            sum[size_t(i)] += light;
+            for (uint32_t a = starts[i]; a < starts[i + 1]; ++a)
+              light += front[piece[a].front] * rear[piece[a].rear] * piece[a].weight;
+            sum[size_t(i)] += light * vertical.weight;
           }
         }
       for (int i = 0; i < width_; ++i) out.at(i, j) = sum[size_t(i)] * scale;

@@ -21,9 +21,11 @@ struct SimulationOptions {
   // Output pixels covering the front layer's rectangle like a camera film (row 0 at the top);
   // 0 = the front layer's resolution.
   int width = 0, height = 0;
-  // n x n stratified positions per output pixel at the stratum centres (1 = the pixel centre);
-  // must be a square (1, 4, 9, 16, ...).
-  int samplesPerPixel = 1;
+  // 0: each output pixel's area integrated exactly (the product of the two layers' box pixels,
+  // piecewise constant along the eye's lines, summed over the pieces). n x n: point samples at
+  // the stratum centres (1 = the pixel centre), which alias against a mask whose openings are
+  // one pixel wide (docs/simulator.md); must then be a square (1, 4, 9, 16, ...).
+  int samplesPerPixel = 0;
   // 0: a pinhole eye. Otherwise the view is averaged over pupilSamples points of a disk of this
   // diameter in the plane z = eye.z (a Fibonacci spiral: deterministic, evenly spread).
   double pupilDiameterMm = 0.0;
@@ -86,8 +88,8 @@ class DisplaySimulator {
   SimulationOptions options_;
   Layer front_, rear_;
   double maskMean_ = 0;
-  double scale_ = 1;  // normalisation / (samples per pixel * pupil samples)
-  int width_ = 0, height_ = 0, samplesPerAxis_ = 1, threads_ = 1;
+  double scale_ = 1;  // normalisation / pupil samples
+  int width_ = 0, height_ = 0, threads_ = 1;
 };
 
 // The mask layer as an Image: MaskGeometry(design).rasterize() in every channel.
