@@ -283,6 +283,27 @@ void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f
   json.set(at + "/within_budget", f.withinBudget());
 }
 
+void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string& scope) {
+  cmd.add_option("--fit", options.fit,
+                 scope +
+                     "How the content is framed: window (the width only), depth (the width, the "
+                     "zero-parallax plane inside the content and the depth compressed into the "
+                     "budget; the default without a display width in the scene), none (the "
+                     "scene's display block as it is), auto")
+      ->type_name("window|depth|none|auto");
+  cmd.add_option("--focus", options.focus,
+                 scope +
+                     "The zero-parallax plane: its offset in mm toward the viewer from the "
+                     "scene's display centre, or auto (with --fit depth: the harmonic mean of "
+                     "the content's nearest and farthest distances from the eye)")
+      ->type_name("MM|auto");
+  cmd.add_option("--depth-budget", options.depthBudget,
+                 scope +
+                     "With --fit depth: half the displayed depth range in mm, or auto (the "
+                     "display's depth of field, G4)")
+      ->type_name("MM|auto");
+}
+
 ViewFilter FilterOptions::filter() const {
   ViewFilter filter;
   if (!parseViewFilterKind(kind, filter.kind))

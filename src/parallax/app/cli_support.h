@@ -96,6 +96,19 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
 // and info write the same keys.
 void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& framing);
 
+// --fit, --focus and --depth-budget (render, and design --scene, view --display-eye): how the
+// content is framed for the display (camera/framing.h). Empty: the scene's own choice.
+struct FramingOptions {
+  std::string fit, focus, depthBudget;
+  bool given() const { return !fit.empty() || !focus.empty() || !depthBudget.empty(); }
+  // Sets them on the scene's placement; throws InputError naming the option.
+  void apply(DisplayPlacement& placement) const {
+    applyFramingOptions(placement, fit, focus, depthBudget);
+  }
+};
+// Adds the three options to `cmd`; `scope` begins their help ("" or "With --scene: ").
+void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string& scope);
+
 // --filter and --filter-width (render, bench, lenticular render): how a display pixel's rays
 // spread in angle (display/view_filter.h).
 struct FilterOptions {

@@ -49,7 +49,7 @@ void printDesign(const DisplayDesign& d, double depthMm) {
 void registerDesignCommand(CLI::App& cli) {
   struct Options {
     std::string display, scene;
-    std::string fit, focus, depthBudget;
+    FramingOptions framing;
     bool json = false;
     double depth = 0.0;
   };
@@ -64,21 +64,15 @@ void registerDesignCommand(CLI::App& cli) {
   cmd->add_option("--scene", options->scene,
                   "Also frame this scene for the display as render does: its depth range "
                   "against the depth of field");
-  cmd->add_option("--fit", options->fit, "With --scene: the framing, as for render")
-      ->type_name("window|depth|none|auto");
-  cmd->add_option("--focus", options->focus, "With --scene: the focus, as for render")
-      ->type_name("MM|auto");
-  cmd->add_option("--depth-budget", options->depthBudget,
-                  "With --scene: the depth budget, as for render")
-      ->type_name("MM|auto");
+  addFramingOptions(*cmd, options->framing, "With --scene: ");
   cmd->callback([options] {
     const DisplayDesign d = loadDesignOrDefault(options->display);
     std::optional<Framing> framing;
     if (!options->scene.empty()) {
       Scene scene = loadSceneOrDefault(options->scene);
-      applyFramingOptions(scene.display, options->fit, options->focus, options->depthBudget);
+      options->framing.apply(scene.display);
       framing = frameForDisplay(scene, d);
-    } else if (!options->fit.empty() || !options->focus.empty() || !options->depthBudget.empty()) {
+    } else if (options->framing.given()) {
       throw InputError("command line", "--fit", "--fit, --focus and --depth-budget need --scene");
     }
     const double depth = options->depth != 0.0 ? options->depth : d.depthOfFieldMm;

@@ -34,7 +34,7 @@ struct RenderOptions {
   bool directMapping = false;
   std::string quilt, size;  // --quilt CxR, --size WxH of one quilt view
   FilterOptions filter;
-  std::string fit, focus, depthBudget;  // empty: the scene's (docs/display-geometry.md)
+  FramingOptions framing;  // empty: the scene's (docs/display-geometry.md)
 };
 
 // The framing in the record: what was asked (fit, focus, depth_budget: simulate --reference
@@ -56,7 +56,7 @@ void recordFraming(JsonWriter& record, const Framing& f) {
 
 // Frames the scene for the design (camera/framing.h) and returns the framing.
 Framing frameForRender(const RenderOptions& o, Scene& scene, DisplayDesign& design) {
-  applyFramingOptions(scene.display, o.fit, o.focus, o.depthBudget);
+  o.framing.apply(scene.display);
   const Framing framing = frameForDisplay(scene, design);
   scene.display = framing.placement;
   design = framing.design;
@@ -220,21 +220,7 @@ void registerRenderCommand(CLI::App& cli) {
   addSamplingOptions(*cmd, options->sampling,
                      "Rays per pixel: n*n stratified over pixel and aperture");
   addFilterOptions(*cmd, options->filter, "", "one view: a pixel column's angle at the gap");
-  cmd->add_option("--fit", options->fit,
-                  "How the content is framed: window (the width only), depth (the width, the "
-                  "zero-parallax plane inside the content and the depth compressed into the "
-                  "budget; the default without a display width in the scene), none (the "
-                  "scene's display block as it is), auto")
-      ->type_name("MODE");
-  cmd->add_option("--focus", options->focus,
-                  "The zero-parallax plane: its offset in mm toward the viewer from the scene's "
-                  "display centre, or auto (with --fit depth: the harmonic mean of the "
-                  "content's nearest and farthest distances from the eye)")
-      ->type_name("MM|auto");
-  cmd->add_option("--depth-budget", options->depthBudget,
-                  "With --fit depth: half the displayed depth range in mm, or auto (the "
-                  "display's depth of field, G4)")
-      ->type_name("MM|auto");
+  addFramingOptions(*cmd, options->framing, "");
   cmd->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
   cmd->add_flag("--linear", options->linear, "Also write image.pfm, linear float");
   CLI::Option* direct =

@@ -23,7 +23,7 @@ struct ViewOptions {
   std::string scene;
   std::string eye, lookAt, up, size;
   std::string displayEye, display;
-  std::string fit, focus, depthBudget;  // with --display-eye: framed as render frames it
+  FramingOptions framing;  // with --display-eye: framed as render frames it
   std::optional<float> fov;
   SamplingOptions sampling;
   std::string output = "out/view.png";
@@ -46,7 +46,7 @@ std::unique_ptr<Camera> makeCamera(const ViewOptions& o, const Scene& scene) {
     Scene placed;
     placed.display = scene.display;
     if (!placed.display.content) placed.display.content = scene.bounds();
-    applyFramingOptions(placed.display, o.fit, o.focus, o.depthBudget);
+    o.framing.apply(placed.display);
     const Framing framing = frameForDisplay(placed, design);
     return std::make_unique<WindowCamera>(Vec3d{eye.x, eye.y, eye.z}, framing.design,
                                           framing.placement, width, height);
@@ -108,13 +108,7 @@ void registerViewCommand(CLI::App& cli) {
                   "Ideal view through the display window from this eye X,Y,Z (display mm, "
                   "origin at the front layer's centre, z toward the viewer)");
   cmd->add_option("--display", options->display, "Display file for --display-eye");
-  cmd->add_option("--fit", options->fit, "With --display-eye: the framing, as for render")
-      ->type_name("window|depth|none|auto");
-  cmd->add_option("--focus", options->focus, "With --display-eye: the focus, as for render")
-      ->type_name("MM|auto");
-  cmd->add_option("--depth-budget", options->depthBudget,
-                  "With --display-eye: the depth budget, as for render")
-      ->type_name("MM|auto");
+  addFramingOptions(*cmd, options->framing, "With --display-eye: ");
   addSamplingOptions(*cmd, options->sampling, "Samples per pixel (n*n is stratified)");
   cmd->add_option("-o,--output", options->output, "Output image (.png, or .pfm linear float)")
       ->capture_default_str();

@@ -248,6 +248,22 @@ Image imageFromCodes(const Code* codes, int width, int height, int channels, Dec
   return image;
 }
 
+// The length of a binary PNM header ("P5" or "P6", then width, height and maxval separated by
+// whitespace or # comments, then one whitespace byte): where the samples begin.
+size_t pnmHeaderLength(std::string_view b) {
+  size_t i = 2;
+  for (int field = 0; field < 3; ++field) {
+    while (i < b.size() && (std::isspace(static_cast<unsigned char>(b[i])) || b[i] == '#')) {
+      if (b[i] == '#')
+        while (i < b.size() && b[i] != '\n' && b[i] != '\r') ++i;
+      else
+        ++i;
+    }
+    while (i < b.size() && std::isdigit(static_cast<unsigned char>(b[i]))) ++i;
+  }
+  return i + 1;  // the one whitespace byte after maxval
+}
+
 Image decodeWithStb(std::string_view bytes, const std::string& path) {
   if (bytes.size() > size_t(INT_MAX)) throw inputError(path, "", "image file too large");
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
@@ -272,6 +288,21 @@ Image decodeWithStb(std::string_view bytes, const std::string& path) {
   const bool hdr = stbi_is_hdr_from_memory(data, size) != 0;
   const bool wide = !hdr && stbi_is_16_bit_from_memory(data, size) != 0;
   checkImageSize(path, width, height, double(std::max(channels, 1)) * (hdr ? 4 : wide ? 2 : 1));
+  // Binary PNM stores its samples uncompressed after the header, so the file holds exactly
+  // width x height x channels samples there; stb_image pads a shorter file with zeros, after
+  // allocating and converting everything a few header bytes announce (found by fuzzing).
+  if (sniffFormat(bytes) == Format::Pnm) {
+    const double needed =
+        double(width) * double(height) * double(std::max(channels, 1)) * (wide ? 2.0 : 1.0);
+    const size_t header = pnmHeaderLength(bytes);
+    const double held = double(bytes.size() - std::min(header, bytes.size()));
+    if (held < needed)
+      throw inputError(path, "",
+                       "truncated: the header announces " + std::to_string(width) + "x" +
+                           std::to_string(height) + " pixels (" + std::to_string(int64_t(needed)) +
+                           " bytes of samples), the file " + "holds " +
+                           std::to_string(int64_t(held)));
+  }
   const int expectedWidth = width, expectedHeight = height;
   const auto sameSize = [&]() {
     if (width != expectedWidth || height != expectedHeight || channels < 1 || channels > 4)

@@ -203,6 +203,24 @@ TEST(MalformedInput, ImagesAnnouncingHugeSizesAreRefusedFromTheHeader) {
   expectRefused([&] { readImage(jpg); }, {"the name says JPEG but the contents are PNG"});
 }
 
+// Binary PNM is uncompressed: a file shorter than its header's samples is truncated, refused
+// before anything is allocated (two fuzzing finds: 23 and 27 bytes announcing 30126x3012 and
+// 8103x8708 pixels took over 10 s each, padded with zeros).
+TEST(MalformedInput, PnmShorterThanItsHeaderAnnouncesIsTruncated) {
+  TempDir dir;
+  const std::string grey = dir.file("short.pgm");
+  writeFile(grey, "P5\n8103 8708\n255\n" + std::string(1000, '\x7f'));
+  expectRefused([&] { readImage(grey); }, {"short.pgm: truncated", "8103x8708 pixels"});
+  const std::string wide = dir.file("short16.ppm");
+  // 16-bit samples: 2 x 2 pixels x 3 channels x 2 bytes = 24 bytes, one missing.
+  writeFile(wide, "P6\n2 2\n65535\n" + std::string(23, '\x01'));
+  expectRefused([&] { readImage(wide); }, {"short16.ppm: truncated", "(24 bytes of samples)"});
+  // Whole files still read.
+  const std::string whole = dir.file("whole.ppm");
+  writeFile(whole, "P6\n2 2\n65535\n" + std::string(24, '\x01'));
+  EXPECT_EQ(readImage(whole).width(), 2);
+}
+
 TEST(MalformedInput, PfmWithNanIsRefused) {
   TempDir dir;
   const std::string path = dir.file("layer.pfm");
