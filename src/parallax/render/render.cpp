@@ -30,7 +30,9 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
   weight.fill(1.0f);
   // Adaptive sampling: each lane's sample luminance (sRGB-encoded), summed over the current
   // group, its squares over the first group, and the sums of its group means and their squares.
+  // A lane counts its own groups: one that has stopped keeps its mean for its neighbours.
   double groupLum[16] = {}, firstSquares[16] = {}, meanSum[16] = {}, meanSquares[16] = {};
+  int lanesGroups[16] = {};
   const int last = walk.samplesPerPixel - 1;
   const double threshold2 = settings.adaptiveThreshold * settings.adaptiveThreshold;
   const double neighbourLimit =
@@ -39,6 +41,7 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
     if (packet.pass == 0) {
       sum.fill(0.0f);
       for (double* a : {groupLum, firstSquares, meanSum, meanSquares}) std::fill(a, a + 16, 0.0);
+      std::fill(lanesGroups, lanesGroups + 16, 0);
     }
     stats.cameraRays += uint64_t(packet.activeCount);
     Color16 before = sum;
@@ -55,9 +58,11 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
       }
       if (taken % group == 0) {
         for (int lane = 0; lane < 16; ++lane) {
+          if (!packet.rays.active[lane]) continue;
           const double groupMean = groupLum[lane] / group;
           meanSum[lane] += groupMean, meanSquares[lane] += groupMean * groupMean;
           groupLum[lane] = 0;
+          ++lanesGroups[lane];
         }
       }
       // After each whole group, stop the pixels whose mean is already certain. The standard
@@ -75,7 +80,8 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
         // below), so a pixel also stops only when its neighbours' means agree with its own.
         const PacketShape& shape = grid.shape;
         double mean[16];
-        for (int lane = 0; lane < 16; ++lane) mean[lane] = meanSum[lane] / groups;
+        for (int lane = 0; lane < 16; ++lane)
+          mean[lane] = lanesGroups[lane] > 0 ? meanSum[lane] / lanesGroups[lane] : 0.0;
         for (int lane = 0; lane < 16; ++lane) {
           if (!packet.rays.active[lane]) continue;
           const double squaredError =

@@ -211,20 +211,22 @@ TEST(Render, AdaptiveSamplingStopsFlatPixelsAfterOneGroup) {
   for (const Vec3f& p : flat.pixels()) EXPECT_NEAR(p.x, 0.25f * 0.8f, 1e-6f);
 }
 
-// The stopping test after two groups uses the spread of the group means, not of the samples:
-// a stratified group varies far less than independent samples. Every pixel here sees one
-// period of a black-and-white stripe, black on its left half and white on its right: its
-// samples disagree completely (so no pixel stops after the first group), but each Latin group
-// has two samples in each half, so the group means agree and the pixels stop after two groups
-// (a sample that lands on one of the texture's 1/1024-period ramps can make one go on).
-TEST(Render, AdaptiveSamplingStopsStratifiedStripesAfterTwoGroups) {
-  constexpr int kSize = 8;
-  const PinholeCamera camera = downCamera(kSize);
-  const float pixel = 2 * 10 * std::tan(30 * kPi / 180) / kSize;  // a pixel's width on the plane
+// A plane under downCamera(kStripeSize) whose texture gives every pixel one period of its own:
+// the pixels of the first `flatColumns` image columns a flat grey of sRGB value 1/2, the others
+// a black-and-white stripe, black on the pixel's left half and white on its right (ramps between
+// texels 1/1024 of a pixel wide). A margin of two pixels on each side.
+constexpr int kStripeSize = 8;
+Scene stripeScene(int flatColumns) {
+  const float pixel = 2 * 10 * std::tan(30 * kPi / 180) / kStripeSize;  // on the plane
+  const int periods = kStripeSize + 4;
   Scene scene;
-  Image stripe(1024, 1);
-  for (int x = 512; x < 1024; ++x) stripe.at(x, 0) = Vec3f(1.0f);
-  scene.images.push_back(stripe);
+  Image texels(1024 * periods, 1);
+  for (int p = 0; p < periods; ++p)
+    for (int x = 0; x < 1024; ++x)
+      texels.at(1024 * p + x, 0) = Vec3f(p - 2 < flatColumns ? srgbToLinear(0.5f)
+                                         : x < 512           ? 0.0f
+                                                             : 1.0f);
+  scene.images.push_back(texels);
   Texture texture;
   texture.kind = Texture::Kind::Image;
   texture.image = 0;
@@ -234,25 +236,52 @@ TEST(Render, AdaptiveSamplingStopsStratifiedStripesAfterTwoGroups) {
   m.diffuseTexture = 0;
   scene.materials.push_back(m);
   scene.ambient = Vec3f(1.0f);
-  // Two pixels' margin on each side; u advances one period per pixel, starting on a pixel edge.
-  const float left = -(kSize / 2 + 2) * pixel, across = (kSize + 4) * pixel;
+  const float left = -(kStripeSize / 2 + 2) * pixel, across = float(periods) * pixel;
   TriangleMesh plane;
   plane.positions = {
       {left, 0, 50}, {left + across, 0, 50}, {left + across, 0, -50}, {left, 0, -50}};
   plane.normals.assign(4, Vec3f{0, 1, 0});
-  plane.uvs = {{0, 0}, {float(kSize + 4), 0}, {float(kSize + 4), 1}, {0, 1}};
+  plane.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   plane.indices = {0, 1, 2, 0, 2, 3};
   scene.meshes.push_back(plane);
+  return scene;
+}
+
+RenderStats adaptiveStripeRender(const Scene& scene, Image* image = nullptr) {
   const Accelerator accel(scene);
   RenderSettings settings;
   settings.samplesPerPixel = 16;
   settings.adaptive = true;
   RenderStats stats;
-  const Image img = render(scene, accel, camera, settings, &stats);
-  const uint64_t pixels = kSize * kSize;
+  const Image img = render(scene, accel, downCamera(kStripeSize), settings, &stats);
+  if (image) *image = img;
+  return stats;
+}
+
+// The stopping test after two groups uses the spread of the group means, not of the samples:
+// a stratified group varies far less than independent samples. Every pixel sees a stripe: its
+// samples disagree completely (so no pixel stops after the first group), but each Latin group
+// has two samples in each half, so the group means agree and the pixels stop after two groups
+// (a sample that lands on a ramp can make one go on).
+TEST(Render, AdaptiveSamplingStopsStratifiedStripesAfterTwoGroups) {
+  Image img;
+  const RenderStats stats = adaptiveStripeRender(stripeScene(0), &img);
+  const uint64_t pixels = kStripeSize * kStripeSize;
   EXPECT_GE(stats.cameraRays, 8 * pixels);  // none stopped after the first group
   EXPECT_LE(stats.cameraRays, 9 * pixels);  // nearly all after the second
   for (const Vec3f& p : img.pixels()) EXPECT_NEAR(p.x, 0.5f, 0.01f);
+}
+
+// A pixel that has stopped keeps its mean for its neighbours' test: six flat columns stop after
+// the first group (4 rays), and the two stripe columns beside them, whose group means equal the
+// flat grey, after the second (8 rays), the column next to the flat ones included. (Counted
+// over the groups a pixel had not taken, its mean would fall to half and hold that column to
+// all 16 rays.)
+TEST(Render, AdaptiveSamplingStoppedPixelsKeepTheirMeanForTheirNeighbours) {
+  const RenderStats stats = adaptiveStripeRender(stripeScene(6));
+  const uint64_t rows = kStripeSize, expected = rows * (6 * 4 + 2 * 8);
+  EXPECT_GE(stats.cameraRays, expected);
+  EXPECT_LE(stats.cameraRays, expected + 8);
 }
 
 TEST(Render, AdaptiveSamplingIsDeterministicAndSpendsRaysOnEdges) {
