@@ -74,6 +74,8 @@ struct Piece {
 // between every front and rear cell edge inside the pixel, weighted by length (the exact
 // integral of the two box-pixel layers' product). n > 0: n point samples at the stratum
 // centres, 1/n each. A rear cell outside [0, rearCells) becomes `outside`.
+constexpr int kMaxRearCellsPerPixel = 64;
+
 void piecesAlongAxis(int count, int frontCells, int rearCells, double u0, double du,
                      int samplesPerAxis, int outside, std::vector<Piece>& pieces,
                      std::vector<uint32_t>& start) {
@@ -91,9 +93,14 @@ void piecesAlongAxis(int count, int frontCells, int rearCells, double u0, double
   for (int i = 0; i < count; ++i) {
     start[size_t(i)] = uint32_t(pieces.size());
     const double t0 = double(i) / count, t1 = double(i + 1) / count;
-    if (samplesPerAxis > 0) {
-      for (int k = 0; k < samplesPerAxis; ++k)
-        add(t0 + (t1 - t0) * (k + 0.5) / samplesPerAxis, 1.0f / float(samplesPerAxis));
+    // An eye almost touching the display stretches one output pixel over thousands of rear
+    // cells; there the exact pieces would cost without limit, and kMaxRearCells point samples
+    // per pixel are as good as the eye can tell.
+    const bool pointSampled =
+        samplesPerAxis > 0 || std::abs(du) * (t1 - t0) > double(kMaxRearCellsPerPixel);
+    if (pointSampled) {
+      const int n = samplesPerAxis > 0 ? samplesPerAxis : kMaxRearCellsPerPixel;
+      for (int k = 0; k < n; ++k) add(t0 + (t1 - t0) * (k + 0.5) / n, 1.0f / float(n));
       continue;
     }
     edges.assign({t0, t1});

@@ -166,6 +166,19 @@ TEST(Simulator, ExactIntegralIsTheLimitOfPointSampling) {
   }
 }
 
+// An eye a nanometre from the display spreads each output pixel over millions of rear cells:
+// the exact pieces give way to 64 x 64 point samples there (the same picture), not a hang.
+TEST(Simulator, AnEyeTouchingTheDisplayIsPointSampled) {
+  const DisplayDesign d = smallDisplay(LayerOrder::BarrierBack, 60, 20);
+  Image image(60, 20, Vec3f(0.5f));
+  SimulationOptions exact, sampled;
+  sampled.samplesPerPixel = 64 * 64;
+  const Vec3d eye{3, 1, 1e-6};
+  const Image a = DisplaySimulator(d, {image, maskLayerImage(d)}, exact).view(eye);
+  const Image b = DisplaySimulator(d, {image, maskLayerImage(d)}, sampled).view(eye);
+  EXPECT_EQ(a.pixels(), b.pixels());
+}
+
 TEST(Simulator, NormalisedWhiteLooksWhite) {
   const DisplayDesign d = smallDisplay(LayerOrder::BarrierBack);
   SimulationOptions o;
