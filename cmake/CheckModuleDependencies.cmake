@@ -1,30 +1,22 @@
 # Fails if a module includes a parallax module it may not depend on, a third-party library
 # that another module owns, or any third-party header from a public header.
 # Run as: cmake -DSOURCE_DIR=<repo> -P CheckModuleDependencies.cmake
-# The rule is written out in docs/architecture.md.
+# The rule is written once, in cmake/ModuleGraph.cmake.
 
 cmake_minimum_required(VERSION 3.25)
 
-set(allowed_core "")
-set(allowed_image core)
-set(allowed_display core)
-set(allowed_scene core image display)
-set(allowed_io core image display scene)
-set(allowed_accel core image display scene)
-set(allowed_camera core image display scene accel)
-set(allowed_render core image display scene accel camera sim)
-set(allowed_sim core image display)
-set(allowed_app core image display scene io accel camera render sim)
-
-# Third-party include prefixes and the one module that may use each.
-set(owner_embree3 accel)
-set(owner_tbb render)
-set(owner_nlohmann io)
-set(owner_tiny_obj_loader io)
-set(owner_tiny_gltf io)
-set(owner_stb io)
-set(owner_CLI app)
-set(third_party embree3 tbb nlohmann tiny_obj_loader tiny_gltf stb CLI)
+# The graph lives in ModuleGraph.cmake (a test run may point GRAPH_FILE at another one).
+if(NOT DEFINED GRAPH_FILE)
+  set(GRAPH_FILE "${CMAKE_CURRENT_LIST_DIR}/ModuleGraph.cmake")
+endif()
+include("${GRAPH_FILE}")
+foreach(module ${PARALLAX_MODULES})
+  set(allowed_${module} "${PARALLAX_USES_${module}}")
+endforeach()
+foreach(lib ${PARALLAX_THIRD_PARTY})
+  set(owner_${lib} ${PARALLAX_OWNER_${lib}})
+endforeach()
+set(third_party ${PARALLAX_THIRD_PARTY})
 
 set(errors "")
 file(GLOB module_dirs LIST_DIRECTORIES true "${SOURCE_DIR}/src/parallax/*")
@@ -68,4 +60,4 @@ if(errors)
   list(JOIN errors "\n  " text)
   message(FATAL_ERROR "module dependency rule broken:\n  ${text}")
 endif()
-message(STATUS "module dependencies follow docs/architecture.md")
+message(STATUS "module dependencies follow cmake/ModuleGraph.cmake")

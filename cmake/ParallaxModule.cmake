@@ -1,11 +1,17 @@
-# parallax_module(NAME DEPS <parallax modules> PRIVATE_LIBS <third-party targets> [NARROW_ISA])
-# Builds src/parallax/NAME/*.cpp (except *_test.cpp) into parallax_NAME and every
+# parallax_module(NAME PRIVATE_LIBS <third-party targets> [NARROW_ISA])
+# Builds src/parallax/NAME/*.cpp (except *_test.cpp) into parallax_NAME, linked to the modules
+# NAME may use (PARALLAX_USES_NAME in cmake/ModuleGraph.cmake, the one place the graph is
+# written), and every
 # NAME/*_test.cpp into one GoogleTest executable parallax_NAME_test registered with CTest.
 # NARROW_ISA registers the tests a second time (prefix "isa-sse4.2/") with Embree forced to its
 # SSE4.2 kernels, as a CPU without AVX-512 runs them: without native 16-wide kernels Embree
 # traces packets differently, and an AVX-512 machine would hide bugs there.
 function(parallax_module name)
-  cmake_parse_arguments(PM "NARROW_ISA" "" "DEPS;PRIVATE_LIBS;TEST_LIBS" ${ARGN})
+  cmake_parse_arguments(PM "NARROW_ISA" "" "PRIVATE_LIBS;TEST_LIBS" ${ARGN})
+  if(NOT DEFINED PARALLAX_USES_${name})
+    message(FATAL_ERROR "module ${name} is not in cmake/ModuleGraph.cmake")
+  endif()
+  set(PM_DEPS ${PARALLAX_USES_${name}})
   file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*.cpp")
   file(GLOB tests CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*_test.cpp")
   list(REMOVE_ITEM sources ${tests} "${CMAKE_CURRENT_SOURCE_DIR}/main.cpp")

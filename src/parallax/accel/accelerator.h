@@ -35,26 +35,6 @@ struct Hit {
   bool valid() const { return geometry != kNoHit; }
 };
 
-// Sixteen rays in structure-of-arrays form (Embree's RTCRay16 layout, not its type).
-struct alignas(64) RayPacket16 {
-  static constexpr int kSize = 16;
-  float ox[16], oy[16], oz[16];
-  float dx[16], dy[16], dz[16];
-  float tMin[16], tMax[16];
-  int32_t active[16];  // -1 = trace this lane, 0 = ignore it
-
-  void set(int lane, const Ray& ray) {
-    ox[lane] = ray.origin.x, oy[lane] = ray.origin.y, oz[lane] = ray.origin.z;
-    dx[lane] = ray.direction.x, dy[lane] = ray.direction.y, dz[lane] = ray.direction.z;
-    tMin[lane] = ray.tMin, tMax[lane] = ray.tMax;
-    active[lane] = -1;
-  }
-  void deactivate(int lane) { active[lane] = 0; }
-  Ray ray(int lane) const {
-    return {{ox[lane], oy[lane], oz[lane]}, {dx[lane], dy[lane], dz[lane]}, tMin[lane], tMax[lane]};
-  }
-};
-
 struct alignas(64) HitPacket16 {
   float t[16];
   uint32_t geometry[16];
@@ -66,14 +46,6 @@ struct alignas(64) HitPacket16 {
     const Vec3f normal{ngx[lane], ngy[lane], ngz[lane]};
     return {t[lane], geometry[lane], primitive[lane], u[lane], v[lane], normal};
   }
-};
-
-// Pinhole rays for the raw limit: pixel (x, y) sample s has its origin at `eye` and passes
-// through pixel00 + (x + jx) * pixelDx + (y + jy) * pixelDy, (jx, jy) on a stratified
-// sqrt(spp) x sqrt(spp) grid (spp rounded down to a square).
-struct PinholeGrid {
-  Vec3f eye, pixel00, pixelDx, pixelDy;
-  int width = 0, height = 0, samplesPerPixel = 1;
 };
 
 class Accelerator {

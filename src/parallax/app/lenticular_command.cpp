@@ -11,13 +11,13 @@
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/app/layer_output.h"
-#include "parallax/camera/lenticular_camera.h"
+#include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
-#include "parallax/render/lenticular_render.h"
+#include "parallax/render/display_render.h"
 #include "parallax/sim/lenticular_sim.h"
 
 namespace parallax::app {
@@ -54,12 +54,11 @@ void runRender(const LenticularRenderOptions& o) {
   o.sampling.checkWork(3 * w, h);
   const Scene scene = loadSceneReportingWarnings(o.scene);
   const Accelerator accelerator(scene);
-  LenticularRender out;
+  DisplayLayers out;
   {
     ProgressBar bar("lenticular render");
-    out = renderLenticular(
-        scene, accelerator, design, settings,
-        [&bar](int done, int total) { bar.update(done, total); }, filter);
+    out = renderDisplay(scene, accelerator, *makeLenticularDisplay(design, filter), settings,
+                        [&bar](int done, int total) { bar.update(done, total); });
   }
   JsonWriter record;
   record.set("/program", "parallax");

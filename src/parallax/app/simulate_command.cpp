@@ -26,8 +26,8 @@
 #include "parallax/io/json_reader.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/scene_file.h"
+#include "parallax/quality/viewer_quality.h"
 #include "parallax/render/render.h"
-#include "parallax/render/viewer_quality.h"
 #include "parallax/sim/crosstalk.h"
 #include "parallax/sim/simulator.h"
 

@@ -2,7 +2,6 @@
 // sixteen so that a camera can lay out coherent rays; the default does it lane by lane.
 #pragma once
 
-#include "parallax/accel/accelerator.h"
 #include "parallax/core/ray.h"
 
 namespace parallax {

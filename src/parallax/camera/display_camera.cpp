@@ -44,12 +44,6 @@ bool fitsInside(const std::vector<Vec3d>& corners, const DisplayWindow& window, 
 
 }  // namespace
 
-DisplayWindow displayWindow(const DisplayDesign& design) {
-  return {design.frontWidthMm(),
-          design.frontHeightMm(),
-          {design.spec.viewZoneCenterXMm, design.spec.viewZoneHeightMm, design.viewDistanceMm}};
-}
-
 float fitDisplayWidth(const DisplayPlacement& placement, const DisplayWindow& window) {
   if (!placement.fit || placement.fit->empty()) return placement.width;
   const DisplayAxes axes(placement);
@@ -88,27 +82,23 @@ Transform worldFromDisplay(const DisplayPlacement& placement, const DisplayWindo
   return Transform(m);
 }
 
-Vec3d virtualEye(const DisplayDesign& d, const Vec3d& eyeMm) {
-  const double g = d.gapMm, gv = d.virtualGapMm, distance = d.viewDistanceMm;
-  if (gv == g || d.virtualDistanceMm != distance || !(eyeMm.z > 0)) return eyeMm;
-  const double r = d.spec.order == LayerOrder::BarrierBack
-                       ? g * (gv + distance) / (gv * (g + distance))
-                       : g / gv;
-  const double z = eyeMm.z * distance / (r * (distance - eyeMm.z) + eyeMm.z);
-  const double centre = d.spec.viewZoneCenterXMm;
-  return {centre + r * (eyeMm.x - centre) * z / eyeMm.z, eyeMm.y, z};
-}
-
-DisplayCamera::DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement,
-                             const ViewFilter& filter)
-    : rays_(design, filter), worldFromDisplay_(worldFromDisplay(placement, displayWindow(design))) {
+DisplayCamera::DisplayCamera(const DisplayModel& display, const DisplayPlacement& placement)
+    : display_(&display),
+      film_(display.film()),
+      worldFromDisplay_(worldFromDisplay(placement, display.window())) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) affine_[r][c] = worldFromDisplay_.matrix().m[r][c];
 }
 
+DisplayCamera::DisplayCamera(std::unique_ptr<DisplayModel> display,
+                             const DisplayPlacement& placement)
+    : DisplayCamera(*display, placement) {
+  owned_ = std::move(display);
+}
+
 void DisplayCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
   alignas(64) double origin[3][16], direction[3][16];
-  rays_.rays16(s.x, s.y, s.apertureU, s.apertureV, origin, direction);
+  display_->rays16(s.x, s.y, s.apertureU, s.apertureV, origin, direction);
   // A local copy of the matrix: the packet cannot alias it, so the loop vectorises.
   float m[3][4];
   for (int r = 0; r < 3; ++r)
@@ -129,12 +119,15 @@ void DisplayCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) con
 }
 
 Ray DisplayCamera::generateRay(const FilmSample& s) const {
-  const BarrierRay r = rays_.ray(s.x, s.y, s.apertureU, s.apertureV);
+  const DisplayRay r = display_->ray(s.x, s.y, s.apertureU, s.apertureV);
   return {worldFromDisplay_.point(toFloat(r.origin)),
           worldFromDisplay_.vector(toFloat(r.direction))};
 }
 
 PacketShape DisplayCamera::packetShape() const {
+  // Rays that do not fan through a shared aperture (a lenticular's subpixels, each in its own
+  // direction) are best packed as neighbouring pixels, like any camera's.
+  if (!display_->columnFans()) return {};
   // One film column, sixteen rows: a fan of rays in one vertical plane through one aperture,
   // which traverses the BVH like a pinhole camera's column of pixels. Columns of the same view
   // lie a whole screen period apart (9 px by default), so a wider packet would spread over
@@ -144,16 +137,17 @@ PacketShape DisplayCamera::packetShape() const {
   return {1, 16, 1, true};
 }
 
-WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design,
+WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayModel& display,
                            const DisplayPlacement& placement, int width, int height,
                            bool horizontalOnly)
     : width_(width), height_(height), horizontalOnly_(horizontalOnly) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("camera size must be positive");
   if (!(eyeMm.z > 0))
     throw std::invalid_argument("the eye must be in front of the display (z > 0)");
-  const Transform world = worldFromDisplay(placement, displayWindow(design));
-  const float w = float(design.frontWidthMm()), h = float(design.frontHeightMm());
-  const Vec3d eyeSeen = virtualEye(design, eyeMm);
+  const DisplayWindow window = display.window();
+  const Transform world = worldFromDisplay(placement, window);
+  const float w = float(window.widthMm), h = float(window.heightMm);
+  const Vec3d eyeSeen = display.intendedEye(eyeMm);
   eye_ = world.point(toFloat(eyeSeen));
   corner_ = world.point({-0.5f * w, 0.5f * h, 0.0f});
   stepX_ = world.vector({w / float(width), 0.0f, 0.0f});
@@ -162,8 +156,8 @@ WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design,
   eyeZ_ = float(eyeSeen.z);
   eyeHeight_ = float(eyeMm.y);
   frontHalfHeight_ = 0.5f * h;
-  viewLineY_ = float(design.spec.viewZoneHeightMm);
-  viewDistance_ = float(design.viewDistanceMm);
+  viewLineY_ = float(window.eyeMm.y);
+  viewDistance_ = float(window.eyeMm.z);
 }
 
 Ray WindowCamera::generateRay(const FilmSample& s) const {

@@ -1,21 +1,16 @@
-// Cameras tied to the display: the parallax-barrier camera that renders the image layer, and
-// the ideal off-axis view through the display's window from one eye (`view --display-eye`).
+// Cameras tied to the display, for every kind of display (display/display_model.h): the display
+// camera that renders the panel's film, and the ideal off-axis view through the display's
+// window from one eye (`view --display-eye`).
 #pragma once
+
+#include <memory>
 
 #include "parallax/camera/camera.h"
 #include "parallax/core/transform.h"
-#include "parallax/display/barrier_rays.h"
+#include "parallax/display/display_model.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax {
-
-// The window a viewer looks through: the front layer's size, and the eye that content is
-// framed for (the view-zone centre), in display millimetres.
-struct DisplayWindow {
-  double widthMm = 0, heightMm = 0;
-  Vec3d eyeMm;
-};
-DisplayWindow displayWindow(const DisplayDesign& design);
 
 // The placement's width for this window: placement.width, unless placement.fit is set; then
 // the smallest width (the largest picture) at which every corner of the fit bounds, seen from
@@ -28,31 +23,31 @@ float fitDisplayWidth(const DisplayPlacement& placement, const DisplayWindow& wi
 // width in mm to fitDisplayWidth() scene units.
 Transform worldFromDisplay(const DisplayPlacement& placement, const DisplayWindow& window);
 
-// The eye whose picture of the scene a display rendered with a virtual gap g' != g (and
-// D' = D) shows to an eye at `eyeMm` (display mm): the camera's rays, traced in the scene,
-// meet the eye plane z = D at e_c + r (E - e_c) instead of E, r = g (g' + D) / (g' (g + D))
-// for barrier-back and g / g' for barrier-front, and a point at z lands at
-// z' = z D / (r (D - z) + z), x' = e_c + r (x - e_c) z' / z: the view-zone centre is its own
-// virtual eye. The eye itself for g' = g or D' != D (docs/display-geometry.md, "Depth budget").
-Vec3d virtualEye(const DisplayDesign& design, const Vec3d& eyeMm);
-
-// One ray per image-layer film column (pixel, or subpixel in subpixel mode) through its
-// aperture; see BarrierRayGenerator for the geometry.
+// One ray per film sample of the display (a panel pixel, or one colour channel of it), as the
+// display model says, carried from display millimetres into the scene by the placement.
 class DisplayCamera final : public Camera {
  public:
+  // `display` must outlive the camera.
+  DisplayCamera(const DisplayModel& display, const DisplayPlacement& placement);
+  // A barrier design: the camera owns its display model.
   DisplayCamera(const DisplayDesign& design, const DisplayPlacement& placement,
-                const ViewFilter& filter = {});
+                const ViewFilter& filter = {})
+      : DisplayCamera(makeBarrierDisplay(design, filter), placement) {}
+  // A display model the camera owns.
+  DisplayCamera(std::unique_ptr<DisplayModel> display, const DisplayPlacement& placement);
 
-  int width() const override { return rays_.filmWidth(); }
-  int height() const override { return rays_.filmHeight(); }
+  int width() const override { return film_.columns; }
+  int height() const override { return film_.rows; }
   Ray generateRay(const FilmSample& sample) const override;
   void generateRays16(const FilmSamples16& samples, RayPacket16& out) const override;
   PacketShape packetShape() const override;
 
-  const BarrierRayGenerator& rays() const { return rays_; }
+  const DisplayModel& display() const { return *display_; }
 
  private:
-  BarrierRayGenerator rays_;
+  std::unique_ptr<DisplayModel> owned_;
+  const DisplayModel* display_;
+  FilmLayout film_;
   Transform worldFromDisplay_;
   float affine_[3][4];  // worldFromDisplay_ as a plain affine matrix for the hot loop
 };
@@ -64,8 +59,12 @@ class DisplayCamera final : public Camera {
 // y_e, z = D in y (one-axis perspective, what a slit display can show; section 2.2).
 class WindowCamera final : public Camera {
  public:
-  WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design, const DisplayPlacement& placement,
+  WindowCamera(const Vec3d& eyeMm, const DisplayModel& display, const DisplayPlacement& placement,
                int width, int height, bool horizontalOnly = false);
+  WindowCamera(const Vec3d& eyeMm, const DisplayDesign& design, const DisplayPlacement& placement,
+               int width, int height, bool horizontalOnly = false)
+      : WindowCamera(eyeMm, *makeBarrierDisplay(design), placement, width, height, horizontalOnly) {
+  }
 
   int width() const override { return width_; }
   int height() const override { return height_; }

@@ -5,15 +5,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "parallax/core/math.h"
 #include "parallax/display/display.h"
 #include "parallax/display/mask.h"
 #include "parallax/display/view_filter.h"
 
 namespace parallax {
-
-struct Vec3d {
-  double x = 0, y = 0, z = 0;
-};
 
 struct BarrierRay {
   Vec3d origin;             // on the viewer's side: at z = D' (or z = D when D' is infinite)

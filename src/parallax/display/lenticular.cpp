@@ -11,7 +11,7 @@ namespace parallax {
 namespace {
 
 constexpr double kMmPerInch = 25.4;
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPiD = 3.14159265358979323846;
 
 std::string shortNumber(double v) {
   char text[32];
@@ -20,13 +20,13 @@ std::string shortNumber(double v) {
 }
 
 double radians(double degrees) {
-  return degrees * kPi / 180.0;
+  return degrees * kPiD / 180.0;
 }
 
 // The subpixel's offset from its pixel's reference point, in screen fractions (x right, y up),
 // as the calibration describes it: stripes at slot / (3 W) (slot 2 - channel for BGR, the
-// shaders' ri/bi swap), or the cell's offsets. Pixel row `row` counts from the bottom, as the
-// shaders' cell pattern does.
+// shaders' ri/bi swap), or the cell's offsets (pixels, over W and H). Pixel row `row` counts
+// from the bottom, as the shaders' cell pattern does.
 void subpixelOffset(const LenticularDesign& d, int column, int row, int channel, double& dx,
                     double& dy) {
   const LenticularCalibration& c = d.calibration;
@@ -36,11 +36,9 @@ void subpixelOffset(const LenticularDesign& d, int column, int row, int channel,
     dy = 0;
     return;
   }
-  // Checkerboard (mode 1): cell 0 where column and row have the same parity.
-  const int cell = c.cellPatternMode == 1 ? ((column + row) & 1) : 0;
-  const SubpixelCell& s = c.subpixelCells[size_t(cell) % c.subpixelCells.size()];
-  dx = s.offsetX[size_t(channel)];
-  dy = s.offsetY[size_t(channel)];
+  const SubpixelCell& s = c.subpixelCells[size_t(cellIndex(c, column, row))];
+  dx = s.offsetX[size_t(channel)] / c.screenW;
+  dy = s.offsetY[size_t(channel)] / c.screenH;
 }
 
 // Framebuffer position to the shaders' screen coordinates: u right, v up, both in [0, 1].
@@ -50,6 +48,28 @@ void screenUv(const LenticularDesign& d, double filmX, double filmY, double& u, 
 }
 
 }  // namespace
+
+int cellIndex(const LenticularCalibration& c, int x, int yUp) {
+  if (c.subpixelCells.empty()) return 0;
+  int cell = 0;
+  switch (c.cellPatternMode) {
+    case 1:
+      cell = (x + yUp) & 1;
+      break;
+    case 2:
+      cell = x & 1;
+      break;
+    case 3:
+      cell = (yUp + 2 * (x & 1)) & 3;
+      break;
+    case 4:
+      cell = yUp & 1;
+      break;
+    default:
+      cell = 0;
+  }
+  return cell % int(c.subpixelCells.size());
+}
 
 LenticularDesign designLenticular(const LenticularCalibration& c, double viewDistanceMm) {
   const auto fail = [&c](const char* key, const std::string& message) {
@@ -80,13 +100,11 @@ LenticularDesign designLenticular(const LenticularCalibration& c, double viewDis
   for (size_t i = 0; i < c.subpixelCells.size(); ++i)
     for (size_t ch = 0; ch < 3; ++ch)
       for (const double v : {c.subpixelCells[i].offsetX[ch], c.subpixelCells[i].offsetY[ch]})
-        if (!(std::fabs(v) <= 1))
+        if (!(std::fabs(v) <= 2))
           throw InputError(c.source, "/subpixelCells/" + std::to_string(i),
-                           "subpixel offsets must be from -1 to 1 (screen fractions)");
-  if (c.cellPatternMode < 0 || c.cellPatternMode > 1)
-    throw fail("/CellPatternMode", "only 0 (one cell) and 1 (checkerboard) are supported");
-  if (c.cellPatternMode == 1 && c.subpixelCells.size() < 2)
-    throw fail("/subpixelCells", "the checkerboard pattern needs two cells");
+                           "subpixel offsets must be from -2 to 2 pixels");
+  if (c.cellPatternMode < 0 || c.cellPatternMode >= kCellPatternModes)
+    throw fail("/CellPatternMode", "expected a cell pattern from 0 to 4");
 
   LenticularDesign d;
   d.calibration = c;
@@ -96,7 +114,7 @@ LenticularDesign designLenticular(const LenticularCalibration& c, double viewDis
   // pitch is measured across the slanted lenses; along x a lens is 1 / cos(slant) wider.
   d.pitchPx = c.pitch * (c.screenW / c.dpi) * std::cos(std::atan(1.0 / c.slope));
   d.tilt = c.screenH / (double(c.screenW) * c.slope) * (c.flipImageX ? -1.0 : 1.0);
-  d.lensSlantDegrees = std::atan(1.0 / std::fabs(c.slope)) * 180.0 / kPi;
+  d.lensSlantDegrees = std::atan(1.0 / std::fabs(c.slope)) * 180.0 / kPiD;
   d.lensPitchMm = kMmPerInch / c.pitch;
   d.horizontalLensPitchMm = d.widthMm / d.pitchPx;
   d.pixelsPerLens = c.screenW / d.pitchPx;
@@ -109,6 +127,7 @@ LenticularDesign designLenticular(const LenticularCalibration& c, double viewDis
   d.viewDistanceMm =
       viewDistanceMm > 0 ? viewDistanceMm : 0.5 * kLenticularZoneWidthMm / std::tan(halfCone);
   d.viewZoneWidthMm = 2.0 * d.viewDistanceMm * std::tan(halfCone);
+  d.quiltViews = std::max(1, c.quilt.views());
   return d;
 }
 

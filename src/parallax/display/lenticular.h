@@ -22,10 +22,19 @@
 namespace parallax {
 
 // Where the R, G and B subpixels of one kind of pixel sit (OLED panels whose subpixels are not
-// three vertical stripes), as offsets from the pixel's reference point in fractions of the
-// screen width (x) and height (y, up): the Looking Glass Bridge shader's convention.
+// three vertical stripes), as offsets from the pixel's centre in pixels (x right, y up), as
+// visual.json writes them; Looking Glass's readers divide x by screenW and y by screenH before
+// the shader adds them to the screen coordinates (u, v).
 struct SubpixelCell {
   std::array<double, 3> offsetX{}, offsetY{};  // R, G, B
+};
+
+// The quilt a device's content comes in (Looking Glass's tiled views): columns x rows views,
+// tiled into a width x height picture. Not in visual.json; presets know their device's.
+struct QuiltFormat {
+  int columns = 8, rows = 6;
+  int width = 3360, height = 3360;
+  int views() const { return columns * rows; }
 };
 
 // The calibration fields as the device writes them (visual.json).
@@ -40,9 +49,19 @@ struct LenticularCalibration {
   bool invView = false;                         // view -> 1 - view (the lens inverts; most devices)
   bool flipImageX = false, flipImageY = false;  // the panel is mirrored as the viewer sees it
   bool flipSubpixels = false;                   // BGR instead of RGB stripes
-  int cellPatternMode = 0;  // 0: every pixel uses subpixelCells[0]; 1: checkerboard of cells 0, 1
+  // Which cell pixel (x, y) uses, y counted from the bottom row (cellIndex): 0 cell 0;
+  // 1 checkerboard (x + y) mod 2; 2 alternate columns x mod 2; 3 (y + 2 (x mod 2)) mod 4;
+  // 4 alternate rows y mod 2; wrapped by the number of cells.
+  int cellPatternMode = 0;
   std::vector<SubpixelCell> subpixelCells;  // empty: RGB (or BGR) stripes a third of a pixel wide
+  QuiltFormat quilt;                        // the device's default quilt (a preset's, or 8x6)
+  std::vector<std::string> warnings;        // what the reader defaulted or ignored, one line each
 };
+
+inline constexpr int kCellPatternModes = 5;
+// The subpixel cell of pixel column x, row yUp (counted from the bottom), as Looking Glass's
+// interlacing shader picks it (holoplay-core, the Unity plugin's Lenticular shader).
+int cellIndex(const LenticularCalibration& calibration, int x, int yUp);
 
 // What follows from a calibration, and where the viewer is assumed to be.
 struct LenticularDesign {
@@ -59,6 +78,7 @@ struct LenticularDesign {
   double lenticuleCount = 0;         // lenses that cross the panel: pitch_px (1 + |tilt|)
   double viewDistanceMm = 0;         // the design viewer's distance (vertical perspective)
   double viewZoneWidthMm = 0;        // the view cone's width there: 2 D tan(viewCone / 2)
+  int quiltViews = 48;               // the default quilt's views: the display's angular samples
 };
 
 // The default design distance: where the view cone spans a 1 m wide zone (one or two people

@@ -157,24 +157,35 @@ TEST(Lenticular, SubpixelsOfAPixelDifferByAThirdOfAPixel) {
   }
 }
 
-TEST(Lenticular, SubpixelCellsFollowTheBridgeFormula) {
-  LenticularCalibration c = portraitLike();
-  c.cellPatternMode = 1;
-  const double third = 1.0 / (3.0 * c.screenW);
-  c.subpixelCells = {SubpixelCell{{0.0, third, 2 * third}, {0.0, 0.0, 0.0}},
-                     SubpixelCell{{2 * third, third, 0.0}, {0.0, 0.25 / c.screenH, 0.0}}};
-  const LenticularDesign d = designLenticular(c);
-  for (const auto& p : {std::array<int, 2>{10, 2047}, std::array<int, 2>{11, 2047},
-                        std::array<int, 2>{400, 1000}, std::array<int, 2>{401, 1000}}) {
-    const int row = c.screenH - 1 - p[1];  // counted from the bottom, as the shader does
-    const SubpixelCell& cell = c.subpixelCells[size_t((p[0] + row) % 2)];
-    const double u = (p[0] + 0.5) / c.screenW, v = (row + 0.5) / c.screenH;
-    for (int ch = 0; ch < 3; ++ch) {
-      double view = u + cell.offsetX[size_t(ch)];
-      view += (v + cell.offsetY[size_t(ch)]) * d.tilt;
-      view = view * d.pitchPx - c.center;
-      view = 1.0 - (view - std::floor(view));  // the Bridge shader's 1 - frac (invView)
-      EXPECT_LT(circular(viewFraction(d, p[0], p[1], ch), view), 1e-9);
+// The shader's formula written out independently (holoplay-core's interlacer): offsets in
+// pixels over the screen size, added to u and v before tilt and pitch, 1 - frac; the cell by the
+// pattern with rows counted from the bottom.
+TEST(Lenticular, SubpixelCellsFollowTheShaderFormulaForEveryPattern) {
+  // The two cells of a 16" Gen3 landscape panel (LKG-J): the same layout mirrored in y.
+  const SubpixelCell up{{-0.31, 0.28, 0.0}, {0.25, 0.25, -0.25}};
+  const SubpixelCell down{{-0.31, 0.28, 0.0}, {-0.25, -0.25, 0.25}};
+  const SubpixelCell third{{0.1, -0.1, 0.3}, {0.0, 0.1, -0.1}};
+  for (int mode = 0; mode < kCellPatternModes; ++mode) {
+    LenticularCalibration c = portraitLike();
+    c.cellPatternMode = mode;
+    c.subpixelCells = {up, down, third};
+    const LenticularDesign d = designLenticular(c);
+    for (const auto& p : {std::array<int, 2>{10, 2047}, std::array<int, 2>{11, 2047},
+                          std::array<int, 2>{10, 2046}, std::array<int, 2>{11, 2045},
+                          std::array<int, 2>{400, 1000}, std::array<int, 2>{401, 1001}}) {
+      const int x = p[0], yUp = c.screenH - 1 - p[1];
+      const int expectedCell[kCellPatternModes] = {0, (x % 2) ^ (yUp % 2), x % 2,
+                                                   (yUp + 2 * (x % 2)) % 4 % 3, yUp % 2};
+      ASSERT_EQ(cellIndex(c, x, yUp), expectedCell[mode]) << "mode " << mode;
+      const SubpixelCell& cell = c.subpixelCells[size_t(expectedCell[mode])];
+      const double u = (x + 0.5) / c.screenW, v = (yUp + 0.5) / c.screenH;
+      for (int ch = 0; ch < 3; ++ch) {
+        double view = u + cell.offsetX[size_t(ch)] / c.screenW;
+        view += (v + cell.offsetY[size_t(ch)] / c.screenH) * d.tilt;
+        view = view * d.pitchPx - c.center;
+        view = 1.0 - (view - std::floor(view));  // the shader's 1 - frac (invView)
+        EXPECT_LT(circular(viewFraction(d, x, p[1], ch), view), 1e-9) << "mode " << mode;
+      }
     }
   }
 }
@@ -240,8 +251,11 @@ TEST(Lenticular, BadCalibrationsNameTheKey) {
   c.pitch = 5000;  // lenses narrower than a pixel
   EXPECT_NE(message(c).find("/pitch"), std::string::npos);
   c = portraitLike();
-  c.cellPatternMode = 1;
-  EXPECT_NE(message(c).find("/subpixelCells"), std::string::npos);
+  c.cellPatternMode = 5;
+  EXPECT_NE(message(c).find("/CellPatternMode"), std::string::npos);
+  c = portraitLike();
+  c.subpixelCells = {SubpixelCell{{0.0, 3.0, 0.0}, {0.0, 0.0, 0.0}}};  // 3 pixels away
+  EXPECT_NE(message(c).find("/subpixelCells/0"), std::string::npos);
 }
 
 }  // namespace

@@ -1,5 +1,10 @@
 #include "parallax/io/display_file.h"
 
+#include <optional>
+
+#include "parallax/display/lenticular_presets.h"
+#include "parallax/io/lenticular_file.h"
+
 #include <cmath>
 
 #include "parallax/core/error.h"
@@ -96,7 +101,10 @@ MaskSpec readMask(const JsonReader& node) {
 
 DisplaySpec loadDisplayFile(const std::string& path) {
   const JsonDocument doc = JsonDocument::parseFile(path);
-  const JsonReader root = doc.root();
+  return readDisplayFile(doc.root(), path);
+}
+
+DisplaySpec readDisplayFile(const JsonReader& root, const std::string& path) {
   root.expectObject({"image_layer", "mask_layer", "layer_order", "gap_mm", "view_distance_mm",
                      "view_zone", "views", "screen_period_px", "slit_period_px", "mask", "virtual",
                      "subpixel_rays", "name", "version"});
@@ -244,6 +252,32 @@ void writeDesignJson(JsonWriter& json, const std::string& at, const DisplayDesig
   if (m.kind == MaskKind::Pinholes) json.set(at + "/mask_vertical_period_px", m.verticalPeriodPx);
   json.set(at + "/virtual_gap_mm", d.virtualGapMm);
   finiteOr("/virtual_distance_mm", d.virtualDistanceMm);
+}
+
+DisplayDescription loadDisplayDescription(const std::string& pathOrPreset) {
+  DisplayDescription d;
+  if (pathOrPreset.empty()) {
+    d.barrier = defaultDisplaySpec();
+    return d;
+  }
+  if (pathOrPreset.rfind("lkg:", 0) == 0) {
+    const std::optional<LenticularCalibration> preset = lenticularPreset(pathOrPreset.substr(4));
+    if (!preset)
+      throw InputError(pathOrPreset, "",
+                       "no such Looking Glass preset; the presets are " + lenticularPresetNames());
+    d.kind = DisplayKind::Lenticular;
+    d.lenticular = *preset;
+    return d;
+  }
+  const JsonDocument doc = JsonDocument::parseFile(pathOrPreset);
+  const JsonReader root = doc.root();
+  if (root.isObject() && (root.has("pitch") || root.has("slope") || root.has("DPI"))) {
+    d.kind = DisplayKind::Lenticular;
+    d.lenticular = readLenticularCalibration(root);
+  } else {
+    d.barrier = readDisplayFile(root, pathOrPreset);
+  }
+  return d;
 }
 
 }  // namespace parallax

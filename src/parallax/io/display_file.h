@@ -5,6 +5,8 @@
 #include <string>
 
 #include "parallax/display/display.h"
+#include "parallax/display/display_model.h"
+#include "parallax/io/json_reader.h"
 #include "parallax/io/json_writer.h"
 
 namespace parallax {
@@ -12,6 +14,23 @@ namespace parallax {
 // Reads a display file. Unknown keys and wrong types throw InputError naming the file and key;
 // relations between values are checked by designDisplay (which names the same file).
 DisplaySpec loadDisplayFile(const std::string& path);
+DisplaySpec readDisplayFile(const JsonReader& root, const std::string& path);
+
+// A display of any kind, as described: a barrier's spec or a lenticular calibration.
+struct DisplayDescription {
+  DisplayKind kind = DisplayKind::Barrier;
+  DisplaySpec barrier;               // kind == Barrier
+  LenticularCalibration lenticular;  // kind == Lenticular
+  const std::string& source() const {
+    return kind == DisplayKind::Barrier ? barrier.source : lenticular.source;
+  }
+};
+// "" is the built-in barrier display; "lkg:NAME" a built-in Looking Glass preset
+// (display/lenticular_presets.h); anything else a file: a barrier display file
+// (docs/display-format.md) or a lenticular calibration (visual.json, docs/lenticular.md), told
+// apart by content (a calibration has "pitch", "slope" or "DPI"). Throws InputError naming the
+// file (or the preset) and the key.
+DisplayDescription loadDisplayDescription(const std::string& pathOrPreset);
 // The spec as a display file that loadDisplayFile reads back (used by calibrate apply).
 std::string displayFileText(const DisplaySpec& spec);
 

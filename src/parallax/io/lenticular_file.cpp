@@ -1,6 +1,8 @@
 #include "parallax/io/lenticular_file.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "parallax/core/error.h"
 #include "parallax/io/json_reader.h"
@@ -56,34 +58,63 @@ SubpixelCell readCell(const JsonReader& node) {
   return cell;
 }
 
+// The keys of the published calibration format. Looking Glass's own readers merge a device's
+// file over defaults and ignore keys they do not know, so newer firmware's keys are warnings
+// here, not errors.
+const std::vector<std::string> kKnownKeys = {
+    "configVersion",   "serial",          "pitch",        "slope",         "center",
+    "fringe",          "viewCone",        "invView",      "verticalAngle", "DPI",
+    "screenW",         "screenH",         "flipImageX",   "flipImageY",    "flipSubp",
+    "CellPatternMode", "cellPatternMode", "subpixelCells"};
+
+// Defaults of the fields a device may leave out, as Looking Glass's WebXR library sets them
+// (LookingGlassConfig: invView 1, viewCone 40 degrees, flips 0, CellPatternMode 0). The modern
+// interlacing shader always takes 1 - fract(phase), the invView = 1 of older shaders.
+constexpr bool kDefaultInvView = true;
+constexpr double kDefaultViewConeDegrees = 40.0;
+
 LenticularCalibration readCalibration(const JsonReader& root) {
-  // The fields of the published calibration format; serial, configVersion, fringe and
-  // verticalAngle are the device's bookkeeping and are not used here.
-  root.expectObject({"configVersion", "serial", "pitch", "slope", "center", "fringe", "viewCone",
-                     "invView", "verticalAngle", "DPI", "screenW", "screenH", "flipImageX",
-                     "flipImageY", "flipSubp", "CellPatternMode", "subpixelCells"});
+  if (!root.isObject()) root.fail("expected a calibration object, found " + root.typeName());
   LenticularCalibration c;
   c.source = root.file();
+  for (const auto& [key, value] : root.members())
+    if (std::find(kKnownKeys.begin(), kKnownKeys.end(), key) == kKnownKeys.end())
+      c.warnings.push_back(root.file() + ": /" + key + ": unknown key, ignored");
   c.pitch = required(root, "pitch");
   c.slope = required(root, "slope");
   c.center = required(root, "center");
-  c.viewConeDegrees = required(root, "viewCone");
+  const auto defaulted = [&](const char* key, const std::string& value) {
+    c.warnings.push_back(root.file() + ": /" + key + ": missing, taken as " + value +
+                         " as Looking Glass's shaders do");
+  };
+  if (root.has("viewCone")) {
+    c.viewConeDegrees = fieldNumber(root["viewCone"]);
+  } else {
+    c.viewConeDegrees = kDefaultViewConeDegrees;
+    defaulted("viewCone", "40 degrees");
+  }
   for (const char* unused : {"fringe", "verticalAngle"})
     if (root.has(unused)) fieldNumber(root[unused]);  // checked, though not used
   c.dpi = required(root, "DPI");
   c.screenW = pixels(root, "screenW");
   c.screenH = pixels(root, "screenH");
-  c.invView = flag(present(root, "invView"));  // required: it decides the views' direction
+  if (root.has("invView")) {
+    c.invView = flag(root["invView"]);
+  } else {
+    c.invView = kDefaultInvView;
+    defaulted("invView", "1");
+  }
   const auto optionalFlag = [&root](const char* key) { return root.has(key) && flag(root[key]); };
   c.flipImageX = optionalFlag("flipImageX");
   c.flipImageY = optionalFlag("flipImageY");
   c.flipSubpixels = optionalFlag("flipSubp");
-  if (root.has("CellPatternMode")) {
-    const double mode = fieldNumber(root["CellPatternMode"]);
-    if (mode != 0 && mode != 1)
-      root["CellPatternMode"].fail("only 0 (one cell) and 1 (checkerboard) are supported");
-    c.cellPatternMode = int(mode);
-  }
+  for (const char* key : {"CellPatternMode", "cellPatternMode"})
+    if (root.has(key)) {
+      const double mode = fieldNumber(root[key]);
+      if (!(mode >= 0 && mode <= kCellPatternModes - 1 && mode == std::floor(mode)))
+        root[key].fail("expected a cell pattern from 0 to 4, found " + root[key].dump());
+      c.cellPatternMode = int(mode);
+    }
   if (const auto cells = root.find("subpixelCells"))
     for (const JsonReader& cell : cells->elements()) c.subpixelCells.push_back(readCell(cell));
   designLenticular(c);  // the relations between fields, reported against this file
@@ -91,6 +122,10 @@ LenticularCalibration readCalibration(const JsonReader& root) {
 }
 
 }  // namespace
+
+LenticularCalibration readLenticularCalibration(const JsonReader& root) {
+  return readCalibration(root);
+}
 
 LenticularCalibration parseLenticularCalibration(const std::string& text, const std::string& file) {
   return readCalibration(JsonDocument::parseText(text, file).root());

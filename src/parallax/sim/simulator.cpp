@@ -305,12 +305,4 @@ Image DisplaySimulator::view(const Vec3d& eye) const {
   return out;
 }
 
-Image maskLayerImage(const DisplayDesign& design) {
-  const Panel& panel = design.spec.maskPanel;
-  const std::vector<float> coverage = MaskGeometry(design).rasterize();
-  Image image(panel.width, panel.height);
-  for (size_t i = 0; i < coverage.size(); ++i) image.pixels()[i] = Vec3f(coverage[i]);
-  return image;
-}
-
 }  // namespace parallax

@@ -13,6 +13,7 @@
 
 #include "parallax/display/barrier_rays.h"
 #include "parallax/display/display.h"
+#include "parallax/display/display_model.h"  // maskLayerImage
 #include "parallax/image/image.h"
 
 namespace parallax {
@@ -91,8 +92,5 @@ class DisplaySimulator {
   double scale_ = 1;  // normalisation / pupil samples
   int width_ = 0, height_ = 0, threads_ = 1;
 };
-
-// The mask layer as an Image: MaskGeometry(design).rasterize() in every channel.
-Image maskLayerImage(const DisplayDesign& design);
 
 }  // namespace parallax

@@ -1,17 +1,15 @@
 // The rendered panel belongs to its calibration: seen from an eye (sim/lenticular_sim.h), it
 // shows what an ideal window shows that eye (WindowCamera, one-axis perspective), inside the view
 // cone; beyond the cone the eye sees the repeated views of the other side instead.
-#include "parallax/render/lenticular_render.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
 #include "parallax/camera/display_camera.h"
-#include "parallax/camera/lenticular_camera.h"
 #include "parallax/display/lenticular_test_support.h"
 #include "parallax/image/metrics.h"
+#include "parallax/render/display_render.h"
 #include "parallax/sim/lenticular_sim.h"
 
 namespace parallax {
@@ -33,11 +31,13 @@ TEST(LenticularRender, EachSubpixelKeepsItsOwnRaysChannel) {
   const LenticularDesign d = smallDesign();
   const Scene scene = smallScene();
   const Accelerator accel(scene);
-  const LenticularRender out = renderLenticular(scene, accel, d, {});
+  const DisplayLayers out = renderDisplay(scene, accel, *makeLenticularDisplay(d), {});
   ASSERT_EQ(out.image.width(), 180);
   ASSERT_EQ(out.image.height(), 120);
   EXPECT_EQ(out.stats.cameraRays, uint64_t(3 * 180 * 120));
-  const Image film = render(scene, accel, LenticularCamera(d, scene.display), {});
+  EXPECT_EQ(out.mask.width(), 0);  // one panel, no mask layer
+  const Image film =
+      render(scene, accel, DisplayCamera(makeLenticularDisplay(d), scene.display), {});
   for (int y = 0; y < 120; y += 7)
     for (int x = 0; x < 180; ++x)
       for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(out.image.at(x, y)[ch], film.at(3 * x + ch, y)[ch]);
@@ -47,13 +47,13 @@ TEST(LenticularRender, SeenFromInsideTheConeItIsTheWindowView) {
   const LenticularDesign d = smallDesign();
   const Scene scene = smallScene();
   const Accelerator accel(scene);
-  const Image panel = renderLenticular(scene, accel, d, {}).image;
-  const DisplayDesign window = lenticularWindowDesign(d);
+  const Image panel = renderDisplay(scene, accel, *makeLenticularDisplay(d), {}).image;
+  const std::unique_ptr<DisplayModel> window = makeLenticularDisplay(d);
   RenderSettings reference;
   reference.samplesPerPixel = 4;
   const auto error = [&](const Vec3d& seenFrom, const Vec3d& windowFrom) {
     const Image seen = simulateLenticularView(d, panel, seenFrom);
-    const WindowCamera camera(windowFrom, window, scene.display, 180, 120, true);
+    const WindowCamera camera(windowFrom, *window, scene.display, 180, 120, true);
     return meanSquaredError(seen, render(scene, accel, camera, reference));
   };
   const double D = d.viewDistanceMm, cone = 40 * kPi / 180;
@@ -84,11 +84,13 @@ TEST(LenticularRender, TheViewFilterShowsEyesAcrossTheConeMoreThanTheCentralRay)
   const Accelerator accel(scene);
   RenderSettings sixteen;
   sixteen.samplesPerPixel = 16;
-  const Image none = renderLenticular(scene, accel, d, {}, {}, {ViewFilterKind::None, 1}).image;
-  const Image view = renderLenticular(scene, accel, d, sixteen, {}, {}).image;
+  const Image none =
+      renderDisplay(scene, accel, *makeLenticularDisplay(d, {ViewFilterKind::None, 1}), {}).image;
+  const Image view = renderDisplay(scene, accel, *makeLenticularDisplay(d), sixteen).image;
   const Image period =
-      renderLenticular(scene, accel, d, sixteen, {}, {ViewFilterKind::Period, 1}).image;
-  const DisplayDesign window = lenticularWindowDesign(d);
+      renderDisplay(scene, accel, *makeLenticularDisplay(d, {ViewFilterKind::Period, 1}), sixteen)
+          .image;
+  const std::unique_ptr<DisplayModel> window = makeLenticularDisplay(d);
   RenderSettings reference;
   reference.samplesPerPixel = 4;
   const double D = d.viewDistanceMm, cone = 40 * kPi / 180;
@@ -97,7 +99,7 @@ TEST(LenticularRender, TheViewFilterShowsEyesAcrossTheConeMoreThanTheCentralRay)
   for (int i = 0; i < eyes; ++i) {
     const double angle = (-0.4 + 0.8 * i / (eyes - 1)) * cone;
     const Vec3d eye{D * std::tan(angle), 0, D};
-    const WindowCamera camera(eye, window, scene.display, 180, 120, true);
+    const WindowCamera camera(eye, *window, scene.display, 180, 120, true);
     const Image ideal = render(scene, accel, camera, reference);
     noneError += meanSquaredError(simulateLenticularView(d, none, eye), ideal) / eyes;
     viewError += meanSquaredError(simulateLenticularView(d, view, eye), ideal) / eyes;

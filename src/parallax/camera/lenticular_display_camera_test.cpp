@@ -1,5 +1,4 @@
-#include "parallax/camera/lenticular_camera.h"
-
+// The display camera over a lenticular display model (display/display_model.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,17 +22,18 @@ DisplayPlacement tiltedPlacement() {
   return p;
 }
 
-TEST(LenticularCamera, OneColumnPerSubpixel) {
-  const LenticularCamera camera(smallDesign(), DisplayPlacement{});
+TEST(LenticularDisplayCamera, OneColumnPerSubpixel) {
+  const DisplayCamera camera(makeLenticularDisplay(smallDesign()), DisplayPlacement{});
   EXPECT_EQ(camera.width(), 540);
   EXPECT_EQ(camera.height(), 120);
-  EXPECT_EQ(LenticularCamera::channelOfColumn(3 * 17 + 2), 2);
+  EXPECT_EQ(camera.display().channelOfColumn(3 * 17 + 2), 2);
+  EXPECT_EQ(camera.packetShape().columns, 4);  // no shared aperture: neighbouring pixels
 }
 
-TEST(LenticularCamera, RayPassesThroughItsSubpixelInItsViewDirection) {
+TEST(LenticularDisplayCamera, RayPassesThroughItsSubpixelInItsViewDirection) {
   const LenticularDesign d = smallDesign();
   const DisplayPlacement placement = tiltedPlacement();
-  const LenticularCamera camera(d, placement);
+  const DisplayCamera camera(makeLenticularDisplay(d), placement);
   const Transform world = worldFromDisplay(placement, displayWindow(d));
   const Transform display = world.inverse();
   for (const auto& [x, y, channel] : {std::array<int, 3>{0, 0, 0}, std::array<int, 3>{90, 60, 1},
@@ -53,9 +53,9 @@ TEST(LenticularCamera, RayPassesThroughItsSubpixelInItsViewDirection) {
   }
 }
 
-TEST(LenticularCamera, SamplesSpreadOverTheSubpixel) {
+TEST(LenticularDisplayCamera, SamplesSpreadOverTheSubpixel) {
   const LenticularDesign d = smallDesign();
-  const LenticularCamera camera(d, DisplayPlacement{});
+  const DisplayCamera camera(makeLenticularDisplay(d), DisplayPlacement{});
   const Transform display = worldFromDisplay(DisplayPlacement{}, displayWindow(d)).inverse();
   const Vec3d centre = subpixelPointMm(d, 40.5, 30.5, 1);
   for (const float within : {0.01f, 0.99f}) {
@@ -72,7 +72,7 @@ TEST(LenticularCamera, SamplesSpreadOverTheSubpixel) {
 // The prefilter's footprint: a sub-ray's view is the subpixel's own plus the filter's offset in
 // channel view steps (pitch_px / screenW), whatever its position on the subpixel; none is the
 // central ray for any sample, and period spreads over the whole lens period.
-TEST(LenticularCamera, FilterFootprintMatchesItsFormula) {
+TEST(LenticularDisplayCamera, FilterFootprintMatchesItsFormula) {
   const LenticularDesign d = smallDesign();
   const Transform display = worldFromDisplay(DisplayPlacement{}, displayWindow(d)).inverse();
   const double step = channelViewStep(d);
@@ -81,18 +81,18 @@ TEST(LenticularCamera, FilterFootprintMatchesItsFormula) {
   const int x = 70, y = 40, channel = 2;
   const double own = viewFraction(d, x, y, channel);
   // The horizontal angle a ray leaves the panel at, as a view fraction (not wrapped).
-  const auto viewOf = [&](const LenticularCamera& camera, float within, float u) {
+  const auto viewOf = [&](const DisplayCamera& camera, float within, float u) {
     const Ray ray = camera.generateRay({3.0f * x + channel + within, y + 0.3f, u, 0.5f});
     const Vec3f dir = display.vector(ray.direction);
     return viewFractionOfAngle(d, std::atan2(-double(dir.x), -double(dir.z)));
   };
   // viewFractionOfAngle is not wrapped: compare with the own view modulo whole lens periods.
   const auto offset = [&](double view) { return view - own - std::round(view - own); };
-  const LenticularCamera box(d, {}, {ViewFilterKind::View, 1.0});
-  const LenticularCamera wideBox(d, {}, {ViewFilterKind::View, 2.5});
-  const LenticularCamera tent(d, {}, {ViewFilterKind::Tent, 1.0});
-  const LenticularCamera none(d, {}, {ViewFilterKind::None, 1.0});
-  const LenticularCamera period(d, {}, {ViewFilterKind::Period, 1.0});
+  const DisplayCamera box(makeLenticularDisplay(d, {ViewFilterKind::View, 1.0}), {});
+  const DisplayCamera wideBox(makeLenticularDisplay(d, {ViewFilterKind::View, 2.5}), {});
+  const DisplayCamera tent(makeLenticularDisplay(d, {ViewFilterKind::Tent, 1.0}), {});
+  const DisplayCamera none(makeLenticularDisplay(d, {ViewFilterKind::None, 1.0}), {});
+  const DisplayCamera period(makeLenticularDisplay(d, {ViewFilterKind::Period, 1.0}), {});
   for (const float within : {0.05f, 0.5f, 0.95f})
     for (const float u : {0.0f, 0.25f, 0.5f, 0.75f, 0.999f}) {
       EXPECT_NEAR(offset(viewOf(box, within, u)), (u - 0.5) * step, 1e-5);
@@ -105,7 +105,7 @@ TEST(LenticularCamera, FilterFootprintMatchesItsFormula) {
       EXPECT_NEAR(std::remainder(offset(viewOf(period, within, u)) - (u - 0.5), 1.0), 0.0, 1e-5);
     }
   // The position still moves over the subpixel's area.
-  const auto hitX = [&](const LenticularCamera& camera, float within) {
+  const auto hitX = [&](const DisplayCamera& camera, float within) {
     const Ray ray = camera.generateRay({3.0f * x + channel + within, y + 0.5f, 0.9f, 0.5f});
     const Vec3f o = display.point(ray.origin), dir = display.vector(ray.direction);
     return o.x - o.z / dir.z * dir.x;
@@ -116,16 +116,16 @@ TEST(LenticularCamera, FilterFootprintMatchesItsFormula) {
 
 // A second code path: the one-axis window camera placed where a subpixel's ray starts casts the
 // same ray through that subpixel's point.
-TEST(LenticularCamera, AgreesWithTheWindowCameraAtTheRaysEye) {
+TEST(LenticularDisplayCamera, AgreesWithTheWindowCameraAtTheRaysEye) {
   const LenticularDesign d = smallDesign();
   const DisplayPlacement placement = tiltedPlacement();
-  const LenticularCamera camera(d, placement);
-  const DisplayDesign window = lenticularWindowDesign(d);
-  EXPECT_NEAR(window.frontWidthMm(), d.widthMm, 1e-9);
-  EXPECT_NEAR(window.frontHeightMm(), d.heightMm, 1e-9);
+  const DisplayCamera camera(makeLenticularDisplay(d), placement);
+  const std::unique_ptr<DisplayModel> window = makeLenticularDisplay(d);
+  EXPECT_NEAR(window->window().widthMm, d.widthMm, 1e-9);
+  EXPECT_NEAR(window->window().heightMm, d.heightMm, 1e-9);
   const int x = 37, y = 81, channel = 2;
   const LenticularRay r = lenticularRay(d, x + 0.5, y + 0.5, channel);
-  const WindowCamera eye(r.origin, window, placement, d.calibration.screenW, d.calibration.screenH,
+  const WindowCamera eye(r.origin, *window, placement, d.calibration.screenW, d.calibration.screenH,
                          true);
   const float filmX = float((r.panelPoint.x + 0.5 * d.widthMm) / d.pixelPitchMm);
   const float filmY = float((0.5 * d.heightMm - r.panelPoint.y) / d.pixelPitchMm);

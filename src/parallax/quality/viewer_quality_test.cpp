@@ -1,7 +1,7 @@
 // The dense measure against hand-computed truths: eye positions from the view-window formula,
 // design eyes from the ray generator, the flicker figure of known image sequences, summaries,
 // and a display whose layers equal the ideal picture in the aperture plane.
-#include "parallax/render/viewer_quality.h"
+#include "parallax/quality/viewer_quality.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "parallax/render/viewer_quality.h"
+#include "parallax/quality/viewer_quality.h"
 
 #include <algorithm>
 #include <cmath>

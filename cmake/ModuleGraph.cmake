@@ -1,0 +1,29 @@
+# The module graph: written here once. CMake links each module to the modules it may use
+# (cmake/ParallaxModule.cmake), the module_dependencies test checks every #include against it
+# (cmake/CheckModuleDependencies.cmake), and the module_graph_docs test checks that the table in
+# docs/architecture.md says the same. Every edge is there for a reason, given beside it.
+
+# Modules in dependency order: each may use only modules listed before it.
+set(PARALLAX_MODULES core image display scene io accel camera render sim quality app)
+
+set(PARALLAX_USES_core "")
+set(PARALLAX_USES_image core)
+set(PARALLAX_USES_display core image)          # image: the mask layer's raster
+set(PARALLAX_USES_scene core image)            # image: textures
+set(PARALLAX_USES_io core image display scene) # reads and writes all three
+set(PARALLAX_USES_accel core scene)            # builds Embree's scene from the Scene
+set(PARALLAX_USES_camera core display scene)   # display rays, placed by the scene's placement
+set(PARALLAX_USES_render core image display scene accel camera)  # traces cameras' rays
+set(PARALLAX_USES_sim core image display)      # sees layers through a display's optics
+set(PARALLAX_USES_quality core image display scene accel camera render sim)  # ideal vs seen
+set(PARALLAX_USES_app core image display scene io accel camera render sim quality)
+
+# Third-party include prefixes and the one module that may use each (only in its .cpp files).
+set(PARALLAX_THIRD_PARTY embree3 tbb nlohmann tiny_obj_loader tiny_gltf stb CLI)
+set(PARALLAX_OWNER_embree3 accel)
+set(PARALLAX_OWNER_tbb render)
+set(PARALLAX_OWNER_nlohmann io)
+set(PARALLAX_OWNER_tiny_obj_loader io)
+set(PARALLAX_OWNER_tiny_gltf io)
+set(PARALLAX_OWNER_stb io)
+set(PARALLAX_OWNER_CLI app)

@@ -1,0 +1,113 @@
+// The parallax barrier as a DisplayModel: the image layer's film through its apertures
+// (barrier_rays.h), the mask as its second layer.
+#include <algorithm>
+#include <cmath>
+
+#include "parallax/display/barrier_rays.h"
+#include "parallax/display/display_model.h"
+#include "parallax/display/mask.h"
+
+namespace parallax {
+
+namespace {
+
+class BarrierDisplay final : public DisplayModel {
+ public:
+  BarrierDisplay(const DisplayDesign& design, const ViewFilter& filter)
+      : design_(design), rays_(design, filter) {}
+
+  DisplayKind kind() const override { return DisplayKind::Barrier; }
+  const std::string& source() const override { return design_.spec.source; }
+  DisplayWindow window() const override { return displayWindow(design_); }
+  FilmLayout film() const override {
+    const Panel& p = design_.spec.imagePanel;
+    return {rays_.filmWidth(), rays_.filmHeight(), p.width, p.height, rays_.subpixelMode()};
+  }
+  int channelOfColumn(int column) const override { return rays_.channelOfColumn(column); }
+  DisplayRay ray(double filmX, double filmY, double u, double v) const override {
+    const BarrierRay r = rays_.ray(filmX, filmY, u, v);
+    return {r.origin, r.direction};
+  }
+  void rays16(const float filmX[16], const float filmY[16], const float u[16], const float v[16],
+              double origin[3][16], double direction[3][16]) const override {
+    rays_.rays16(filmX, filmY, u, v, origin, direction);
+  }
+  bool columnFans() const override { return true; }
+  int viewCount() const override {
+    const double columnsPerGroup = design_.screenPeriodPx * (rays_.subpixelMode() ? 3.0 : 1.0);
+    return std::max(1, int(std::lround(columnsPerGroup)));
+  }
+  int viewIndex(int column, int row) const override { return rays_.viewIndex(column, row); }
+  Vec3d viewPosition(int view) const override { return rays_.viewPosition(view); }
+  double viewZoneWidthMm() const override { return design_.viewZoneWidthMm; }
+  bool horizontalParallaxOnly() const override { return !rays_.mask().isPinholeGrid(); }
+  Vec3d intendedEye(const Vec3d& eyeMm) const override { return virtualEye(design_, eyeMm); }
+  bool hasMaskLayer() const override { return true; }
+  Image maskLayer() const override { return maskLayerImage(design_); }
+  std::vector<DesignFigure> designReport() const override {
+    const DisplayDesign& d = design_;
+    return {{"views", d.views, ""},
+            {"gap", d.gapMm, "mm"},
+            {"view_distance", d.viewDistanceMm, "mm"},
+            {"view_zone_width", d.viewZoneWidthMm, "mm"},
+            {"view_width", d.viewWidthMm, "mm"},
+            {"screen_period", d.screenPeriodPx, "px"},
+            {"slit_period", d.slitPeriodPx, "px"},
+            {"depth_of_field", d.depthOfFieldMm, "mm"},
+            {"virtual_gap", d.virtualGapMm, "mm"},
+            {"virtual_distance", d.virtualDistanceMm, "mm"}};
+  }
+  const DisplayDesign* barrierDesign() const override { return &design_; }
+
+ private:
+  DisplayDesign design_;
+  BarrierRayGenerator rays_;
+};
+
+}  // namespace
+
+const char* displayKindName(DisplayKind kind) {
+  return kind == DisplayKind::Barrier ? "barrier" : "lenticular";
+}
+
+void DisplayModel::rays16(const float filmX[16], const float filmY[16], const float u[16],
+                          const float v[16], double origin[3][16], double direction[3][16]) const {
+  for (int i = 0; i < 16; ++i) {
+    const DisplayRay r = ray(filmX[i], filmY[i], u[i], v[i]);
+    origin[0][i] = r.origin.x, origin[1][i] = r.origin.y, origin[2][i] = r.origin.z;
+    direction[0][i] = r.direction.x, direction[1][i] = r.direction.y;
+    direction[2][i] = r.direction.z;
+  }
+}
+
+std::unique_ptr<DisplayModel> makeBarrierDisplay(const DisplayDesign& design,
+                                                 const ViewFilter& filter) {
+  return std::make_unique<BarrierDisplay>(design, filter);
+}
+
+DisplayWindow displayWindow(const DisplayDesign& design) {
+  return {design.frontWidthMm(),
+          design.frontHeightMm(),
+          {design.spec.viewZoneCenterXMm, design.spec.viewZoneHeightMm, design.viewDistanceMm}};
+}
+
+Vec3d virtualEye(const DisplayDesign& d, const Vec3d& eyeMm) {
+  const double g = d.gapMm, gv = d.virtualGapMm, distance = d.viewDistanceMm;
+  if (gv == g || d.virtualDistanceMm != distance || !(eyeMm.z > 0)) return eyeMm;
+  const double r = d.spec.order == LayerOrder::BarrierBack
+                       ? g * (gv + distance) / (gv * (g + distance))
+                       : g / gv;
+  const double z = eyeMm.z * distance / (r * (distance - eyeMm.z) + eyeMm.z);
+  const double centre = d.spec.viewZoneCenterXMm;
+  return {centre + r * (eyeMm.x - centre) * z / eyeMm.z, eyeMm.y, z};
+}
+
+Image maskLayerImage(const DisplayDesign& design) {
+  const Panel& panel = design.spec.maskPanel;
+  const std::vector<float> coverage = MaskGeometry(design).rasterize();
+  Image image(panel.width, panel.height);
+  for (size_t i = 0; i < coverage.size(); ++i) image.pixels()[i] = Vec3f(coverage[i]);
+  return image;
+}
+
+}  // namespace parallax

@@ -1,0 +1,95 @@
+// The slanted lenticular display as a DisplayModel: one exact ray per subpixel, in the direction
+// its view fraction gives (lenticular.h, docs/lenticular.md).
+#include <algorithm>
+#include <cmath>
+
+#include "parallax/display/display_model.h"
+
+namespace parallax {
+
+namespace {
+
+class LenticularDisplay final : public DisplayModel {
+ public:
+  LenticularDisplay(const LenticularDesign& design, const ViewFilter& filter)
+      : design_(design), filterKind_(filter.kind), warp_(filter) {}
+
+  DisplayKind kind() const override { return DisplayKind::Lenticular; }
+  const std::string& source() const override { return design_.calibration.source; }
+  DisplayWindow window() const override { return displayWindow(design_); }
+  FilmLayout film() const override {
+    const int w = design_.calibration.screenW, h = design_.calibration.screenH;
+    return {3 * w, h, w, h, true};
+  }
+  int channelOfColumn(int column) const override { return column % 3; }
+
+  // Film column 3x + c is channel c of panel column x, wherever the calibration puts that
+  // subpixel. A sample's position inside its column moves the ray's panel point across the
+  // subpixel's third of the pixel; its angular sample spreads the ray's view around the
+  // subpixel's own (the formula at the pixel's centre) by the filter, whose width is in the
+  // channel's view steps (channelViewStep, docs/lenticular.md "Prefilter"). The column's centre
+  // casts exactly the published formula's ray.
+  DisplayRay ray(double filmX, double filmY, double u, double /*v*/) const override {
+    const int column = int(std::floor(filmX));
+    const int x = column / 3, channel = column % 3;
+    const double rowCentre = std::floor(filmY) + 0.5;
+    const double ownView = viewFractionAt(design_, x + 0.5, rowCentre, channel);
+    LenticularRay r;
+    if (filterKind_ == ViewFilterKind::None) {
+      r = lenticularRay(design_, x + 0.5, rowCentre, channel, ownView);
+    } else {
+      const double panelX = x + 0.5 + (filmX - column - 0.5) / 3.0;
+      // Period: anywhere in the lens's cone (the old cell's analogue, for comparison).
+      const double view = filterKind_ == ViewFilterKind::Period
+                              ? ownView + (u - 0.5)
+                              : ownView + warp_(u) * channelViewStep(design_);
+      r = lenticularRay(design_, panelX, filmY, channel, view);
+    }
+    return {r.origin, r.direction};
+  }
+  bool columnFans() const override { return false; }
+
+  // The views of a lenticular panel are continuous; its angular samples for quilts, direct
+  // mapping and the dense measure are the device's quilt views, evenly across the cone.
+  int viewCount() const override { return design_.quiltViews; }
+  int viewIndex(int column, int row) const override {
+    const double f = viewFraction(design_, column / 3, row, column % 3);
+    return std::clamp(int(std::floor(f * design_.quiltViews)), 0, design_.quiltViews - 1);
+  }
+  Vec3d viewPosition(int view) const override {
+    const double f = (view + 0.5) / design_.quiltViews;
+    const double d = design_.viewDistanceMm;
+    return {d * std::tan(viewAngle(design_, f)), 0.0, d};
+  }
+  double viewZoneWidthMm() const override { return design_.viewZoneWidthMm; }
+  bool horizontalParallaxOnly() const override { return true; }
+  std::vector<DesignFigure> designReport() const override {
+    const LenticularDesign& d = design_;
+    return {{"pixels_per_lens", d.pixelsPerLens, ""},
+            {"lens_pitch", d.lensPitchMm, "mm"},
+            {"lens_slant", d.lensSlantDegrees, "deg"},
+            {"view_cone", d.calibration.viewConeDegrees, "deg"},
+            {"view_distance", d.viewDistanceMm, "mm"},
+            {"view_zone_width", d.viewZoneWidthMm, "mm"},
+            {"views", double(d.quiltViews), ""}};
+  }
+  const LenticularDesign* lenticularDesign() const override { return &design_; }
+
+ private:
+  LenticularDesign design_;
+  ViewFilterKind filterKind_;
+  ViewFilterWarp warp_;
+};
+
+}  // namespace
+
+DisplayWindow displayWindow(const LenticularDesign& design) {
+  return {design.widthMm, design.heightMm, {0, 0, design.viewDistanceMm}};
+}
+
+std::unique_ptr<DisplayModel> makeLenticularDisplay(const LenticularDesign& design,
+                                                    const ViewFilter& filter) {
+  return std::make_unique<LenticularDisplay>(design, filter);
+}
+
+}  // namespace parallax

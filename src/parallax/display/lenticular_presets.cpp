@@ -1,0 +1,179 @@
+#include "parallax/display/lenticular_presets.h"
+
+namespace parallax {
+
+namespace {
+
+struct Template {
+  const char* name;
+  const char* description;
+  int screenW, screenH;
+  double dpi, pitch, slope, center, viewCone;
+  QuiltFormat quilt;
+  int cellPatternMode;
+  std::vector<SubpixelCell> cells;
+};
+
+LenticularPreset make(const Template& t) {
+  LenticularCalibration c;
+  c.source = std::string("lkg:") + t.name;
+  c.pitch = t.pitch;
+  c.slope = t.slope;
+  c.center = t.center;
+  c.viewConeDegrees = t.viewCone;
+  c.dpi = t.dpi;
+  c.screenW = t.screenW;
+  c.screenH = t.screenH;
+  c.invView = true;  // every template: the shaders' 1 - frac
+  c.cellPatternMode = t.cellPatternMode;
+  c.subpixelCells = t.cells;
+  c.quilt = t.quilt;
+  return {t.name, t.description, c};
+}
+
+// The OLED panels' subpixel layouts (pixels, y up). 16" Gen3 landscape (and the 32" Gen3
+// portrait template): the second cell mirrors the first in y, on alternate columns (pattern 2).
+const std::vector<SubpixelCell> kGen3LandscapeCells = {{{-0.31, 0.28, 0.0}, {0.25, 0.25, -0.25}},
+                                                       {{-0.31, 0.28, 0.0}, {-0.25, -0.25, 0.25}}};
+// 16" Gen3 portrait: the same panel turned, the second cell mirrored in x on alternate rows
+// (pattern 4).
+const std::vector<SubpixelCell> kGen3PortraitCells = {{{-0.25, -0.25, 0.25}, {-0.31, 0.28, 0.0}},
+                                                      {{0.25, 0.25, -0.25}, {-0.31, 0.28, 0.0}}};
+
+std::vector<LenticularPreset> build() {
+  const std::vector<Template> templates = {
+      {"portrait",
+       "Looking Glass Portrait (LKG-P)",
+       1536,
+       2048,
+       324,
+       52,
+       -7,
+       0.5,
+       40,
+       {8, 6, 3360, 3360},
+       0,
+       {}},
+      {"go",
+       "Looking Glass Go (LKG-E)",
+       1440,
+       2560,
+       491,
+       80.7,
+       -6.3,
+       -0.3,
+       54,
+       {11, 6, 4092, 4092},
+       0,
+       {}},
+      {"16-gen2",
+       "Looking Glass 16\" Gen2 (LKG-A)",
+       3840,
+       2160,
+       283,
+       50,
+       -7,
+       0.5,
+       40,
+       {5, 9, 4096, 4096},
+       0,
+       {}},
+      {"32-gen2",
+       "Looking Glass 32\" Gen2 (LKG-B)",
+       7680,
+       4320,
+       280,
+       42,
+       -6,
+       0.3,
+       40,
+       {5, 9, 8192, 8192},
+       0,
+       {}},
+      {"65-gen2",
+       "Looking Glass 65\" Gen2 (LKG-D)",
+       7680,
+       4320,
+       136,
+       42,
+       -6,
+       0.3,
+       40,
+       {8, 9, 8192, 8192},
+       0,
+       {}},
+      {"16-gen3",
+       "Looking Glass 16\" Spatial Display, landscape (LKG-J)",
+       3840,
+       2160,
+       283,
+       44.72,
+       -6.9,
+       0.5,
+       50,
+       {7, 7, 5999, 5999},
+       2,
+       kGen3LandscapeCells},
+      {"16-gen3-portrait",
+       "Looking Glass 16\" Spatial Display, portrait (LKG-H)",
+       2160,
+       3840,
+       283,
+       44.72,
+       -7.45,
+       0,
+       50,
+       {11, 6, 5995, 6000},
+       4,
+       kGen3PortraitCells},
+      {"32-gen3",
+       "Looking Glass 32\" Spatial Display, landscape (LKG-L)",
+       7680,
+       4320,
+       280,
+       75,
+       -7.2,
+       -0.2,
+       50,
+       {7, 7, 8190, 8190},
+       0,
+       {}},
+      {"32-gen3-portrait",
+       "Looking Glass 32\" Spatial Display, portrait (LKG-K)",
+       4320,
+       7680,
+       280,
+       80.7,
+       -6.3,
+       -0.3,
+       54,
+       {11, 6, 8184, 8184},
+       2,
+       kGen3LandscapeCells},
+  };
+  std::vector<LenticularPreset> presets;
+  for (const Template& t : templates) presets.push_back(make(t));
+  return presets;
+}
+
+}  // namespace
+
+const std::vector<LenticularPreset>& lenticularPresets() {
+  static const std::vector<LenticularPreset> presets = build();
+  return presets;
+}
+
+std::optional<LenticularCalibration> lenticularPreset(const std::string& name) {
+  for (const LenticularPreset& p : lenticularPresets())
+    if (p.name == name) return p.calibration;
+  return std::nullopt;
+}
+
+std::string lenticularPresetNames() {
+  std::string names;
+  for (const LenticularPreset& p : lenticularPresets())
+    names += (names.empty() ? "" : ", ") + p.name;
+  return names;
+}
+
+}  // namespace parallax
