@@ -70,10 +70,20 @@ check "views of another size" run 0 interlace "${small_views[@]}" "${small[@]}" 
 check "resampling is reported" grep -q "resampling.*48x27.*96x54" "$tmp/err"
 
 # Errors: one line, exit 2, nothing written.
-check "eight views exit 2" run 2 interlace "${views[@]:0:8}" "${small[@]}" -o "$tmp/e1"
-check "wrong count names the count expected" one_line_naming "needs 9 views"
-check "subpixels need 27" run 2 interlace "${views[@]}" "${small[@]}" --subpixels -o "$tmp/e2"
-check "subpixel count named" one_line_naming "needs 27 views"
+# Another count of views is resampled across views, named in the note and the record.
+check "eight views are resampled to nine" run 0 interlace "${views[@]:0:8}" "${small[@]}" \
+  -o "$tmp/e1"
+check "the resampling is noted with the count expected" \
+  grep -q "8 views given, the display takes 9 views.*resampled across views (linear)" "$tmp/err"
+check "the record names the resampling" grep -q '"view_resampling": "linear"' "$tmp/e1/render.json"
+check "nearest resampling" run 0 interlace "${views[@]:0:8}" "${small[@]}" \
+  --view-resampling nearest -o "$tmp/e1n"
+check "nearest and linear differ" bash -c "! cmp -s '$tmp/e1/image.png' '$tmp/e1n/image.png'"
+check "nine views need no resampling" bash -c "! '$bin' interlace ${views[*]} ${small[*]} \
+  -o '$tmp/e1x' 2>&1 | grep -q resampled"
+check "an unknown resampling exits 2" run 2 interlace "${views[@]}" "${small[@]}" \
+  --view-resampling cubic -o "$tmp/e2"
+check "an unknown resampling names the option" one_line_naming "--view-resampling"
 cp "$tmp/q/quilt_qs3x3a1.7778.png" "$tmp/plain.png"
 check "quilt without a layout exits 2" run 2 interlace "$tmp/plain.png" "${small[@]}" -o "$tmp/e3"
 check "missing layout names the file" one_line_naming "plain.png: no quilt layout"
@@ -84,14 +94,15 @@ cp "$tmp/plain.png" "$tmp/wrong_qs3x3a1.png"
 check "tile aspect against the name exits 2" run 2 interlace "$tmp/wrong_qs3x3a1.png" \
   "${small[@]}" -o "$tmp/e5"
 check "tile aspect names the file" one_line_naming "wrong_qs3x3a1.png"
-check "quilt of ten views exits 2" run 2 interlace "$tmp/q2/quilt_qs5x2a1.3333.png" \
+check "a quilt of ten views is resampled" run 0 interlace "$tmp/q2/quilt_qs5x2a1.3333.png" \
   "${small[@]}" -o "$tmp/e6"
-check "quilt count names the count expected" one_line_naming "needs 9 views"
+check "the quilt's resampling is noted" grep -q "10 views given, the display takes 9 views" \
+  "$tmp/err"
 check "--quilt-layout reads an unnamed quilt" run 0 interlace "$tmp/plain.png" "${small[@]}" \
   --quilt-layout 3x3 -o "$tmp/il"
 check "interlace the PNG quilt" run 0 interlace "$tmp/q/quilt_qs3x3a1.7778.png" "${small[@]}" \
   -o "$tmp/iqp"
 check "--quilt-layout gives the same image" cmp -s "$tmp/il/image.png" "$tmp/iqp/image.png"
-check "no output after the errors" bash -c "! ls -d '$tmp'/e? 2>/dev/null | grep -q ."
+check "no output after the errors" bash -c "! ls -d '$tmp'/e[2345] 2>/dev/null | grep -q ."
 
 cli_summary

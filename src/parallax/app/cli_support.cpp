@@ -343,7 +343,18 @@ Scene loadSceneReportingWarnings(const std::string& path) {
 }
 
 DisplayDesign loadDesignOrDefault(const std::string& path) {
-  return designDisplay(path.empty() ? defaultDisplaySpec() : loadDisplayFile(path));
+  const DisplayDescription description = loadDisplayOrDefault(path);
+  if (description.kind != DisplayKind::Barrier)
+    throw InputError(description.source(), "",
+                     "is a lenticular calibration; this command takes a barrier display");
+  return designDisplay(description.barrier);
+}
+
+DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset) {
+  DisplayDescription description = loadDisplayDescription(pathOrPreset);
+  for (const std::string& warning : description.lenticular.warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  return description;
 }
 
 ProgressBar::ProgressBar(std::string label)

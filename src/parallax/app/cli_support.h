@@ -12,6 +12,7 @@
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
 #include "parallax/display/view_filter.h"
+#include "parallax/io/display_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
@@ -129,7 +130,12 @@ Scene loadSceneOrDefault(const std::string& path);
 Scene loadSceneReportingWarnings(const std::string& path);
 
 // The built-in display when `path` is empty, otherwise the display file; checked (G1-G4).
+// A lenticular calibration is refused here, naming the command's barrier-only `what`.
 DisplayDesign loadDesignOrDefault(const std::string& path);
+
+// A display of any kind (io/display_file.h: "", a file of either kind, or lkg:NAME), with the
+// reader's warnings (defaulted or unknown calibration keys) printed to stderr, one line each.
+DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset);
 
 // A progress bar on stderr, drawn only when stderr is a terminal; thread-safe and throttled.
 class ProgressBar {

@@ -1,4 +1,4 @@
-// `parallax design`: the derived barrier design of a display (G1-G4).
+// `parallax design`: the derived design of a display: a barrier's (G1-G4), a lenticular's.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -11,6 +11,7 @@
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/io/display_file.h"
+#include "parallax/io/lenticular_file.h"
 
 namespace parallax::app {
 
@@ -44,6 +45,36 @@ void printDesign(const DisplayDesign& d, double depthMm) {
               d.adjacentViewDisparityMm(depthMm), depthMm);
 }
 
+// A lenticular calibration's design: the lens figures and the design viewer.
+void printLenticularDesign(const LenticularDesign& d, bool json) {
+  if (json) {
+    JsonWriter out;
+    out.set("/kind", "lenticular");
+    writeLenticularDesignJson(out, "", d);
+    std::printf("%s\n", out.dump().c_str());
+    return;
+  }
+  const LenticularCalibration& c = d.calibration;
+  std::printf("display              %s (slanted lenticular, %dx%d px, %.4g DPI)\n",
+              c.source.c_str(), c.screenW, c.screenH, c.dpi);
+  std::printf("panel                %.1f x %.1f mm, %.4f mm pixels\n", d.widthMm, d.heightMm,
+              d.pixelPitchMm);
+  std::printf("lenses               %.4g per inch, %.4f mm pitch, slant %.2f deg from vertical\n",
+              c.pitch, d.lensPitchMm, d.lensSlantDegrees);
+  std::printf("pixels per lens      %.4g along a row (%.4g subpixels)\n", d.pixelsPerLens,
+              d.subpixelsPerLens);
+  std::printf("view cone            %.4g deg, %s\n", c.viewConeDegrees,
+              c.invView ? "inverted (invView)" : "not inverted");
+  std::printf("subpixels            %s\n",
+              c.subpixelCells.empty()
+                  ? (c.flipSubpixels ? "BGR stripes" : "RGB stripes")
+                  : ("cells, pattern " + std::to_string(c.cellPatternMode)).c_str());
+  std::printf("design viewer        %.0f mm away, the cone %.0f mm wide there\n", d.viewDistanceMm,
+              d.viewZoneWidthMm);
+  std::printf("default quilt        %dx%d views, %dx%d px\n", c.quilt.columns, c.quilt.rows,
+              c.quilt.width, c.quilt.height);
+}
+
 }  // namespace
 
 void registerDesignCommand(CLI::App& cli) {
@@ -54,8 +85,10 @@ void registerDesignCommand(CLI::App& cli) {
     double depth = 0.0;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* cmd = cli.add_subcommand("design", "Print the derived barrier design of a display");
-  cmd->add_option("display", options->display, "Display file (built-in display if omitted)");
+  CLI::App* cmd =
+      cli.add_subcommand("design", "Print the derived design of a display (barrier or lenticular)");
+  cmd->add_option("display", options->display,
+                  "Display file of any kind, or lkg:NAME (built-in display if omitted)");
   cmd->add_option("--depth", options->depth,
                   "Depth (mm, + toward the viewer) for the disparity figure; default: the depth "
                   "of field")
@@ -66,7 +99,14 @@ void registerDesignCommand(CLI::App& cli) {
                   "against the depth of field");
   addFramingOptions(*cmd, options->framing, "With --scene: ");
   cmd->callback([options] {
-    const DisplayDesign d = loadDesignOrDefault(options->display);
+    const DisplayDescription description = loadDisplayOrDefault(options->display);
+    if (description.kind == DisplayKind::Lenticular) {
+      if (!options->scene.empty() || options->framing.given())
+        throw InputError("command line", "--scene",
+                         "frames a scene for a barrier display's depth of field");
+      return printLenticularDesign(designLenticular(description.lenticular), options->json);
+    }
+    const DisplayDesign d = designDisplay(description.barrier);
     std::optional<Framing> framing;
     if (!options->scene.empty()) {
       Scene scene = loadSceneOrDefault(options->scene);

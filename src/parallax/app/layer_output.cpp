@@ -190,8 +190,10 @@ void checkQuiltWork(int columns, int rows, int width, int height, int spp, int t
   const double views = double(columns) * rows;
   const std::string subject = "--quilt " + std::to_string(columns) + "x" + std::to_string(rows) +
                               (sizeText.empty() ? "" : " --size " + sizeText);
-  const double bytes = imageBytes(width, height, kFloatRgbPixelBytes, views) * 2 +
-                       imageBytes(width, height, kRgba8PixelBytes, views);
+  // The quilt and its 8-bit copy, and one view at a time (its film and its copy in the tile).
+  const double bytes = imageBytes(width, height, kFloatRgbPixelBytes, views) +
+                       imageBytes(width, height, kRgba8PixelBytes, views) +
+                       imageBytes(width, height, kFloatRgbPixelBytes, 2);
   checkMemoryEstimate(bytes, subject, "the quilt", "use fewer views or a smaller --size");
   checkPixelCount(views * width * height, subject);
   checkTimeEstimate(views * width * height * spp, threads, subject, "use fewer views or samples");

@@ -40,17 +40,55 @@ struct LenticularSimulateOptions {
 };
 
 void runRender(const LenticularRenderOptions& o) {
+  runLenticularRender({loadDisplayOrDefault(o.calibration).lenticular, o.scene, o.output,
+                       o.sampling, o.filter, o.distance});
+}
+
+void runSimulate(const LenticularSimulateOptions& o) {
+  std::string imagePath = o.image, calibrationPath;
+  if (!o.image.empty()) {
+    if (o.inputs.size() != 1)
+      throw InputError("command line", "--image", "takes the calibration file as the argument");
+    calibrationPath = o.inputs[0];
+  } else {
+    if (o.inputs.empty() || o.inputs.size() > 2)
+      throw InputError("command line", "DIR",
+                       "expected DIR [CALIBRATION] or --image FILE CALIBRATION");
+    imagePath = (fs::path(o.inputs[0]) / "image.png").string();
+    calibrationPath =
+        o.inputs.size() == 2 ? o.inputs[1] : (fs::path(o.inputs[0]) / "visual.json").string();
+  }
+  const LenticularDesign design =
+      designLenticular(loadDisplayOrDefault(calibrationPath).lenticular, o.distance);
+  const double w = design.calibration.screenW, h = design.calibration.screenH;
+  checkMemoryEstimate(imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
+                      calibrationPath, "the panel and the view", "use a smaller panel");
+  const Image panel = readImage(imagePath);
+  Vec3d eye{0, 0, design.viewDistanceMm};
+  if (!o.eye.empty()) {
+    const Vec3f e = parseVec3("--eye", o.eye);
+    if (!(e.z > 0)) throw InputError("command line", "--eye", "the eye must be in front (z > 0)");
+    eye = {e.x, e.y, e.z};
+  }
+  const Image view = simulateLenticularView(design, panel, eye);
+  writeImage(o.output, view);
+  std::printf("wrote %s (%dx%d): the panel seen from %.1f,%.1f,%.1f mm\n", o.output.c_str(),
+              view.width(), view.height(), eye.x, eye.y, eye.z);
+}
+
+}  // namespace
+
+void runLenticularRender(const LenticularRenderJob& o) {
   RenderSettings settings = o.sampling.settings();
   const ViewFilter filter = o.filter.filter();
   // The central ray is one ray: more samples of it would all be the same.
   if (filter.kind == ViewFilterKind::None) settings.samplesPerPixel = 1;
-  const LenticularDesign design =
-      designLenticular(loadLenticularCalibration(o.calibration), o.distance);
+  const LenticularDesign design = designLenticular(o.calibration, o.distance);
   // Before anything is allocated: the subpixel film (three columns per pixel), the panel
   // image and its 8-bit copy; and the time of one sample per subpixel and spp.
   const double w = design.calibration.screenW, h = design.calibration.screenH;
   checkMemoryEstimate(imageBytes(3 * w, h) + imageBytes(w, h) + imageBytes(w, h, kRgba8PixelBytes),
-                      o.calibration, "the panel image", "use a smaller panel");
+                      o.calibration.source, "the panel image", "use a smaller panel");
   o.sampling.checkWork(3 * w, h);
   const Scene scene = loadSceneReportingWarnings(o.scene);
   const Accelerator accelerator(scene);
@@ -93,40 +131,6 @@ void runRender(const LenticularRenderOptions& o) {
               out.stats.seconds,
               formatRate(double(out.stats.totalRays()) / out.stats.seconds).c_str());
 }
-
-void runSimulate(const LenticularSimulateOptions& o) {
-  std::string imagePath = o.image, calibrationPath;
-  if (!o.image.empty()) {
-    if (o.inputs.size() != 1)
-      throw InputError("command line", "--image", "takes the calibration file as the argument");
-    calibrationPath = o.inputs[0];
-  } else {
-    if (o.inputs.empty() || o.inputs.size() > 2)
-      throw InputError("command line", "DIR",
-                       "expected DIR [CALIBRATION] or --image FILE CALIBRATION");
-    imagePath = (fs::path(o.inputs[0]) / "image.png").string();
-    calibrationPath =
-        o.inputs.size() == 2 ? o.inputs[1] : (fs::path(o.inputs[0]) / "visual.json").string();
-  }
-  const LenticularDesign design =
-      designLenticular(loadLenticularCalibration(calibrationPath), o.distance);
-  const double w = design.calibration.screenW, h = design.calibration.screenH;
-  checkMemoryEstimate(imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
-                      calibrationPath, "the panel and the view", "use a smaller panel");
-  const Image panel = readImage(imagePath);
-  Vec3d eye{0, 0, design.viewDistanceMm};
-  if (!o.eye.empty()) {
-    const Vec3f e = parseVec3("--eye", o.eye);
-    if (!(e.z > 0)) throw InputError("command line", "--eye", "the eye must be in front (z > 0)");
-    eye = {e.x, e.y, e.z};
-  }
-  const Image view = simulateLenticularView(design, panel, eye);
-  writeImage(o.output, view);
-  std::printf("wrote %s (%dx%d): the panel seen from %.1f,%.1f,%.1f mm\n", o.output.c_str(),
-              view.width(), view.height(), eye.x, eye.y, eye.z);
-}
-
-}  // namespace
 
 void registerLenticularCommand(CLI::App& cli) {
   CLI::App* cmd = cli.add_subcommand(

@@ -18,6 +18,7 @@
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/io/lenticular_file.h"
 #include "parallax/render/display_render.h"
 #include "parallax/render/quilt.h"
 
@@ -75,38 +76,60 @@ void reportFraming(const Framing& framing) {
 
 namespace {
 
-// `render --quilt CxR`: the C*R off-axis views of the display's window from eyes spread evenly
-// across the view zone, tiled from the bottom-left into DIR/quilt_qs{C}x{R}a{aspect}.png
-// (docs/quilts.md).
-void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDesign& design,
-                    const Scene& scene, const RenderSettings& settings, const Framing& framing) {
-  int width = design.spec.imagePanel.width, height = design.spec.imagePanel.height;
+// `render --quilt CxR|auto`: the C*R off-axis views of the display's window from eyes spread
+// evenly across the view zone (a lenticular's cone), tiled from the bottom-left into
+// DIR/quilt_qs{C}x{R}a{aspect}.png (docs/quilts.md), each view rendered straight into its tile.
+// Tiles: --size, else a lenticular device's quilt divided by the layout, else the barrier's image
+// layer.
+void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayModel& display,
+                    const Scene& scene, const RenderSettings& settings, const Framing* framing,
+                    const std::string& displayText, const std::string& displayName) {
+  const LenticularDesign* lenticular = display.lenticularDesign();
+  if (layout.columns == 0) {  // auto: the device's quilt, or one row of the barrier's views
+    if (lenticular) {
+      layout.columns = lenticular->calibration.quilt.columns;
+      layout.rows = lenticular->calibration.quilt.rows;
+    } else {
+      layout.columns = display.viewCount();
+      layout.rows = 1;
+    }
+  }
+  int width = display.film().panelWidth, height = display.film().panelHeight;
+  if (lenticular) {
+    width = lenticular->calibration.quilt.width / layout.columns;
+    height = lenticular->calibration.quilt.height / layout.rows;
+  }
   if (!o.size.empty()) parseSize("--size", o.size, width, height);
+  if (width < 1 || height < 1)
+    throw InputError("command line", "--quilt",
+                     "the device's quilt is too small for " + std::to_string(layout.columns) + "x" +
+                         std::to_string(layout.rows) + " tiles");
   checkQuiltWork(layout.columns, layout.rows, width, height, settings.samplesPerPixel,
                  settings.threads, o.size);
   layout.aspect = double(width) / height;
-  const double windowAspect = design.frontWidthMm() / design.frontHeightMm();
+  const DisplayWindow window = display.window();
+  const double windowAspect = window.widthMm / window.heightMm;
   if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01)
     std::fprintf(stderr,
-                 "warning: --size %dx%d has aspect %.4f, the display's window %.4f: the views are "
-                 "stretched\n",
+                 "note: tiles of %dx%d have aspect %.4f, the display's window %.4f: the views are "
+                 "stretched to fill them, as Looking Glass quilts are\n",
                  width, height, layout.aspect, windowAspect);
 
-  reportFraming(framing);
+  if (framing) reportFraming(*framing);
   const Accelerator accelerator(scene);
   RenderStats stats;
-  std::vector<Image> views;
+  Image quilt;
   {
     ProgressBar bar("render");
-    views = renderQuiltViews(scene, accelerator, design, settings, layout.views(), width, height,
-                             &stats, [&bar](int done, int total) { bar.update(done, total); });
+    quilt = renderQuilt(scene, accelerator, display, settings, layout, width, height, &stats,
+                        [&bar](int done, int total) { bar.update(done, total); });
   }
-  const Image quilt = assembleQuilt(views, layout.columns, layout.rows);
   const double raysPerSecond = double(stats.totalRays()) / stats.seconds;
 
   const std::string name = quiltFileName("quilt", layout, ".png");
   JsonWriter record;
   startRenderRecord(record, "quilt", o.display);
+  record.set("/display_kind", displayKindName(display.kind()));
   record.set("/scene", scene.source);
   record.set("/spp", o.sampling.spp);
   record.set("/seed", o.sampling.seed);
@@ -120,13 +143,15 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
   record.set("/quilt/view_size", std::to_string(width) + "x" + std::to_string(height));
   record.set("/quilt/order", "view 0 = leftmost camera = bottom-left tile, rightward then upward");
   for (int k = 0; k < layout.views(); ++k) {
-    const Vec3d eye = quiltEyePosition(design, k, layout.views());
+    const Vec3d eye = quiltEyePosition(display, k, layout.views());
     record.set("/quilt/eyes_mm/" + std::to_string(k),
                Vec3f(float(eye.x), float(eye.y), float(eye.z)));
   }
   record.set("/outputs/quilt", name);
-  recordFraming(record, framing);
-  writeDesignJson(record, "/design", design);
+  if (framing) recordFraming(record, *framing);
+  if (const DisplayDesign* barrier = display.barrierDesign())
+    writeDesignJson(record, "/design", *barrier);
+  if (lenticular) writeLenticularDesignJson(record, "/design", *lenticular);
   const std::string linearName = quiltFileName("quilt", layout, ".pfm");
   if (o.linear) record.set("/outputs/quilt_linear", linearName);
 
@@ -134,13 +159,37 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayDes
   const std::string dir = set.dir();
   writeImage(set.path(name), quilt);
   if (o.linear) writeImage(set.path(linearName), quilt);
-  writeFileAtomically(set.path("display.json"), displayFileText(design.spec));
+  writeFileAtomically(set.path(displayName), displayText);
   writeFileAtomically(set.path("render.json"), record.dump() + "\n");
   set.commit();
   std::printf("wrote %s/%s (%d views of %dx%d), %s/render.json\n", dir.c_str(), name.c_str(),
               layout.views(), width, height, dir.c_str());
   std::printf("%d spp in %.2f s, %s\n", o.sampling.spp, stats.seconds,
               formatRate(raysPerSecond).c_str());
+}
+
+// `render --display visual.json|lkg:NAME`: the lenticular panel's picture, or its quilt.
+void runLenticular(const RenderOptions& o, const LenticularCalibration& calibration,
+                   const QuiltLayout& layout, RenderSettings settings) {
+  if (o.subpixels)
+    throw InputError("command line", "--subpixels",
+                     "applies to barrier displays; a lenticular render always traces one ray per "
+                     "subpixel");
+  if (o.directMapping)
+    throw InputError("command line", "--direct-mapping",
+                     "applies to barrier displays; for a lenticular display render a quilt "
+                     "(--quilt auto) and interlace it");
+  if (o.framing.given())
+    throw InputError("command line", "--fit/--focus/--depth-budget",
+                     "apply to barrier displays (their depth budget is the virtual gap)");
+  if (o.quilt.empty())
+    return runLenticularRender({calibration, o.scene, o.output, o.sampling, o.filter, 0.0});
+  const LenticularDesign design = designLenticular(calibration);
+  const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(design);
+  const Scene scene = loadSceneReportingWarnings(o.scene);
+  settings.samplesPerPixel = o.sampling.spp;
+  runQuiltRender(o, layout, *display, scene, settings, nullptr,
+                 lenticularCalibrationText(calibration), "visual.json");
 }
 
 void runRender(const RenderOptions& o) {
@@ -152,9 +201,15 @@ void runRender(const RenderOptions& o) {
   if (!o.size.empty() && o.quilt.empty())
     throw InputError("command line", "--size", "sets the size of one quilt view: needs --quilt");
   QuiltLayout layout;
-  if (!o.quilt.empty() && !parseColumnsByRows(o.quilt, layout.columns, layout.rows))
-    throw InputError("command line", "--quilt", "expected COLUMNSxROWS, got '" + o.quilt + "'");
-  DisplayDesign design = loadDesignOrDefault(o.display);
+  if (o.quilt == "auto")
+    layout.columns = layout.rows = 0;  // the display's own (runQuiltRender)
+  else if (!o.quilt.empty() && !parseColumnsByRows(o.quilt, layout.columns, layout.rows))
+    throw InputError("command line", "--quilt",
+                     "expected COLUMNSxROWS or auto, got '" + o.quilt + "'");
+  const DisplayDescription description = loadDisplayOrDefault(o.display);
+  if (description.kind == DisplayKind::Lenticular)
+    return runLenticular(o, description.lenticular, layout, settings);
+  DisplayDesign design = designDisplay(description.barrier);
   if (o.subpixels) {
     DisplaySpec spec = design.spec;
     spec.subpixelRays = true;
@@ -164,7 +219,9 @@ void runRender(const RenderOptions& o) {
     checkLayerWork(design, o.directMapping, settings.samplesPerPixel, settings.threads, o.display);
   Scene scene = loadSceneReportingWarnings(o.scene);
   const Framing framing = frameForRender(o, scene, design);
-  if (!o.quilt.empty()) return runQuiltRender(o, layout, design, scene, settings, framing);
+  if (!o.quilt.empty())
+    return runQuiltRender(o, layout, *makeBarrierDisplay(design), scene, settings, &framing,
+                          displayFileText(design.spec), "display.json");
   reportFraming(framing);
   const Accelerator accelerator(scene);
   DisplayLayers layers;
@@ -216,7 +273,9 @@ void registerRenderCommand(CLI::App& cli) {
   CLI::App* cmd =
       cli.add_subcommand("render", "Render the image and mask layers of a parallax display");
   cmd->add_option("scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
-  cmd->add_option("--display", options->display, "Display file (built-in display if omitted)");
+  cmd->add_option("--display", options->display,
+                  "Display: a barrier display file, a lenticular calibration (visual.json), or a "
+                  "Looking Glass preset lkg:NAME (built-in barrier display if omitted)");
   addSamplingOptions(*cmd, options->sampling,
                      "Rays per pixel: n*n stratified over pixel and aperture");
   addFilterOptions(*cmd, options->filter, "", "one view: a pixel column's angle at the gap");
@@ -230,12 +289,14 @@ void registerRenderCommand(CLI::App& cli) {
                                          "One ray per R, G, B subpixel (three times the views)");
   cmd->add_option("--quilt", options->quilt,
                   "Instead of the layers: C*R off-axis views of the display's window, leftmost "
-                  "camera first, as DIR/quilt_qs{C}x{R}a{aspect}.png (docs/quilts.md)")
-      ->type_name("CxR")
+                  "camera first, as DIR/quilt_qs{C}x{R}a{aspect}.png (docs/quilts.md); auto: a "
+                  "Looking Glass device's own quilt, or one row of a barrier's views")
+      ->type_name("CxR|auto")
       ->excludes(direct)
       ->excludes(subpixels);
   cmd->add_option("--size", options->size,
-                  "With --quilt: the size of one view (default: the image layer's resolution)")
+                  "With --quilt: the size of one view (default: the device quilt's tile, or the "
+                  "image layer's resolution)")
       ->type_name("WxH");
   cmd->callback([options] { runRender(*options); });
 }

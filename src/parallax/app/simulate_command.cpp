@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -29,6 +30,7 @@
 #include "parallax/quality/viewer_quality.h"
 #include "parallax/render/render.h"
 #include "parallax/sim/crosstalk.h"
+#include "parallax/sim/simulated_display.h"
 #include "parallax/sim/simulator.h"
 
 namespace parallax::app {
@@ -62,21 +64,35 @@ struct SimulateOptions {
   bool rawPixels = false;
 };
 
-// The inputs: a `render` output folder, or an image and mask with a display file.
+// The inputs: a `render` output folder, or its pictures with a display file, of any kind.
 struct Inputs {
-  DisplayDesign design;
+  std::unique_ptr<DisplayModel> display;
   LayerImages layers;
   std::string scene;  // for --reference: the scene the layers were rendered from
+  const DisplayDesign* barrier() const { return display->barrierDesign(); }
 };
 
 Inputs loadInputs(const SimulateOptions& o) {
   const fs::path dir(o.dir);
   const auto inDir = [&dir](const char* name) { return (dir / name).string(); };
+  // The display: --display, else the folder's display.json (barrier) or visual.json
+  // (lenticular), else the built-in one.
   std::string displayPath = o.display;
-  if (displayPath.empty() && fs::exists(inDir("display.json"))) displayPath = inDir("display.json");
-  Inputs in{loadDesignOrDefault(displayPath), {}, o.scene};
+  for (const char* name : {"display.json", "visual.json"})
+    if (displayPath.empty() && fs::exists(inDir(name))) displayPath = inDir(name);
+  const DisplayDescription description = loadDisplayOrDefault(displayPath);
+  Inputs in;
+  in.scene = o.scene;
+  if (description.kind == DisplayKind::Lenticular) {
+    if (!o.mask.empty())
+      throw InputError("command line", "--mask", "a lenticular display has no mask layer");
+    in.display = makeLenticularDisplay(designLenticular(description.lenticular));
+  } else {
+    in.display = makeBarrierDisplay(designDisplay(description.barrier));
+  }
   in.layers.image = readImage(o.image.empty() ? inDir("image.png") : o.image);
-  in.layers.mask = readImage(o.mask.empty() ? inDir("mask.png") : o.mask);
+  if (in.display->hasMaskLayer())
+    in.layers.mask = readImage(o.mask.empty() ? inDir("mask.png") : o.mask);
   if (in.scene.empty() && fs::exists(inDir("render.json"))) {
     const JsonDocument record = JsonDocument::parseFile(inDir("render.json"));
     in.scene = record.root().string("scene", "<built-in>");
@@ -85,29 +101,37 @@ Inputs loadInputs(const SimulateOptions& o) {
   return in;
 }
 
-std::vector<Vec3d> eyePositions(const SimulateOptions& o, const DisplayDesign& d) {
+// The scene the layers were rendered from, as they framed it (a barrier's framing; a
+// lenticular render places the scene as it is).
+Scene referenceScene(const Inputs& in, const SimulateOptions& o) {
+  Scene scene = loadSceneAsRendered(in.scene, o.dir);
+  if (const DisplayDesign* d = in.barrier()) return framedScene(std::move(scene), *d);
+  return scene;
+}
+
+std::vector<Vec3d> eyePositions(const SimulateOptions& o, const DisplayModel& display) {
   std::vector<Vec3d> eyes;
   for (const std::string& text : o.eyes) {
     const Vec3f e = parseVec3("--eye", text);
     if (!(e.z > 0)) throw InputError("command line", "--eye", "the eye must be in front (z > 0)");
     eyes.push_back({e.x, e.y, e.z});
   }
-  const double centre = d.spec.viewZoneCenterXMm, y = d.spec.viewZoneHeightMm;
+  const Vec3d centre = display.window().eyeMm;  // the zone's centre at the design distance D
   if (o.sweep > 0) {
-    if (o.sweepDistance > 100 * d.viewDistanceMm)
+    if (o.sweepDistance > 100 * centre.z)
       throw InputError("--sweep-distance", "",
                        "must be at most 100 times the design distance D = " +
-                           std::to_string(int(d.viewDistanceMm)) + " mm");
-    const double z = o.sweepDistance > 0 ? o.sweepDistance : d.viewDistanceMm;
+                           std::to_string(int(centre.z)) + " mm");
+    const double z = o.sweepDistance > 0 ? o.sweepDistance : centre.z;
     // Across the view zone (scaled by --sweep-range), scaled to the distance so that a
     // farther sweep covers the same views.
-    const double width = o.sweepRange * d.viewZoneWidthMm * z / d.viewDistanceMm;
     for (int i = 0; i < o.sweep; ++i) {
       const double t = o.sweep == 1 ? 0.5 : double(i) / double(o.sweep - 1);
-      eyes.push_back({centre + width * (t - 0.5), y, z});
+      const Vec3d e = display.eyeAcrossZone(0.5 + o.sweepRange * (t - 0.5));
+      eyes.push_back({centre.x + (e.x - centre.x) * z / centre.z, centre.y, z});
     }
   }
-  if (eyes.empty()) eyes.push_back({centre, y, d.viewDistanceMm});
+  if (eyes.empty()) eyes.push_back(centre);
   return eyes;
 }
 
@@ -197,12 +221,12 @@ void printComparison(const SimulateOptions& o, const std::vector<std::string>& l
 // `simulate --reference` without --eye or --sweep: the dense measure (docs/simulator.md), K eyes
 // inside every view's window at several distances, and the design eyes as their own column.
 void runDenseReference(const SimulateOptions& o, const Inputs& in, const SimulationOptions& sim) {
-  const DisplayDesign& d = in.design;
+  const DisplayModel& display = *in.display;
   if (o.eyesPerView < 1 || o.eyesPerView > 64)
     throw InputError("command line", "--eyes-per-view",
                      "expected 1 to 64 eyes per view, got " + std::to_string(o.eyesPerView));
   const std::vector<double> distances = parseDistances(o.distances);
-  const Scene scene = framedScene(loadSceneAsRendered(in.scene, o.dir), d);
+  const Scene scene = referenceScene(in, o);
   const Accelerator accelerator(scene);
   // --compare: more renders of the same scene for the same display, scored at the same eyes
   // against the same ideal views (rendered once).
@@ -211,28 +235,29 @@ void runDenseReference(const SimulateOptions& o, const Inputs& in, const Simulat
   for (const std::string& other : o.compare) {
     const fs::path dir(other);
     labels.push_back(other);
-    layers.push_back(
-        {readImage((dir / "image.png").string()), readImage((dir / "mask.png").string())});
+    layers.push_back({readImage((dir / "image.png").string()),
+                      display.hasMaskLayer() ? readImage((dir / "mask.png").string()) : Image()});
   }
-  std::vector<std::unique_ptr<DisplaySimulator>> simulators;
-  std::vector<const DisplaySimulator*> pointers;
+  std::vector<std::unique_ptr<SimulatedDisplay>> simulators;
+  std::vector<const SimulatedDisplay*> pointers;
   for (const LayerImages& l : layers) {
-    simulators.push_back(std::make_unique<DisplaySimulator>(d, l, sim));
+    simulators.push_back(simulateDisplay(display, l, sim));
     pointers.push_back(simulators.back().get());
   }
-  std::vector<DenseEye> eyes = denseEyes(d, o.eyesPerView, distances);
-  for (const DenseEye& eye : designEyes(d)) eyes.push_back(eye);
+  std::vector<DenseEye> eyes = denseEyes(display, o.eyesPerView, distances);
+  for (const DenseEye& eye : designEyes(display)) eyes.push_back(eye);
   std::vector<ViewerQuality> results;
   {
     ProgressBar bar("measure");
-    results = measureViewerQuality(scene, accelerator, pointers, eyes, {o.referenceSpp, o.threads},
+    results = measureViewerQuality(scene, accelerator, display, pointers, eyes,
+                                   {o.referenceSpp, o.threads},
                                    [&bar](int done, int total) { bar.update(done, total); });
   }
   if (results.size() > 1) return printComparison(o, labels, results);
   const ViewerQuality& result = results.front();
   if (o.json) {
     JsonWriter json;
-    json.set("/display", d.spec.source);
+    json.set("/display", display.source());
     json.set("/eyes_per_view", o.eyesPerView);
     for (size_t i = 0; i < result.eyes.size(); ++i) {
       const EyeQuality& q = result.eyes[i];
@@ -278,16 +303,20 @@ void runDenseReference(const SimulateOptions& o, const Inputs& in, const Simulat
 // Before the simulator allocates: per eye its view, the picture and the encoded copies of a
 // sweep, beside two copies of the layers (the simulator's, a blurred rear layer); and the
 // time of every sample (spp x pupil samples per output pixel, and the reference views').
-void checkSimulationWork(const SimulateOptions& o, const DisplayDesign& d,
+void checkSimulationWork(const SimulateOptions& o, const DisplayModel& display,
                          const LayerImages& layers, const SimulationOptions& sim, size_t eyes) {
-  if (o.diffuser > d.frontWidthMm())
+  const DisplayWindow window = display.window();
+  if (o.diffuser > window.widthMm)
     throw InputError("--diffuser", "",
-                     "a blur wider than the display (" + std::to_string(int(d.frontWidthMm())) +
+                     "a blur wider than the display (" + std::to_string(int(window.widthMm)) +
                          " mm) is no diffuser");
-  const Panel& front =
-      d.spec.order == LayerOrder::BarrierBack ? d.spec.imagePanel : d.spec.maskPanel;
-  const double w = sim.width > 0 ? sim.width : front.width;
-  const double h = sim.height > 0 ? sim.height : front.height;
+  double w = display.film().panelWidth, h = display.film().panelHeight;
+  if (const DisplayDesign* d = display.barrierDesign()) {
+    const Panel& front =
+        d->spec.order == LayerOrder::BarrierBack ? d->spec.imagePanel : d->spec.maskPanel;
+    w = sim.width > 0 ? sim.width : front.width;
+    h = sim.height > 0 ? sim.height : front.height;
+  }
   const double layerBytes = imageBytes(layers.image.width(), layers.image.height()) +
                             imageBytes(layers.mask.width(), layers.mask.height());
   const double perEye = imageBytes(w, h, 2 * kFloatRgbPixelBytes + 2 * kRgba8PixelBytes);
@@ -309,9 +338,26 @@ void checkSimulationWork(const SimulateOptions& o, const DisplayDesign& d,
                       "--reference-spp " + std::to_string(o.referenceSpp), "use fewer samples");
 }
 
+// Options that only the two-layer simulator has, refused for other kinds by name.
+void checkKindOptions(const SimulateOptions& o, const DisplayModel& display) {
+  if (display.barrierDesign()) return;
+  const auto refuse = [](const char* option) {
+    throw InputError("command line", option,
+                     "applies to the two-layer (barrier) simulator; a lenticular panel is seen "
+                     "through its lenses at the panel's resolution");
+  };
+  if (!o.size.empty()) refuse("--size");
+  if (o.spp != 0) refuse("--spp");
+  if (o.pupil > 0) refuse("--pupil");
+  if (o.diffuser > 0) refuse("--diffuser");
+  if (o.colourFilters) refuse("--color-filters");
+  if (o.raw) refuse("--raw");
+}
+
 void runSimulate(const SimulateOptions& o) {
   const Inputs in = loadInputs(o);
-  const DisplayDesign& d = in.design;
+  const DisplayModel& display = *in.display;
+  checkKindOptions(o, display);
   SimulationOptions sim;
   if (!o.size.empty()) parseSize("--size", o.size, sim.width, sim.height);
   sim.samplesPerPixel = o.spp;
@@ -321,23 +367,22 @@ void runSimulate(const SimulateOptions& o) {
   sim.colourFilters = o.colourFilters;
   sim.normalise = !o.raw;
   sim.threads = o.threads;
-  checkSimulationWork(o, d, in.layers, sim, eyePositions(o, d).size());
+  checkSimulationWork(o, display, in.layers, sim, eyePositions(o, display).size());
   if (o.reference && o.eyes.empty() && o.sweep == 0) return runDenseReference(o, in, sim);
   // --reference: the scene is read (and checked) before any picture is written.
-  std::optional<Scene> referenceScene;
-  if (o.reference) referenceScene = framedScene(loadSceneAsRendered(in.scene, o.dir), in.design);
-  const Image maskLayer = in.layers.mask;
-  const DisplaySimulator simulator(d, in.layers, sim);
-  const std::vector<Vec3d> eyes = eyePositions(o, d);
+  std::optional<Scene> scene;
+  if (o.reference) scene = referenceScene(in, o);
+  const std::unique_ptr<SimulatedDisplay> simulator = simulateDisplay(display, in.layers, sim);
+  const std::vector<Vec3d> eyes = eyePositions(o, display);
 
   std::vector<Image> views;
-  for (const Vec3d& eye : eyes) views.push_back(simulator.view(eye));
+  for (const Vec3d& eye : eyes) views.push_back(simulator->view(eye));
   // Pictures as perceived: a viewer at the design distance does not resolve single pixels
   // (0.27 mm at 600 mm is about 1.5 arc minutes), so each output pixel shows the light of one
-  // screen period around it; --raw-pixels keeps the pinhole eye's samples as they are.
+  // screen period (one lens) around it; --raw-pixels keeps the eye's samples as they are.
   std::vector<Image> pictures;
   for (const Image& view : views)
-    pictures.push_back(o.rawPixels ? view : atDisplayResolution(d, view));
+    pictures.push_back(o.rawPixels ? view : simulator->atDisplayResolution(view));
 
   std::vector<std::string> written;
   if (o.sweep > 0) {
@@ -352,7 +397,7 @@ void runSimulate(const SimulateOptions& o) {
                contactSheet(pictures, std::min<int>(int(pictures.size()), 3), thumbnail, labels));
     writeFileAtomically(prefix + "-anim.png", encodeApng(pictures, 250));
     writeFileAtomically(prefix + ".html",
-                        sliderPage("parallax: eye sweep across " + d.spec.source, pngs, labels));
+                        sliderPage("parallax: eye sweep across " + display.source(), pngs, labels));
     written = {prefix + "-sheet.png", prefix + "-anim.png", prefix + ".html"};
   } else {
     const std::string path = o.output.empty() ? "out/simulated.png" : o.output;
@@ -364,29 +409,36 @@ void runSimulate(const SimulateOptions& o) {
 
   std::vector<Quality> quality;
   if (o.reference) {
-    const Scene& scene = *referenceScene;
-    const Accelerator accelerator(scene);
+    const Accelerator accelerator(*scene);
     for (size_t i = 0; i < eyes.size(); ++i) {
-      const Image reference = idealView(scene, accelerator, d, eyes[i], views[i].width(),
-                                        views[i].height(), o.referenceSpp, o.threads);
+      const Image reference =
+          idealView(*scene, accelerator, display, *simulator, eyes[i], views[i].width(),
+                    views[i].height(), o.referenceSpp, o.threads);
       Quality q;
-      const Image seen = o.rawPixels ? atDisplayResolution(d, views[i]) : pictures[i];
+      const Image seen = o.rawPixels ? simulator->atDisplayResolution(views[i]) : pictures[i];
       q.psnr = psnr(seen, reference);
       q.ssim = ssim(seen, reference);
-      // Brightness is the raw mean transmittance, whatever --raw says for the pictures.
-      SimulationOptions raw = sim;
-      raw.normalise = false;
-      const CrosstalkResult c = measureCrosstalk(d, maskLayer, raw, eyes[i]);
-      q.brightness = c.brightness;
-      q.crosstalk = c.crosstalk;
-      q.ownView = c.ownView;
+      if (const DisplayDesign* d = in.barrier()) {
+        // Brightness is the raw mean transmittance, whatever --raw says for the pictures.
+        SimulationOptions raw = sim;
+        raw.normalise = false;
+        const CrosstalkResult c = measureCrosstalk(*d, in.layers.mask, raw, eyes[i]);
+        q.brightness = c.brightness;
+        q.crosstalk = c.crosstalk;
+        q.ownView = c.ownView;
+      } else {
+        q.brightness = 1.0;  // a lens passes all its light (no barrier)
+        q.crosstalk = std::numeric_limits<double>::quiet_NaN();
+        q.ownView = -1;
+      }
       quality.push_back(q);
     }
   }
 
   if (o.json) {
     JsonWriter json;
-    json.set("/display", d.spec.source);
+    json.set("/display", display.source());
+    json.set("/display_kind", displayKindName(display.kind()));
     for (size_t i = 0; i < written.size(); ++i)
       json.set("/outputs/" + std::to_string(i), written[i]);
     Quality mean;
@@ -439,7 +491,9 @@ void registerSimulateCommand(CLI::App& cli) {
       ->capture_default_str();
   cmd->add_option("--image", o->image, "Image layer (instead of DIR/image.png)");
   cmd->add_option("--mask", o->mask, "Mask layer (instead of DIR/mask.png)");
-  cmd->add_option("--display", o->display, "Display file (instead of DIR/display.json)");
+  cmd->add_option("--display", o->display,
+                  "Display file of any kind, or lkg:NAME (instead of DIR/display.json or "
+                  "DIR/visual.json)");
   cmd->add_option("--eye", o->eyes,
                   "Eye position X,Y,Z in display mm (origin: front layer centre, z toward the "
                   "viewer); repeatable. Default: the view-zone centre");

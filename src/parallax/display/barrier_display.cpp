@@ -40,6 +40,10 @@ class BarrierDisplay final : public DisplayModel {
   int viewIndex(int column, int row) const override { return rays_.viewIndex(column, row); }
   Vec3d viewPosition(int view) const override { return rays_.viewPosition(view); }
   double viewZoneWidthMm() const override { return design_.viewZoneWidthMm; }
+  Vec3d eyeAcrossZone(double t) const override {
+    return {design_.spec.viewZoneCenterXMm + design_.viewZoneWidthMm * (t - 0.5),
+            design_.spec.viewZoneHeightMm, design_.viewDistanceMm};
+  }
   bool horizontalParallaxOnly() const override { return !rays_.mask().isPinholeGrid(); }
   Vec3d intendedEye(const Vec3d& eyeMm) const override { return virtualEye(design_, eyeMm); }
   bool hasMaskLayer() const override { return true; }

@@ -82,6 +82,10 @@ class DisplayModel {
   virtual int viewIndex(int column, int row) const = 0;
   virtual Vec3d viewPosition(int view) const = 0;
   virtual double viewZoneWidthMm() const = 0;
+  // The eye a fraction t of the way across the view zone at the design distance, from its left
+  // edge (t = 0) to its right (t = 1): even steps across a barrier's zone, even steps in angle
+  // across a lenticular's cone. Quilt cameras and sweeps stand here.
+  virtual Vec3d eyeAcrossZone(double t) const = 0;
   // Whether slit displays' one-axis perspective applies to the ideal view (the eye's height
   // does not change what it sees); false for displays with vertical parallax.
   virtual bool horizontalParallaxOnly() const = 0;

@@ -57,9 +57,11 @@ class LenticularDisplay final : public DisplayModel {
     return std::clamp(int(std::floor(f * design_.quiltViews)), 0, design_.quiltViews - 1);
   }
   Vec3d viewPosition(int view) const override {
-    const double f = (view + 0.5) / design_.quiltViews;
+    return eyeAcrossZone((view + 0.5) / design_.quiltViews);
+  }
+  Vec3d eyeAcrossZone(double t) const override {
     const double d = design_.viewDistanceMm;
-    return {d * std::tan(viewAngle(design_, f)), 0.0, d};
+    return {d * std::tan(viewAngle(design_, t)), 0.0, d};
   }
   double viewZoneWidthMm() const override { return design_.viewZoneWidthMm; }
   bool horizontalParallaxOnly() const override { return true; }

@@ -41,22 +41,46 @@ std::vector<DenseEye> designEyes(const DisplayDesign& design) {
   return eyes;
 }
 
-Image atDisplayResolution(const DisplayDesign& d, const Image& image) {
-  const double periodPx = d.screenPeriodMm / (d.frontWidthMm() / double(image.width()));
-  Image out = boxFilterX(image, periodPx);
-  if (d.spec.mask.kind == MaskKind::Pinholes) {
-    const double rowPeriodMm = d.spec.mask.verticalPeriodPx * d.spec.maskPanel.pitchMm *
-                               (d.viewDistanceMm - d.imageLayerZ()) /
-                               (d.viewDistanceMm - d.maskLayerZ());
-    out = boxFilterY(out, rowPeriodMm / (d.frontHeightMm() / double(image.height())));
-  }
-  return out;
+std::vector<DenseEye> denseEyes(const DisplayModel& display, int eyesPerView,
+                                const std::vector<double>& distances) {
+  if (const DisplayDesign* barrier = display.barrierDesign())
+    return denseEyes(*barrier, eyesPerView, distances);
+  std::vector<DenseEye> eyes;
+  const int views = display.viewCount();
+  const Vec3d centre = display.window().eyeMm;
+  for (double f : distances)
+    for (int v = 0; v < views; ++v)
+      for (int k = 0; k < eyesPerView; ++k) {
+        const Vec3d e = display.eyeAcrossZone((v + (k + 0.5) / eyesPerView) / views);
+        eyes.push_back({{centre.x + (e.x - centre.x) * f, e.y, e.z * f}, f, v, false});
+      }
+  return eyes;
+}
+
+std::vector<DenseEye> designEyes(const DisplayModel& display) {
+  if (const DisplayDesign* barrier = display.barrierDesign()) return designEyes(*barrier);
+  std::vector<DenseEye> eyes;
+  for (int v = 0; v < display.viewCount(); ++v)
+    eyes.push_back({display.viewPosition(v), 1.0, v, true});
+  return eyes;
+}
+
+Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
+                const SimulatedDisplay& seen, const Vec3d& eye, int width, int height, int spp,
+                int threads) {
+  const WindowCamera camera(eye, display, scene.display, width, height,
+                            display.horizontalParallaxOnly());
+  RenderSettings settings;
+  settings.samplesPerPixel = spp;
+  settings.threads = threads;
+  return seen.atDisplayResolution(render(scene, accelerator, camera, settings));
 }
 
 Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& d,
                 const Vec3d& eye, int width, int height, int spp, int threads) {
-  const bool horizontalOnly = d.spec.mask.kind != MaskKind::Pinholes;
-  const WindowCamera camera(eye, d, scene.display, width, height, horizontalOnly);
+  const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(d);
+  const WindowCamera camera(eye, *display, scene.display, width, height,
+                            display->horizontalParallaxOnly());
   RenderSettings settings;
   settings.samplesPerPixel = spp;
   settings.threads = threads;
@@ -122,12 +146,11 @@ void summariseAll(ViewerQuality& result) {
 }  // namespace
 
 std::vector<ViewerQuality> measureViewerQuality(
-    const Scene& scene, const Accelerator& accelerator,
-    const std::vector<const DisplaySimulator*>& simulators, const std::vector<DenseEye>& eyes,
+    const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
+    const std::vector<const SimulatedDisplay*>& simulators, const std::vector<DenseEye>& eyes,
     const ViewerQualityOptions& options, const std::function<void(int, int)>& progress) {
   std::vector<ViewerQuality> results(simulators.size());
   if (simulators.empty()) return results;
-  const DisplayDesign& d = simulators.front()->design();
   std::vector<Image> previousSimulated(simulators.size());
   Image previousIdeal;
   for (size_t i = 0; i < eyes.size(); ++i) {
@@ -137,10 +160,11 @@ std::vector<ViewerQuality> measureViewerQuality(
     const bool sameRow =
         i > 0 && eyes[i - 1].distance == eye.distance && !eye.designEye && !eyes[i - 1].designEye;
     for (size_t s = 0; s < simulators.size(); ++s) {
-      const Image simulated = atDisplayResolution(d, simulators[s]->view(eye.position));
+      const Image simulated = simulators[s]->atDisplayResolution(simulators[s]->view(eye.position));
       if (ideal.empty())
-        ideal = idealView(scene, accelerator, d, eye.position, simulated.width(),
-                          simulated.height(), options.referenceSamplesPerPixel, options.threads);
+        ideal =
+            idealView(scene, accelerator, display, *simulators[s], eye.position, simulated.width(),
+                      simulated.height(), options.referenceSamplesPerPixel, options.threads);
       EyeQuality q{eye, psnr(simulated, ideal), ssim(simulated, ideal),
                    std::numeric_limits<double>::quiet_NaN()};
       if (sameRow)
@@ -156,11 +180,12 @@ std::vector<ViewerQuality> measureViewerQuality(
 }
 
 ViewerQuality measureViewerQuality(const Scene& scene, const Accelerator& accelerator,
-                                   const DisplaySimulator& simulator,
+                                   const DisplayModel& display, const SimulatedDisplay& simulator,
                                    const std::vector<DenseEye>& eyes,
                                    const ViewerQualityOptions& options,
                                    const std::function<void(int, int)>& progress) {
-  return measureViewerQuality(scene, accelerator, {&simulator}, eyes, options, progress).front();
+  return measureViewerQuality(scene, accelerator, display, {&simulator}, eyes, options, progress)
+      .front();
 }
 
 }  // namespace parallax

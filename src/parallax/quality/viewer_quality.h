@@ -10,8 +10,10 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/display/barrier_rays.h"
 #include "parallax/display/display.h"
+#include "parallax/display/display_model.h"
 #include "parallax/image/image.h"
 #include "parallax/scene/scene.h"
+#include "parallax/sim/simulated_display.h"
 #include "parallax/sim/simulator.h"
 
 namespace parallax {
@@ -30,16 +32,20 @@ struct DenseEye {
 // crosses the same views. Rows are ordered by distance, then left to right (a sweep).
 std::vector<DenseEye> denseEyes(const DisplayDesign& design, int eyesPerView,
                                 const std::vector<double>& distances);
+// Any display: the same for a barrier; for other kinds K eyes inside each of its viewCount()
+// windows across the zone (DisplayModel::eyeAcrossZone), at f D scaled from the zone's centre.
+std::vector<DenseEye> denseEyes(const DisplayModel& display, int eyesPerView,
+                                const std::vector<double>& distances);
 // The design eyes of every view, at D (where one ray per pixel is exact).
 std::vector<DenseEye> designEyes(const DisplayDesign& design);
+std::vector<DenseEye> designEyes(const DisplayModel& display);
 
-// An image at the display's spatial resolution: a box one screen period wide across (and, for
-// pinhole grids, one vertical period down). Both the simulated and the ideal view are brought
-// to it before they are compared, as a viewer at the design distance perceives them.
-Image atDisplayResolution(const DisplayDesign& design, const Image& image);
-
-// The ideal view from one eye through the display's window (one-axis perspective for slit
-// displays), at the display's spatial resolution: the truth the display is judged against.
+// The ideal view from one eye through the display's window (one-axis perspective for
+// horizontal-parallax displays), at the display's spatial resolution (`seen`'s): the truth the
+// display is judged against.
+Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
+                const SimulatedDisplay& seen, const Vec3d& eyeMm, int width, int height,
+                int samplesPerPixel, int threads);
 Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& design,
                 const Vec3d& eyeMm, int width, int height, int samplesPerPixel, int threads);
 
@@ -76,15 +82,15 @@ struct ViewerQualityOptions {
 // Scores the simulated views of `simulator` at `eyes` against the ideal views of `scene`,
 // one eye at a time (memory: a few images, whatever the eye count). `progress(done, total)`.
 ViewerQuality measureViewerQuality(const Scene& scene, const Accelerator& accelerator,
-                                   const DisplaySimulator& simulator,
+                                   const DisplayModel& display, const SimulatedDisplay& simulator,
                                    const std::vector<DenseEye>& eyes,
                                    const ViewerQualityOptions& options,
                                    const std::function<void(int, int)>& progress = {});
 // The same for several renders of one scene on one display (filters, sample counts, ...),
 // sharing each eye's ideal view: one result per simulator, in order.
 std::vector<ViewerQuality> measureViewerQuality(
-    const Scene& scene, const Accelerator& accelerator,
-    const std::vector<const DisplaySimulator*>& simulators, const std::vector<DenseEye>& eyes,
+    const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
+    const std::vector<const SimulatedDisplay*>& simulators, const std::vector<DenseEye>& eyes,
     const ViewerQualityOptions& options, const std::function<void(int, int)>& progress = {});
 
 // The summary of a set of per-eye scores.

@@ -77,12 +77,14 @@ TEST(ViewerQuality, SharedIdealViewsGiveTheSameScoresAsSeparateRuns) {
   settings.samplesPerPixel = 4;
   const DisplayLayers none = renderDisplay(scene, accel, d, {}, {}, {ViewFilterKind::None, 1.0});
   const DisplayLayers view = renderDisplay(scene, accel, d, settings);
-  const DisplaySimulator a(d, {none.image, none.mask}, {}), b(d, {view.image, view.mask}, {});
+  const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(d);
+  const std::unique_ptr<SimulatedDisplay> a = simulateDisplay(*display, {none.image, none.mask});
+  const std::unique_ptr<SimulatedDisplay> b = simulateDisplay(*display, {view.image, view.mask});
   const std::vector<DenseEye> eyes = denseEyes(d, 1, {1.0});
   const ViewerQualityOptions options{1, 1};
   const std::vector<ViewerQuality> both =
-      measureViewerQuality(scene, accel, {&a, &b}, eyes, options);
-  const ViewerQuality alone = measureViewerQuality(scene, accel, b, eyes, options);
+      measureViewerQuality(scene, accel, *display, {a.get(), b.get()}, eyes, options);
+  const ViewerQuality alone = measureViewerQuality(scene, accel, *display, *b, eyes, options);
   ASSERT_EQ(both.size(), 2u);
   EXPECT_DOUBLE_EQ(both[1].all.meanPsnr, alone.all.meanPsnr);
   EXPECT_DOUBLE_EQ(both[1].all.meanFlicker, alone.all.meanFlicker);

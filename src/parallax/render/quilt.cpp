@@ -185,4 +185,100 @@ std::vector<Image> renderQuiltViews(const Scene& scene, const Accelerator& accel
   return views;
 }
 
+Vec3d quiltEyePosition(const DisplayModel& display, int camera, int count) {
+  return display.eyeAcrossZone((camera + 0.5) / count);
+}
+
+Image renderQuilt(const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
+                  const RenderSettings& settings, const QuiltLayout& layout, int tileWidth,
+                  int tileHeight, RenderStats* stats, const ProgressCallback& progress) {
+  const int count = layout.views();
+  Image quilt(layout.columns * tileWidth, layout.rows * tileHeight);
+  RenderStats total;
+  for (int k = 0; k < count; ++k) {
+    const WindowCamera camera(quiltEyePosition(display, k, count), display, scene.display,
+                              tileWidth, tileHeight, display.horizontalParallaxOnly());
+    RenderStats one;
+    const Image view = render(scene, accelerator, camera, settings, &one, [&](int done, int n) {
+      if (progress) progress(k * n + done, count * n);
+    });
+    // View k is tile (k mod columns, k div columns) counted from the bottom-left.
+    const int left = (k % layout.columns) * tileWidth;
+    const int top = (layout.rows - 1 - k / layout.columns) * tileHeight;
+    for (int y = 0; y < tileHeight; ++y)
+      for (int x = 0; x < tileWidth; ++x) quilt.at(left + x, top + y) = view.at(x, y);
+    total.cameraRays += one.cameraRays;
+    total.shadowRays += one.shadowRays;
+    total.secondaryRays += one.secondaryRays;
+    total.seconds += one.seconds;
+  }
+  if (stats) *stats = total;
+  return quilt;
+}
+
+namespace {
+
+// Bilinear lookup of channel c at continuous image position (x, y) (pixel centres at +0.5),
+// clamped to the image.
+float bilinear(const Image& image, double x, double y, int c) {
+  const double fx = std::clamp(x - 0.5, 0.0, image.width() - 1.0);
+  const double fy = std::clamp(y - 0.5, 0.0, image.height() - 1.0);
+  const int x0 = int(fx), y0 = int(fy);
+  const int x1 = std::min(x0 + 1, image.width() - 1), y1 = std::min(y0 + 1, image.height() - 1);
+  const double tx = fx - x0, ty = fy - y0;
+  const double top = image.at(x0, y0)[c] * (1 - tx) + image.at(x1, y0)[c] * tx;
+  const double bottom = image.at(x0, y1)[c] * (1 - tx) + image.at(x1, y1)[c] * tx;
+  return float(top * (1 - ty) + bottom * ty);
+}
+
+}  // namespace
+
+Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views) {
+  if (views.empty()) throw std::invalid_argument("interlaceQuiltLenticular: no views");
+  const int w = design.calibration.screenW, h = design.calibration.screenH;
+  const int n = int(views.size());
+  const double sx = double(views[0].width()) / w, sy = double(views[0].height()) / h;
+  Image panel(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        // View fraction f covers view i over [i / N, (i + 1) / N); its centre is view i.
+        const double position = viewFraction(design, x, y, c) * n - 0.5;
+        const int below = std::clamp(int(std::floor(position)), 0, n - 1);
+        const int above = std::clamp(below + 1, 0, n - 1);
+        const double t = std::clamp(position - std::floor(position), 0.0, 1.0);
+        const double px = (x + 0.5) * sx, py = (y + 0.5) * sy;
+        const double a = bilinear(views[size_t(below)], px, py, c);
+        const double b = bilinear(views[size_t(above)], px, py, c);
+        const bool outside = position < 0 || position > n - 1;
+        panel.at(x, y)[c] = float(outside ? (position < 0 ? a : b) : a * (1 - t) + b * t);
+      }
+  return panel;
+}
+
+std::vector<Image> resampleViews(const std::vector<Image>& views, int count,
+                                 ViewResampling resampling) {
+  if (views.empty() || count < 1) throw std::invalid_argument("resampleViews: no views");
+  const int m = int(views.size());
+  std::vector<Image> out;
+  for (int k = 0; k < count; ++k) {
+    // Where view k's eye sits among the camera views' eyes (camera j at (j + 1/2) / m).
+    const double position = (k + 0.5) / count * m - 0.5;
+    if (resampling == ViewResampling::Nearest) {
+      out.push_back(views[size_t(std::clamp(int(std::lround(position)), 0, m - 1))]);
+      continue;
+    }
+    const int below = std::clamp(int(std::floor(position)), 0, m - 1);
+    const int above = std::min(below + 1, m - 1);
+    const float t = float(std::clamp(position - below, 0.0, 1.0));
+    Image blended = views[size_t(below)];
+    if (above != below && t > 0)
+      for (size_t i = 0; i < blended.pixels().size(); ++i)
+        blended.pixels()[i] =
+            views[size_t(below)].pixels()[i] * (1 - t) + views[size_t(above)].pixels()[i] * t;
+    out.push_back(std::move(blended));
+  }
+  return out;
+}
+
 }  // namespace parallax

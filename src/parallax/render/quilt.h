@@ -14,6 +14,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/display/barrier_rays.h"
 #include "parallax/display/display.h"
+#include "parallax/display/display_model.h"
 #include "parallax/image/image.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
@@ -67,6 +68,30 @@ Image interlaceCameraViews(const DisplayDesign& design, const std::vector<Image>
 // (e_c + S ((k + 0.5) / count - 0.5), y_e, D). For count = views this is the design eye of the
 // k-th view from the left.
 Vec3d quiltEyePosition(const DisplayDesign& design, int camera, int count);
+
+// The eye of camera k of `count` for any display: display.eyeAcrossZone((k + 0.5) / count).
+Vec3d quiltEyePosition(const DisplayModel& display, int camera, int count);
+
+// Renders the layout's views of the display's window, each tileWidth x tileHeight, from
+// quiltEyePosition (one-axis perspective for horizontal-parallax displays), straight into their
+// tiles: memory is the quilt's and one view's, whatever the number of tiles.
+Image renderQuilt(const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
+                  const RenderSettings& settings, const QuiltLayout& layout, int tileWidth,
+                  int tileHeight, RenderStats* stats = nullptr,
+                  const ProgressCallback& progress = {});
+
+// Maps a quilt's views onto a lenticular panel as Looking Glass's interlacing shader does: each
+// subpixel's view fraction f (viewFraction) picks the views f N - 1/2 lies between (N the
+// quilt's views; beyond the first and last view the nearest), blended linearly, each sampled
+// where the subpixel sits on the screen. Returns the panel's picture (linear RGB).
+Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views);
+
+// Resamples camera views (leftmost first) to `count` views across the same zone: view k of
+// `count` at (k + 1/2) / count of the way across takes the nearest camera view, or blends the
+// two around it linearly.
+enum class ViewResampling { Nearest, Linear };
+std::vector<Image> resampleViews(const std::vector<Image>& views, int count,
+                                 ViewResampling resampling);
 
 // Renders `count` off-axis views of the display's window (WindowCamera, sheared frustum) of
 // width x height pixels from quiltEyePosition, leftmost camera first. Slit masks get the

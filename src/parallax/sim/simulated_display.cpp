@@ -1,0 +1,70 @@
+#include "parallax/sim/simulated_display.h"
+
+#include "parallax/core/error.h"
+#include "parallax/display/mask.h"
+#include "parallax/image/metrics.h"
+#include "parallax/sim/lenticular_sim.h"
+
+namespace parallax {
+
+namespace {
+
+class SimulatedBarrier final : public SimulatedDisplay {
+ public:
+  SimulatedBarrier(const DisplayDesign& design, LayerImages layers,
+                   const SimulationOptions& options)
+      : design_(design), simulator_(design, std::move(layers), options) {}
+  Image view(const Vec3d& eyeMm) const override { return simulator_.view(eyeMm); }
+  Image atDisplayResolution(const Image& image) const override {
+    return parallax::atDisplayResolution(design_, image);
+  }
+
+ private:
+  DisplayDesign design_;
+  DisplaySimulator simulator_;
+};
+
+class SimulatedLenticular final : public SimulatedDisplay {
+ public:
+  SimulatedLenticular(const LenticularDesign& design, Image panel)
+      : design_(design), panel_(std::move(panel)) {}
+  Image view(const Vec3d& eyeMm) const override {
+    return simulateLenticularView(design_, panel_, eyeMm);
+  }
+  // One lens along a pixel row: the panel's horizontal sampling of a view.
+  Image atDisplayResolution(const Image& image) const override {
+    const double lensPx = design_.horizontalLensPitchMm / (design_.widthMm / image.width());
+    return boxFilterX(image, lensPx);
+  }
+
+ private:
+  LenticularDesign design_;
+  Image panel_;
+};
+
+}  // namespace
+
+std::unique_ptr<SimulatedDisplay> simulateDisplay(const DisplayModel& display, LayerImages layers,
+                                                  const SimulationOptions& options) {
+  if (const DisplayDesign* barrier = display.barrierDesign())
+    return std::make_unique<SimulatedBarrier>(*barrier, std::move(layers), options);
+  const LenticularDesign* lenticular = display.lenticularDesign();
+  if (!lenticular) throw std::invalid_argument("simulateDisplay: an unknown display kind");
+  if (!layers.mask.empty())
+    throw InputError(display.source(), "", "a lenticular display has no mask layer");
+  return std::make_unique<SimulatedLenticular>(*lenticular, std::move(layers.image));
+}
+
+Image atDisplayResolution(const DisplayDesign& d, const Image& image) {
+  const double periodPx = d.screenPeriodMm / (d.frontWidthMm() / double(image.width()));
+  Image out = boxFilterX(image, periodPx);
+  if (d.spec.mask.kind == MaskKind::Pinholes) {
+    const double rowPeriodMm = d.spec.mask.verticalPeriodPx * d.spec.maskPanel.pitchMm *
+                               (d.viewDistanceMm - d.imageLayerZ()) /
+                               (d.viewDistanceMm - d.maskLayerZ());
+    out = boxFilterY(out, rowPeriodMm / (d.frontHeightMm() / double(image.height())));
+  }
+  return out;
+}
+
+}  // namespace parallax
