@@ -34,5 +34,6 @@ void registerSimulateCommand(CLI::App& cli);
 void registerCalibrateCommand(CLI::App& cli);
 void registerInterlaceCommand(CLI::App& cli);
 void registerLenticularCommand(CLI::App& cli);
+void registerShowCommand(CLI::App& cli);
 
 }  // namespace parallax::app

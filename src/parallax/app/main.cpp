@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
   parallax::app::registerCalibrateCommand(cli);
   parallax::app::registerInterlaceCommand(cli);
   parallax::app::registerLenticularCommand(cli);
+  parallax::app::registerShowCommand(cli);
   parallax::app::registerInfoCommand(cli);
   parallax::app::registerBenchCommand(cli);
   try {

@@ -1,0 +1,164 @@
+#include "parallax/window/layer_windows.h"
+
+#include <SDL2/SDL.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "parallax/core/error.h"
+
+namespace parallax {
+
+namespace {
+
+std::runtime_error sdlError(const std::string& what) {
+  return std::runtime_error(what + ": " + SDL_GetError());
+}
+
+ShowKey keyOf(SDL_Keycode key) {
+  switch (key) {
+    case SDLK_RIGHT:
+    case SDLK_SPACE:
+    case SDLK_n:
+      return ShowKey::Next;
+    case SDLK_LEFT:
+    case SDLK_BACKSPACE:
+    case SDLK_p:
+      return ShowKey::Previous;
+    case SDLK_i:
+      return ShowKey::Info;
+    case SDLK_q:
+    case SDLK_ESCAPE:
+      return ShowKey::Quit;
+    default:
+      return ShowKey::Other;
+  }
+}
+
+// Starts SDL's video on a real display: X11, Wayland (when its socket is there) or the console's
+// KMS/DRM, never SDL's offscreen fallback, which would "show" the layers nowhere. A driver the
+// user names in SDL_VIDEODRIVER is taken as given.
+bool initVideo() {
+  if (!std::getenv("SDL_VIDEODRIVER")) {
+    const bool wayland = std::getenv("WAYLAND_DISPLAY") && std::getenv("XDG_RUNTIME_DIR");
+    SDL_SetHint(SDL_HINT_VIDEODRIVER, wayland ? "wayland,x11,kmsdrm" : "x11,kmsdrm");
+  }
+  return SDL_Init(SDL_INIT_VIDEO) == 0;
+}
+
+}  // namespace
+
+struct LayerWindows::Impl {
+  struct Window {
+    SDL_Window* window = nullptr;
+    SDL_Renderer* renderer = nullptr;
+    SDL_Texture* texture = nullptr;
+    int width = 0, height = 0;
+  };
+  std::vector<Window> windows;
+
+  ~Impl() {
+    for (Window& w : windows) {
+      if (w.texture) SDL_DestroyTexture(w.texture);
+      if (w.renderer) SDL_DestroyRenderer(w.renderer);
+      if (w.window) SDL_DestroyWindow(w.window);
+    }
+    SDL_Quit();
+  }
+
+  void present(Window& w) {
+    SDL_SetRenderDrawColor(w.renderer, 0, 0, 0, 255);
+    SDL_RenderClear(w.renderer);
+    if (w.texture) {
+      const SDL_Rect rect{0, 0, w.width, w.height};  // 1:1, no scaling
+      SDL_RenderCopy(w.renderer, w.texture, nullptr, &rect);
+    }
+    SDL_RenderPresent(w.renderer);
+  }
+};
+
+int LayerWindows::monitorCount() {
+  if (!initVideo()) return 0;
+  const int count = std::max(0, SDL_GetNumVideoDisplays());
+  SDL_Quit();
+  return count;
+}
+
+LayerWindows::LayerWindows(const std::vector<WindowRequest>& requests)
+    : impl_(std::make_unique<Impl>()) {
+  if (!initVideo()) throw sdlError("no display to show the layers on");
+  const int monitors = SDL_GetNumVideoDisplays();
+  for (const WindowRequest& r : requests) {
+    if (r.fullScreen && (r.monitor < 0 || r.monitor >= monitors))
+      throw InputError("command line", "--" + r.title + "-monitor",
+                       "monitor " + std::to_string(r.monitor) + " does not exist (there are " +
+                           std::to_string(monitors) + ")");
+    Impl::Window w;
+    SDL_Rect bounds{r.x, r.y, 64, 64};
+    Uint32 flags = SDL_WINDOW_SHOWN;
+    if (r.fullScreen) {
+      SDL_GetDisplayBounds(r.monitor, &bounds);
+      flags |= SDL_WINDOW_BORDERLESS;  // covers the monitor at its own resolution: 1:1 pixels
+    }
+    w.window = SDL_CreateWindow(("parallax: " + r.title).c_str(), bounds.x, bounds.y, bounds.w,
+                                bounds.h, flags);
+    if (!w.window) throw sdlError("cannot open a window");
+    impl_->windows.push_back(w);  // owned from here, destroyed with the others
+    Impl::Window& added = impl_->windows.back();
+    added.renderer = SDL_CreateRenderer(added.window, -1, SDL_RENDERER_SOFTWARE);
+    if (!added.renderer) throw sdlError("cannot draw in the window");
+  }
+}
+
+LayerWindows::~LayerWindows() = default;
+
+void LayerWindows::show(int index, const Image& picture) {
+  Impl::Window& w = impl_->windows.at(size_t(index));
+  if (w.texture) SDL_DestroyTexture(w.texture);
+  w.width = picture.width();
+  w.height = picture.height();
+  // Not every window system lets a window be smaller or larger than asked; the picture is
+  // drawn 1:1 from the top-left corner whatever the window's size.
+  if (!(SDL_GetWindowFlags(w.window) & SDL_WINDOW_BORDERLESS))
+    SDL_SetWindowSize(w.window, w.width, w.height);
+  w.texture = SDL_CreateTexture(w.renderer, SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STATIC,
+                                w.width, w.height);
+  if (!w.texture) throw sdlError("cannot make the picture's texture");
+  std::vector<uint8_t> rgba(size_t(w.width) * size_t(w.height) * 4);
+  for (size_t i = 0; i < picture.pixels().size(); ++i) {
+    for (int c = 0; c < 3; ++c)
+      rgba[4 * i + size_t(c)] = uint8_t(
+          std::lround(255.0f * linearToSrgb(std::clamp(picture.pixels()[i][c], 0.0f, 1.0f))));
+    rgba[4 * i + 3] = 255;
+  }
+  SDL_UpdateTexture(w.texture, nullptr, rgba.data(), w.width * 4);
+  impl_->present(w);
+}
+
+void LayerWindows::run(const std::function<bool(ShowKey)>& onKey, double exitAfterSeconds,
+                       const std::vector<ShowKey>& scriptedKeys) {
+  for (const ShowKey key : scriptedKeys)
+    if (!onKey(key)) return;
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    SDL_Event event;
+    while (SDL_PollEvent(&event)) {
+      if (event.type == SDL_QUIT) return;
+      if (event.type == SDL_WINDOWEVENT && event.window.event == SDL_WINDOWEVENT_CLOSE) return;
+      if (event.type == SDL_KEYDOWN && !onKey(keyOf(event.key.keysym.sym))) return;
+    }
+    // Redraw: a window system may have dropped the picture (exposed, moved, another monitor).
+    for (Impl::Window& w : impl_->windows) impl_->present(w);
+    if (exitAfterSeconds > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
+            exitAfterSeconds)
+      return;
+    SDL_Delay(30);
+  }
+}
+
+}  // namespace parallax

@@ -1,0 +1,52 @@
+// Windows that show layer pictures on real panels, one pixel of the picture on one pixel of the
+// panel (SDL2, the only user of it, behind this file). Full screen on a chosen monitor for the
+// panels; plain windows side by side for a look (and for tests under a virtual X server).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "parallax/image/image.h"
+
+namespace parallax {
+
+struct WindowRequest {
+  std::string title;
+  int monitor = 0;         // SDL's display index; full screen there
+  bool fullScreen = true;  // false: a plain window at (x, y) on the first monitor
+  int x = 0, y = 0;
+};
+
+// Keys the viewer acts on; everything else is Other.
+enum class ShowKey { Next, Previous, Info, Quit, Other };
+
+class LayerWindows {
+ public:
+  // Opens one window per request. Throws std::runtime_error with SDL's message when there is no
+  // display to open them on, and InputError naming "--*-monitor" for a monitor that does not
+  // exist.
+  explicit LayerWindows(const std::vector<WindowRequest>& requests);
+  ~LayerWindows();
+  LayerWindows(const LayerWindows&) = delete;
+  LayerWindows& operator=(const LayerWindows&) = delete;
+
+  // The monitors SDL sees (0 without a display).
+  static int monitorCount();
+
+  // Shows `picture` (linear RGB, drawn as sRGB 8-bit, 1:1 from the window's top-left corner) in
+  // window `index`.
+  void show(int index, const Image& picture);
+
+  // Handles events until `onKey` returns false, the windows are closed, or `exitAfterSeconds`
+  // (> 0) have passed. `scriptedKeys` are handled first, as if pressed, in order.
+  void run(const std::function<bool(ShowKey)>& onKey, double exitAfterSeconds,
+           const std::vector<ShowKey>& scriptedKeys = {});
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace parallax

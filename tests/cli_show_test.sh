@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# `parallax show` under a virtual X server (Xvfb): the windows carry the layer pictures 1:1,
+# read back from the screen (xwd) and compared with the PNG files pixel by pixel.
+# Usage: cli_show_test.sh PARALLAX_BINARY SOURCE_DIR
+set -u
+source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
+compare="python3 $(dirname "$0")/screen_compare.py"
+
+cat >"$tmp/small.json" <<'JSON'
+{"image_layer": {"resolution": [96, 54], "pixel_pitch_mm": 0.5}, "gap_mm": 3,
+ "views": 9, "view_distance_mm": 600}
+JSON
+check "render small layers" run 0 render --display "$tmp/small.json" --spp 1 -o "$tmp/r"
+check "calibration patterns" run 0 calibrate patterns --display "$tmp/small.json" \
+  --steps 3 -o "$tmp/c"
+
+# Errors come before any window, with or without a display.
+check "a missing folder exits 2" run 2 show "$tmp/nothing"
+check "a missing folder is named" one_line_naming "$tmp/nothing"
+check "an unknown key exits 2" run 2 show "$tmp/r" --keys next,jump
+check "an unknown key names the option" one_line_naming "--keys"
+check "a pattern out of range exits 2" run 2 show "$tmp/c" --pattern 999
+check "the pattern range names the option" one_line_naming "--pattern"
+check "no display is one clear line" bash -c "DISPLAY= '$bin' show '$tmp/r' --windowed \
+  --exit-after 1 2>'$tmp/nodisplay'; [ \$? -eq 1 ] && grep -q 'no display' '$tmp/nodisplay'"
+
+# A virtual screen: the windows open at their places without a window manager.
+display=":$((90 + RANDOM % 400))"
+Xvfb "$display" -screen 0 400x200x24 -nolisten tcp >/dev/null 2>&1 &
+xvfb=$!
+trap 'kill $xvfb 2>/dev/null; rm -rf "$tmp"' EXIT
+for _ in $(seq 50); do xdpyinfo -display "$display" >/dev/null 2>&1 && break; sleep 0.1; done
+
+# Shows DIR with the given options for a few seconds and takes a screenshot while it runs:
+# retried until the screen matches or the time is up.
+shot_matches() {  # shot_matches PICTURE X Y -- SHOW-ARGS...
+  local picture=$1 x=$2 y=$3
+  shift 4
+  DISPLAY=$display "$bin" show "$@" --windowed --exit-after 8 >"$tmp/show.out" 2>&1 &
+  local pid=$!
+  local ok=1
+  for _ in $(seq 40); do
+    sleep 0.2
+    xwd -root -silent -display "$display" >"$tmp/shot.xwd" 2>/dev/null || continue
+    if $compare "$tmp/shot.xwd" "$picture" "$x" "$y" >"$tmp/compare.out"; then ok=0; break; fi
+  done
+  kill "$pid" 2>/dev/null
+  wait "$pid" 2>/dev/null
+  [ $ok -eq 0 ] || cat "$tmp/compare.out" >&2
+  return $ok
+}
+
+check "the image layer is on the screen 1:1" shot_matches "$tmp/r/image.png" 0 0 -- "$tmp/r"
+check "the mask layer is beside it 1:1" shot_matches "$tmp/r/mask.png" 96 0 -- "$tmp/r"
+first_mask=$(python3 -c 'import json,sys; p=[q for q in json.load(open(sys.argv[1]))["patterns"] if q["layer"]=="mask"]; print(p[0]["file"], p[2]["file"])' "$tmp/c/index.json")
+read -r mask0 mask2 <<<"$first_mask"
+check "the first mask pattern is shown" shot_matches "$tmp/c/$mask0" 96 0 -- "$tmp/c"
+check "two steps forward show the third pattern" shot_matches "$tmp/c/$mask2" 96 0 -- \
+  "$tmp/c" --keys next,next
+check "each step prints the pattern's period and phase" \
+  bash -c "grep -c 'slit period .* phase' '$tmp/show.out' | grep -qx 3"
+check "info prints the current pattern again" bash -c "DISPLAY=$display '$bin' show '$tmp/c' \
+  --windowed --keys info,quit | grep -c 'pattern 1/' | grep -qx 2"
+check "quit closes at once" bash -c "DISPLAY=$display timeout 5 '$bin' show '$tmp/r' --windowed \
+  --keys quit"
+
+cli_summary
