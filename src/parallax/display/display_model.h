@@ -76,8 +76,9 @@ class DisplayModel {
   // render loop's packets should run down a column and share their jitter.
   virtual bool columnFans() const = 0;
 
-  // Views: the display's angular samples. viewCount() design eyes sit across the view zone at
-  // the design distance, left to right; viewIndex says which one a film column serves.
+  // Views: the display's angular samples. viewCount() design eyes sit evenly across the view
+  // zone at the design distance (left to right, except a barrier-front's, which counts them from
+  // the right); viewIndex says which one a film column serves.
   virtual int viewCount() const = 0;
   virtual int viewIndex(int column, int row) const = 0;
   virtual Vec3d viewPosition(int view) const = 0;

@@ -94,5 +94,43 @@ TEST(DisplayFile, ErrorsNameTheFileAndTheKey) {
   expectError(R"({"mask": {"type": "pinholes"}})", "/mask/vertical_period_px");
 }
 
+// One loader for every kind: told apart by content, presets by name, the built-in barrier for "".
+TEST(DisplayDescription, ToldApartByContent) {
+  const std::string barrier = writeTemp("described-barrier.json", R"({"gap_mm": 4, "views": 7})");
+  const std::string visual =
+      writeTemp("described-visual.json", R"({"pitch": {"value": 50}, "slope": {"value": -7},
+    "center": {"value": 0.5}, "viewCone": {"value": 40}, "invView": {"value": 1},
+    "DPI": {"value": 324}, "screenW": {"value": 1536}, "screenH": {"value": 2048}})");
+  const DisplayDescription b = loadDisplayDescription(barrier);
+  EXPECT_EQ(b.kind, DisplayKind::Barrier);
+  EXPECT_EQ(b.barrier.gapMm, 4);
+  EXPECT_EQ(b.source(), barrier);
+  const DisplayDescription l = loadDisplayDescription(visual);
+  EXPECT_EQ(l.kind, DisplayKind::Lenticular);
+  EXPECT_EQ(l.lenticular.screenW, 1536);
+  EXPECT_EQ(l.source(), visual);
+  const DisplayDescription p = loadDisplayDescription("lkg:go");
+  EXPECT_EQ(p.kind, DisplayKind::Lenticular);
+  EXPECT_EQ(p.lenticular.screenW, 1440);
+  EXPECT_EQ(p.lenticular.quilt.columns, 11);
+  const DisplayDescription builtIn = loadDisplayDescription("");
+  EXPECT_EQ(builtIn.kind, DisplayKind::Barrier);
+  EXPECT_EQ(builtIn.barrier.imagePanel.width, defaultDisplaySpec().imagePanel.width);
+  // A barrier file with a lenticular key is still a barrier file's error, naming the key.
+  writeTemp("described-barrier.json", R"({"gap_mm": 4, "views": 7, "configVersion": "3.0"})");
+  try {
+    loadDisplayDescription(barrier);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/configVersion: unknown key"), std::string::npos);
+  }
+  try {
+    loadDisplayDescription("lkg:nonesuch");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lkg:nonesuch"), std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace parallax

@@ -3,6 +3,7 @@
 // cone; beyond the cone the eye sees the repeated views of the other side instead.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -10,6 +11,7 @@
 #include "parallax/display/lenticular_test_support.h"
 #include "parallax/image/metrics.h"
 #include "parallax/render/display_render.h"
+#include "parallax/render/quilt.h"
 #include "parallax/sim/lenticular_sim.h"
 
 namespace parallax {
@@ -109,6 +111,41 @@ TEST(LenticularRender, TheViewFilterShowsEyesAcrossTheConeMoreThanTheCentralRay)
               noneError, viewError, periodError);
   EXPECT_LT(viewError, noneError);
   EXPECT_LT(2 * viewError, periodError);
+}
+
+}  // namespace
+}  // namespace parallax
+
+namespace parallax {
+namespace {
+
+// A quilt rendered for a lenticular panel and interlaced onto it the way Looking Glass's shader
+// does shows each eye inside the cone its own camera's picture: seen through the lenses it is
+// close to the ideal window view, and far closer than the same quilt with its views reversed.
+TEST(LenticularQuilt, InterlacedQuiltShowsEachEyeItsView) {
+  const LenticularDesign d = smallLenticularDesign();
+  const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(d);
+  Scene scene = defaultScene();
+  scene.display.width = 1.5f;
+  const Accelerator accel(scene);
+  const QuiltLayout layout{8, 6, 0};
+  const Image quilt = renderQuilt(scene, accel, *display, {}, layout, 180, 120);
+  std::vector<Image> views = splitQuilt(quilt, layout, "quilt");
+  const Image panel = interlaceQuiltLenticular(d, views);
+  std::reverse(views.begin(), views.end());
+  const Image reversed = interlaceQuiltLenticular(d, views);
+  RenderSettings reference;
+  reference.samplesPerPixel = 4;
+  // Away from the centre, where the reversed quilt's view is another view.
+  for (const double t : {0.2, 0.3, 0.8}) {
+    const Vec3d eye = display->eyeAcrossZone(t);
+    const WindowCamera camera(eye, *display, scene.display, 180, 120, true);
+    const Image ideal = render(scene, accel, camera, reference);
+    const double good = psnr(simulateLenticularView(d, panel, eye), ideal);
+    const double bad = psnr(simulateLenticularView(d, reversed, eye), ideal);
+    EXPECT_GT(good, 24.0) << "t " << t;
+    EXPECT_GT(good, bad + 2.0) << "t " << t;
+  }
 }
 
 }  // namespace

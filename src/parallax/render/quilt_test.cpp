@@ -251,3 +251,80 @@ TEST(Interlace, QuiltOfTheDisplaysViewsIsTheDirectMapping) {
 
 }  // namespace
 }  // namespace parallax
+
+namespace parallax {
+namespace {
+
+Image flat(int width, int height, float value) {
+  Image image(width, height);
+  for (Vec3f& p : image.pixels()) p = Vec3f(value);
+  return image;
+}
+
+// Views carrying their own index: view k of `count` sits (k + 1/2) / count of the way across,
+// so linear resampling gives the camera position there, j = (k + 1/2) m / count - 1/2, clamped,
+// and nearest its rounding.
+TEST(ResampleViews, BlendsTheTwoViewsAroundEachNeededOne) {
+  std::vector<Image> cameras;
+  for (int j = 0; j < 48; ++j) cameras.push_back(flat(4, 3, float(j)));
+  const std::vector<Image> linear = resampleViews(cameras, 9, ViewResampling::Linear);
+  const std::vector<Image> nearest = resampleViews(cameras, 9, ViewResampling::Nearest);
+  ASSERT_EQ(linear.size(), 9u);
+  for (int k = 0; k < 9; ++k) {
+    const double position = std::clamp((k + 0.5) * 48 / 9 - 0.5, 0.0, 47.0);
+    EXPECT_NEAR(linear[size_t(k)].at(2, 1).x, position, 1e-4) << k;
+    EXPECT_EQ(nearest[size_t(k)].at(2, 1).x, float(std::lround(position))) << k;
+  }
+  // More views than cameras: the ends hold the end cameras.
+  const std::vector<Image> up =
+      resampleViews({flat(2, 2, 0), flat(2, 2, 1)}, 4, ViewResampling::Linear);
+  EXPECT_FLOAT_EQ(up[0].at(0, 0).x, 0.0f);
+  EXPECT_FLOAT_EQ(up[1].at(0, 0).x, 0.25f);
+  EXPECT_FLOAT_EQ(up[2].at(0, 0).x, 0.75f);
+  EXPECT_FLOAT_EQ(up[3].at(0, 0).x, 1.0f);
+}
+
+// Quilt views rendered straight into their tiles are the views rendered one by one and tiled
+// (a second code path), for any display kind.
+TEST(RenderQuilt, TilesAreTheViewsRenderedOneByOne) {
+  const DisplayDesign d = designDisplay(smallDisplay(LayerOrder::BarrierBack));
+  Scene scene = defaultScene();
+  scene.display.width = 0.75f;
+  const Accelerator accel(scene);
+  const QuiltLayout layout{3, 2, 0};
+  const Image quilt = renderQuilt(scene, accel, *makeBarrierDisplay(d), {}, layout, 30, 20);
+  const std::vector<Image> views = renderQuiltViews(scene, accel, d, {}, 6, 30, 20);
+  const Image tiled = assembleQuilt(views, 3, 2);
+  ASSERT_EQ(quilt.width(), tiled.width());
+  for (size_t i = 0; i < quilt.pixels().size(); ++i)
+    ASSERT_EQ(quilt.pixels()[i], tiled.pixels()[i]) << i;
+}
+
+// Looking Glass's mapping, written out: a subpixel of view fraction f takes views f N - 1/2
+// lies between, blended; flat views make it analytic.
+TEST(InterlaceQuiltLenticular, EachSubpixelBlendsTheViewsAroundItsFraction) {
+  LenticularCalibration c;
+  c.source = "small.json";
+  c.pitch = 7.0;
+  c.slope = -6.0;
+  c.center = 0.3;
+  c.viewConeDegrees = 40;
+  c.dpi = 40;
+  c.screenW = 60;
+  c.screenH = 40;
+  c.invView = true;
+  const LenticularDesign d = designLenticular(c);
+  std::vector<Image> views;
+  for (int j = 0; j < 10; ++j) views.push_back(flat(30, 20, float(j) / 9.0f));
+  const Image panel = interlaceQuiltLenticular(d, views);
+  ASSERT_EQ(panel.width(), 60);
+  for (int y = 0; y < 40; y += 3)
+    for (int x = 0; x < 60; x += 7)
+      for (int ch = 0; ch < 3; ++ch) {
+        const double position = std::clamp(viewFraction(d, x, y, ch) * 10 - 0.5, 0.0, 9.0);
+        EXPECT_NEAR(panel.at(x, y)[ch], position / 9.0, 1e-5) << x << "," << y << "," << ch;
+      }
+}
+
+}  // namespace
+}  // namespace parallax
