@@ -97,6 +97,17 @@ check "an unknown preset lists the presets" \
 check "render --quilt auto uses the device's quilt" run 0 render --display lkg:portrait \
   --quilt auto --size 42x56 --spp 1 -o "$tmp/q"
 check "the quilt is named for the device's 8x6 views" test -e "$tmp/q/quilt_qs8x6a0.75.png"
+check "view --display-eye with a calibration" run 0 view --display "$tmp/small.json" \
+  --display-eye 0,0,1374 --spp 1 -o "$tmp/ideal.png"
+check "the ideal view has the panel's size" test "$(png_size "$tmp/ideal.png")" = "96x128"
+check "bench --camera display with a calibration" run 0 bench --camera display \
+  --display "$tmp/small.json" --spp 1 --repeats 1 --json
+check "bench measures the panel's subpixel film" grep -q '"width": 288' "$tmp/out"
+check "interlace a quilt onto the panel" run 0 interlace "$tmp/q/quilt_qs8x6a0.75.png" \
+  --display lkg:portrait -o "$tmp/iq"
+check "the interlaced panel has the Portrait's size" \
+  test "$(png_size "$tmp/iq/image.png")" = "1536x2048"
+check "the interlaced panel carries its calibration" grep -q '"value"' "$tmp/iq/visual.json"
 check "design reads a calibration" run 0 design "$tmp/small.json"
 check "design prints the lens figures" grep -q 'pixels per lens' "$tmp/out"
 

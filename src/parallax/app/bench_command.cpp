@@ -103,12 +103,18 @@ void runBench(const BenchOptions& o) {
     // The display camera renders the image layer at its own resolution. Its limit is a
     // pinhole at the view-zone centre whose film is the front layer: the same content, seen
     // by the coherent rays of one eye.
-    const DisplayDesign design = loadDesignOrDefault(o.display);
-    camera = std::make_unique<DisplayCamera>(design, scene.display, o.filter.filter());
+    // Any display kind: a barrier's image layer, a lenticular panel's subpixels.
+    const DisplayDescription description = loadDisplayOrDefault(o.display);
+    std::unique_ptr<DisplayModel> display =
+        description.kind == DisplayKind::Lenticular
+            ? makeLenticularDisplay(designLenticular(description.lenticular), o.filter.filter())
+            : makeBarrierDisplay(designDisplay(description.barrier), o.filter.filter());
+    const Vec3d eye = display->window().eyeMm;
+    camera = std::make_unique<DisplayCamera>(std::move(display), scene.display);
     width = camera->width(), height = camera->height();
-    const Vec3d eye{design.spec.viewZoneCenterXMm, design.spec.viewZoneHeightMm,
-                    design.viewDistanceMm};
-    limitGrid = WindowCamera(eye, design, scene.display, width, height).grid(o.sampling.spp);
+    const DisplayCamera& displayCamera = static_cast<const DisplayCamera&>(*camera);
+    limitGrid = WindowCamera(eye, displayCamera.display(), scene.display, width, height)
+                    .grid(o.sampling.spp);
   }
   const CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
   const PinholeCamera pinhole(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
@@ -170,7 +176,8 @@ void registerBenchCommand(CLI::App& cli) {
   cmd->add_option("--camera", options->camera,
                   "Camera to measure: pinhole, or display (the image layer through the barrier)")
       ->capture_default_str();
-  cmd->add_option("--display", options->display, "Display file for --camera display");
+  cmd->add_option("--display", options->display,
+                  "Display for --camera display: a file of any kind, or lkg:NAME");
   addFilterOptions(*cmd, options->filter, "With --camera display: ", "as render --filter-width");
   cmd->add_option("--scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
   cmd->add_option("--size", options->size,

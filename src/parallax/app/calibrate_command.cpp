@@ -24,6 +24,37 @@ namespace parallax::app {
 
 namespace {
 
+// The library names a calibration setting by its field; the user knows the option.
+template <class Call>
+auto withOptionNames(Call call) {
+  try {
+    return call();
+  } catch (const InputError& e) {
+    if (e.file() != kCalibrationSettings) throw;
+    static const std::pair<const char*, const char*> kOptions[] = {
+        {"/screen_period_px", "--screen-period"},
+        {"/slit_period_px", "--slit-period"},
+        {"/from_px", "--from"},
+        {"/to_px", "--to"},
+        {"/period_steps", "--steps"},
+        {"/phase_step_px", "--phase-step"},
+        {"/duty", "--duty"},
+        {"/phase_px", "--phase"},
+        {"/label_scale", "--label-scale"}};
+    std::string option = e.path();
+    for (const auto& [field, name] : kOptions)
+      if (e.path() == field) option = name;
+    // what() is "file: path: message".
+    std::string message = std::string(e.what()).substr(e.file().size() + e.path().size() + 4);
+    for (const auto& [field, name] : kOptions) {
+      const std::string bare = std::string(field).substr(1);
+      for (size_t at = message.find(bare); at != std::string::npos; at = message.find(bare))
+        message.replace(at, bare.size(), name);
+    }
+    throw InputError("command line", option, message);
+  }
+}
+
 namespace fs = std::filesystem;
 
 DisplaySpec loadSpecOrDefault(const std::string& path) {
@@ -65,7 +96,8 @@ void runPatterns(const PatternsOptions& o) {
   checkTimeEstimate(pixels * (double(o.settings.periodSteps) + 8), 0,
                     "--steps " + std::to_string(o.settings.periodSteps), "use fewer steps");
   // Everything is checked here, before the first file is written.
-  const std::vector<PatternDescription> set = calibrationPatternSet(display, o.settings);
+  const std::vector<PatternDescription> set =
+      withOptionNames([&] { return calibrationPatternSet(display, o.settings); });
   OutputSet out(o.output);
   const fs::path dir(out.path(""));
   const Panel &image = display.imagePanel, &mask = display.maskPanel;
@@ -133,7 +165,8 @@ void runPredict(const PredictOptions& o) {
   checkTimeEstimate(
       double(o.settings.samplesPerPixel) * spec.imagePanel.width * spec.imagePanel.height, 0,
       "--samples " + std::to_string(o.settings.samplesPerPixel), "use fewer samples");
-  const CalibrationPrediction p = predictCalibration(spec, design, eye, o.settings);
+  const CalibrationPrediction p =
+      withOptionNames([&] { return predictCalibration(spec, design, eye, o.settings); });
   const double distance = p.distanceOverGap * design.gapMm;
   if (o.json) {
     JsonWriter json;

@@ -34,7 +34,23 @@ struct ViewOptions {
 std::unique_ptr<Camera> makeCamera(const ViewOptions& o, const Scene& scene) {
   int width = 960, height = 540;
   if (!o.displayEye.empty()) {
-    const DisplayDesign design = loadDesignOrDefault(o.display);
+    const DisplayDescription description = loadDisplayOrDefault(o.display);
+    if (description.kind == DisplayKind::Lenticular) {
+      // A lenticular render places the scene as it is: so does its ideal view.
+      if (o.framing.given())
+        throw InputError("command line", "--fit/--focus/--depth-budget",
+                         "apply to barrier displays (their depth budget is the virtual gap)");
+      const std::unique_ptr<DisplayModel> display =
+          makeLenticularDisplay(designLenticular(description.lenticular));
+      width = display->film().panelWidth, height = display->film().panelHeight;
+      if (!o.size.empty()) parseSize("--size", o.size, width, height);
+      const Vec3f eye = parseVec3("--display-eye", o.displayEye);
+      if (!(eye.z > 0))
+        throw InputError("command line", "--display-eye", "the eye must be in front (z > 0 mm)");
+      return std::make_unique<WindowCamera>(Vec3d{eye.x, eye.y, eye.z}, *display, scene.display,
+                                            width, height);
+    }
+    const DisplayDesign design = designDisplay(description.barrier);
     const Panel& front = design.spec.order == LayerOrder::BarrierBack ? design.spec.imagePanel
                                                                       : design.spec.maskPanel;
     width = front.width, height = front.height;
@@ -107,7 +123,8 @@ void registerViewCommand(CLI::App& cli) {
   cmd->add_option("--display-eye", options->displayEye,
                   "Ideal view through the display window from this eye X,Y,Z (display mm, "
                   "origin at the front layer's centre, z toward the viewer)");
-  cmd->add_option("--display", options->display, "Display file for --display-eye");
+  cmd->add_option("--display", options->display,
+                  "Display for --display-eye: a file of any kind, or lkg:NAME");
   addFramingOptions(*cmd, options->framing, "With --display-eye: ");
   addSamplingOptions(*cmd, options->sampling, "Samples per pixel (n*n is stratified)");
   cmd->add_option("-o,--output", options->output, "Output image (.png, or .pfm linear float)")

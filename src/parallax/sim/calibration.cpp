@@ -14,8 +14,10 @@ namespace parallax {
 
 namespace {
 
-InputError optionError(const std::string& option, const std::string& message) {
-  return InputError("command line", option, message);
+// A setting out of range, named by its field (calibration.h, kCalibrationSettings); the command
+// line maps fields to its own option names.
+InputError optionError(const std::string& field, const std::string& message) {
+  return InputError(kCalibrationSettings, "/" + field, message);
 }
 
 std::string fixed(double value, int decimals) {
@@ -32,7 +34,7 @@ bool rearExceedsFront(const DisplaySpec& d, double screenPeriodPx, double slitPe
   return d.order == LayerOrder::BarrierBack ? slit > screen : screen > slit;
 }
 
-// A slit period given on the command line (or its default): at least 2 pixels, and G1.
+// A slit period asked for (or its default): at least 2 pixels, and G1.
 void checkSlitPeriod(const DisplaySpec& d, int screenPeriodPx, double slitPeriodPx,
                      const std::string& option) {
   if (!(slitPeriodPx >= 2.0) || !std::isfinite(slitPeriodPx))
@@ -142,14 +144,15 @@ double expectedSlitPeriodPx(const DisplaySpec& base, int screenPeriodPx) {
 PatternSettings resolvePatternSettings(const DisplaySpec& display, PatternSettings s) {
   const DisplayDesign design = designDisplay(display);
   if (s.screenPeriodPx < 0 || s.screenPeriodPx == 1)
-    throw optionError("--screen-period", "must be at least 2 pixels");
+    throw optionError("screen_period_px", "must be at least 2 pixels");
   if (s.screenPeriodPx == 0)
     s.screenPeriodPx = std::max(2, int(std::lround(design.screenPeriodPx)));
   const int tx = s.screenPeriodPx;
   const double expected = expectedSlitPeriodPx(display, tx);
   if (s.slitPeriodPx == 0) s.slitPeriodPx = expected;
-  checkSlitPeriod(display, tx, s.slitPeriodPx, "--slit-period");
-  if ((s.fromPx == 0) != (s.toPx == 0)) throw optionError("--from", "give both --from and --to");
+  checkSlitPeriod(display, tx, s.slitPeriodPx, "slit_period_px");
+  if ((s.fromPx == 0) != (s.toPx == 0))
+    throw optionError("from_px", "give both ends of the period range (from_px and to_px)");
   if (s.fromPx == 0) {
     // g/D from half to 1.5 times the design's: the gap is rarely known better than that.
     const double screenInMaskPx = tx * display.imagePanel.pitchMm / display.maskPanel.pitchMm;
@@ -157,16 +160,16 @@ PatternSettings resolvePatternSettings(const DisplaySpec& display, PatternSettin
     s.fromPx = s.slitPeriodPx - half;
     s.toPx = s.slitPeriodPx + half;
   }
-  checkSlitPeriod(display, tx, s.fromPx, "--from");
-  checkSlitPeriod(display, tx, s.toPx, "--to");
-  if (!(s.fromPx <= s.toPx)) throw optionError("--to", "must not be below --from");
-  if (s.periodSteps < 1) throw optionError("--steps", "must be at least 1");
+  checkSlitPeriod(display, tx, s.fromPx, "from_px");
+  checkSlitPeriod(display, tx, s.toPx, "to_px");
+  if (!(s.fromPx <= s.toPx)) throw optionError("to_px", "must not be below from_px");
+  if (s.periodSteps < 1) throw optionError("period_steps", "must be at least 1");
   if (s.phaseStepPx == 0) s.phaseStepPx = 0.5;
   if (!(s.phaseStepPx > 0 && s.phaseStepPx <= s.slitPeriodPx))
-    throw optionError("--phase-step", "must be positive and at most one slit period");
-  if (!(s.duty >= 0 && s.duty <= 1)) throw optionError("--duty", "must be in (0, 1]");
-  if (!std::isfinite(s.phasePx)) throw optionError("--phase", "must be a number");
-  if (s.labelScale < 0) throw optionError("--label-scale", "must be at least 1");
+    throw optionError("phase_step_px", "must be positive and at most one slit period");
+  if (!(s.duty >= 0 && s.duty <= 1)) throw optionError("duty", "must be in (0, 1]");
+  if (!std::isfinite(s.phasePx)) throw optionError("phase_px", "must be a number");
+  if (s.labelScale < 0) throw optionError("label_scale", "must be at least 1");
   if (s.labelScale == 0) s.labelScale = std::max(1, display.imagePanel.height / 180);
   return s;
 }
@@ -417,20 +420,20 @@ CalibrationPrediction predictCalibration(const DisplaySpec& assumed, const Displ
   CalibrationPrediction p;
   const DisplayDesign design = designDisplay(assumed);
   if (settings.screenPeriodPx < 0 || settings.screenPeriodPx == 1)
-    throw optionError("--screen-period", "must be at least 2 pixels");
+    throw optionError("screen_period_px", "must be at least 2 pixels");
   const int tx = settings.screenPeriodPx > 0 ? settings.screenPeriodPx
                                              : std::max(2, int(std::lround(design.screenPeriodPx)));
   p.screenPeriodPx = tx;
   const double txMask = tx * assumed.imagePanel.pitchMm / assumed.maskPanel.pitchMm;
   const double delta = expectedSlitPeriodPx(assumed, tx) - txMask;
   if ((settings.fromPx == 0) != (settings.toPx == 0))
-    throw optionError("--from", "give both --from and --to");
+    throw optionError("from_px", "give both ends of the period range (from_px and to_px)");
   p.fromPx = settings.fromPx != 0 ? settings.fromPx : txMask + 0.25 * delta;
   p.toPx = settings.toPx != 0 ? settings.toPx : txMask + 2.0 * delta;
   if (p.fromPx > p.toPx) std::swap(p.fromPx, p.toPx);
-  checkSlitPeriod(assumed, tx, p.fromPx, "--from");
-  checkSlitPeriod(assumed, tx, p.toPx, "--to");
-  if (!(settings.duty >= 0 && settings.duty <= 1)) throw optionError("--duty", "must be in (0, 1]");
+  checkSlitPeriod(assumed, tx, p.fromPx, "from_px");
+  checkSlitPeriod(assumed, tx, p.toPx, "to_px");
+  if (!(settings.duty >= 0 && settings.duty <= 1)) throw optionError("duty", "must be in (0, 1]");
 
   const CalibrationScorer scorer(assumed, physics, eye, tx, settings.duty,
                                  settings.samplesPerPixel);

@@ -34,6 +34,12 @@ double expectedSlitPeriodPx(const DisplaySpec& base, int screenPeriodPx);
 // ---- Patterns ----------------------------------------------------------------------------
 
 // Zero means "the default" for every field (see calibrationPatternSet).
+// The `file` of an InputError about a pattern or prediction setting; its path names the field
+// ("/screen_period_px", "/slit_period_px", "/from_px", "/to_px", "/period_steps",
+// "/phase_step_px", "/duty", "/phase_px", "/label_scale"), for a front end to map to its own
+// names.
+inline constexpr const char* kCalibrationSettings = "calibration settings";
+
 struct PatternSettings {
   int screenPeriodPx = 0;       // Tx; default round(design's)
   double slitPeriodPx = 0;      // Tv of the phase sweep and the tests; default G1's for Tx
@@ -59,8 +65,8 @@ struct PatternDescription {
   std::string label;  // drawn into the pattern's corner
 };
 
-// The settings with defaults filled in, checked: throws InputError("command line", "--OPTION",
-// ...) for periods that break G1 in the display's layer order, steps < 1, a duty cycle
+// The settings with defaults filled in, checked: throws InputError(kCalibrationSettings,
+// "/field", ...) for periods that break G1 in the display's layer order, steps < 1, a duty cycle
 // outside (0, 1].
 PatternSettings resolvePatternSettings(const DisplaySpec& display, PatternSettings settings);
 

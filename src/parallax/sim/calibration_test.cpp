@@ -171,7 +171,8 @@ TEST(CalibrationPatterns, RefusesPeriodsThatBreakG1) {
     calibrationPatternSet(defaultDisplaySpec(), s);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.path(), "--from");
+    EXPECT_EQ(e.file(), kCalibrationSettings);
+    EXPECT_EQ(e.path(), "/from_px");  // a field, not an option: the front end names those
   }
   EXPECT_THROW(measuredDisplaySpec(defaultDisplaySpec(), 9, 8.9, 0), InputError);
 }
