@@ -29,24 +29,25 @@ display=":$((90 + RANDOM % 400))"
 Xvfb "$display" -screen 0 400x200x24 -nolisten tcp >/dev/null 2>&1 &
 xvfb=$!
 trap 'kill $xvfb 2>/dev/null; rm -rf "$tmp"' EXIT
-for _ in $(seq 50); do xdpyinfo -display "$display" >/dev/null 2>&1 && break; sleep 0.1; done
+for _ in $(seq 300); do xdpyinfo -display "$display" >/dev/null 2>&1 && break; sleep 0.1; done
 
 # Shows DIR with the given options for a few seconds and takes a screenshot while it runs:
 # retried until the screen matches or the time is up.
 shot_matches() {  # shot_matches PICTURE X Y -- SHOW-ARGS...
   local picture=$1 x=$2 y=$3
   shift 4
-  DISPLAY=$display "$bin" show "$@" --windowed --exit-after 8 >"$tmp/show.out" 2>&1 &
+  DISPLAY=$display "$bin" show "$@" --windowed --exit-after 60 >"$tmp/show.out" 2>&1 &
   local pid=$!
   local ok=1
-  for _ in $(seq 40); do
+  # Up to about 30 s on a loaded machine; a match usually comes within the first second.
+  for _ in $(seq 150); do
     sleep 0.2
     xwd -root -silent -display "$display" >"$tmp/shot.xwd" 2>/dev/null || continue
     if $compare "$tmp/shot.xwd" "$picture" "$x" "$y" >"$tmp/compare.out"; then ok=0; break; fi
   done
   kill "$pid" 2>/dev/null
   wait "$pid" 2>/dev/null
-  [ $ok -eq 0 ] || cat "$tmp/compare.out" >&2
+  [ $ok -eq 0 ] || cat "$tmp/compare.out" "$tmp/show.out" >&2
   return $ok
 }
 
