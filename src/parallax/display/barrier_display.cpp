@@ -33,10 +33,7 @@ class BarrierDisplay final : public DisplayModel {
     rays_.rays16(filmX, filmY, u, v, origin, direction);
   }
   bool columnFans() const override { return true; }
-  int viewCount() const override {
-    const double columnsPerGroup = design_.screenPeriodPx * (rays_.subpixelMode() ? 3.0 : 1.0);
-    return std::max(1, int(std::lround(columnsPerGroup)));
-  }
+  int viewCount() const override { return interleavedViewCount(design_); }
   int viewIndex(int column, int row) const override { return rays_.viewIndex(column, row); }
   Vec3d viewPosition(int view) const override { return rays_.viewPosition(view); }
   double viewZoneWidthMm() const override { return design_.viewZoneWidthMm; }

@@ -216,4 +216,12 @@ DisplayDesign designDisplay(const DisplaySpec& spec) {
   return d;
 }
 
+int interleavedViewCount(const DisplayDesign& design) {
+  return pixelViewCount(design) * (design.spec.subpixelRays ? 3 : 1);
+}
+
+int pixelViewCount(const DisplayDesign& design) {
+  return std::max(1, int(std::lround(design.screenPeriodPx)));
+}
+
 }  // namespace parallax

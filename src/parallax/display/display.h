@@ -119,6 +119,13 @@ struct DisplayDesign {
   double adjacentViewDisparityMm(double depthMm) const;
 };
 
+// The views a barrier interleaves, one per film column of a group: round(views) pixel columns,
+// three times as many with subpixel rays. The one place this count is made.
+int interleavedViewCount(const DisplayDesign& design);
+// The same counting pixel columns only (the eyes' views, whatever the rays): round(Tx / dx),
+// the range of BarrierRayGenerator::viewIndex in pixel mode.
+int pixelViewCount(const DisplayDesign& design);
+
 // The paper's prototype: two 1920x1080 panels of 0.2745 mm pixels, g = 3 mm, 9 views,
 // D = 600 mm, barrier-back.
 DisplaySpec defaultDisplaySpec();

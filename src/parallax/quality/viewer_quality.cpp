@@ -11,16 +11,10 @@
 
 namespace parallax {
 
-namespace {
-int viewCount(const DisplayDesign& design) {
-  return std::max(1, int(std::lround(design.views)));
-}
-}  // namespace
-
 std::vector<DenseEye> denseEyes(const DisplayDesign& design, int eyesPerView,
                                 const std::vector<double>& distances) {
   std::vector<DenseEye> eyes;
-  const int views = viewCount(design);
+  const int views = pixelViewCount(design);
   const double centre = design.spec.viewZoneCenterXMm, y = design.spec.viewZoneHeightMm;
   const double zone = design.viewZoneWidthMm, window = zone / views;
   for (double f : distances)
@@ -37,7 +31,8 @@ std::vector<DenseEye> designEyes(const DisplayDesign& design) {
   spec.subpixelRays = false;  // the panel's pixel views, as the dense eyes count them
   const BarrierRayGenerator rays(designDisplay(spec));
   std::vector<DenseEye> eyes;
-  for (int v = 0; v < viewCount(design); ++v) eyes.push_back({rays.viewPosition(v), 1.0, v, true});
+  for (int v = 0; v < pixelViewCount(design); ++v)
+    eyes.push_back({rays.viewPosition(v), 1.0, v, true});
   return eyes;
 }
 

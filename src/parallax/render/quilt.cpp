@@ -127,8 +127,7 @@ std::vector<Image> splitQuilt(const Image& quilt, const QuiltLayout& layout,
 }
 
 int interlacedViewCount(const DisplayDesign& design) {
-  const double columnsPerGroup = design.screenPeriodPx * (design.spec.subpixelRays ? 3.0 : 1.0);
-  return std::max(1, int(std::lround(columnsPerGroup)));
+  return interleavedViewCount(design);
 }
 
 std::vector<int> designViewsLeftToRight(const DisplayDesign& design) {

@@ -17,10 +17,6 @@ DisplayDesign pixelMode(const DisplayDesign& design) {
 
 }  // namespace
 
-int pixelViewCount(const DisplayDesign& design) {
-  return std::max(1, int(std::lround(design.screenPeriodMm / design.spec.imagePanel.pitchMm)));
-}
-
 Image viewCodedImage(const DisplayDesign& design, int view) {
   const BarrierRayGenerator rays(pixelMode(design));
   const Panel& panel = design.spec.imagePanel;

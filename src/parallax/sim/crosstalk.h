@@ -8,8 +8,7 @@
 
 namespace parallax {
 
-// Views per group in pixel mode: round(Tx / dx), the range of BarrierRayGenerator::viewIndex.
-int pixelViewCount(const DisplayDesign& design);
+// (pixelViewCount, the views per group in pixel mode, is display/display.h's.)
 
 // The image layer with white (1) at the pixels serving `view` and black elsewhere. Pixel mode
 // always (one view per pixel, spec.subpixelRays ignored).

@@ -228,7 +228,7 @@ std::string lightFieldSvg(const DisplayDesign& design, const LightFieldOptions& 
   for (const LightFieldRay& s : samples)
     svg << "<circle class=\"sample\" cx=\"" << num(f.px(s.x)) << "\" cy=\"" << num(f.py(s.v))
         << "\" r=\"1.3\" fill=\"#2c3e50\" fill-opacity=\"0.75\"/>\n";
-  const int views = std::max(1, int(std::lround(design.views))) * (gen.subpixelMode() ? 3 : 1);
+  const int views = interleavedViewCount(design);
   const std::string dotRadius = num(std::clamp(0.3 * (f.px(pitch) - f.px(0)), 1.5, 4.5));
   for (const LightFieldRay& r : rays)
     svg << "<circle class=\"ray\" cx=\"" << num(f.px(r.x)) << "\" cy=\"" << num(f.py(r.v))
