@@ -60,10 +60,7 @@ DisplayLayers renderDirectMapping(const Scene& scene, const Accelerator& acceler
     views.push_back(render(scene, accelerator, camera, settings, &stats, [&](int done, int total) {
       if (progress) progress(view * total + done, viewCount * total);
     }));
-    layers.stats.cameraRays += stats.cameraRays;
-    layers.stats.shadowRays += stats.shadowRays;
-    layers.stats.secondaryRays += stats.secondaryRays;
-    layers.stats.seconds += stats.seconds;
+    layers.stats += stats;
   }
   layers.image = interleaveViews(display, views);
   if (display.hasMaskLayer()) layers.mask = display.maskLayer();

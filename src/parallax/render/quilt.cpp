@@ -175,10 +175,7 @@ std::vector<Image> renderQuiltViews(const Scene& scene, const Accelerator& accel
     views.push_back(render(scene, accelerator, camera, settings, &one, [&](int done, int tiles) {
       if (progress) progress(k * tiles + done, count * tiles);
     }));
-    total.cameraRays += one.cameraRays;
-    total.shadowRays += one.shadowRays;
-    total.secondaryRays += one.secondaryRays;
-    total.seconds += one.seconds;
+    total += one;
   }
   if (stats) *stats = total;
   return views;
@@ -206,10 +203,7 @@ Image renderQuilt(const Scene& scene, const Accelerator& accelerator, const Disp
     const int top = (layout.rows - 1 - k / layout.columns) * tileHeight;
     for (int y = 0; y < tileHeight; ++y)
       for (int x = 0; x < tileWidth; ++x) quilt.at(left + x, top + y) = view.at(x, y);
-    total.cameraRays += one.cameraRays;
-    total.shadowRays += one.shadowRays;
-    total.secondaryRays += one.secondaryRays;
-    total.seconds += one.seconds;
+    total += one;
   }
   if (stats) *stats = total;
   return quilt;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "parallax/core/error.h"
+#include "parallax/display/lenticular_test_support.h"
 #include "parallax/render/display_render.h"
 #include "parallax/render/display_test_support.h"
 
@@ -303,23 +304,13 @@ TEST(RenderQuilt, TilesAreTheViewsRenderedOneByOne) {
 // Looking Glass's mapping, written out: a subpixel of view fraction f takes views f N - 1/2
 // lies between, blended; flat views make it analytic.
 TEST(InterlaceQuiltLenticular, EachSubpixelBlendsTheViewsAroundItsFraction) {
-  LenticularCalibration c;
-  c.source = "small.json";
-  c.pitch = 7.0;
-  c.slope = -6.0;
-  c.center = 0.3;
-  c.viewConeDegrees = 40;
-  c.dpi = 40;
-  c.screenW = 60;
-  c.screenH = 40;
-  c.invView = true;
-  const LenticularDesign d = designLenticular(c);
+  const LenticularDesign d = smallLenticularDesign(40);  // 180 x 40 pixels
   std::vector<Image> views;
   for (int j = 0; j < 10; ++j) views.push_back(flat(30, 20, float(j) / 9.0f));
   const Image panel = interlaceQuiltLenticular(d, views);
-  ASSERT_EQ(panel.width(), 60);
+  ASSERT_EQ(panel.width(), 180);
   for (int y = 0; y < 40; y += 3)
-    for (int x = 0; x < 60; x += 7)
+    for (int x = 0; x < 180; x += 7)
       for (int ch = 0; ch < 3; ++ch) {
         const double position = std::clamp(viewFraction(d, x, y, ch) * 10 - 0.5, 0.0, 9.0);
         EXPECT_NEAR(panel.at(x, y)[ch], position / 9.0, 1e-5) << x << "," << y << "," << ch;

@@ -38,6 +38,14 @@ struct RenderStats {
   double seconds = 0.0;
 
   uint64_t totalRays() const { return cameraRays + shadowRays + secondaryRays; }
+  // Adds another render's rays and time (several views of one job).
+  RenderStats& operator+=(const RenderStats& other) {
+    cameraRays += other.cameraRays;
+    shadowRays += other.shadowRays;
+    secondaryRays += other.secondaryRays;
+    seconds += other.seconds;
+    return *this;
+  }
 };
 
 // Called from worker threads with the number of finished and total tiles.
