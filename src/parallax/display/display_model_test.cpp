@@ -8,7 +8,6 @@
 #include <functional>
 #include <string>
 
-#include "parallax/display/lenticular_presets.h"
 #include "parallax/display/lenticular_test_support.h"
 
 namespace parallax {
@@ -142,26 +141,6 @@ INSTANTIATE_TEST_SUITE_P(
                return makeLenticularDisplay(smallLenticularDesign(), {ViewFilterKind::Tent, 1.5});
              }}),
     [](const testing::TestParamInfo<Kind>& param) { return param.param.name; });
-
-// Every preset is a valid calibration with its device's quilt.
-TEST(LenticularPresets, EveryPresetDesigns) {
-  ASSERT_GE(lenticularPresets().size(), 9u);
-  for (const LenticularPreset& p : lenticularPresets()) {
-    const LenticularDesign d = designLenticular(p.calibration);
-    EXPECT_EQ(d.calibration.source, "lkg:" + p.name);
-    EXPECT_GT(d.pixelsPerLens, 2) << p.name;
-    EXPECT_EQ(d.quiltViews, p.calibration.quilt.columns * p.calibration.quilt.rows);
-    // The default quilt's tiles have (about) the panel's aspect or are squeezed on purpose; the
-    // quilt is never smaller than 3000 pixels a side for these devices.
-    EXPECT_GE(p.calibration.quilt.width, 3000) << p.name;
-    EXPECT_TRUE(d.calibration.invView);
-  }
-  ASSERT_TRUE(lenticularPreset("portrait"));
-  EXPECT_EQ(lenticularPreset("portrait")->screenW, 1536);
-  EXPECT_EQ(lenticularPreset("16-gen3")->cellPatternMode, 2);
-  EXPECT_FALSE(lenticularPreset("nonesuch"));
-  EXPECT_NE(lenticularPresetNames().find("portrait, go"), std::string::npos);
-}
 
 }  // namespace
 }  // namespace parallax
