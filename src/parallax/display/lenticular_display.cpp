@@ -59,9 +59,11 @@ class LenticularDisplay final : public DisplayModel {
   Vec3d viewPosition(int view) const override {
     return eyeAcrossZone((view + 0.5) / design_.quiltViews);
   }
+  // Beyond the cone (t outside [0, 1], a sweep wider than the zone) the angle goes on, up to
+  // 80 degrees to either side, where the panel is seen edge-on.
   Vec3d eyeAcrossZone(double t) const override {
-    const double d = design_.viewDistanceMm;
-    return {d * std::tan(viewAngle(design_, t)), 0.0, d};
+    const double d = design_.viewDistanceMm, limit = 80.0 * 3.14159265358979323846 / 180.0;
+    return {d * std::tan(std::clamp(viewAngle(design_, t), -limit, limit)), 0.0, d};
   }
   double viewZoneWidthMm() const override { return design_.viewZoneWidthMm; }
   bool horizontalParallaxOnly() const override { return true; }
