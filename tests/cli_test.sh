@@ -36,6 +36,33 @@ for key in rays_per_second limit_rays_per_second ratio peak_rss_mb same_rays_lim
   same_rays_ratio ray_order_ratio; do
   check "bench reports $key" grep -q "\"$key\"" "$tmp/out"
 done
+# The end-to-end phases add up to the total, the wall ratio is the total over the render loop,
+# every rate's miss fraction is a fraction, and Embree alone traced the same-rays loop's rays.
+check "bench phases and counts add up" python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+names = ["load", "bvh", "render", "encode", "write"]
+phases = d["phases"]
+assert all(n in phases for n in names), phases
+total = sum(phases[n]["seconds"] for n in names)
+assert abs(total - phases["total_seconds"]) < 1e-9, (total, phases["total_seconds"])
+assert abs(d["wall_ratio"] - total / phases["render"]["seconds"]) < 1e-9
+assert all(phases[n]["peak_rss_mb"] <= d["peak_rss_mb"] for n in names)
+for key in ["", "limit_", "same_rays_limit_", "embree_alone_"]:
+    assert 0 <= d[key + "miss_fraction"] <= 1, key
+assert d["embree_alone_rays"] == d["same_rays_limit_rays"]
+assert d["packet_width"] in (4, 8, 16) and d["bvh_quality"] in ("medium", "high")
+assert abs(d["ray_order_ratio"] * d["same_rays_ratio"] - d["ratio"]) < 1e-9
+' "$tmp/out"
+check "bench --packet-width 8 --bvh-quality medium" run 0 bench --size 32x32 --spp 1 --repeats 1 \
+  --packet-width 8 --bvh-quality medium --json
+check "bench used 8-ray packets and a medium BVH" python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["packet_width"] == 8 and d["bvh_quality"] == "medium", d
+' "$tmp/out"
+check "bench --packet-width 12 exits 2" run 2 bench --packet-width 12
+check "bench --bvh-quality best exits 2" run 2 bench --bvh-quality best
 
 # The display: design, render, and the window view.
 check "design" run 0 design

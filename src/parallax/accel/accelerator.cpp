@@ -68,6 +68,8 @@ struct Accelerator::Impl {
   RTCScene scene = nullptr;
   uint32_t meshCount = 0;
   uint32_t sphereCount = 0;
+  int packetWidth = 16;
+  BuildQuality quality = BuildQuality::High;
   std::mutex errorMutex;
   std::string firstError;  // first message Embree reported through the error callback
 
@@ -198,6 +200,94 @@ void fillRays(const RayPacket16& rays, RTCRay16& out) {
   }
 }
 
+// A 16-ray packet traced as 16 / N queries of N rays (N = 4 or 8), each skipped when all its
+// lanes are inactive: the packet width Embree runs natively on AVX2 (8) or SSE (4). `RayN`
+// is RTCRay4/8 or RTCRayHit4/8; `copyIn` and `copyOut` move one lane between the two layouts.
+template <int N, class PacketN, class CopyIn, class Trace, class CopyOut>
+void traceInParts(const int valid[16], const CopyIn& copyIn, const Trace& trace,
+                  const CopyOut& copyOut) {
+  for (int base = 0; base < 16; base += N) {
+    bool any = false;
+    for (int i = 0; i < N; ++i) any |= valid[base + i] != 0;
+    if (!any) continue;
+    alignas(64) PacketN part;
+    for (int i = 0; i < N; ++i) copyIn(part, i, base + i);
+    trace(valid + base, part);
+    for (int i = 0; i < N; ++i) copyOut(part, i, base + i);
+  }
+}
+
+template <class RayN, class Ray16>
+void copyRayLane(RayN& to, int t, const Ray16& from, int f) {
+  to.org_x[t] = from.org_x[f], to.org_y[t] = from.org_y[f], to.org_z[t] = from.org_z[f];
+  to.dir_x[t] = from.dir_x[f], to.dir_y[t] = from.dir_y[f], to.dir_z[t] = from.dir_z[f];
+  to.tnear[t] = from.tnear[f], to.tfar[t] = from.tfar[f], to.time[t] = from.time[f];
+  to.mask[t] = from.mask[f], to.id[t] = from.id[f], to.flags[t] = from.flags[f];
+}
+
+template <class HitN, class Hit16>
+void copyHitLane(HitN& to, int t, const Hit16& from, int f) {
+  to.Ng_x[t] = from.Ng_x[f], to.Ng_y[t] = from.Ng_y[f], to.Ng_z[t] = from.Ng_z[f];
+  to.u[t] = from.u[f], to.v[t] = from.v[f];
+  to.primID[t] = from.primID[f], to.geomID[t] = from.geomID[f];
+  to.instID[0][t] = from.instID[0][f];
+}
+
+template <int N, class RayHitN, class Intersect>
+void intersectInParts(const int valid[16], RTCRayHit16& rayHit, const Intersect& intersect) {
+  traceInParts<N, RayHitN>(
+      valid,
+      [&](RayHitN& part, int i, int lane) {
+        copyRayLane(part.ray, i, rayHit.ray, lane);
+        copyHitLane(part.hit, i, rayHit.hit, lane);
+      },
+      intersect,
+      [&](const RayHitN& part, int i, int lane) {
+        rayHit.ray.tfar[lane] = part.ray.tfar[i];
+        copyHitLane(rayHit.hit, lane, part.hit, i);
+      });
+}
+
+template <int N, class RayN, class Occluded>
+void occludedInParts(const int valid[16], RTCRay16& ray, const Occluded& occluded) {
+  traceInParts<N, RayN>(
+      valid, [&](RayN& part, int i, int lane) { copyRayLane(part, i, ray, lane); }, occluded,
+      [&](const RayN& part, int i, int lane) { ray.tfar[lane] = part.tfar[i]; });
+}
+
+// rtcIntersect16 at the accelerator's packet width.
+void intersectPacket(int width, const int valid[16], RTCScene scene, RTCIntersectContext& context,
+                     RTCRayHit16& rayHit) {
+  if (width == 8)
+    return intersectInParts<8, RTCRayHit8>(valid, rayHit, [&](const int* v, RTCRayHit8& part) {
+      rtcIntersect8(v, scene, &context, &part);
+    });
+  if (width == 4)
+    return intersectInParts<4, RTCRayHit4>(valid, rayHit, [&](const int* v, RTCRayHit4& part) {
+      rtcIntersect4(v, scene, &context, &part);
+    });
+  rtcIntersect16(valid, scene, &context, &rayHit);
+}
+
+// rtcOccluded16 at the accelerator's packet width.
+void occludedPacket(int width, const int valid[16], RTCScene scene, RTCIntersectContext& context,
+                    RTCRay16& ray) {
+  if (width == 8)
+    return occludedInParts<8, RTCRay8>(
+        valid, ray, [&](const int* v, RTCRay8& part) { rtcOccluded8(v, scene, &context, &part); });
+  if (width == 4)
+    return occludedInParts<4, RTCRay4>(
+        valid, ray, [&](const int* v, RTCRay4& part) { rtcOccluded4(v, scene, &context, &part); });
+  rtcOccluded16(valid, scene, &context, &ray);
+}
+
+// The widest packet the device's kernels run natively.
+int nativePacketWidth(RTCDevice device) {
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return 16;
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return 8;
+  return 4;
+}
+
 }  // namespace
 
 Accelerator::Impl::~Impl() {
@@ -217,7 +307,14 @@ void Accelerator::Impl::throwIfError(const char* stage) {
 }
 
 Accelerator::Accelerator(const Scene& scene, const std::optional<std::string>& embreeConfig)
+    : Accelerator(scene, AcceleratorOptions{embreeConfig}) {}
+
+Accelerator::Accelerator(const Scene& scene, const AcceleratorOptions& options)
     : impl_(std::make_unique<Impl>()) {
+  const std::optional<std::string>& embreeConfig = options.embreeConfig;
+  if (options.packetWidth != 0 && options.packetWidth != 4 && options.packetWidth != 8 &&
+      options.packetWidth != 16)
+    throw InputError("packet width", "", "4, 8 or 16 rays, or 0 for the ISA's own");
   for (size_t i = 0; i < scene.meshes.size(); ++i) checkMesh(scene.meshes[i], i);
   if (scene.meshes.size() + scene.spheres.size() >= RTC_INVALID_GEOMETRY_ID)
     throw std::runtime_error("Embree: too many geometries");
@@ -237,19 +334,29 @@ Accelerator::Accelerator(const Scene& scene, const std::optional<std::string>& e
   rtcSetDeviceErrorFunction(impl.device, Impl::recordError, &impl);
   impl.meshCount = uint32_t(scene.meshes.size());
   impl.sphereCount = uint32_t(scene.spheres.size());
+  impl.packetWidth = options.packetWidth ? options.packetWidth : nativePacketWidth(impl.device);
+  impl.quality = options.quality;
+  if (impl.quality == BuildQuality::Auto)
+    impl.quality =
+        options.expectedRays <= 0.0 ||
+                options.expectedRays >= kHighQualityRaysPerTriangle * double(scene.triangleCount())
+            ? BuildQuality::High
+            : BuildQuality::Medium;
+  const RTCBuildQuality quality =
+      impl.quality == BuildQuality::High ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
 
   impl.scene = rtcNewScene(impl.device);
   impl.throwIfError("scene creation");
-  // Static scenes are built once and traced many times: spend the time on a better BVH.
+  // Static scenes are built once and traced many times: the quality follows how many.
   rtcSetSceneFlags(impl.scene, RTC_SCENE_FLAG_NONE);
-  rtcSetSceneBuildQuality(impl.scene, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneBuildQuality(impl.scene, quality);
 
   auto attach = [&](RTCGeometry geometry, uint32_t geomID) {
     if (!geometry) {
       impl.throwIfError("geometry creation");
       throw std::runtime_error("Embree: cannot create a geometry");
     }
-    rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
+    rtcSetGeometryBuildQuality(geometry, quality);
     rtcCommitGeometry(geometry);
     rtcAttachGeometryByID(impl.scene, geometry, geomID);
     rtcReleaseGeometry(geometry);  // the scene holds its own reference
@@ -265,6 +372,14 @@ Accelerator::Accelerator(const Scene& scene, const std::optional<std::string>& e
 }
 
 Accelerator::~Accelerator() = default;
+Accelerator::Accelerator(Accelerator&&) noexcept = default;
+
+int Accelerator::packetWidth() const {
+  return impl_->packetWidth;
+}
+BuildQuality Accelerator::buildQuality() const {
+  return impl_->quality;
+}
 
 Hit Accelerator::intersect(const Ray& ray) const {
   if (!traceable(ray)) return Hit{};
@@ -303,7 +418,8 @@ void Accelerator::intersect16(const RayPacket16& rays, HitPacket16& hits) const 
   }
   alignas(64) int valid[16];
   std::memcpy(valid, rays.active, sizeof(valid));
-  if (guardPacket(rayHit.ray, valid) > 0) rtcIntersect16(valid, impl_->scene, &context, &rayHit);
+  if (guardPacket(rayHit.ray, valid) > 0)
+    intersectPacket(impl_->packetWidth, valid, impl_->scene, context, rayHit);
   const RTCHit16& h = rayHit.hit;
   for (int lane = 0; lane < 16; ++lane) {
     const bool hit = valid[lane] != 0 && h.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
@@ -327,7 +443,8 @@ void Accelerator::occluded16(const RayPacket16& rays, bool occludedOut[16]) cons
   fillRays(rays, shadow);
   alignas(64) int valid[16];
   std::memcpy(valid, rays.active, sizeof(valid));
-  if (guardPacket(shadow, valid) > 0) rtcOccluded16(valid, impl_->scene, &context, &shadow);
+  if (guardPacket(shadow, valid) > 0)
+    occludedPacket(impl_->packetWidth, valid, impl_->scene, context, shadow);
   for (int lane = 0; lane < 16; ++lane)
     occludedOut[lane] =
         valid[lane] != 0 && shadow.tfar[lane] == -std::numeric_limits<float>::infinity();
@@ -359,8 +476,9 @@ namespace {
 
 // The limit's shading stand-in: one shadow ray from every hit of `primary` toward the light.
 // Returns the number of shadow rays traced.
-uint32_t traceRawShadows(RTCScene scene, RTCIntersectContext& context, RTCRayHit16& primary,
-                         const int primaryValid[16], const Vec3f& lightPosition) {
+uint32_t traceRawShadows(int width, RTCScene scene, RTCIntersectContext& context,
+                         RTCRayHit16& primary, const int primaryValid[16],
+                         const Vec3f& lightPosition) {
   alignas(64) RTCRay16 shadow;
   alignas(64) int shadowValid[16];
   uint32_t shadowCount = 0;
@@ -386,7 +504,7 @@ uint32_t traceRawShadows(RTCScene scene, RTCIntersectContext& context, RTCRayHit
   }
   shadowCount = uint32_t(guardPacket(shadow, shadowValid));
   if (shadowCount == 0) return 0;
-  rtcOccluded16(shadowValid, scene, &context, &shadow);
+  occludedPacket(width, shadowValid, scene, context, shadow);
   // The occlusion results are otherwise unused; a volatile store keeps them observable.
   uint32_t occluded = 0;
   for (int lane = 0; lane < 16; ++lane) occluded += shadowValid[lane] != 0 && shadow.tfar[lane] < 0;
@@ -395,13 +513,21 @@ uint32_t traceRawShadows(RTCScene scene, RTCIntersectContext& context, RTCRayHit
   return shadowCount;
 }
 
+// The primary rays of a traced packet and how many of them missed.
+void countPrimaries(const RTCRayHit16& primary, const int valid[16], RawTraceCount& count) {
+  for (int lane = 0; lane < 16; ++lane) {
+    count.primaryRays += valid[lane] != 0;
+    count.primaryMisses += valid[lane] != 0 && primary.hit.geomID[lane] == RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
 }  // namespace
 
-uint64_t Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int rowEnd,
-                                    const Vec3f& lightPosition) const {
+RawTraceCount Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int rowEnd,
+                                         const Vec3f& lightPosition) const {
   rowBegin = std::max(rowBegin, 0);
   rowEnd = std::min(rowEnd, grid.height);
-  if (rowBegin >= rowEnd || grid.width <= 0) return 0;
+  if (rowBegin >= rowEnd || grid.width <= 0) return {};
   const int n = strataPerAxis(grid.samplesPerPixel);
 
   RTCIntersectContext context;
@@ -409,7 +535,7 @@ uint64_t Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int r
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // a 4x4 pixel block shares one eye
   alignas(64) RTCRayHit16 primary;
   alignas(64) int primaryValid[16];
-  uint64_t rayCount = 0;
+  RawTraceCount count;
 
   for (int y0 = rowBegin; y0 < rowEnd; y0 += 4)
     for (int x0 = 0; x0 < grid.width; x0 += 4)
@@ -435,15 +561,17 @@ uint64_t Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int r
           primary.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
           primary.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
         }
-        const int primaryCount = guardPacket(primary.ray, primaryValid);
-        rtcIntersect16(primaryValid, impl_->scene, &context, &primary);
-        rayCount += uint64_t(primaryCount);
-        rayCount += traceRawShadows(impl_->scene, context, primary, primaryValid, lightPosition);
+        count.rays += uint64_t(guardPacket(primary.ray, primaryValid));
+        intersectPacket(impl_->packetWidth, primaryValid, impl_->scene, context, primary);
+        countPrimaries(primary, primaryValid, count);
+        count.rays += traceRawShadows(impl_->packetWidth, impl_->scene, context, primary,
+                                      primaryValid, lightPosition);
       }
-  return rayCount;
+  return count;
 }
 
-uint64_t Accelerator::traceRawPacket(const RayPacket16& rays, const Vec3f& lightPosition) const {
+RawTraceCount Accelerator::traceRawPacket(const RayPacket16& rays,
+                                          const Vec3f& lightPosition) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -455,9 +583,13 @@ uint64_t Accelerator::traceRawPacket(const RayPacket16& rays, const Vec3f& light
   }
   alignas(64) int valid[16];
   std::memcpy(valid, rays.active, sizeof(valid));
-  const uint64_t rayCount = uint64_t(guardPacket(primary.ray, valid));
-  rtcIntersect16(valid, impl_->scene, &context, &primary);
-  return rayCount + traceRawShadows(impl_->scene, context, primary, valid, lightPosition);
+  RawTraceCount count;
+  count.rays = uint64_t(guardPacket(primary.ray, valid));
+  intersectPacket(impl_->packetWidth, valid, impl_->scene, context, primary);
+  countPrimaries(primary, valid, count);
+  count.rays +=
+      traceRawShadows(impl_->packetWidth, impl_->scene, context, primary, valid, lightPosition);
+  return count;
 }
 
 }  // namespace parallax

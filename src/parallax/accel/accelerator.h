@@ -48,6 +48,47 @@ struct alignas(64) HitPacket16 {
   }
 };
 
+// How good a BVH to build. High (Embree's spatial splits) traces a little faster and builds
+// about three times slower; it pays only when many rays meet each triangle.
+enum class BuildQuality { Auto, Medium, High };
+
+struct AcceleratorOptions {
+  // Embree's device configuration ("isa=avx2", ...); without one, the environment's
+  // PARALLAX_EMBREE_CONFIG, else Embree's defaults (the best ISA).
+  std::optional<std::string> embreeConfig;
+  // Rays per packet query handed to Embree: 0 = the widest packet the ISA runs natively (16 with
+  // AVX-512, 8 with AVX2, 4 below); 4, 8 or 16 to force one (a 16-ray packet is then traced as
+  // 16 / width queries, skipping those whose lanes are all inactive).
+  int packetWidth = 0;
+  BuildQuality quality = BuildQuality::Auto;
+  // With Auto: the rays the caller expects to trace (0: unknown, which builds High). High is
+  // chosen from kHighQualityRaysPerTriangle rays per triangle up.
+  double expectedRays = 0.0;
+};
+
+// Auto's threshold: below it the medium build's saved time exceeds what the high build saves in
+// tracing (measured in docs/speed.md, "BVH quality").
+inline constexpr double kHighQualityRaysPerTriangle = 5000.0;
+
+// The options of a job that traces about `cameraRays` camera rays, and about as many shadow
+// rays: the BVH quality follows them.
+inline AcceleratorOptions acceleratorForCameraRays(double cameraRays) {
+  AcceleratorOptions options;
+  options.expectedRays = 2.0 * cameraRays;
+  return options;
+}
+
+// The raw limit's counts: every ray traced, and the primary rays and how many of them missed.
+struct RawTraceCount {
+  uint64_t rays = 0;
+  uint64_t primaryRays = 0;
+  uint64_t primaryMisses = 0;
+  RawTraceCount& operator+=(const RawTraceCount& other) {
+    rays += other.rays, primaryRays += other.primaryRays, primaryMisses += other.primaryMisses;
+    return *this;
+  }
+};
+
 class Accelerator {
  public:
   // Builds the Embree scene from every mesh and sphere: geometry IDs 0..M-1 are the meshes,
@@ -58,9 +99,12 @@ class Accelerator {
   // configuration Embree refuses is an InputError naming it.
   explicit Accelerator(const Scene& scene,
                        const std::optional<std::string>& embreeConfig = std::nullopt);
+  Accelerator(const Scene& scene, const AcceleratorOptions& options);
   ~Accelerator();
   Accelerator(const Accelerator&) = delete;
   Accelerator& operator=(const Accelerator&) = delete;
+  // Movable: the device, its error callback's target and the scene stay where they are.
+  Accelerator(Accelerator&&) noexcept;
 
   Hit intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
@@ -72,18 +116,23 @@ class Accelerator {
   // occludedOut[lane] is true if something lies within (tMin, tMax) of an active lane.
   void occluded16(const RayPacket16& rays, bool occludedOut[16]) const;
 
+  // The rays per Embree packet query (AcceleratorOptions::packetWidth, resolved) and the BVH
+  // quality that was built (Medium or High).
+  int packetWidth() const;
+  BuildQuality buildQuality() const;
+
   // Throws std::out_of_range for an ID that is not in the scene (including kNoHit).
   SurfaceRef surface(uint32_t geometry) const;
 
   // The raw Embree limit for benchmarks: for image rows [rowBegin, rowEnd) of `grid`, traces
   // 4x4-pixel packets of coherent pinhole rays with rtcIntersect16 (one packet per sample
   // index), then one shadow ray per hit toward `lightPosition` with rtcOccluded16; no shading.
-  // Returns the number of rays traced (primary + shadow). Callers parallelise over rows.
-  uint64_t traceRawLimit(const PinholeGrid& grid, int rowBegin, int rowEnd,
-                         const Vec3f& lightPosition) const;
+  // Callers parallelise over rows.
+  RawTraceCount traceRawLimit(const PinholeGrid& grid, int rowBegin, int rowEnd,
+                              const Vec3f& lightPosition) const;
   // The same limit on rays someone else made: the active lanes of `rays`, then one shadow ray
-  // per hit toward `lightPosition`. Returns the number of rays traced.
-  uint64_t traceRawPacket(const RayPacket16& rays, const Vec3f& lightPosition) const;
+  // per hit toward `lightPosition`.
+  RawTraceCount traceRawPacket(const RayPacket16& rays, const Vec3f& lightPosition) const;
 
  private:
   struct Impl;

@@ -415,13 +415,36 @@ std::string kernelName(const ::testing::TestParamInfo<const char*>& param) {
 INSTANTIATE_TEST_SUITE_P(Kernels, AcceleratorIsa, ::testing::Values("", "isa=avx2", "isa=sse4.2"),
                          kernelName);
 
-TEST_P(AcceleratorIsa, PacketsAgreeWithSingleRaysLaneByLane) {
+// Every packet width (the ISA's own, and 4, 8 and 16 forced: a 16-ray packet split into 4 or
+// 2 Embree queries) against single rays, lane by lane.
+class AcceleratorPacketWidth : public ::testing::TestWithParam<std::tuple<const char*, int>> {};
+
+INSTANTIATE_TEST_SUITE_P(Kernels, AcceleratorPacketWidth,
+                         ::testing::Combine(::testing::Values("", "isa=avx2", "isa=sse4.2"),
+                                            ::testing::Values(0, 4, 8, 16)),
+                         [](const ::testing::TestParamInfo<std::tuple<const char*, int>>& param) {
+                           const std::string config = std::get<0>(param.param);
+                           const std::string isa = config.empty()           ? "best"
+                                                   : config == "isa=sse4.2" ? "sse42"
+                                                                            : config.substr(4);
+                           return isa + "_width" + std::to_string(std::get<1>(param.param));
+                         });
+
+TEST_P(AcceleratorPacketWidth, PacketsAgreeWithSingleRaysLaneByLane) {
   Rng rng(15);
   std::vector<SoupTriangle> soup;
   Scene scene = randomSoup(rng, 500, soup);
   for (int i = 0; i < 6; ++i)
     scene.spheres.push_back({"s", 0, uniformBox(rng, -1.5f, 1.5f), uniform(rng, 0.1f, 0.4f)});
-  const Accelerator accel(scene, std::string(GetParam()));
+  AcceleratorOptions options;
+  options.embreeConfig = std::string(std::get<0>(GetParam()));
+  options.packetWidth = std::get<1>(GetParam());
+  const Accelerator accel(scene, options);
+  if (options.packetWidth != 0) {
+    EXPECT_EQ(accel.packetWidth(), options.packetWidth);
+  }
+  const int width = accel.packetWidth();
+  EXPECT_TRUE(width == 4 || width == 8 || width == 16) << width;
   int activeLanes = 0, hitLanes = 0, occludedLanes = 0;
   for (int p = 0; p < 400; ++p) {
     RayPacket16 rays;
@@ -572,7 +595,9 @@ TEST(AcceleratorEmpty, EverythingMisses) {
   }
   // Primary rays only: nothing is hit, so no shadow rays.
   const PinholeGrid grid{{0, 0, 0}, {-1, 1, -1}, {0.1f, 0, 0}, {0, -0.1f, 0}, 10, 7, 4};
-  EXPECT_EQ(accel.traceRawLimit(grid, 0, 7, {0, 5, 0}), 10u * 7u * 4u);
+  const RawTraceCount count = accel.traceRawLimit(grid, 0, 7, {0, 5, 0});
+  EXPECT_EQ(count.rays, 10u * 7u * 4u);
+  EXPECT_EQ(count.primaryMisses, count.primaryRays);
   EXPECT_THROW(accel.surface(0), std::out_of_range);
 }
 
@@ -591,11 +616,11 @@ TEST(AcceleratorErrors, RejectsMalformedMeshes) {
 
 // Rays the documented PinholeGrid formula produces for rows [rowBegin, rowEnd), counted with
 // the single-ray path: every primary ray, plus one shadow ray per primary hit.
-uint64_t expectedRawRays(const Accelerator& accel, const PinholeGrid& grid, int rowBegin,
-                         int rowEnd) {
+RawTraceCount expectedRawRays(const Accelerator& accel, const PinholeGrid& grid, int rowBegin,
+                              int rowEnd) {
   int n = 1;
   while ((n + 1) * (n + 1) <= grid.samplesPerPixel) ++n;
-  uint64_t rays = 0;
+  RawTraceCount count;
   for (int y = std::max(rowBegin, 0); y < std::min(rowEnd, grid.height); ++y)
     for (int x = 0; x < grid.width; ++x)
       for (int sy = 0; sy < n; ++sy)
@@ -603,9 +628,19 @@ uint64_t expectedRawRays(const Accelerator& accel, const PinholeGrid& grid, int 
           const float jx = (float(sx) + 0.5f) / float(n), jy = (float(sy) + 0.5f) / float(n);
           const Vec3f target =
               grid.pixel00 + (float(x) + jx) * grid.pixelDx + (float(y) + jy) * grid.pixelDy;
-          rays += 1 + accel.intersect({grid.eye, target - grid.eye}).valid();
+          const bool hit = accel.intersect({grid.eye, target - grid.eye}).valid();
+          count.rays += 1 + hit;
+          count.primaryRays += 1;
+          count.primaryMisses += !hit;
         }
-  return rays;
+  return count;
+}
+
+void expectSameCount(const RawTraceCount& traced, const RawTraceCount& expected,
+                     const std::string& what) {
+  EXPECT_EQ(traced.rays, expected.rays) << what;
+  EXPECT_EQ(traced.primaryRays, expected.primaryRays) << what;
+  EXPECT_EQ(traced.primaryMisses, expected.primaryMisses) << what;
 }
 
 TEST_P(AcceleratorIsa, RawLimitCountsPrimaryRaysAndOneShadowRayPerHit) {
@@ -618,15 +653,63 @@ TEST_P(AcceleratorIsa, RawLimitCountsPrimaryRaysAndOneShadowRayPerHit) {
   const PinholeGrid grid{{0, 1, 6}, {-1.5f, 1.4f, 4}, {3.0f / 37, 0, 0}, {0, -2.0f / 23, 0}, 37, 23,
                          5};
   for (const auto& [begin, end] : {std::pair{0, 23}, {5, 19}, {20, 40}, {-3, 2}}) {
-    const uint64_t expected = expectedRawRays(accel, grid, begin, end);
-    EXPECT_EQ(accel.traceRawLimit(grid, begin, end, {-2, 4, 3}), expected)
-        << "rows " << begin << ".." << end;
+    expectSameCount(accel.traceRawLimit(grid, begin, end, {-2, 4, 3}),
+                    expectedRawRays(accel, grid, begin, end),
+                    "rows " + std::to_string(begin) + ".." + std::to_string(end));
   }
-  EXPECT_GT(expectedRawRays(accel, grid, 0, 23), uint64_t(37 * 23 * 4 * 3 / 2)) << "most rays hit";
+  const RawTraceCount all = expectedRawRays(accel, grid, 0, 23);
+  EXPECT_GT(all.rays, uint64_t(37 * 23 * 4 * 3 / 2)) << "most rays hit";
+  EXPECT_GT(all.primaryMisses, 0u) << "some miss";
   PinholeGrid nine = grid;
   nine.samplesPerPixel = 9;
-  EXPECT_EQ(accel.traceRawLimit(nine, 3, 11, {-2, 4, 3}), expectedRawRays(accel, nine, 3, 11));
-  EXPECT_EQ(accel.traceRawLimit(grid, 10, 10, {-2, 4, 3}), 0u);
+  expectSameCount(accel.traceRawLimit(nine, 3, 11, {-2, 4, 3}), expectedRawRays(accel, nine, 3, 11),
+                  "9 spp");
+  EXPECT_EQ(accel.traceRawLimit(grid, 10, 10, {-2, 4, 3}).rays, 0u);
+}
+
+// Auto builds High only when enough rays meet each triangle; both qualities find the same
+// first hits.
+TEST(AcceleratorQuality, ChosenByRaysPerTriangleAndInvisibleInTheHits) {
+  Rng rng(23);
+  std::vector<SoupTriangle> soup;
+  const Scene scene = randomSoup(rng, 400, soup);
+  const double triangles = double(scene.triangleCount());
+  const auto built = [&](BuildQuality quality, double rays) {
+    AcceleratorOptions options;
+    options.quality = quality;
+    options.expectedRays = rays;
+    return Accelerator(scene, options).buildQuality();
+  };
+  EXPECT_EQ(built(BuildQuality::Auto, 0.0), BuildQuality::High);  // unknown: the safe default
+  EXPECT_EQ(built(BuildQuality::Auto, kHighQualityRaysPerTriangle * triangles), BuildQuality::High);
+  EXPECT_EQ(built(BuildQuality::Auto, 0.5 * kHighQualityRaysPerTriangle * triangles),
+            BuildQuality::Medium);
+  EXPECT_EQ(built(BuildQuality::Medium, 1e12), BuildQuality::Medium);
+  EXPECT_EQ(built(BuildQuality::High, 1.0), BuildQuality::High);
+
+  AcceleratorOptions medium, high;
+  medium.quality = BuildQuality::Medium;
+  high.quality = BuildQuality::High;
+  const Accelerator a(scene, medium), b(scene, high);
+  int hits = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Ray ray = randomSoupRay(rng);
+    const Hit x = a.intersect(ray), y = b.intersect(ray);
+    ASSERT_EQ(x.valid(), y.valid()) << i;
+    if (!x.valid()) continue;
+    ++hits;
+    EXPECT_EQ(x.primitive, y.primitive) << i;
+    EXPECT_FLOAT_EQ(x.t, y.t) << i;
+  }
+  EXPECT_GT(hits, 500);
+}
+
+TEST(AcceleratorOptionsCheck, RefusesAnUnknownPacketWidth) {
+  Scene scene;
+  addQuad(scene, "q", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
+  AcceleratorOptions options;
+  options.packetWidth = 12;
+  EXPECT_THROW(Accelerator(scene, options), InputError);
 }
 
 TEST(AcceleratorThreads, ConcurrentQueriesMatchSerialOnes) {

@@ -12,13 +12,19 @@
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/core/parallel.h"
+#include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/render/bench.h"
 #include "parallax/render/display_render.h"
 #include "parallax/sim/simulator.h"
 
+#include <unistd.h>
 #include <chrono>
 #include <climits>
+#include <filesystem>
+#include <type_traits>
+#include <vector>
 
 namespace parallax::app {
 
@@ -71,8 +77,87 @@ struct BenchOptions {
   int repeats = 2;
   bool json = false;
   int simulateViews = 0;
+  int packetWidth = 0;
+  std::string quality = "auto";
   FilterOptions filter;
 };
+
+// One step of what `parallax render` does, timed, with the process's peak memory after it.
+struct Phase {
+  const char* name;
+  double seconds;
+  double peakMiB;
+};
+
+class PhaseClock {
+ public:
+  template <class Step>
+  auto run(const char* name, const Step& step) {
+    const auto start = std::chrono::steady_clock::now();
+    if constexpr (std::is_void_v<decltype(step())>) {
+      step();
+      record(name, start);
+    } else {
+      auto result = step();
+      record(name, start);
+      return result;
+    }
+  }
+  const std::vector<Phase>& phases() const { return phases_; }
+  double total() const {
+    double sum = 0;
+    for (const Phase& p : phases_) sum += p.seconds;
+    return sum;
+  }
+  double seconds(const std::string& name) const {
+    for (const Phase& p : phases_)
+      if (name == p.name) return p.seconds;
+    return 0.0;
+  }
+
+ private:
+  void record(const char* name, std::chrono::steady_clock::time_point start) {
+    phases_.push_back(
+        {name, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+         peakResidentMiB()});
+  }
+  std::vector<Phase> phases_;
+};
+
+BuildQuality parseQuality(const std::string& text) {
+  if (text == "auto") return BuildQuality::Auto;
+  if (text == "medium") return BuildQuality::Medium;
+  if (text == "high") return BuildQuality::High;
+  throw InputError("command line", "--bvh-quality",
+                   "unknown quality '" + text + "' (auto, medium or high)");
+}
+
+const char* qualityName(BuildQuality quality) {
+  return quality == BuildQuality::High     ? "high"
+         : quality == BuildQuality::Medium ? "medium"
+                                           : "auto";
+}
+
+// The rest of `parallax render` after the render loop: the layers' PNGs (at once, as render
+// writes them) and their files, written into a temporary folder that is removed afterwards.
+void encodeAndWrite(PhaseClock& clock, const Image& image, const Image& mask) {
+  std::string imagePng, maskPng;
+  clock.run("encode", [&] {
+    parallelInvoke(
+        0, [&] { imagePng = pngBytes(image); },
+        [&] {
+          if (!mask.empty()) maskPng = pngBytes(mask);
+        });
+  });
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("parallax-bench-" + std::to_string(::getpid()));
+  clock.run("write", [&] {
+    writeFileAtomically((folder / "image.png").string(), imagePng);
+    if (!maskPng.empty()) writeFileAtomically((folder / "mask.png").string(), maskPng);
+  });
+  std::error_code ignored;
+  std::filesystem::remove_all(folder, ignored);
+}
 
 void runBench(const BenchOptions& o) {
   if (o.simulateViews > 0) {
@@ -88,45 +173,67 @@ void runBench(const BenchOptions& o) {
   parseSize("--size", o.size, width, height);
   const RenderSettings settings = o.sampling.settings();
   // Before anything is allocated: the film and the limit's ray buffers (a few per pixel), and
-  // the time of `repeats` alternating runs of ours and the two limits.
+  // the time of `repeats` alternating runs of ours and the three limits, and one more render.
   checkMemoryEstimate(imageBytes(width, height) * 4, "--size " + o.size, "the film and rays",
                       "use a smaller size");
   checkPixelCount(double(width) * height, "--size " + o.size);
-  o.sampling.checkWork(width, height, 3.0 * o.repeats);
+  o.sampling.checkWork(width, height, 4.0 * o.repeats + 1.0);
   if (o.camera != "pinhole" && o.camera != "display")
     throw InputError("command line", "--camera",
                      "unknown camera '" + o.camera + "' (pinhole or display)");
-  const Scene scene = loadSceneOrDefault(o.scene);
+  AcceleratorOptions acceleratorOptions;
+  acceleratorOptions.packetWidth = o.packetWidth;
+  acceleratorOptions.quality = parseQuality(o.quality);
+
+  PhaseClock clock;
+  // Load: the scene and, for the display camera, the display.
+  std::unique_ptr<DisplayModel> display;
+  const Scene scene = clock.run("load", [&] {
+    if (o.camera == "display") {
+      const DisplayDescription description = loadDisplayOrDefault(o.display);
+      display =
+          description.kind == DisplayKind::Lenticular
+              ? makeLenticularDisplay(designLenticular(description.lenticular), o.filter.filter())
+              : makeBarrierDisplay(designDisplay(description.barrier), o.filter.filter());
+    }
+    return loadSceneOrDefault(o.scene);
+  });
   std::unique_ptr<Camera> camera;
   std::optional<PinholeGrid> limitGrid;
-  if (o.camera == "display") {
+  const DisplayModel* model = display.get();
+  if (display) {
     // The display camera renders the image layer at its own resolution. Its limit is a
     // pinhole at the view-zone centre whose film is the front layer: the same content, seen
     // by the coherent rays of one eye.
-    // Any display kind: a barrier's image layer, a lenticular panel's subpixels.
-    const DisplayDescription description = loadDisplayOrDefault(o.display);
-    std::unique_ptr<DisplayModel> display =
-        description.kind == DisplayKind::Lenticular
-            ? makeLenticularDisplay(designLenticular(description.lenticular), o.filter.filter())
-            : makeBarrierDisplay(designDisplay(description.barrier), o.filter.filter());
     const Vec3d eye = display->window().eyeMm;
     camera = std::make_unique<DisplayCamera>(std::move(display), scene.display);
     width = camera->width(), height = camera->height();
-    const DisplayCamera& displayCamera = static_cast<const DisplayCamera&>(*camera);
-    limitGrid = WindowCamera(eye, displayCamera.display(), scene.display, width, height)
-                    .grid(o.sampling.spp);
+    limitGrid = WindowCamera(eye, *model, scene.display, width, height).grid(o.sampling.spp);
   }
   const CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
   const PinholeCamera pinhole(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
   if (!limitGrid) limitGrid = pinhole.grid(o.sampling.spp);
-  const Accelerator accelerator(scene);
   const Camera& measured = camera ? static_cast<const Camera&>(*camera) : pinhole;
+  // The render's camera rays and about as many shadow rays: what the BVH quality is chosen by.
+  acceleratorOptions.expectedRays = 2.0 * double(width) * height * settings.samplesPerPixel;
+  const Accelerator accelerator =
+      clock.run("bvh", [&] { return Accelerator(scene, acceleratorOptions); });
+  // One render as `parallax render` runs it (cold), then its outputs.
+  Image image, mask;
+  clock.run("render", [&] {
+    if (model) {
+      DisplayLayers layers = renderDisplay(scene, accelerator, *model, settings);
+      image = std::move(layers.image), mask = std::move(layers.mask);
+    } else {
+      image = render(scene, accelerator, pinhole, settings);
+    }
+  });
+  encodeAndWrite(clock, image, mask);
+  const double wallRatio = clock.total() / std::max(1e-9, clock.seconds("render"));
+
   const BenchResult r = benchmark(scene, accelerator, measured, *limitGrid, settings, o.repeats);
   const double peak = peakResidentMiB();
-  const double sameRaysRatio =
-      r.sameRays.perSecond() > 0 ? r.ours.perSecond() / r.sameRays.perSecond() : 0.0;
-  const double rayOrder =
-      r.limit.perSecond() > 0 ? r.sameRays.perSecond() / r.limit.perSecond() : 0.0;
+  const char* quality = qualityName(accelerator.buildQuality());
   if (o.json) {
     JsonWriter json;
     json.set("/camera", o.camera);
@@ -137,34 +244,57 @@ void runBench(const BenchOptions& o) {
     json.set("/height", height);
     json.set("/spp", o.sampling.spp);
     json.set("/jitter", o.sampling.jitter);
-    json.set("/rays", r.ours.rays);
-    json.set("/seconds", r.ours.seconds);
-    json.set("/rays_per_second", r.ours.perSecond());
-    json.set("/limit_rays", r.limit.rays);
-    json.set("/limit_seconds", r.limit.seconds);
-    json.set("/limit_rays_per_second", r.limit.perSecond());
+    json.set("/workers", r.workers);
+    json.set("/packet_width", r.packetWidth);
+    json.set("/bvh_quality", quality);
+    const auto rate = [&json](const std::string& key, const RayRate& rays) {
+      json.set(key + "rays", rays.rays);
+      json.set(key + "seconds", rays.seconds);
+      json.set(key + "rays_per_second", rays.perSecond());
+      json.set(key + "miss_fraction", rays.missFraction());
+    };
+    rate("/", r.ours);
+    rate("/limit_", r.limit);
+    rate("/same_rays_limit_", r.sameRays);
+    rate("/embree_alone_", r.embreeAlone);
     json.set("/ratio", r.ratio());
-    json.set("/same_rays_limit_rays", r.sameRays.rays);
-    json.set("/same_rays_limit_seconds", r.sameRays.seconds);
-    json.set("/same_rays_limit_rays_per_second", r.sameRays.perSecond());
-    json.set("/same_rays_ratio", sameRaysRatio);
-    json.set("/ray_order_ratio", rayOrder);
+    json.set("/same_rays_ratio", r.sameRaysRatio());
+    json.set("/ray_order_ratio", r.rayOrderRatio());
+    json.set("/embree_ray_order_ratio", r.embreeRayOrderRatio());
+    json.set("/ray_generation_share", r.rayGenerationShare());
+    for (const Phase& phase : clock.phases()) {
+      json.set(std::string("/phases/") + phase.name + "/seconds", phase.seconds);
+      json.set(std::string("/phases/") + phase.name + "/peak_rss_mb", phase.peakMiB);
+    }
+    json.set("/phases/total_seconds", clock.total());
+    json.set("/wall_ratio", wallRatio);
     json.set("/peak_rss_mb", peak);
     std::printf("%s\n", json.dump().c_str());
     return;
   }
-  std::printf("scene        %s (%zu triangles), %s camera, %dx%d, %d spp\n", scene.source.c_str(),
-              scene.triangleCount(), o.camera.c_str(), width, height, o.sampling.spp);
-  std::printf("parallax     %12llu rays in %.3f s  %s\n", (unsigned long long)r.ours.rays,
-              r.ours.seconds, formatRate(r.ours.perSecond()).c_str());
-  std::printf("raw Embree   %12llu rays in %.3f s  %s (coherent pinhole rays)\n",
-              (unsigned long long)r.limit.rays, r.limit.seconds,
-              formatRate(r.limit.perSecond()).c_str());
-  std::printf("  same rays  %12llu rays in %.3f s  %s (this camera's rays, no shading)\n",
-              (unsigned long long)r.sameRays.rays, r.sameRays.seconds,
-              formatRate(r.sameRays.perSecond()).c_str());
-  std::printf("ratio        %.2f  (ray order %.2f x shading %.2f)\npeak memory  %.0f MiB\n",
-              r.ratio(), rayOrder, sameRaysRatio, peak);
+  std::printf("scene        %s (%zu triangles), %s camera, %dx%d, %d spp, %d workers\n",
+              scene.source.c_str(), scene.triangleCount(), o.camera.c_str(), width, height,
+              o.sampling.spp, r.workers);
+  std::printf("embree       %d-ray packets, %s-quality BVH\n", r.packetWidth, quality);
+  const auto line = [](const char* name, const RayRate& rays, const char* what) {
+    std::printf("%-12s %12llu rays in %.3f s  %s, %2.0f %% of primaries miss (%s)\n", name,
+                (unsigned long long)rays.rays, rays.seconds, formatRate(rays.perSecond()).c_str(),
+                100.0 * rays.missFraction(), what);
+  };
+  line("parallax", r.ours, "generated, traced, shaded");
+  line("raw Embree", r.limit, "coherent pinhole rays, one shadow ray per hit");
+  line("  same rays", r.sameRays, "this camera's rays, generated and traced, no shading");
+  line("  Embree", r.embreeAlone, "the same rays, Embree's traversal alone");
+  std::printf(
+      "ratio        %.2f  (ray order %.2f x shading %.2f); Embree alone: ray order %.2f, "
+      "ray generation %.0f %% of the same-rays loop\n",
+      r.ratio(), r.rayOrderRatio(), r.sameRaysRatio(), r.embreeRayOrderRatio(),
+      100.0 * r.rayGenerationShare());
+  std::printf("end to end  ");
+  for (const Phase& phase : clock.phases())
+    std::printf(" %s %.3f s (%.0f MiB)", phase.name, phase.seconds, phase.peakMiB);
+  std::printf("\n             %.3f s in all, %.2fx the render loop\npeak memory  %.0f MiB\n",
+              clock.total(), wallRatio, peak);
 }
 
 }  // namespace
@@ -190,6 +320,15 @@ void registerBenchCommand(CLI::App& cli) {
   cmd->add_option("--simulate", options->simulateViews,
                   "Instead: time a sweep of N simulated views of the display (9 is the goal)")
       ->check(integerIn(0, INT_MAX));
+  cmd->add_option("--packet-width", options->packetWidth,
+                  "Rays per Embree packet query: 4, 8 or 16 (0: the ISA's own, 16 with AVX-512, "
+                  "8 with AVX2)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({0, 4, 8, 16}));
+  cmd->add_option("--bvh-quality", options->quality,
+                  "BVH build: auto (high when the render traces at least 5000 rays per "
+                  "triangle, else medium), medium or high")
+      ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });
 }

@@ -91,7 +91,8 @@ void runLenticularRender(const LenticularRenderJob& o) {
                       o.calibration.source, "the panel image", "use a smaller panel");
   o.sampling.checkWork(3 * w, h);
   const Scene scene = loadSceneReportingWarnings(o.scene);
-  const Accelerator accelerator(scene);
+  const Accelerator accelerator(scene,
+                                acceleratorForCameraRays(3 * w * h * settings.samplesPerPixel));
   DisplayLayers out;
   {
     ProgressBar bar("lenticular render");

@@ -116,7 +116,9 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
                  width, height, layout.aspect, windowAspect);
 
   if (framing) reportFraming(*framing);
-  const Accelerator accelerator(scene);
+  const Accelerator accelerator(
+      scene, acceleratorForCameraRays(double(layout.columns) * layout.rows * width * height *
+                                      settings.samplesPerPixel));
   RenderStats stats;
   Image quilt;
   {
@@ -223,7 +225,12 @@ void runRender(const RenderOptions& o) {
     return runQuiltRender(o, layout, *makeBarrierDisplay(design), scene, settings, &framing,
                           displayFileText(design.spec), "display.json");
   reportFraming(framing);
-  const Accelerator accelerator(scene);
+  const double filmColumns =
+      design.spec.imagePanel.width * (design.spec.subpixelRays ? 3.0 : 1.0) *
+      (o.directMapping ? std::max(1.0, std::round(design.screenPeriodPx)) : 1.0);
+  const Accelerator accelerator(
+      scene, acceleratorForCameraRays(filmColumns * design.spec.imagePanel.height *
+                                      settings.samplesPerPixel));
   DisplayLayers layers;
   {
     ProgressBar bar("render");

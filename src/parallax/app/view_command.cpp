@@ -91,7 +91,8 @@ void runView(const ViewOptions& o) {
                       "use a smaller size");
   checkPixelCount(double(camera->width()) * camera->height(), "--size " + size);
   o.sampling.checkWork(camera->width(), camera->height());
-  const Accelerator accelerator(scene);
+  const Accelerator accelerator(
+      scene, acceleratorForCameraRays(double(camera->width()) * camera->height() * o.sampling.spp));
   RenderStats stats;
   Image image;
   {

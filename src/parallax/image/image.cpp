@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 
 namespace parallax {
@@ -74,10 +75,46 @@ float linearToSrgb(float l) {
   return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
 }
 
+namespace {
+
+// linearToSrgb8 without a pow per value: the 255 linear thresholds where the code steps up,
+// and, for each run of 2^16 consecutive floats (their bit patterns' top 16 bits), the code of
+// the run's first float. A run spans 1/128 of an octave, across which the code climbs by less
+// than one step (at most 112 codes per e-fold, at l = 1), so a lookup ends after at most two
+// comparisons.
+struct SrgbEncodeTable {
+  std::array<float, 255> threshold{};  // threshold[k]: the least float whose code exceeds k
+  std::vector<uint8_t> runStart;       // the code of the float (run << 16)
+
+  SrgbEncodeTable() {
+    for (int k = 0; k < 255; ++k) {
+      // The linear value whose sRGB code is exactly k + 1/2, in double precision.
+      const double encoded = (k + 0.5) / 255.0;
+      const double linear =
+          encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+      float t = float(linear);
+      if (double(t) < linear) t = std::nextafter(t, 2.0f);
+      threshold[size_t(k)] = t;
+    }
+    const uint32_t runs = 0x3f800000u >> 16;  // the runs of floats in [0, 1)
+    runStart.resize(runs);
+    for (uint32_t run = 0; run < runs; ++run) {
+      const float first = std::bit_cast<float>(run << 16);
+      runStart[run] =
+          uint8_t(std::upper_bound(threshold.begin(), threshold.end(), first) - threshold.begin());
+    }
+  }
+};
+
+}  // namespace
+
 uint8_t linearToSrgb8(float l) {
+  static const SrgbEncodeTable table;
   if (!(l > 0.0f)) return 0;  // also maps NaN to 0
   if (l >= 1.0f) return 255;
-  return uint8_t(std::lround(linearToSrgb(l) * 255.0f));
+  unsigned code = table.runStart[std::bit_cast<uint32_t>(l) >> 16];
+  while (code < 255 && l >= table.threshold[code]) ++code;
+  return uint8_t(code);
 }
 
 float srgb8ToLinear(uint8_t code) {

@@ -40,7 +40,8 @@ Image resizeArea(const Image& image, int width, int height);
 // The sRGB transfer function (IEC 61966-2-1), per channel.
 float srgbToLinear(float encoded);
 float linearToSrgb(float linear);
-// Linear [0,1] value to an 8-bit sRGB code with rounding; values outside [0,1] are clamped.
+// Linear [0,1] value to the nearest 8-bit sRGB code (halves round up, decided in double
+// precision); values outside [0,1] are clamped, NaN is 0. A table lookup: no pow per value.
 uint8_t linearToSrgb8(float linear);
 // Table-based decode of 8-bit sRGB codes.
 float srgb8ToLinear(uint8_t code);

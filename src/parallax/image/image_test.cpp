@@ -2,11 +2,46 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
 namespace parallax {
 namespace {
 
 TEST(Srgb, RoundTripsEveryCode) {
   for (int i = 0; i < 256; ++i) EXPECT_EQ(linearToSrgb8(srgb8ToLinear(uint8_t(i))), i);
+}
+
+// The encoder's definition written out the slow way: the forward transfer function in double
+// precision, rounded to the nearest code (halves up).
+int slowSrgb8(float linear) {
+  const double l = std::clamp(double(linear), 0.0, 1.0);
+  const double encoded = l <= 0.0031308 ? l * 12.92 : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
+  return int(std::floor(encoded * 255.0 + 0.5));
+}
+
+TEST(Srgb, TableEncoderEqualsTheTransferFunctionEverywhere) {
+  // Every 61st float in [0, 1] (17 million values, every run of the table many times over),
+  // and the floats on either side of every code's step.
+  int mismatches = 0;
+  for (uint32_t bits = 0; bits <= 0x3f800000u; bits += 61) {
+    const float l = std::bit_cast<float>(bits);
+    mismatches += linearToSrgb8(l) != slowSrgb8(l);
+  }
+  for (int code = 1; code < 256; ++code) {
+    const double encoded = (code - 0.5) / 255.0;
+    const float step =
+        float(encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4));
+    float l = std::nextafter(std::nextafter(step, 0.0f), 0.0f);
+    for (int i = 0; i < 5; ++i, l = std::nextafter(l, 2.0f))
+      mismatches += linearToSrgb8(l) != slowSrgb8(l);
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_EQ(linearToSrgb8(std::nanf("")), 0);
+  EXPECT_EQ(linearToSrgb8(1.0f), 255);
+  EXPECT_EQ(linearToSrgb8(std::nextafter(1.0f, 0.0f)), 255);
 }
 
 TEST(Srgb, MatchesStandardAnchors) {

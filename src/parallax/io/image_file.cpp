@@ -2,10 +2,10 @@
 
 #include <fcntl.h>
 #include <stb_image.h>
-#include <stb_image_write.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cctype>
 #include <cerrno>
@@ -22,7 +22,9 @@
 #include <system_error>
 
 #include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
 #include "parallax/io/input_file.h"
+#include "parallax/io/png_encoder.h"
 
 namespace parallax {
 namespace {
@@ -334,28 +336,29 @@ Image decodeWithStb(std::string_view bytes, const std::string& path) {
 
 std::string pngBytes(const Image& image) {
   if (image.empty()) throw std::invalid_argument("pngBytes: empty image");
-  std::vector<unsigned char> codes;
-  codes.reserve(image.pixels().size() * 3);
-  bool grey = true;
-  for (const Vec3f& p : image.pixels()) {
-    grey &= p.x == p.y && p.y == p.z;
-    for (int c = 0; c < 3; ++c) codes.push_back(linearToSrgb8(p[c]));
-  }
+  const int width = image.width(), height = image.height();
+  const size_t rowPixels = size_t(width);
+  std::vector<uint8_t> codes(image.pixels().size() * 3);
+  // sRGB codes on every core, in bands of rows (each pixel's codes do not depend on the band).
+  std::atomic<bool> coloured{false};
+  const int64_t bandRows = std::max<int64_t>(1, 65536 / width);
+  parallelFor(height, 0, bandRows, [&](int64_t begin, int64_t end) {
+    bool grey = true;
+    for (size_t i = size_t(begin) * rowPixels; i < size_t(end) * rowPixels; ++i) {
+      const Vec3f& p = image.pixels()[i];
+      grey &= p.x == p.y && p.y == p.z;
+      for (int c = 0; c < 3; ++c) codes[3 * i + size_t(c)] = linearToSrgb8(p[c]);
+    }
+    if (!grey) coloured = true;
+  });
   // A grey picture (a mask layer, a calibration pattern) as one channel: a third of the bytes
   // to compress, and a file that says what it is.
   int channels = 3;
-  if (grey) {
+  if (!coloured) {
     for (size_t i = 0; i < image.pixels().size(); ++i) codes[i] = codes[3 * i];
     channels = 1;
   }
-  std::string out;
-  auto append = [](void* context, void* bytes, int size) {
-    static_cast<std::string*>(context)->append(static_cast<const char*>(bytes), size_t(size));
-  };
-  if (!stbi_write_png_to_func(append, &out, image.width(), image.height(), channels, codes.data(),
-                              image.width() * channels))
-    throw std::runtime_error("PNG encoding failed");
-  return out;
+  return encodePng(codes.data(), width, height, channels);
 }
 
 namespace {

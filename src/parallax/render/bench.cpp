@@ -1,14 +1,13 @@
 #include "parallax/render/bench.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <limits>
+#include <mutex>
+#include <vector>
 
+#include "parallax/core/parallel.h"
 #include "parallax/render/light_sampler.h"
 #include "parallax/render/tile_packets.h"
 
@@ -16,19 +15,26 @@ namespace parallax {
 
 namespace {
 
-// Runs count(i) for i in [0, n) over the arena's threads, as the renderer does, and returns
-// the summed rays with the wall time.
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Runs count(i) for i in [0, n) over the workers, as the renderer does, and returns the summed
+// counts with the wall time.
 template <class Count>
-RayRate timedSum(tbb::task_arena& arena, int n, const Count& count) {
-  const auto start = std::chrono::steady_clock::now();
-  tbb::enumerable_thread_specific<uint64_t> counts(0);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, n, 1), [&](const tbb::blocked_range<int>& r) {
-      for (int i = r.begin(); i != r.end(); ++i) counts.local() += count(i);
-    });
+RayRate timedSum(int threads, int n, const Count& count) {
+  const auto start = Clock::now();
+  std::mutex mutex;
+  RawTraceCount total;
+  parallelFor(n, threads, 1, [&](int64_t begin, int64_t end) {
+    RawTraceCount local;
+    for (int64_t i = begin; i != end; ++i) local += count(int(i));
+    const std::lock_guard lock(mutex);
+    total += local;
   });
-  const uint64_t rays = counts.combine([](uint64_t a, uint64_t b) { return a + b; });
-  return {rays, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+  return {total.rays, total.primaryRays, total.primaryMisses, since(start)};
 }
 
 void keepFastest(RayRate& best, const RayRate& run) {
@@ -40,27 +46,46 @@ void keepFastest(RayRate& best, const RayRate& run) {
 BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
                       const PinholeGrid& limitGrid, const RenderSettings& settings, int repeats) {
   BenchResult result;
+  result.packetWidth = accelerator.packetWidth();
+  result.workers = workerCount(settings.threads);
   const double never = std::numeric_limits<double>::infinity();
-  result.ours.seconds = result.limit.seconds = result.sameRays.seconds = never;
+  result.ours.seconds = result.limit.seconds = result.sameRays.seconds =
+      result.embreeAlone.seconds = never;
   const Vec3f light = LightSampler(scene).representativePoint(limitGrid.eye);
-  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
   const TileGrid tiles(camera);
   const PacketWalk walk(settings.samplesPerPixel, settings.seed, settings.jitter, camera);
   for (int i = 0; i < std::max(1, repeats); ++i) {
     // The pinhole limit in bands of 16 rows (4 packets high), parallelised like the renderer.
-    keepFastest(result.limit, timedSum(arena, (limitGrid.height + 15) / 16, [&](int band) {
+    keepFastest(result.limit,
+                timedSum(settings.threads, (limitGrid.height + 15) / 16, [&](int band) {
                   return accelerator.traceRawLimit(limitGrid, band * 16, band * 16 + 16, light);
                 }));
-    keepFastest(result.sameRays, timedSum(arena, tiles.count(), [&](int tile) {
-                  uint64_t rays = 0;
+    keepFastest(result.sameRays, timedSum(settings.threads, tiles.count(), [&](int tile) {
+                  RawTraceCount count;
                   forEachPacket(tiles, tile, camera, walk, [&](const FilmPacket& packet) {
-                    rays += accelerator.traceRawPacket(packet.rays, light);
+                    count += accelerator.traceRawPacket(packet.rays, light);
                   });
-                  return rays;
+                  return count;
                 }));
+    // Embree alone: a tile's packets first (untimed), then only their tracing on the clock.
+    std::atomic<int64_t> embreeNanoseconds{0};
+    RayRate alone = timedSum(settings.threads, tiles.count(), [&](int tile) {
+      std::vector<RayPacket16> packets;
+      forEachPacket(tiles, tile, camera, walk,
+                    [&](const FilmPacket& packet) { packets.push_back(packet.rays); });
+      RawTraceCount count;
+      const auto start = Clock::now();
+      for (const RayPacket16& rays : packets) count += accelerator.traceRawPacket(rays, light);
+      embreeNanoseconds +=
+          std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count();
+      return count;
+    });
+    alone.seconds = double(embreeNanoseconds.load()) * 1e-9 / double(result.workers);
+    keepFastest(result.embreeAlone, alone);
     RenderStats stats;
     render(scene, accelerator, camera, settings, &stats);
-    keepFastest(result.ours, {stats.totalRays(), stats.seconds});
+    keepFastest(result.ours,
+                {stats.totalRays(), stats.cameraRays, stats.cameraMisses, stats.seconds});
   }
   return result;
 }

@@ -10,26 +10,49 @@
 
 namespace parallax {
 
-// Rays traced in a time; the rate of the fastest of several runs.
+// Rays traced in a time, with the primary rays among them and how many met nothing.
 struct RayRate {
   uint64_t rays = 0;
+  uint64_t primaryRays = 0, primaryMisses = 0;
   double seconds = 0.0;
   double perSecond() const { return seconds > 0 ? double(rays) / seconds : 0.0; }
+  double missFraction() const {
+    return primaryRays > 0 ? double(primaryMisses) / double(primaryRays) : 0.0;
+  }
 };
 
 struct BenchResult {
-  RayRate ours;      // primary + shadow + secondary, shaded
-  RayRate limit;     // raw Embree, coherent pinhole rays: primary + one shadow ray per hit
-  RayRate sameRays;  // raw Embree on our camera's own rays, in our packet order, the same way
-  double ratio() const { return limit.perSecond() > 0 ? ours.perSecond() / limit.perSecond() : 0; }
+  RayRate ours;   // the renderer's loop: primary + shadow + secondary rays, generated and shaded
+  RayRate limit;  // raw Embree, coherent pinhole rays: primary + one shadow ray per hit
+  // Raw Embree on our camera's own rays in our packet order, the limit's way: with our ray
+  // generation (sameRays), and Embree's traversal alone (embreeAlone: each tile's rays made
+  // beforehand, untimed; its seconds are the workers' seconds inside Embree over the workers).
+  RayRate sameRays, embreeAlone;
+  int packetWidth = 16;  // rays per Embree packet query
+  int workers = 1;
+
+  double ratio() const { return rate(ours, limit); }              // ours / coherent limit
+  double sameRaysRatio() const { return rate(ours, sameRays); }   // what shading costs
+  double rayOrderRatio() const { return rate(sameRays, limit); }  // what our rays cost
+  // The ray order as Embree alone feels it (ray generation excluded).
+  double embreeRayOrderRatio() const { return rate(embreeAlone, limit); }
+  // Our ray generation's share of the same-rays loop.
+  double rayGenerationShare() const {
+    return sameRays.seconds > 0 ? 1.0 - embreeAlone.seconds / sameRays.seconds : 0.0;
+  }
+
+ private:
+  static double rate(const RayRate& a, const RayRate& b) {
+    return b.perSecond() > 0 ? a.perSecond() / b.perSecond() : 0.0;
+  }
 };
 
-// Renders through `camera` with `settings` and traces two raw Embree limits at the same rays
+// Renders through `camera` with `settings` and traces the raw Embree limits at the same rays
 // per pixel, alternating `repeats` times and keeping the fastest of each (the machines are
 // noisy): the coherent pinhole rays of `limitGrid` (for the display camera, a pinhole at the
-// view-zone centre that sees what the display shows), and the camera's own rays. The gap
-// between the two limits is what the camera's ray order costs Embree; the gap between the
-// same-rays limit and ours is what shading costs.
+// view-zone centre that sees what the display shows), and the camera's own rays, with and
+// without their generation. The gap between the limits is what the camera's ray order costs
+// Embree; the gap between the same-rays limit and ours is what shading costs.
 BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
                       const PinholeGrid& limitGrid, const RenderSettings& settings,
                       int repeats = 2);

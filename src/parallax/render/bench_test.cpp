@@ -29,12 +29,54 @@ TEST(Bench, CountsTheRaysOfEverySide) {
         hits += accel.intersect(camera.generateRay({x + jx, y + jy})).valid();
       }
   EXPECT_NEAR(double(r.limit.rays), double(40 * 24 * 4 + hits), 4.0);
+  // Misses: the limit's primaries are the stratum centres counted above; ours are the
+  // renderer's own count.
+  EXPECT_EQ(r.limit.primaryRays, uint64_t(40 * 24 * 4));
+  EXPECT_NEAR(double(r.limit.primaryMisses), double(40 * 24 * 4 - hits), 4.0);
+  EXPECT_EQ(r.ours.primaryRays, stats.cameraRays);
+  EXPECT_EQ(r.ours.primaryMisses, stats.cameraMisses);
+  EXPECT_GT(r.ours.missFraction(), 0.0);
+  EXPECT_LT(r.ours.missFraction(), 1.0);
+  // Embree alone traces exactly the same-rays loop's rays; only the clock differs.
+  EXPECT_EQ(r.embreeAlone.rays, r.sameRays.rays);
+  EXPECT_EQ(r.embreeAlone.primaryRays, r.sameRays.primaryRays);
+  EXPECT_EQ(r.embreeAlone.primaryMisses, r.sameRays.primaryMisses);
+  EXPECT_EQ(r.sameRays.primaryRays, stats.cameraRays);
+  EXPECT_GT(r.embreeAlone.seconds, 0.0);
+  EXPECT_EQ(r.packetWidth, accel.packetWidth());
+  EXPECT_NEAR(r.sameRaysRatio(), r.ours.perSecond() / r.sameRays.perSecond(), 1e-12);
+  EXPECT_NEAR(r.rayOrderRatio() * r.sameRaysRatio(), r.ratio(), 1e-12);
   // The same-rays limit traces the renderer's primary rays: as many as the renderer's.
   EXPECT_GE(r.sameRays.rays, stats.cameraRays);
   EXPECT_LE(r.sameRays.rays, 2 * stats.cameraRays);
   EXPECT_GT(r.ours.perSecond(), 0.0);
   EXPECT_GT(r.limit.perSecond(), 0.0);
   EXPECT_NEAR(r.ratio(), r.ours.perSecond() / r.limit.perSecond(), 1e-12);
+}
+
+TEST(Bench, CameraMissesAreTheRaysThatSeeTheBackground) {
+  // Counted against single rays through the same pixels at 1 spp (pixel centres).
+  const Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  const CameraSpec& c = *scene.camera;
+  // The scene's own view (some background), and straight up into the sky (all background).
+  for (const Vec3f& lookAt : {c.lookAt, c.eye + Vec3f{0, 1, 0.2f}}) {
+    const PinholeCamera camera(c.eye, lookAt, c.up, c.fovDegrees, 33, 19);
+    RenderSettings settings;
+    settings.samplesPerPixel = 1;
+    RenderStats stats;
+    render(scene, accel, camera, settings, &stats);
+    uint64_t misses = 0;
+    for (int y = 0; y < 19; ++y)
+      for (int x = 0; x < 33; ++x)
+        misses += !accel.intersect(camera.generateRay({x + 0.5f, y + 0.5f})).valid();
+    EXPECT_EQ(stats.cameraRays, uint64_t(33 * 19));
+    EXPECT_EQ(stats.cameraMisses, misses);
+    EXPECT_GT(misses, 0u);
+    if (lookAt == c.lookAt) {
+      EXPECT_LT(misses, stats.cameraRays);
+    }
+  }
 }
 
 TEST(Bench, AtOneSampleBothLimitsTraceThePixelCentres) {

@@ -19,6 +19,11 @@ void PacketTracer::trace(const RayPacket16& rays, const Color16& weight, std::ar
   Color16 emitted;
   emitted.fill(0.0f);
   surfaces_.evaluate16(rays, hits, sp, emitted);
+  if (depth == 0) {
+    uint64_t misses = 0;
+    for (int i = 0; i < 16; ++i) misses += rays.active[i] != 0 && !sp.hit[i];
+    stats.cameraMisses += misses;
+  }
 
   // Escaped rays see the background; hits add what they emit and the ambient term (a uniform
   // radiance L_a over the hemisphere reflects albedo * L_a from a Lambertian surface).

@@ -1,15 +1,12 @@
 #include "parallax/render/render.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <mutex>
 #include <vector>
 
+#include "parallax/core/parallel.h"
 #include "parallax/image/metrics.h"
 #include "parallax/render/packet_tracer.h"
 #include "parallax/render/packet_types.h"
@@ -128,22 +125,15 @@ Image render(const Scene& scene, const Accelerator& accelerator, const Camera& c
   std::mutex statsMutex;
   RenderStats total;
   std::atomic<int> done{0};
-  const int threads = settings.threads > 0 ? settings.threads : tbb::task_arena::automatic;
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, grid.count(), 1),
-                      [&](const tbb::blocked_range<int>& range) {
-                        RenderStats local;
-                        for (int tile = range.begin(); tile != range.end(); ++tile) {
-                          renderTile(tile, grid, camera, tracer, walk, settings, image, local);
-                          const int finished = ++done;
-                          if (progress) progress(finished, grid.count());
-                        }
-                        const std::lock_guard lock(statsMutex);
-                        total.cameraRays += local.cameraRays;
-                        total.shadowRays += local.shadowRays;
-                        total.secondaryRays += local.secondaryRays;
-                      });
+  parallelFor(grid.count(), settings.threads, 1, [&](int64_t begin, int64_t end) {
+    RenderStats local;
+    for (int64_t tile = begin; tile != end; ++tile) {
+      renderTile(int(tile), grid, camera, tracer, walk, settings, image, local);
+      const int finished = ++done;
+      if (progress) progress(finished, grid.count());
+    }
+    const std::lock_guard lock(statsMutex);
+    total += local;
   });
   total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats) *stats = total;

@@ -35,6 +35,7 @@ struct RenderStats {
   uint64_t cameraRays = 0;  // primary rays
   uint64_t shadowRays = 0;
   uint64_t secondaryRays = 0;  // mirror bounces
+  uint64_t cameraMisses = 0;   // primary rays that met nothing (the background)
   double seconds = 0.0;
 
   uint64_t totalRays() const { return cameraRays + shadowRays + secondaryRays; }
@@ -43,6 +44,7 @@ struct RenderStats {
     cameraRays += other.cameraRays;
     shadowRays += other.shadowRays;
     secondaryRays += other.secondaryRays;
+    cameraMisses += other.cameraMisses;
     seconds += other.seconds;
     return *this;
   }

@@ -1,0 +1,53 @@
+#include "parallax/core/parallel.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+
+namespace parallax {
+
+int workerCount(int threads) {
+  return threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+}
+
+void parallelFor(int64_t count, int threads, int64_t grain,
+                 const std::function<void(int64_t, int64_t)>& body) {
+  if (count <= 0) return;
+  grain = std::max<int64_t>(1, grain);
+  // One chunk, or one worker: no pool at all (the caller's thread, the caller's stack).
+  if (count <= grain || threads == 1) {
+    for (int64_t begin = 0; begin < count; begin += grain)
+      body(begin, std::min(count, begin + grain));
+    return;
+  }
+  // simple_partitioner: chunks of at most `grain` items, as promised (the default partitioner
+  // may hand a worker several grains at once, which callers that size their buffers by the
+  // grain must not see).
+  const auto run = [&] {
+    tbb::parallel_for(
+        tbb::blocked_range<int64_t>(0, count, size_t(grain)),
+        [&](const tbb::blocked_range<int64_t>& range) { body(range.begin(), range.end()); },
+        tbb::simple_partitioner());
+  };
+  if (threads <= 0) return run();
+  tbb::task_arena arena(threads);
+  arena.execute(run);
+}
+
+void parallelInvoke(int threads, const std::function<void()>& first,
+                    const std::function<void()>& second) {
+  if (threads == 1) {
+    first();
+    second();
+    return;
+  }
+  const auto run = [&] { tbb::parallel_invoke(first, second); };
+  if (threads <= 0) return run();
+  tbb::task_arena arena(threads);
+  arena.execute(run);
+}
+
+}  // namespace parallax

@@ -1,0 +1,24 @@
+// Work spread over the cores: the program's one interface to its thread pool (oneTBB, used only
+// in parallel.cpp). Every caller computes each item the same way whichever worker runs it, so
+// results do not depend on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+namespace parallax {
+
+// Calls body(begin, end) on disjoint chunks of at most `grain` items that cover [0, count),
+// on `threads` workers (0: every core), and returns when all are done. Chunks run in any order
+// and on any worker; an exception thrown by a chunk is rethrown here (the first one).
+void parallelFor(int64_t count, int threads, int64_t grain,
+                 const std::function<void(int64_t begin, int64_t end)>& body);
+
+// Runs the tasks at once, on `threads` workers (0: every core), and returns when all are done.
+void parallelInvoke(int threads, const std::function<void()>& first,
+                    const std::function<void()>& second);
+
+// The workers a call with `threads` (0: every core) runs on.
+int workerCount(int threads);
+
+}  // namespace parallax
