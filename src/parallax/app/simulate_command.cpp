@@ -354,6 +354,34 @@ void checkKindOptions(const SimulateOptions& o, const DisplayModel& display) {
   if (o.raw) refuse("--raw");
 }
 
+// The ideal view's PSNR and SSIM at one eye, and (two-layer displays) the brightness and
+// cross-talk there.
+Quality qualityAt(const SimulateOptions& o, const Inputs& in, const SimulationOptions& sim,
+                  const Scene& scene, const Accelerator& accelerator,
+                  const SimulatedDisplay& simulator, const Vec3d& eye, const Image& view,
+                  const Image& picture) {
+  const Image reference = idealView(scene, accelerator, *in.display, simulator, eye, view.width(),
+                                    view.height(), o.referenceSpp, o.threads);
+  Quality q;
+  const Image seen = o.rawPixels ? simulator.atDisplayResolution(view) : picture;
+  q.psnr = psnr(seen, reference);
+  q.ssim = ssim(seen, reference);
+  if (const DisplayDesign* d = in.barrier()) {
+    // Brightness is the raw mean transmittance, whatever --raw says for the pictures.
+    SimulationOptions raw = sim;
+    raw.normalise = false;
+    const CrosstalkResult c = measureCrosstalk(*d, in.layers.mask, raw, eye);
+    q.brightness = c.brightness;
+    q.crosstalk = c.crosstalk;
+    q.ownView = c.ownView;
+  } else {
+    q.brightness = 1.0;  // a lens passes all its light (no barrier)
+    q.crosstalk = std::numeric_limits<double>::quiet_NaN();
+    q.ownView = -1;
+  }
+  return q;
+}
+
 void runSimulate(const SimulateOptions& o) {
   const Inputs in = loadInputs(o);
   const DisplayModel& display = *in.display;
@@ -374,65 +402,49 @@ void runSimulate(const SimulateOptions& o) {
   if (o.reference) scene = referenceScene(in, o);
   const std::unique_ptr<SimulatedDisplay> simulator = simulateDisplay(display, in.layers, sim);
   const std::vector<Vec3d> eyes = eyePositions(o, display);
+  std::optional<Accelerator> accelerator;
+  if (o.reference) accelerator.emplace(*scene);
 
-  std::vector<Image> views;
-  for (const Vec3d& eye : eyes) views.push_back(simulator->view(eye));
-  // Pictures as perceived: a viewer at the design distance does not resolve single pixels
-  // (0.27 mm at 600 mm is about 1.5 arc minutes), so each output pixel shows the light of one
-  // screen period (one lens) around it; --raw-pixels keeps the eye's samples as they are.
-  std::vector<Image> pictures;
-  for (const Image& view : views)
-    pictures.push_back(o.rawPixels ? view : simulator->atDisplayResolution(view));
-
-  std::vector<std::string> written;
+  // One eye at a time: its view, the picture, the quality, then only the encoded picture (and a
+  // sweep's thumbnail) is kept, so memory does not grow with the eyes.
+  const fs::path sweepOut(o.output.empty() ? "out/sweep" : o.output);
+  // The sweep's files share a prefix: a given extension is dropped (-o out/sweep.png).
+  const std::string prefix = (sweepOut.parent_path() / sweepOut.stem()).string();
+  const std::string path = o.output.empty() ? "out/simulated.png" : o.output;
+  std::vector<std::string> written, labels, pngs;
+  std::vector<Image> thumbnails;
+  std::vector<Quality> quality;
+  for (size_t i = 0; i < eyes.size(); ++i) {
+    const Image view = simulator->view(eyes[i]);
+    // Pictures as perceived: a viewer at the design distance does not resolve single pixels
+    // (0.27 mm at 600 mm is about 1.5 arc minutes), so each output pixel shows the light of one
+    // screen period (one lens) around it; --raw-pixels keeps the eye's samples as they are.
+    const Image picture = o.rawPixels ? view : simulator->atDisplayResolution(view);
+    if (o.reference)
+      quality.push_back(
+          qualityAt(o, in, sim, *scene, *accelerator, *simulator, eyes[i], view, picture));
+    if (o.sweep > 0) {
+      labels.push_back(eyeLabel(eyes[i]));
+      pngs.push_back(pngBytes(picture, false));
+      // The contact sheet's thumbnail, made here as the sheet would make it (at the same size
+      // the sheet's own area resampling copies it).
+      const int thumbnail = std::min(480, picture.width());
+      thumbnails.push_back(resizeArea(
+          picture, thumbnail,
+          std::max(1, int(std::lround(double(picture.height()) * thumbnail / picture.width())))));
+    } else {
+      writeImage(numbered(path, i, eyes.size()), picture);
+      written.push_back(numbered(path, i, eyes.size()));
+    }
+  }
   if (o.sweep > 0) {
-    // The sweep's files share a prefix: a given extension is dropped (-o out/sweep.png).
-    const fs::path out(o.output.empty() ? "out/sweep" : o.output);
-    const std::string prefix = (out.parent_path() / out.stem()).string();
-    std::vector<std::string> labels, pngs;
-    for (const Vec3d& eye : eyes) labels.push_back(eyeLabel(eye));
-    for (const Image& picture : pictures) pngs.push_back(pngBytes(picture));
-    const int thumbnail = std::min(480, pictures.front().width());
     writeImage(prefix + "-sheet.png",
-               contactSheet(pictures, std::min<int>(int(pictures.size()), 3), thumbnail, labels));
-    writeFileAtomically(prefix + "-anim.png", encodeApng(pictures, 250));
+               contactSheet(thumbnails, std::min<int>(int(thumbnails.size()), 3),
+                            thumbnails.front().width(), labels));
+    writeFileAtomically(prefix + "-anim.png", encodeApngFromPngs(pngs, 250));
     writeFileAtomically(prefix + ".html",
                         sliderPage("parallax: eye sweep across " + display.source(), pngs, labels));
     written = {prefix + "-sheet.png", prefix + "-anim.png", prefix + ".html"};
-  } else {
-    const std::string path = o.output.empty() ? "out/simulated.png" : o.output;
-    for (size_t i = 0; i < views.size(); ++i) {
-      writeImage(numbered(path, i, views.size()), pictures[i]);
-      written.push_back(numbered(path, i, views.size()));
-    }
-  }
-
-  std::vector<Quality> quality;
-  if (o.reference) {
-    const Accelerator accelerator(*scene);
-    for (size_t i = 0; i < eyes.size(); ++i) {
-      const Image reference =
-          idealView(*scene, accelerator, display, *simulator, eyes[i], views[i].width(),
-                    views[i].height(), o.referenceSpp, o.threads);
-      Quality q;
-      const Image seen = o.rawPixels ? simulator->atDisplayResolution(views[i]) : pictures[i];
-      q.psnr = psnr(seen, reference);
-      q.ssim = ssim(seen, reference);
-      if (const DisplayDesign* d = in.barrier()) {
-        // Brightness is the raw mean transmittance, whatever --raw says for the pictures.
-        SimulationOptions raw = sim;
-        raw.normalise = false;
-        const CrosstalkResult c = measureCrosstalk(*d, in.layers.mask, raw, eyes[i]);
-        q.brightness = c.brightness;
-        q.crosstalk = c.crosstalk;
-        q.ownView = c.ownView;
-      } else {
-        q.brightness = 1.0;  // a lens passes all its light (no barrier)
-        q.crosstalk = std::numeric_limits<double>::quiet_NaN();
-        q.ownView = -1;
-      }
-      quality.push_back(q);
-    }
   }
 
   if (o.json) {
@@ -466,7 +478,7 @@ void runSimulate(const SimulateOptions& o) {
     std::printf("%s\n", json.dump().c_str());
     return;
   }
-  for (const std::string& path : written) std::printf("wrote %s\n", path.c_str());
+  for (const std::string& file : written) std::printf("wrote %s\n", file.c_str());
   if (quality.empty()) return;
   std::printf("%-24s %8s %7s %10s %9s %4s\n", "eye (mm)", "PSNR dB", "SSIM", "brightness",
               "crosstalk", "view");

@@ -1,6 +1,6 @@
 #include "parallax/io/animation.h"
 
-#include <stb_image_write.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <array>
@@ -13,18 +13,6 @@ constexpr std::string_view kPngSignature = "\x89PNG\r\n\x1a\n";
 // Image data is split into chunks of at most this many bytes, as libpng does (with 8 KiB);
 // the PNG limit is 2^31 - 1 bytes per chunk.
 constexpr size_t kMaxChunkData = size_t(1) << 16;
-
-// Byte-at-a-time CRC table for the reflected polynomial 0xEDB88320 (PNG spec, annex D).
-constexpr std::array<uint32_t, 256> makeCrcTable() {
-  std::array<uint32_t, 256> table{};
-  for (uint32_t n = 0; n < 256; ++n) {
-    uint32_t c = n;
-    for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-    table[n] = c;
-  }
-  return table;
-}
-constexpr std::array<uint32_t, 256> kCrcTable = makeCrcTable();
 
 void appendU32(std::string& out, uint32_t value) {
   for (int shift = 24; shift >= 0; shift -= 8) out += char((value >> shift) & 0xFF);
@@ -90,33 +78,45 @@ std::string frameControl(uint32_t sequence, int width, int height, int delayMs) 
 }  // namespace
 
 uint32_t pngCrc32(std::string_view bytes) {
-  uint32_t c = 0xFFFFFFFFu;
-  for (const char byte : bytes) c = kCrcTable[(c ^ uint8_t(byte)) & 0xFF] ^ (c >> 8);
-  return c ^ 0xFFFFFFFFu;
+  // zlib's CRC-32 is PNG's (the same polynomial and conditioning).
+  return uint32_t(crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), uInt(bytes.size())));
 }
 
 std::string encodeApng(const std::vector<Image>& frames, int delayMs, int loops) {
   if (frames.empty()) throw std::invalid_argument("encodeApng: no frames");
-  if (delayMs < 0 || delayMs > 65535)
-    throw std::invalid_argument("encodeApng: delay must be 0..65535 ms");
-  if (loops < 0) throw std::invalid_argument("encodeApng: loops must be >= 0 (0 = forever)");
   const int width = frames[0].width(), height = frames[0].height();
   for (const Image& frame : frames)
     if (frame.empty() || frame.width() != width || frame.height() != height)
       throw std::invalid_argument("encodeApng: frames must be non-empty and of equal size");
+  std::vector<std::string> pngs;
+  pngs.reserve(frames.size());
+  for (const Image& frame : frames) pngs.push_back(pngBytes(frame, false));
+  return encodeApngFromPngs(pngs, delayMs, loops);
+}
+
+std::string encodeApngFromPngs(const std::vector<std::string>& pngFrames, int delayMs, int loops) {
+  if (pngFrames.empty()) throw std::invalid_argument("encodeApng: no frames");
+  if (delayMs < 0 || delayMs > 65535)
+    throw std::invalid_argument("encodeApng: delay must be 0..65535 ms");
+  if (loops < 0) throw std::invalid_argument("encodeApng: loops must be >= 0 (0 = forever)");
 
   std::string out(kPngSignature);
+  std::string header;
   uint32_t sequence = 0;  // shared by fcTL and fdAT chunks, from 0, no gaps
-  for (size_t i = 0; i < frames.size(); ++i) {
-    const PngParts parts = splitPng(pngBytes(frames[i]));
+  for (size_t i = 0; i < pngFrames.size(); ++i) {
+    const PngParts parts = splitPng(pngFrames[i]);
     if (i == 0) {
+      header = parts.header;
       appendChunk(out, "IHDR", parts.header);
       std::string animationControl;
-      appendU32(animationControl, uint32_t(frames.size()));
+      appendU32(animationControl, uint32_t(pngFrames.size()));
       appendU32(animationControl, uint32_t(loops));
       appendChunk(out, "acTL", animationControl);
+    } else if (parts.header != header) {
+      throw std::invalid_argument("encodeApng: frames must share their size and colour type");
     }
-    appendChunk(out, "fcTL", frameControl(sequence++, width, height, delayMs));
+    const uint32_t width = readU32(header, 0), height = readU32(header, 4);
+    appendChunk(out, "fcTL", frameControl(sequence++, int(width), int(height), delayMs));
     const std::string_view data = parts.imageData;
     for (size_t at = 0; at < data.size(); at += kMaxChunkData) {
       const std::string_view piece = data.substr(at, kMaxChunkData);

@@ -23,5 +23,9 @@ uint32_t pngCrc32(std::string_view bytes);
 // Throws std::invalid_argument for no frames, frames of different sizes, delayMs outside
 // [0, 65535] or loops < 0.
 std::string encodeApng(const std::vector<Image>& frames, int delayMs, int loops = 0);
+// The same from frames already encoded as PNGs (pngBytes(frame, false)), which must share one
+// header (size and colour type); throws std::invalid_argument otherwise.
+std::string encodeApngFromPngs(const std::vector<std::string>& pngFrames, int delayMs,
+                               int loops = 0);
 
 }  // namespace parallax

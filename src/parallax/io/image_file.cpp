@@ -334,7 +334,7 @@ Image decodeWithStb(std::string_view bytes, const std::string& path) {
 
 }  // namespace
 
-std::string pngBytes(const Image& image) {
+std::string pngBytes(const Image& image, bool greyAsOneChannel) {
   if (image.empty()) throw std::invalid_argument("pngBytes: empty image");
   const int width = image.width(), height = image.height();
   const size_t rowPixels = size_t(width);
@@ -354,7 +354,7 @@ std::string pngBytes(const Image& image) {
   // A grey picture (a mask layer, a calibration pattern) as one channel: a third of the bytes
   // to compress, and a file that says what it is.
   int channels = 3;
-  if (!coloured) {
+  if (!coloured && greyAsOneChannel) {
     for (size_t i = 0; i < image.pixels().size(); ++i) codes[i] = codes[3 * i];
     channels = 1;
   }

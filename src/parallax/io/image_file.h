@@ -26,9 +26,11 @@ Image readImage(const std::string& path);
 Image decodeImage(std::string_view bytes, const std::string& name);
 // Throws InputError for an unknown extension and std::runtime_error for an I/O failure.
 void writeImage(const std::string& path, const Image& image);
-// The bytes of an 8-bit sRGB PNG of `image` (linear light, clamped to [0,1]), in memory.
+// The bytes of an 8-bit sRGB PNG of `image` (linear light, clamped to [0,1]), in memory, encoded
+// on every core (io/png_encoder.h). A grey picture is written with one channel unless
+// `greyAsOneChannel` is false (frames of one animation must share their colour type).
 // Throws std::invalid_argument for an empty image.
-std::string pngBytes(const Image& image);
+std::string pngBytes(const Image& image, bool greyAsOneChannel = true);
 // Writes bytes to `path` atomically (temporary file + rename); creates missing parent folders.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
 
