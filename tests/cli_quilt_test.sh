@@ -26,6 +26,12 @@ check "quilt file named in the convention" is_png "$tmp/q/quilt_qs3x3a1.7778.png
 check "linear quilt beside it" test -s "$tmp/q/quilt_qs3x3a1.7778.pfm"
 check "render reports the quilt" grep -qF "quilt_qs3x3a1.7778.png" "$tmp/out"
 check "quilt recorded in render.json" grep -q '"method": "quilt"' "$tmp/q/render.json"
+# Without --linear the quilt is kept as 8-bit codes view by view: the same PNG, byte for byte,
+# as the float quilt's.
+check "render --quilt without --linear" run 0 render "${small[@]}" --quilt 3x3 --spp 1 -o "$tmp/q8"
+check "8-bit quilt = float quilt's PNG" cmp -s "$tmp/q/quilt_qs3x3a1.7778.png" \
+  "$tmp/q8/quilt_qs3x3a1.7778.png"
+check "no linear quilt without --linear" test ! -e "$tmp/q8/quilt_qs3x3a1.7778.pfm"
 check "quilt with another view size" run 0 render "${small[@]}" --quilt 5x2 --size 40x30 --spp 1 \
   -o "$tmp/q2"
 check "5x2 of 40x30: aspect 1.3333" is_png "$tmp/q2/quilt_qs5x2a1.3333.png"

@@ -187,13 +187,14 @@ void checkLayerWork(const DisplayDesign& design, bool directMapping, int spp, in
 }
 
 void checkQuiltWork(int columns, int rows, int width, int height, int spp, int threads,
-                    const std::string& sizeText) {
+                    const std::string& sizeText, bool linear) {
   const double views = double(columns) * rows;
   const std::string subject = "--quilt " + std::to_string(columns) + "x" + std::to_string(rows) +
                               (sizeText.empty() ? "" : " --size " + sizeText);
-  // The quilt and its 8-bit copy, and one view at a time (its film and its copy in the tile).
-  const double bytes = imageBytes(width, height, kFloatRgbPixelBytes, views) +
-                       imageBytes(width, height, kRgba8PixelBytes, views) +
+  // The quilt's 8-bit codes and its PNG (at most about as large), a float quilt only for
+  // --linear, and one view at a time (its film, and its copy in the tile).
+  const double bytes = (linear ? imageBytes(width, height, kFloatRgbPixelBytes, views) : 0.0) +
+                       imageBytes(width, height, 2 * kRgba8PixelBytes, views) +
                        imageBytes(width, height, kFloatRgbPixelBytes, 2);
   checkMemoryEstimate(bytes, subject, "the quilt", "use fewer views or a smaller --size");
   checkPixelCount(views * width * height, subject);

@@ -54,10 +54,10 @@ void checkLayerMemory(const DisplayDesign& design, double filmColumns, double vi
 void checkLayerWork(const DisplayDesign& design, bool directMapping, int spp, int threads,
                     const std::string& displayPath);
 
-// The quilt of `render --quilt`: the views and the assembled quilt with its 8-bit copy, and
-// the time; refusals name "--quilt CxR" and the size.
+// The quilt of `render --quilt`: its 8-bit codes and PNG, the float quilt with `linear`, one
+// view at a time, and the time; refusals name "--quilt CxR" and the size.
 void checkQuiltWork(int columns, int rows, int width, int height, int spp, int threads,
-                    const std::string& sizeText);
+                    const std::string& sizeText, bool linear);
 
 // Writes DIR/image.png, mask.png (image.pfm with `linear`), display.json and render.json (the
 // record, with /outputs and /design added) as one set, and says where on stdout.

@@ -15,6 +15,7 @@
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
@@ -105,7 +106,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
                      "the device's quilt is too small for " + std::to_string(layout.columns) + "x" +
                          std::to_string(layout.rows) + " tiles");
   checkQuiltWork(layout.columns, layout.rows, width, height, settings.samplesPerPixel,
-                 settings.threads, o.size);
+                 settings.threads, o.size, o.linear);
   layout.aspect = double(width) / height;
   const DisplayWindow window = display.window();
   const double windowAspect = window.widthMm / window.heightMm;
@@ -120,11 +121,31 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
       scene, acceleratorForCameraRays(double(layout.columns) * layout.rows * width * height *
                                       settings.samplesPerPixel));
   RenderStats stats;
+  // The quilt is kept as the PNG's 8-bit codes, a quarter of a float quilt's memory; a float
+  // quilt only when --linear asks for one.
   Image quilt;
+  const int quiltWidth = layout.columns * width, quiltHeight = layout.rows * height;
+  std::vector<uint8_t> codes;
   {
     ProgressBar bar("render");
-    quilt = renderQuilt(scene, accelerator, display, settings, layout, width, height, &stats,
-                        [&bar](int done, int total) { bar.update(done, total); });
+    const auto onProgress = [&bar](int done, int total) { bar.update(done, total); };
+    if (o.linear) {
+      quilt = renderQuilt(scene, accelerator, display, settings, layout, width, height, &stats,
+                          onProgress);
+    } else {
+      codes.resize(size_t(quiltWidth) * size_t(quiltHeight) * 3);
+      const auto keepCodes = [&](int, int left, int top, const Image& view) {
+        parallelFor(view.height(), 0, 16, [&](int64_t begin, int64_t end) {
+          for (int64_t y = begin; y < end; ++y) {
+            uint8_t* row = codes.data() + (size_t(top + y) * size_t(quiltWidth) + size_t(left)) * 3;
+            for (int x = 0; x < view.width(); ++x)
+              for (int c = 0; c < 3; ++c) row[3 * x + c] = linearToSrgb8(view.at(x, int(y))[c]);
+          }
+        });
+      };
+      renderQuiltTiles(scene, accelerator, display, settings, layout, width, height, keepCodes,
+                       &stats, onProgress);
+    }
   }
   const double raysPerSecond = double(stats.totalRays()) / stats.seconds;
 
@@ -159,8 +180,12 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
 
   OutputSet set(o.output);
   const std::string dir = set.dir();
-  writeImage(set.path(name), quilt);
-  if (o.linear) writeImage(set.path(linearName), quilt);
+  if (o.linear) {
+    writeImage(set.path(name), quilt);
+    writeImage(set.path(linearName), quilt);
+  } else {
+    writeFileAtomically(set.path(name), pngBytesFromSrgb8(codes, quiltWidth, quiltHeight));
+  }
   writeFileAtomically(set.path(displayName), displayText);
   writeFileAtomically(set.path("render.json"), record.dump() + "\n");
   set.commit();

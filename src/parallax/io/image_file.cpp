@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cctype>
 #include <cerrno>
@@ -340,25 +339,30 @@ std::string pngBytes(const Image& image, bool greyAsOneChannel) {
   const size_t rowPixels = size_t(width);
   std::vector<uint8_t> codes(image.pixels().size() * 3);
   // sRGB codes on every core, in bands of rows (each pixel's codes do not depend on the band).
-  std::atomic<bool> coloured{false};
   const int64_t bandRows = std::max<int64_t>(1, 65536 / width);
   parallelFor(height, 0, bandRows, [&](int64_t begin, int64_t end) {
-    bool grey = true;
-    for (size_t i = size_t(begin) * rowPixels; i < size_t(end) * rowPixels; ++i) {
-      const Vec3f& p = image.pixels()[i];
-      grey &= p.x == p.y && p.y == p.z;
-      for (int c = 0; c < 3; ++c) codes[3 * i + size_t(c)] = linearToSrgb8(p[c]);
-    }
-    if (!grey) coloured = true;
+    for (size_t i = size_t(begin) * rowPixels; i < size_t(end) * rowPixels; ++i)
+      for (int c = 0; c < 3; ++c) codes[3 * i + size_t(c)] = linearToSrgb8(image.pixels()[i][c]);
   });
+  return pngBytesFromSrgb8(codes, width, height, greyAsOneChannel);
+}
+
+std::string pngBytesFromSrgb8(std::vector<uint8_t>& rgbCodes, int width, int height,
+                              bool greyAsOneChannel) {
+  if (width <= 0 || height <= 0 || rgbCodes.size() != size_t(width) * size_t(height) * 3)
+    throw std::invalid_argument("pngBytesFromSrgb8: codes do not match the size");
   // A grey picture (a mask layer, a calibration pattern) as one channel: a third of the bytes
   // to compress, and a file that says what it is.
-  int channels = 3;
-  if (!coloured && greyAsOneChannel) {
-    for (size_t i = 0; i < image.pixels().size(); ++i) codes[i] = codes[3 * i];
-    channels = 1;
+  const size_t pixels = rgbCodes.size() / 3;
+  bool grey = greyAsOneChannel;
+  for (size_t i = 0; grey && i < pixels; ++i)
+    grey = rgbCodes[3 * i] == rgbCodes[3 * i + 1] && rgbCodes[3 * i + 1] == rgbCodes[3 * i + 2];
+  if (grey) {
+    std::vector<uint8_t> single(pixels);
+    for (size_t i = 0; i < pixels; ++i) single[i] = rgbCodes[3 * i];
+    return encodePng(single.data(), width, height, 1);
   }
-  return encodePng(codes.data(), width, height, channels);
+  return encodePng(rgbCodes.data(), width, height, 3);
 }
 
 namespace {

@@ -31,6 +31,10 @@ void writeImage(const std::string& path, const Image& image);
 // `greyAsOneChannel` is false (frames of one animation must share their colour type).
 // Throws std::invalid_argument for an empty image.
 std::string pngBytes(const Image& image, bool greyAsOneChannel = true);
+// The same from 8-bit sRGB codes already made (width x height RGB triples, row 0 at the top;
+// the buffer is reused for the one-channel copy of a grey picture).
+std::string pngBytesFromSrgb8(std::vector<uint8_t>& rgbCodes, int width, int height,
+                              bool greyAsOneChannel = true);
 // Writes bytes to `path` atomically (temporary file + rename); creates missing parent folders.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
 

@@ -185,11 +185,12 @@ Vec3d quiltEyePosition(const DisplayModel& display, int camera, int count) {
   return display.eyeAcrossZone((camera + 0.5) / count);
 }
 
-Image renderQuilt(const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
-                  const RenderSettings& settings, const QuiltLayout& layout, int tileWidth,
-                  int tileHeight, RenderStats* stats, const ProgressCallback& progress) {
+void renderQuiltTiles(const Scene& scene, const Accelerator& accelerator,
+                      const DisplayModel& display, const RenderSettings& settings,
+                      const QuiltLayout& layout, int tileWidth, int tileHeight,
+                      const QuiltTileSink& sink, RenderStats* stats,
+                      const ProgressCallback& progress) {
   const int count = layout.views();
-  Image quilt(layout.columns * tileWidth, layout.rows * tileHeight);
   RenderStats total;
   for (int k = 0; k < count; ++k) {
     const WindowCamera camera(quiltEyePosition(display, k, count), display, scene.display,
@@ -199,13 +200,24 @@ Image renderQuilt(const Scene& scene, const Accelerator& accelerator, const Disp
       if (progress) progress(k * n + done, count * n);
     });
     // View k is tile (k mod columns, k div columns) counted from the bottom-left.
-    const int left = (k % layout.columns) * tileWidth;
-    const int top = (layout.rows - 1 - k / layout.columns) * tileHeight;
-    for (int y = 0; y < tileHeight; ++y)
-      for (int x = 0; x < tileWidth; ++x) quilt.at(left + x, top + y) = view.at(x, y);
+    sink(k, (k % layout.columns) * tileWidth, (layout.rows - 1 - k / layout.columns) * tileHeight,
+         view);
     total += one;
   }
   if (stats) *stats = total;
+}
+
+Image renderQuilt(const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
+                  const RenderSettings& settings, const QuiltLayout& layout, int tileWidth,
+                  int tileHeight, RenderStats* stats, const ProgressCallback& progress) {
+  Image quilt(layout.columns * tileWidth, layout.rows * tileHeight);
+  renderQuiltTiles(
+      scene, accelerator, display, settings, layout, tileWidth, tileHeight,
+      [&](int, int left, int top, const Image& view) {
+        for (int y = 0; y < tileHeight; ++y)
+          for (int x = 0; x < tileWidth; ++x) quilt.at(left + x, top + y) = view.at(x, y);
+      },
+      stats, progress);
   return quilt;
 }
 

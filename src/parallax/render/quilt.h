@@ -80,6 +80,17 @@ Image renderQuilt(const Scene& scene, const Accelerator& accelerator, const Disp
                   int tileHeight, RenderStats* stats = nullptr,
                   const ProgressCallback& progress = {});
 
+// Receives view k (leftmost camera first) as soon as it is rendered, with its tile's top-left
+// pixel in the quilt (row 0 at the top): the caller keeps it in whatever form it writes.
+using QuiltTileSink = std::function<void(int view, int left, int top, const Image& image)>;
+// renderQuilt's views, one at a time, handed to `sink` instead of a float quilt: memory is
+// one view's plus whatever the sink keeps (render --quilt keeps 8-bit codes: the output's size).
+void renderQuiltTiles(const Scene& scene, const Accelerator& accelerator,
+                      const DisplayModel& display, const RenderSettings& settings,
+                      const QuiltLayout& layout, int tileWidth, int tileHeight,
+                      const QuiltTileSink& sink, RenderStats* stats = nullptr,
+                      const ProgressCallback& progress = {});
+
 // Maps a quilt's views onto a lenticular panel as Looking Glass's interlacing shader does: each
 // subpixel's view fraction f (viewFraction) picks the views f N - 1/2 lies between (N the
 // quilt's views; beyond the first and last view the nearest), blended linearly, each sampled
