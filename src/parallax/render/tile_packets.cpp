@@ -1,6 +1,7 @@
 #include "parallax/render/tile_packets.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 
@@ -97,10 +98,11 @@ void samplePacket(const PacketWalk& walk, int strata, FilmPacket& packet) {
   for (int lane = 0; lane < 16; ++lane) {
     // In float, px + (a jitter just below 1) can round up to px + 1, the next pixel (and, for
     // the display camera, the next view's ray); the largest float below px + 1 stays inside.
+    // (px + 1 >= 1: its bits less one are that float, without a call to nextafter per lane.)
     x[lane] = std::min(float(px[lane]) + (sx + jx[lane]) * inv,
-                       std::nextafter(float(px[lane] + 1), 0.0f));
+                       std::bit_cast<float>(std::bit_cast<uint32_t>(float(px[lane] + 1)) - 1u));
     y[lane] = std::min(float(py[lane]) + (sy + jy[lane]) * inv,
-                       std::nextafter(float(py[lane] + 1), 0.0f));
+                       std::bit_cast<float>(std::bit_cast<uint32_t>(float(py[lane] + 1)) - 1u));
     u[lane] = (sy + ju[lane]) * inv;
     v[lane] = (sx + jv[lane]) * inv;
   }
