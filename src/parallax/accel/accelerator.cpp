@@ -68,7 +68,7 @@ struct Accelerator::Impl {
   RTCScene scene = nullptr;
   uint32_t meshCount = 0;
   uint32_t sphereCount = 0;
-  int packetWidth = 16;
+  int packetWidth = 16, nativePacketWidth = 16;
   BuildQuality quality = BuildQuality::High;
   std::mutex errorMutex;
   std::string firstError;  // first message Embree reported through the error callback
@@ -179,10 +179,9 @@ int guardPacket(RTCRay16& ray, int valid[16]) {
   // The test lane by lane without branches (it vectorises), then the rare disarming.
   int count = 0;
   for (int lane = 0; lane < 16; ++lane) {
-    const bool trace = (valid[lane] != 0) & traceable(ray.org_x[lane], ray.org_y[lane],
-                                                      ray.org_z[lane], ray.dir_x[lane],
-                                                      ray.dir_y[lane], ray.dir_z[lane],
-                                                      ray.tnear[lane], ray.tfar[lane]);
+    const bool trace = (valid[lane] != 0) &
+                       traceable(ray.org_x[lane], ray.org_y[lane], ray.org_z[lane], ray.dir_x[lane],
+                                 ray.dir_y[lane], ray.dir_z[lane], ray.tnear[lane], ray.tfar[lane]);
     valid[lane] = trace ? -1 : 0;
     count += int(trace);
   }
@@ -288,7 +287,7 @@ void occludedPacket(int width, const int valid[16], RTCScene scene, RTCIntersect
 }
 
 // The widest packet the device's kernels run natively.
-int nativePacketWidth(RTCDevice device) {
+int widestNativePacket(RTCDevice device) {
   if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return 16;
   if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return 8;
   return 4;
@@ -340,7 +339,8 @@ Accelerator::Accelerator(const Scene& scene, const AcceleratorOptions& options)
   rtcSetDeviceErrorFunction(impl.device, Impl::recordError, &impl);
   impl.meshCount = uint32_t(scene.meshes.size());
   impl.sphereCount = uint32_t(scene.spheres.size());
-  impl.packetWidth = options.packetWidth ? options.packetWidth : nativePacketWidth(impl.device);
+  impl.nativePacketWidth = widestNativePacket(impl.device);
+  impl.packetWidth = options.packetWidth ? options.packetWidth : 16;
   impl.quality = options.quality;
   if (impl.quality == BuildQuality::Auto)
     impl.quality =
@@ -382,6 +382,9 @@ Accelerator::Accelerator(Accelerator&&) noexcept = default;
 
 int Accelerator::packetWidth() const {
   return impl_->packetWidth;
+}
+int Accelerator::nativePacketWidth() const {
+  return impl_->nativePacketWidth;
 }
 BuildQuality Accelerator::buildQuality() const {
   return impl_->quality;

@@ -56,9 +56,11 @@ struct AcceleratorOptions {
   // Embree's device configuration ("isa=avx2", ...); without one, the environment's
   // PARALLAX_EMBREE_CONFIG, else Embree's defaults (the best ISA).
   std::optional<std::string> embreeConfig;
-  // Rays per packet query handed to Embree: 0 = the widest packet the ISA runs natively (16 with
-  // AVX-512, 8 with AVX2, 4 below); 4, 8 or 16 to force one (a 16-ray packet is then traced as
-  // 16 / width queries, skipping those whose lanes are all inactive).
+  // Rays per packet query handed to Embree: 4, 8 or 16 (a 16-ray packet is then traced as
+  // 16 / width queries, skipping those whose lanes are all inactive); 0 = 16 on every ISA.
+  // Measured (docs/speed.md, "Packet width"): with AVX2 kernels, whose native packet is 8
+  // rays, Embree's own handling of 16-ray queries beats two 8-ray queries by 10 to 20 %; with
+  // SSE4.2 (native 4) the two tie.
   int packetWidth = 0;
   BuildQuality quality = BuildQuality::Auto;
   // With Auto: the rays the caller expects to trace (0: unknown, which builds High). High is
@@ -119,6 +121,8 @@ class Accelerator {
   // The rays per Embree packet query (AcceleratorOptions::packetWidth, resolved) and the BVH
   // quality that was built (Medium or High).
   int packetWidth() const;
+  // The widest packet the device's kernels run natively: 16 (AVX-512), 8 (AVX, AVX2) or 4.
+  int nativePacketWidth() const;
   BuildQuality buildQuality() const;
 
   // Throws std::out_of_range for an ID that is not in the scene (including kNoHit).

@@ -138,8 +138,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
         parallelFor(view.height(), 0, 16, [&](int64_t begin, int64_t end) {
           for (int64_t y = begin; y < end; ++y) {
             uint8_t* row = codes.data() + (size_t(top + y) * size_t(quiltWidth) + size_t(left)) * 3;
-            for (int x = 0; x < view.width(); ++x)
-              for (int c = 0; c < 3; ++c) row[3 * x + c] = linearToSrgb8(view.at(x, int(y))[c]);
+            linearToSrgb8(&view.at(0, int(y)).x, 3 * size_t(view.width()), row);
           }
         });
       };

@@ -106,15 +106,28 @@ struct SrgbEncodeTable {
   }
 };
 
-}  // namespace
-
-uint8_t linearToSrgb8(float l) {
+const SrgbEncodeTable& srgbEncodeTable() {
   static const SrgbEncodeTable table;
+  return table;
+}
+
+inline uint8_t encodeWith(const SrgbEncodeTable& table, float l) {
   if (!(l > 0.0f)) return 0;  // also maps NaN to 0
   if (l >= 1.0f) return 255;
   unsigned code = table.runStart[std::bit_cast<uint32_t>(l) >> 16];
   while (code < 255 && l >= table.threshold[code]) ++code;
   return uint8_t(code);
+}
+
+}  // namespace
+
+uint8_t linearToSrgb8(float l) {
+  return encodeWith(srgbEncodeTable(), l);
+}
+
+void linearToSrgb8(const float* linear, size_t count, uint8_t* codes) {
+  const SrgbEncodeTable& table = srgbEncodeTable();
+  for (size_t i = 0; i < count; ++i) codes[i] = encodeWith(table, linear[i]);
 }
 
 float srgb8ToLinear(uint8_t code) {

@@ -43,6 +43,10 @@ float linearToSrgb(float linear);
 // Linear [0,1] value to the nearest 8-bit sRGB code (halves round up, decided in double
 // precision); values outside [0,1] are clamped, NaN is 0. A table lookup: no pow per value.
 uint8_t linearToSrgb8(float linear);
+// The same for `count` values at once (the table is looked up once, the loop inlined). An
+// Image's pixels are contiguous floats, x y z per pixel, so a row is 3 x width of them.
+void linearToSrgb8(const float* linear, size_t count, uint8_t* codes);
+static_assert(sizeof(Vec3f) == 3 * sizeof(float), "Vec3f pixels are packed floats");
 // Table-based decode of 8-bit sRGB codes.
 float srgb8ToLinear(uint8_t code);
 

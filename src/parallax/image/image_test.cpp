@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace parallax {
 namespace {
@@ -39,6 +40,15 @@ TEST(Srgb, TableEncoderEqualsTheTransferFunctionEverywhere) {
       mismatches += linearToSrgb8(l) != slowSrgb8(l);
   }
   EXPECT_EQ(mismatches, 0);
+  // The batch form is the same function.
+  std::vector<float> values;
+  for (uint32_t bits = 0; bits <= 0x3f900000u; bits += 4099)
+    values.push_back(std::bit_cast<float>(bits));
+  values.push_back(-1.0f);
+  values.push_back(std::nanf(""));
+  std::vector<uint8_t> codes(values.size());
+  linearToSrgb8(values.data(), values.size(), codes.data());
+  for (size_t i = 0; i < values.size(); ++i) ASSERT_EQ(codes[i], linearToSrgb8(values[i])) << i;
   EXPECT_EQ(linearToSrgb8(std::nanf("")), 0);
   EXPECT_EQ(linearToSrgb8(1.0f), 255);
   EXPECT_EQ(linearToSrgb8(std::nextafter(1.0f, 0.0f)), 255);

@@ -341,8 +341,8 @@ std::string pngBytes(const Image& image, bool greyAsOneChannel) {
   // sRGB codes on every core, in bands of rows (each pixel's codes do not depend on the band).
   const int64_t bandRows = std::max<int64_t>(1, 65536 / width);
   parallelFor(height, 0, bandRows, [&](int64_t begin, int64_t end) {
-    for (size_t i = size_t(begin) * rowPixels; i < size_t(end) * rowPixels; ++i)
-      for (int c = 0; c < 3; ++c) codes[3 * i + size_t(c)] = linearToSrgb8(image.pixels()[i][c]);
+    const size_t first = size_t(begin) * rowPixels, pixels = size_t(end - begin) * rowPixels;
+    linearToSrgb8(&image.pixels()[first].x, 3 * pixels, codes.data() + 3 * first);
   });
   return pngBytesFromSrgb8(codes, width, height, greyAsOneChannel);
 }

@@ -47,6 +47,7 @@ BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const 
                       const PinholeGrid& limitGrid, const RenderSettings& settings, int repeats) {
   BenchResult result;
   result.packetWidth = accelerator.packetWidth();
+  result.nativePacketWidth = accelerator.nativePacketWidth();
   result.workers = workerCount(settings.threads);
   const double never = std::numeric_limits<double>::infinity();
   result.ours.seconds = result.limit.seconds = result.sameRays.seconds =

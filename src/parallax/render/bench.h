@@ -28,7 +28,8 @@ struct BenchResult {
   // generation (sameRays), and Embree's traversal alone (embreeAlone: each tile's rays made
   // beforehand, untimed; its seconds are the workers' seconds inside Embree over the workers).
   RayRate sameRays, embreeAlone;
-  int packetWidth = 16;  // rays per Embree packet query
+  int packetWidth = 16;        // rays per Embree packet query
+  int nativePacketWidth = 16;  // the widest the ISA's kernels run natively
   int workers = 1;
 
   double ratio() const { return rate(ours, limit); }              // ours / coherent limit
