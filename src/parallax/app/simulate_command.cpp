@@ -300,8 +300,8 @@ void runDenseReference(const SimulateOptions& o, const Inputs& in, const Simulat
   printSummaryRow("design eyes (biased)", result.designOnly);
 }
 
-// Before the simulator allocates: per eye its view, the picture and the encoded copies of a
-// sweep, beside two copies of the layers (the simulator's, a blurred rear layer); and the
+// Before the simulator allocates: one eye's view and picture, each eye's encoded copy, beside
+// two copies of the layers (the simulator's, a blurred rear layer); and the
 // time of every sample (spp x pupil samples per output pixel, and the reference views').
 void checkSimulationWork(const SimulateOptions& o, const DisplayModel& display,
                          const LayerImages& layers, const SimulationOptions& sim, size_t eyes) {
@@ -319,11 +319,14 @@ void checkSimulationWork(const SimulateOptions& o, const DisplayModel& display,
   }
   const double layerBytes = imageBytes(layers.image.width(), layers.image.height()) +
                             imageBytes(layers.mask.width(), layers.mask.height());
-  const double perEye = imageBytes(w, h, 2 * kFloatRgbPixelBytes + 2 * kRgba8PixelBytes);
+  // Eyes are seen one at a time: one view and its picture at once, and per eye only what is
+  // kept (a sweep's PNG, at most about the 8-bit codes, and a small thumbnail).
+  const double oneEye = imageBytes(w, h, 2 * kFloatRgbPixelBytes + kRgba8PixelBytes);
+  const double perEye = imageBytes(w, h, kRgba8PixelBytes);
   const std::string subject = o.sweep > 0      ? "--sweep " + std::to_string(o.sweep)
                               : o.size.empty() ? "--eye"
                                                : "--size " + o.size;
-  checkMemoryEstimate(2 * layerBytes + double(eyes) * perEye, subject,
+  checkMemoryEstimate(2 * layerBytes + oneEye + double(eyes) * perEye, subject,
                       std::to_string(eyes) + " simulated views",
                       o.sweep > 0 ? "use fewer steps" : "use a smaller size or fewer eyes");
   checkPixelCount(w * h, subject);
