@@ -9,8 +9,11 @@
 
 namespace parallax {
 
+// More workers than cores only queue (oneTBB warns and ignores the excess): asking for more is
+// asking for every core.
 int workerCount(int threads) {
-  return threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+  const int cores = tbb::this_task_arena::max_concurrency();
+  return threads > 0 ? std::min(threads, cores) : cores;
 }
 
 void parallelFor(int64_t count, int threads, int64_t grain,
@@ -32,8 +35,8 @@ void parallelFor(int64_t count, int threads, int64_t grain,
         [&](const tbb::blocked_range<int64_t>& range) { body(range.begin(), range.end()); },
         tbb::simple_partitioner());
   };
-  if (threads <= 0) return run();
-  tbb::task_arena arena(threads);
+  if (threads <= 0 || workerCount(threads) == workerCount(0)) return run();
+  tbb::task_arena arena(workerCount(threads));
   arena.execute(run);
 }
 
@@ -45,8 +48,8 @@ void parallelInvoke(int threads, const std::function<void()>& first,
     return;
   }
   const auto run = [&] { tbb::parallel_invoke(first, second); };
-  if (threads <= 0) return run();
-  tbb::task_arena arena(threads);
+  if (threads <= 0 || workerCount(threads) == workerCount(0)) return run();
+  tbb::task_arena arena(workerCount(threads));
   arena.execute(run);
 }
 

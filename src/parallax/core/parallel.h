@@ -18,7 +18,7 @@ void parallelFor(int64_t count, int threads, int64_t grain,
 void parallelInvoke(int threads, const std::function<void()>& first,
                     const std::function<void()>& second);
 
-// The workers a call with `threads` (0: every core) runs on.
+// The workers a call with `threads` (0: every core) runs on: never more than the cores.
 int workerCount(int threads);
 
 }  // namespace parallax

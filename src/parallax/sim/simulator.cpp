@@ -3,28 +3,23 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <thread>
 
 #include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
 #include "parallax/display/mask.h"
 
 namespace parallax {
 
 namespace {
 
-// Runs body(begin, end) on `threads` contiguous slices of [0, count). Every item is computed
-// the same way whichever slice holds it, so results do not depend on the thread count.
+// Rows in bands of kRowGrain over the workers (core/parallel.h). Every row is computed the
+// same way whichever band holds it, so results do not depend on the thread count.
+constexpr int64_t kRowGrain = 8;
+
 template <class Body>
-void parallelFor(int count, int threads, const Body& body) {
-  threads = std::clamp(threads, 1, std::max(1, count));
-  if (threads == 1) return body(0, count);
-  std::vector<std::thread> workers;
-  workers.reserve(size_t(threads));
-  for (int t = 0; t < threads; ++t)
-    workers.emplace_back([&body, t, threads, count] {
-      body(int(int64_t(count) * t / threads), int(int64_t(count) * (t + 1) / threads));
-    });
-  for (std::thread& worker : workers) worker.join();
+void forRows(int rows, int threads, const Body& body) {
+  parallelFor(rows, threads, kRowGrain,
+              [&](int64_t begin, int64_t end) { body(int(begin), int(end)); });
 }
 
 std::string size(int width, int height) {
@@ -167,7 +162,7 @@ void DisplaySimulator::blur(Layer& layer, double sigmaMm, int threads) {
   std::vector<Vec3f> blurred(layer.cells.size(), Vec3f(0.0f));
   const std::vector<float> wx = kernel(sigmaMm / layer.cellWidthMm);
   const int rx = int(wx.size() / 2);
-  parallelFor(layer.rows, threads, [&](int begin, int end) {
+  forRows(layer.rows, threads, [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
       const Vec3f* in = layer.cells.data() + size_t(y) * stride;
       Vec3f* out = blurred.data() + size_t(y) * stride;
@@ -181,7 +176,7 @@ void DisplaySimulator::blur(Layer& layer, double sigmaMm, int threads) {
   });
   const std::vector<float> wy = kernel(sigmaMm / layer.cellHeightMm);
   const int ry = int(wy.size() / 2);
-  parallelFor(layer.rows, threads, [&](int begin, int end) {
+  forRows(layer.rows, threads, [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
       Vec3f* out = layer.cells.data() + size_t(y) * stride;
       std::fill(out, out + stride, Vec3f(0.0f));
@@ -201,8 +196,7 @@ DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages laye
   checkSize(design, layers.image, spec.imagePanel, "/image_layer", "image");
   checkSize(design, layers.mask, spec.maskPanel, "/mask_layer", "mask");
   checkOptions(options);
-  threads_ = options.threads > 0 ? options.threads
-                                 : int(std::max(1u, std::thread::hardware_concurrency()));
+  threads_ = workerCount(options.threads);
 
   double sum = 0;
   for (const Vec3f& p : layers.mask.pixels()) sum += (double(p.x) + p.y + p.z) / 3.0;
@@ -280,7 +274,7 @@ Image DisplaySimulator::view(const Vec3d& eye) const {
 
   Image out(width_, height_);
   const Vec3f scale = options_.backlight * float(scale_);
-  parallelFor(height_, threads_, [&](int begin, int end) {
+  forRows(height_, threads_, [&](int begin, int end) {
     std::vector<Vec3f> sum(static_cast<size_t>(width_));
     for (int j = begin; j < end; ++j) {
       std::fill(sum.begin(), sum.end(), Vec3f(0.0f));
