@@ -429,12 +429,8 @@ void runSimulate(const SimulateOptions& o) {
     if (o.sweep > 0) {
       labels.push_back(eyeLabel(eyes[i]));
       pngs.push_back(pngBytes(picture, false));
-      // The contact sheet's thumbnail, made here as the sheet would make it (at the same size
-      // the sheet's own area resampling copies it).
-      const int thumbnail = std::min(480, picture.width());
-      thumbnails.push_back(resizeArea(
-          picture, thumbnail,
-          std::max(1, int(std::lround(double(picture.height()) * thumbnail / picture.width())))));
+      // The contact sheet's thumbnail now, so the picture need not be kept.
+      thumbnails.push_back(contactThumbnail(picture, std::min(480, picture.width())));
     } else {
       writeImage(numbered(path, i, eyes.size()), picture);
       written.push_back(numbered(path, i, eyes.size()));

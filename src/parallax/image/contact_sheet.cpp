@@ -88,6 +88,12 @@ const unsigned char* glyphRows(char character) {
   return kUnknownGlyph.rows.data();
 }
 
+Image contactThumbnail(const Image& frame, int thumbnailWidth) {
+  const int height = std::max(
+      1, int(std::lround(double(thumbnailWidth) * frame.height() / double(frame.width()))));
+  return resizeArea(frame, thumbnailWidth, height);
+}
+
 Image contactSheet(const std::vector<Image>& frames, int columns, int thumbnailWidth,
                    const std::vector<std::string>& labels, int gapPx, Vec3f background) {
   if (frames.empty()) throw std::invalid_argument("contactSheet: no frames");
@@ -99,10 +105,8 @@ Image contactSheet(const std::vector<Image>& frames, int columns, int thumbnailW
   int thumbnailHeight = 1;
   for (const Image& frame : frames) {
     if (frame.empty()) throw std::invalid_argument("contactSheet: empty frame");
-    const int height = std::max(
-        1, int(std::lround(double(thumbnailWidth) * frame.height() / double(frame.width()))));
-    thumbnails.push_back(resizeArea(frame, thumbnailWidth, height));
-    thumbnailHeight = std::max(thumbnailHeight, height);
+    thumbnails.push_back(contactThumbnail(frame, thumbnailWidth));
+    thumbnailHeight = std::max(thumbnailHeight, thumbnails.back().height());
   }
   const int count = int(frames.size());
   columns = std::min(columns, count);

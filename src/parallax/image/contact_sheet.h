@@ -33,6 +33,11 @@ const unsigned char* glyphRows(char character);
 // background (luminance < 0.18), else black. Throws std::invalid_argument for no frames, an empty
 // frame, columns < 1, thumbnailWidth < 1, gapPx < 0, or labels that are non-empty but not one per
 // frame.
+// A frame as the sheet shows it: thumbnailWidth wide, the height keeping the aspect ratio
+// (rounded, at least 1), by area averaging. A frame already of that size is copied as it is, so
+// callers may shrink frames early (and keep only the thumbnails) without changing the sheet.
+Image contactThumbnail(const Image& frame, int thumbnailWidth);
+
 Image contactSheet(const std::vector<Image>& frames, int columns, int thumbnailWidth,
                    const std::vector<std::string>& labels = {}, int gapPx = 4,
                    Vec3f background = Vec3f(0.02f));

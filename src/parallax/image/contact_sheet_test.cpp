@@ -135,5 +135,28 @@ TEST(ContactSheet, RejectsBadArguments) {
   EXPECT_THROW(contactSheet({Image(4, 4), Image()}, 2, 4), std::invalid_argument);
 }
 
+TEST(ContactSheet, ThumbnailsMadeEarlyGiveTheSameSheet) {
+  // Frames of an odd size with detail in every pixel: the shrink is not trivial.
+  std::vector<Image> frames;
+  for (int f = 0; f < 4; ++f) {
+    Image frame(203, 117);
+    for (int y = 0; y < frame.height(); ++y)
+      for (int x = 0; x < frame.width(); ++x)
+        frame.at(x, y) = {float((x * 7 + y * 3 + f) % 11) / 10.0f, float(y % 5) / 4.0f,
+                          float(f) / 3.0f};
+    frames.push_back(frame);
+  }
+  std::vector<Image> thumbnails;
+  for (const Image& frame : frames) thumbnails.push_back(contactThumbnail(frame, 50));
+  EXPECT_EQ(thumbnails.front().width(), 50);
+  EXPECT_EQ(thumbnails.front().height(), 29);  // 117 * 50 / 203 = 28.8
+  const std::vector<std::string> labels = {"a", "b", "c", "d"};
+  const Image direct = contactSheet(frames, 2, 50, labels);
+  const Image early = contactSheet(thumbnails, 2, 50, labels);
+  ASSERT_EQ(direct.width(), early.width());
+  ASSERT_EQ(direct.height(), early.height());
+  EXPECT_EQ(direct.pixels(), early.pixels());
+}
+
 }  // namespace
 }  // namespace parallax
