@@ -170,6 +170,21 @@ TEST(Apng, EveryFrameDecodesWhenRebuiltAsAPlainPng) {
   }
 }
 
+TEST(Apng, AGreyFrameAmongColourFramesKeepsTheColourHeader) {
+  // A black frame is grey; alone it would be written with one channel, which the colour
+  // frames' header does not describe. Every frame is written as RGB, and decodes as itself.
+  std::vector<Image> frames = testFrames(3, 6, 4, false);
+  frames[1] = Image(6, 4);  // black
+  const std::string apng = encodeApng(frames, 40);
+  expectDecodesTo(apng, frames[0]);
+  std::vector<std::string> pngs;
+  for (const Image& frame : frames) pngs.push_back(pngBytes(frame, false));
+  EXPECT_EQ(encodeApngFromPngs(pngs, 40), apng);
+  // Frames encoded with different headers are refused.
+  pngs[1] = pngBytes(frames[1]);  // one channel
+  EXPECT_THROW(encodeApngFromPngs(pngs, 40), std::invalid_argument);
+}
+
 TEST(Apng, RejectsBadArguments) {
   const std::vector<Image> frames = testFrames(2, 4, 4, false);
   EXPECT_THROW(encodeApng({}, 40), std::invalid_argument);
