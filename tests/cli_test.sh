@@ -48,9 +48,12 @@ total = sum(phases[n]["seconds"] for n in names)
 assert abs(total - phases["total_seconds"]) < 1e-9, (total, phases["total_seconds"])
 assert abs(d["wall_ratio"] - total / phases["render"]["seconds"]) < 1e-9
 assert all(phases[n]["peak_rss_mb"] <= d["peak_rss_mb"] for n in names)
-for key in ["", "limit_", "same_rays_limit_", "embree_alone_"]:
+for key in ["", "limit_", "same_rays_limit_", "embree_alone_", "embree_on_ours_"]:
     assert 0 <= d[key + "miss_fraction"] <= 1, key
 assert d["embree_alone_rays"] == d["same_rays_limit_rays"]
+# Embree on our rays traced every ray the render loop traced.
+assert d["embree_on_ours_rays"] == d["rays"], (d["embree_on_ours_rays"], d["rays"])
+assert d["shading_over_embree"] >= 0 and d["traced_rays_ratio"] > 0
 assert d["packet_width"] in (4, 8, 16) and d["bvh_quality"] in ("medium", "high")
 assert abs(d["ray_order_ratio"] * d["same_rays_ratio"] - d["ratio"]) < 1e-9
 ' "$tmp/out"

@@ -415,7 +415,23 @@ bool Accelerator::occluded(const Ray& ray) const {
   return shadow.tfar == -std::numeric_limits<float>::infinity();
 }
 
+namespace {
+
+// The calling thread's open PacketLog, if any.
+thread_local PacketLog* openPacketLog = nullptr;
+
+}  // namespace
+
+ScopedPacketLog::ScopedPacketLog(PacketLog& log) : outer_(openPacketLog) {
+  openPacketLog = &log;
+}
+
+ScopedPacketLog::~ScopedPacketLog() {
+  openPacketLog = outer_;
+}
+
 void Accelerator::intersect16(const RayPacket16& rays, HitPacket16& hits) const {
+  if (openPacketLog) openPacketLog->closest.push_back(rays);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -445,6 +461,7 @@ void Accelerator::intersect16(const RayPacket16& rays, HitPacket16& hits) const 
 }
 
 void Accelerator::occluded16(const RayPacket16& rays, bool occludedOut[16]) const {
+  if (openPacketLog) openPacketLog->shadow.push_back(rays);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -598,6 +615,36 @@ RawTraceCount Accelerator::traceRawPacket(const RayPacket16& rays,
   countPrimaries(primary, valid, count);
   count.rays +=
       traceRawShadows(impl_->packetWidth, impl_->scene, context, primary, valid, lightPosition);
+  return count;
+}
+
+RawTraceCount Accelerator::replay(const PacketLog& log) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RawTraceCount count;
+  alignas(64) int valid[16];
+  for (const RayPacket16& rays : log.closest) {
+    alignas(64) RTCRayHit16 rayHit;
+    fillRays(rays, rayHit.ray);
+    for (int lane = 0; lane < 16; ++lane) {
+      rayHit.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+      rayHit.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+    }
+    std::memcpy(valid, rays.active, sizeof(valid));
+    for (int lane = 0; lane < 16; ++lane) count.rays += valid[lane] != 0;
+    if (guardPacket(rayHit.ray, valid) > 0)
+      intersectPacket(impl_->packetWidth, valid, impl_->scene, context, rayHit);
+    countPrimaries(rayHit, valid, count);
+  }
+  for (const RayPacket16& rays : log.shadow) {
+    alignas(64) RTCRay16 shadow;
+    fillRays(rays, shadow);
+    std::memcpy(valid, rays.active, sizeof(valid));
+    for (int lane = 0; lane < 16; ++lane) count.rays += valid[lane] != 0;
+    if (guardPacket(shadow, valid) > 0)
+      occludedPacket(impl_->packetWidth, valid, impl_->scene, context, shadow);
+  }
   return count;
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "parallax/core/math.h"
 #include "parallax/core/ray.h"
@@ -91,6 +92,25 @@ struct RawTraceCount {
   }
 };
 
+// Every packet query a thread sends through intersect16 and occluded16 while a log is open on
+// it, as the caller handed them over: the benchmark traces them again to time Embree alone on
+// exactly the renderer's rays.
+struct PacketLog {
+  std::vector<RayPacket16> closest, shadow;
+};
+
+// Opens `log` on the calling thread for the scope's lifetime (an outer log is restored after).
+class ScopedPacketLog {
+ public:
+  explicit ScopedPacketLog(PacketLog& log);
+  ~ScopedPacketLog();
+  ScopedPacketLog(const ScopedPacketLog&) = delete;
+  ScopedPacketLog& operator=(const ScopedPacketLog&) = delete;
+
+ private:
+  PacketLog* outer_;
+};
+
 class Accelerator {
  public:
   // Builds the Embree scene from every mesh and sphere: geometry IDs 0..M-1 are the meshes,
@@ -137,6 +157,9 @@ class Accelerator {
   // The same limit on rays someone else made: the active lanes of `rays`, then one shadow ray
   // per hit toward `lightPosition`.
   RawTraceCount traceRawPacket(const RayPacket16& rays, const Vec3f& lightPosition) const;
+  // Traces a log's packets again, Embree's traversal and nothing else; counts the active lanes
+  // (`rays`) and the closest-hit lanes among them (`primaryRays`, `primaryMisses`).
+  RawTraceCount replay(const PacketLog& log) const;
 
  private:
   struct Impl;

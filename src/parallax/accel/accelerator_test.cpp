@@ -671,6 +671,56 @@ TEST_P(AcceleratorIsa, RawLimitCountsPrimaryRaysAndOneShadowRayPerHit) {
   EXPECT_EQ(accel.traceRawLimit(grid, 10, 10, {-2, 4, 3}).rays, 0u);
 }
 
+// A packet log holds every packet query made on its thread while open, as handed over, and
+// closes back to the log outside it; replaying it counts the same lanes and finds the same
+// misses as the queries did.
+TEST(AcceleratorPacketLog, RecordsEachQueryAndReplaysThem) {
+  Scene scene;
+  addBox(scene, "box", {-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, 0);
+  const Accelerator accel(scene);
+  RayPacket16 rays{};
+  int misses = 0;
+  for (int lane = 0; lane < 16; ++lane) {
+    // Lanes 0..9 aim at the box from +z, 10..13 pass beside it, 14 and 15 are inactive.
+    const float x = lane < 10 ? -0.4f + 0.08f * float(lane) : 2.0f + float(lane);
+    rays.set(lane, {{x, 0.1f, 5.0f}, {0, 0, -1}});
+    misses += lane >= 10 && lane < 14;
+  }
+  rays.deactivate(14), rays.deactivate(15);
+  PacketLog outer, inner;
+  HitPacket16 hits;
+  bool occluded[16];
+  {
+    const ScopedPacketLog openOuter(outer);
+    accel.intersect16(rays, hits);
+    {
+      const ScopedPacketLog openInner(inner);
+      accel.occluded16(rays, occluded);
+      accel.occluded16(rays, occluded);
+    }
+    accel.intersect16(rays, hits);
+  }
+  accel.intersect16(rays, hits);  // no log open: recorded nowhere
+  ASSERT_EQ(outer.closest.size(), 2u);
+  EXPECT_EQ(outer.shadow.size(), 0u);
+  EXPECT_EQ(inner.closest.size(), 0u);
+  ASSERT_EQ(inner.shadow.size(), 2u);
+  for (int lane = 0; lane < 16; ++lane) {
+    EXPECT_EQ(outer.closest[1].ox[lane], rays.ox[lane]);
+    EXPECT_EQ(inner.shadow[0].active[lane], rays.active[lane]);
+  }
+  const RawTraceCount closest = accel.replay(outer);
+  EXPECT_EQ(closest.rays, 2u * 14u);
+  EXPECT_EQ(closest.primaryRays, 2u * 14u);
+  EXPECT_EQ(closest.primaryMisses, 2u * uint64_t(misses));
+  int found = 0;
+  for (int lane = 0; lane < 14; ++lane) found += hits.geometry[lane] == kNoHit;
+  EXPECT_EQ(found, misses);
+  const RawTraceCount shadow = accel.replay(inner);
+  EXPECT_EQ(shadow.rays, 2u * 14u);
+  EXPECT_EQ(shadow.primaryRays, 0u);
+}
+
 // Auto builds High only when enough rays meet each triangle; both qualities find the same
 // first hits.
 TEST(AcceleratorQuality, ChosenByRaysPerTriangleAndInvisibleInTheHits) {

@@ -258,11 +258,14 @@ void runBench(const BenchOptions& o) {
     rate("/limit_", r.limit);
     rate("/same_rays_limit_", r.sameRays);
     rate("/embree_alone_", r.embreeAlone);
+    rate("/embree_on_ours_", r.embreeOnOurs);
     json.set("/ratio", r.ratio());
     json.set("/same_rays_ratio", r.sameRaysRatio());
     json.set("/ray_order_ratio", r.rayOrderRatio());
     json.set("/embree_ray_order_ratio", r.embreeRayOrderRatio());
     json.set("/ray_generation_share", r.rayGenerationShare());
+    json.set("/traced_rays_ratio", r.tracedRaysRatio());
+    json.set("/shading_over_embree", r.shadingOverEmbree());
     for (const Phase& phase : clock.phases()) {
       json.set(std::string("/phases/") + phase.name + "/seconds", phase.seconds);
       json.set(std::string("/phases/") + phase.name + "/peak_rss_mb", phase.peakMiB);
@@ -287,11 +290,16 @@ void runBench(const BenchOptions& o) {
   line("raw Embree", r.limit, "coherent pinhole rays, one shadow ray per hit");
   line("  same rays", r.sameRays, "this camera's rays, generated and traced, no shading");
   line("  Embree", r.embreeAlone, "the same rays, Embree's traversal alone");
+  line("  our rays", r.embreeOnOurs, "every ray parallax traced, Embree's traversal alone");
   std::printf(
       "ratio        %.2f  (ray order %.2f x shading %.2f); Embree alone: ray order %.2f, "
       "ray generation %.0f %% of the same-rays loop\n",
       r.ratio(), r.rayOrderRatio(), r.sameRaysRatio(), r.embreeRayOrderRatio(),
       100.0 * r.rayGenerationShare());
+  std::printf(
+      "shading      %.2f of Embree's time on our rays (shading, light sampling, packet copies); "
+      "ours / (camera ray generation + Embree on our rays) %.2f\n",
+      r.shadingOverEmbree(), r.tracedRaysRatio());
   std::printf("end to end  ");
   for (const Phase& phase : clock.phases())
     std::printf(" %s %.3f s (%.0f MiB)", phase.name, phase.seconds, phase.peakMiB);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "parallax/render/render.h"
 
 namespace parallax {
@@ -52,6 +54,39 @@ TEST(Bench, CountsTheRaysOfEverySide) {
   EXPECT_GT(r.ours.perSecond(), 0.0);
   EXPECT_GT(r.limit.perSecond(), 0.0);
   EXPECT_NEAR(r.ratio(), r.ours.perSecond() / r.limit.perSecond(), 1e-12);
+  // Embree on our rays traced what the renderer counted, ray for ray: the accelerator's log
+  // against the tracer's own tally (camera, shadow and mirror rays).
+  EXPECT_EQ(r.embreeOnOurs.rays, stats.totalRays());
+  EXPECT_GT(r.embreeOnOurs.seconds, 0.0);
+  const double generation = r.sameRays.seconds - r.embreeAlone.seconds;
+  EXPECT_NEAR(r.rayGenerationSeconds(), std::max(0.0, generation), 1e-12);
+  EXPECT_NEAR(r.tracedRaysRatio(),
+              (r.rayGenerationSeconds() + r.embreeOnOurs.seconds) / r.ours.seconds, 1e-12);
+  EXPECT_GE(r.shadingOverEmbree(), 0.0);
+}
+
+TEST(Bench, EmbreeOnOurRaysCountsMirrorBouncesAndEveryLight) {
+  // Two lights and a mirror floor: ours traces far more than one shadow ray per camera ray,
+  // and Embree on our rays traces all of them.
+  Scene scene = defaultScene();
+  scene.materials[0].mirror = Vec3f(0.3f);
+  Light point;
+  point.kind = Light::Kind::Point;
+  point.position = {2, 3, 2};
+  point.intensity = Vec3f(5.0f);
+  scene.lights.push_back(point);
+  const Accelerator accel(scene);
+  const CameraSpec& c = *scene.camera;
+  const PinholeCamera camera(c.eye, c.lookAt, c.up, c.fovDegrees, 32, 20);
+  RenderSettings settings;
+  settings.samplesPerPixel = 4;
+  const BenchResult r = benchmark(scene, accel, camera, camera.grid(4), settings, 1);
+  RenderStats stats;
+  render(scene, accel, camera, settings, &stats);
+  EXPECT_GT(stats.secondaryRays, 0u);
+  EXPECT_EQ(r.embreeOnOurs.rays, stats.totalRays());
+  EXPECT_EQ(r.embreeOnOurs.primaryRays, stats.cameraRays + stats.secondaryRays);
+  EXPECT_GT(r.embreeOnOurs.rays, r.sameRays.rays);
 }
 
 TEST(Bench, CameraMissesAreTheRaysThatSeeTheBackground) {

@@ -210,6 +210,19 @@ void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float
   }
 }
 
+int LightSampler::uniformsFor(size_t light) const {
+  switch (lights_[light].light.kind) {
+    case Light::Kind::Point:
+    case Light::Kind::Directional:
+      return 0;
+    case Light::Kind::Quad:
+      return 2;
+    case Light::Kind::Mesh:
+      return 3;
+  }
+  return 3;
+}
+
 Vec3f LightSampler::representativePoint(const Vec3f& fallback) const {
   if (lights_.empty()) return fallback;
   const Entry& e = lights_.front();

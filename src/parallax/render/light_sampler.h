@@ -25,6 +25,9 @@ class LightSampler {
 
   size_t lightCount() const { return lights_.size(); }
   int samplesFor(size_t light) const { return lights_[light].samples; }
+  // How many of a sample's uniform numbers (u1, u2, u3) `light` reads: 0 for point and
+  // directional lights, 2 for quads, 3 for meshes (the triangle, then the point on it).
+  int uniformsFor(size_t light) const;
   // A sample of `light` for the point `p` with unit normal `n`; (u1, u2, u3) uniform in [0,1).
   LightSample sample(size_t light, const Vec3f& p, const Vec3f& n, float u1, float u2,
                      float u3) const;

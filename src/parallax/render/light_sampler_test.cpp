@@ -103,5 +103,40 @@ TEST(LightSampler, PacketMatchesScalar) {
   }
 }
 
+// uniformsFor() says which of (u1, u2, u3) a light reads (the tracer draws only those): a
+// sample must not change when the others do.
+TEST(LightSampler, ReadsOnlyTheUniformsItDeclares) {
+  Scene scene;
+  Material lamp;
+  lamp.emission = Vec3f(5.0f);
+  scene.materials.push_back(lamp);
+  Light point, directional, quad, mesh;
+  point.kind = Light::Kind::Point, point.position = {0.5f, 3, 0}, point.intensity = Vec3f(4);
+  directional.kind = Light::Kind::Directional, directional.direction = {0.3f, -1, 0.2f};
+  quad.kind = Light::Kind::Quad;
+  quad.corner = {-1, 2, -1}, quad.edgeU = {2, 0, 0}, quad.edgeV = {0, 0, 2};
+  quad.intensity = lamp.emission;
+  addQuad(scene, "lamp", {-1, 2.5f, -1}, {2, 0, 0}, {0, 0, 2}, 0);
+  addQuad(scene, "lamp2", {1, 2.5f, -1}, {1, 0, 0}, {0, 0, 1}, 0);
+  mesh.kind = Light::Kind::Mesh, mesh.mesh = 0;
+  scene.lights = {point, directional, quad, mesh};
+  const LightSampler sampler(scene);
+  const int expected[] = {0, 0, 2, 3};
+  Rng rng(3);
+  for (size_t light = 0; light < 4; ++light) {
+    EXPECT_EQ(sampler.uniformsFor(light), expected[light]) << "light " << light;
+    for (int trial = 0; trial < 50; ++trial) {
+      float u[3] = {rng.uniform(), rng.uniform(), rng.uniform()};
+      const LightSample a = sampler.sample(light, {0.2f, 0, 0.1f}, {0, 1, 0}, u[0], u[1], u[2]);
+      // Change every number the light says it does not read.
+      for (int k = sampler.uniformsFor(light); k < 3; ++k) u[k] = 1.0f - u[k] * 0.5f;
+      const LightSample b = sampler.sample(light, {0.2f, 0, 0.1f}, {0, 1, 0}, u[0], u[1], u[2]);
+      EXPECT_EQ(a.valid, b.valid);
+      EXPECT_EQ(a.irradiance, b.irradiance) << "light " << light;
+      EXPECT_EQ(a.toLight, b.toLight) << "light " << light;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace parallax

@@ -15,6 +15,26 @@ void PacketTracer::trace(const RayPacket16& rays, const Color16& weight, std::ar
                          Color16& radiance, int depth, RenderStats& stats) const {
   HitPacket16 hits;
   accelerator_.intersect16(rays, hits);
+  // A packet that met nothing (the sky around the subject: half the camera rays of the
+  // built-in scene) only sees the background; it needs no surfaces and no light.
+  int hitCount = 0;
+  PARALLAX_SIMD_SUM(hitCount)
+  for (int i = 0; i < 16; ++i)
+    hitCount += int32_t(rays.active[i] != 0) & int32_t(hits.geometry[i] != kNoHit);
+  if (hitCount == 0) {
+    const Vec3f bg = scene_.background;
+    uint64_t active = 0;
+    PARALLAX_SIMD_SUM(active)
+    for (int i = 0; i < 16; ++i) {
+      const float on = rays.active[i] != 0 ? 1.0f : 0.0f;
+      radiance.r[i] += weight.r[i] * (on * bg.x);
+      radiance.g[i] += weight.g[i] * (on * bg.y);
+      radiance.b[i] += weight.b[i] * (on * bg.z);
+      active += rays.active[i] != 0;
+    }
+    if (depth == 0) stats.cameraMisses += active;
+    return;
+  }
   SurfacePacket16 sp;
   Color16 emitted;
   emitted.fill(0.0f);
@@ -86,12 +106,26 @@ void PacketTracer::addDirectLight(const SurfacePacket16& sp, const Color16& weig
   for (size_t index = 0; index < lights_.lightCount(); ++index) {
     const int samples = lights_.samplesFor(index);
     const float perSample = 1.0f / (kPi * float(samples));
+    // Every sample moves each lane's stream by three draws, whatever the light reads, so the
+    // numbers a lane gets do not depend on which lights came before; only those read are made.
+    const int uniforms = lights_.uniformsFor(index);
     for (int s = 0; s < samples; ++s) {
-      PARALLAX_SIMD
-      for (int i = 0; i < 16; ++i) {
-        u1[i] = rngs[size_t(i)].uniform();
-        u2[i] = rngs[size_t(i)].uniform();
-        u3[i] = rngs[size_t(i)].uniform();
+      if (uniforms == 3) {
+        PARALLAX_SIMD
+        for (int i = 0; i < 16; ++i) {
+          u1[i] = rngs[size_t(i)].uniform();
+          u2[i] = rngs[size_t(i)].uniform();
+          u3[i] = rngs[size_t(i)].uniform();
+        }
+      } else if (uniforms == 2) {
+        PARALLAX_SIMD
+        for (int i = 0; i < 16; ++i) {
+          u1[i] = rngs[size_t(i)].uniform();
+          u2[i] = rngs[size_t(i)].uniform();
+          rngs[size_t(i)].skip(1);
+        }
+      } else {
+        for (int i = 0; i < 16; ++i) rngs[size_t(i)].skip(3);
       }
       lights_.sample16(index, sp, u1, u2, u3, light);
       int count = 0;

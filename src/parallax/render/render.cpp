@@ -41,7 +41,8 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
       std::fill(lanesGroups, lanesGroups + 16, 0);
     }
     stats.cameraRays += uint64_t(packet.activeCount);
-    Color16 before = sum;
+    Color16 before;
+    if (settings.adaptive) before = sum;
     tracer.trace(packet.rays, weight, packet.rngs, sum, 0, stats);
     const int taken = packet.pass + 1;
     if (settings.adaptive) {
@@ -112,25 +113,54 @@ void renderTile(int tile, const TileGrid& grid, const Camera& camera, const Pack
 
 }  // namespace
 
+struct TileRenderer::Impl {
+  Impl(const Scene& scene, const Accelerator& accelerator, const Camera& theCamera,
+       const RenderSettings& theSettings)
+      : camera(theCamera),
+        settings(theSettings),
+        lights(scene),
+        tracer(scene, accelerator, lights),
+        grid(theCamera),
+        walk(theSettings.samplesPerPixel, theSettings.seed, theSettings.jitter, theCamera,
+             theSettings.adaptive) {}
+  const Camera& camera;
+  const RenderSettings settings;
+  const LightSampler lights;
+  const PacketTracer tracer;
+  const TileGrid grid;
+  const PacketWalk walk;
+};
+
+TileRenderer::TileRenderer(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
+                           const RenderSettings& settings)
+    : impl_(std::make_unique<Impl>(scene, accelerator, camera, settings)) {}
+
+TileRenderer::~TileRenderer() = default;
+
+int TileRenderer::tileCount() const {
+  return impl_->grid.count();
+}
+
+void TileRenderer::renderTile(int tile, Image& image, RenderStats& stats) const {
+  const Impl& i = *impl_;
+  parallax::renderTile(tile, i.grid, i.camera, i.tracer, i.walk, i.settings, image, stats);
+}
+
 Image render(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
              const RenderSettings& settings, RenderStats* stats, const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   Image image(camera.width(), camera.height());
-  const LightSampler lights(scene);
-  const PacketTracer tracer(scene, accelerator, lights);
-  const TileGrid grid(camera);
-  const PacketWalk walk(settings.samplesPerPixel, settings.seed, settings.jitter, camera,
-                        settings.adaptive);
-
+  const TileRenderer renderer(scene, accelerator, camera, settings);
+  const int tiles = renderer.tileCount();
   std::mutex statsMutex;
   RenderStats total;
   std::atomic<int> done{0};
-  parallelFor(grid.count(), settings.threads, 1, [&](int64_t begin, int64_t end) {
+  parallelFor(tiles, settings.threads, 1, [&](int64_t begin, int64_t end) {
     RenderStats local;
     for (int64_t tile = begin; tile != end; ++tile) {
-      renderTile(int(tile), grid, camera, tracer, walk, settings, image, local);
+      renderer.renderTile(int(tile), image, local);
       const int finished = ++done;
-      if (progress) progress(finished, grid.count());
+      if (progress) progress(finished, tiles);
     }
     const std::lock_guard lock(statsMutex);
     total += local;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/camera/camera.h"
@@ -69,5 +70,24 @@ Image panelFromSubpixelFilm(const Image& film, ChannelOfColumn channelOfColumn) 
 Image render(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
              const RenderSettings& settings, RenderStats* stats = nullptr,
              const ProgressCallback& progress = {});
+
+// render()'s work one tile at a time, for callers that look at single tiles (the benchmark
+// times Embree on exactly the rays a tile traces). Tiles write disjoint pixels of `image`
+// (camera.width() x camera.height()), so different threads may render different tiles.
+class TileRenderer {
+ public:
+  TileRenderer(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
+               const RenderSettings& settings);
+  ~TileRenderer();
+  TileRenderer(const TileRenderer&) = delete;
+  TileRenderer& operator=(const TileRenderer&) = delete;
+
+  int tileCount() const;
+  void renderTile(int tile, Image& image, RenderStats& stats) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace parallax

@@ -194,6 +194,28 @@ TEST(Render, SameImageForAnyThreadCount) {
   EXPECT_NE(a.pixels(), render(scene, accel, camera, many).pixels());
 }
 
+// render() is its tiles: rendered one at a time in reverse order by TileRenderer, they make
+// the same picture and the same counts.
+TEST(Render, TilesRenderedOneAtATimeMakeTheSameImage) {
+  const Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  const CameraSpec& c = *scene.camera;
+  const PinholeCamera camera(c.eye, c.lookAt, c.up, c.fovDegrees, 75, 41);
+  RenderSettings settings;
+  settings.samplesPerPixel = 4;
+  RenderStats whole;
+  const Image expected = render(scene, accel, camera, settings, &whole);
+  const TileRenderer renderer(scene, accel, camera, settings);
+  ASSERT_GT(renderer.tileCount(), 1);
+  Image image(camera.width(), camera.height());
+  RenderStats tiles;
+  for (int tile = renderer.tileCount() - 1; tile >= 0; --tile)
+    renderer.renderTile(tile, image, tiles);
+  EXPECT_EQ(image.pixels(), expected.pixels());
+  EXPECT_EQ(tiles.totalRays(), whole.totalRays());
+  EXPECT_EQ(tiles.cameraMisses, whole.cameraMisses);
+}
+
 // Adaptive sampling: a flat picture stops every pixel after its first stratified group (n of
 // n^2 samples: an exact count), the image still equals the flat value, and a scene with edges
 // gives the same image for any thread count, spends more on its edges than on flat regions,

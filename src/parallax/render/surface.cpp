@@ -114,13 +114,13 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
     nz[i] = gz[i] = hits.ngz[i] * inv;
   }
 
-  // Material terms per lane; checkerboards are evaluated afterwards for all lanes at once.
-  // Lanes mostly share their object, so each distinct object is looked up once and its terms
-  // are written to all its lanes by a masked SIMD loop; only spheres, smooth normals and image
-  // textures need per-lane scalar work.
-  alignas(64) float albedo[3][16] = {}, mirror[3][16] = {}, emission[3][16] = {};
-  alignas(64) float checkerA[3][16] = {}, checkerB[3][16] = {}, checkerScale[16] = {};
-  alignas(64) int32_t checker[16] = {}, geometry[16];
+  // Material terms per lane. Lanes mostly share their object, so each distinct object is
+  // looked up once and its terms are written to all its lanes by a masked SIMD loop (a solid
+  // checkerboard evaluated there too); only spheres, smooth normals and image textures need
+  // per-lane scalar work. `diffuse` is albedo * (1 - mirror) from the start: the texture, a
+  // factor of the albedo, multiplies it afterwards.
+  alignas(64) float diffuse[3][16] = {}, mirror[3][16] = {}, emission[3][16] = {};
+  alignas(64) int32_t geometry[16];
   for (int i = 0; i < 16; ++i) geometry[i] = hit[i] ? int32_t(hits.geometry[i]) : -1;
   uint32_t pending = 0;
   for (int i = 0; i < 16; ++i) pending |= hit[i] ? 1u << i : 0u;
@@ -130,34 +130,51 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
     const Geometry& g = geometries_[size_t(id)];
     const Material& m = *g.material;
     const bool isChecker = g.texture && g.texture->kind == Texture::Kind::Checker;
-    const Vec3f cA = isChecker ? g.texture->color : Vec3f(0.0f);
-    const Vec3f cB = isChecker ? g.texture->color2 : Vec3f(0.0f);
-    const float scale = isChecker ? 1.0f / g.texture->checkerSize : 0.0f;
-    // Selects rather than a `continue`, so that the loop compiles to masked SIMD moves.
-    const float d0 = m.diffuse.x, d1 = m.diffuse.y, d2 = m.diffuse.z;
+    // Plain scalars, so that the loops below broadcast them (members read in a loop kept it
+    // scalar).
+    const float d0 = m.diffuse.x * (1.0f - m.mirror.x), d1 = m.diffuse.y * (1.0f - m.mirror.y),
+                d2 = m.diffuse.z * (1.0f - m.mirror.z);
     const float m0 = m.mirror.x, m1 = m.mirror.y, m2 = m.mirror.z;
     const float e0 = m.emission.x, e1 = m.emission.y, e2 = m.emission.z;
-    const int32_t checkerFlag = isChecker;
-    PARALLAX_SIMD
-    for (int i = 0; i < 16; ++i) {
-      const bool mine = geometry[i] == id;
-      albedo[0][i] = mine ? d0 : albedo[0][i];
-      albedo[1][i] = mine ? d1 : albedo[1][i];
-      albedo[2][i] = mine ? d2 : albedo[2][i];
-      mirror[0][i] = mine ? m0 : mirror[0][i];
-      mirror[1][i] = mine ? m1 : mirror[1][i];
-      mirror[2][i] = mine ? m2 : mirror[2][i];
-      emission[0][i] = mine ? e0 : emission[0][i];
-      emission[1][i] = mine ? e1 : emission[1][i];
-      emission[2][i] = mine ? e2 : emission[2][i];
-      checkerA[0][i] = mine ? cA.x : checkerA[0][i];
-      checkerA[1][i] = mine ? cA.y : checkerA[1][i];
-      checkerA[2][i] = mine ? cA.z : checkerA[2][i];
-      checkerB[0][i] = mine ? cB.x : checkerB[0][i];
-      checkerB[1][i] = mine ? cB.y : checkerB[1][i];
-      checkerB[2][i] = mine ? cB.z : checkerB[2][i];
-      checker[i] = mine ? checkerFlag : checker[i];
-      checkerScale[i] = mine ? scale : checkerScale[i];
+    if (isChecker) {
+      // evaluateTexture's Checker case for these lanes: the parity of the cell sum, in floats
+      // so that the loop stays SIMD (exact for cell indices below 2^24); blend weights instead
+      // of branches, odd squares taking colour B and even ones colour A.
+      const Texture& t = *g.texture;
+      const float k = 1.0f / t.checkerSize;
+      const float a0 = t.color.x, a1 = t.color.y, a2 = t.color.z;
+      const float b0 = t.color2.x, b1 = t.color2.y, b2 = t.color2.z;
+      PARALLAX_SIMD
+      for (int i = 0; i < 16; ++i) {
+        const bool mine = geometry[i] == id;
+        const float cells = std::floor(px[i] * k + 1e-3f) + std::floor(py[i] * k + 1e-3f) +
+                            std::floor(pz[i] * k + 1e-3f);
+        const float odd = cells - 2.0f * std::floor(0.5f * cells), even = 1.0f - odd;
+        diffuse[0][i] = mine ? d0 * (odd * b0 + even * a0) : diffuse[0][i];
+        diffuse[1][i] = mine ? d1 * (odd * b1 + even * a1) : diffuse[1][i];
+        diffuse[2][i] = mine ? d2 * (odd * b2 + even * a2) : diffuse[2][i];
+      }
+    } else {
+      PARALLAX_SIMD
+      for (int i = 0; i < 16; ++i) {
+        const bool mine = geometry[i] == id;
+        diffuse[0][i] = mine ? d0 : diffuse[0][i];
+        diffuse[1][i] = mine ? d1 : diffuse[1][i];
+        diffuse[2][i] = mine ? d2 : diffuse[2][i];
+      }
+    }
+    // Most materials neither reflect nor emit: their lanes keep the zeros.
+    if (m0 != 0.0f || m1 != 0.0f || m2 != 0.0f || e0 != 0.0f || e1 != 0.0f || e2 != 0.0f) {
+      PARALLAX_SIMD
+      for (int i = 0; i < 16; ++i) {
+        const bool mine = geometry[i] == id;
+        mirror[0][i] = mine ? m0 : mirror[0][i];
+        mirror[1][i] = mine ? m1 : mirror[1][i];
+        mirror[2][i] = mine ? m2 : mirror[2][i];
+        emission[0][i] = mine ? e0 : emission[0][i];
+        emission[1][i] = mine ? e1 : emission[1][i];
+        emission[2][i] = mine ? e2 : emission[2][i];
+      }
     }
     uint32_t done = 0;
     for (int i = 0; i < 16; ++i) done |= geometry[i] == id ? 1u << i : 0u;
@@ -189,26 +206,11 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
         uv = {ua.x * b0 + ub.x * b1 + uc.x * b2, ua.y * b0 + ub.y * b1 + uc.y * b2};
       }
       const Vec3f tex = evaluateTexture(scene_, *g.texture, {px[i], py[i], pz[i]}, uv);
-      for (int c = 0; c < 3; ++c) albedo[c][i] *= tex[c];
+      for (int c = 0; c < 3; ++c) diffuse[c][i] *= tex[c];
     }
   }
 
-  // Solid checkerboards (evaluateTexture's Checker case), then both normals onto the side the
-  // ray came from, emission from front faces only, and the diffuse share (1 - mirror).
-  PARALLAX_SIMD
-  for (int i = 0; i < 16; ++i) {
-    const float k = checkerScale[i];
-    // The parity of the cell sum, in floats so that the loop stays SIMD (exact for cell
-    // indices below 2^24).
-    const float cells = std::floor(px[i] * k + 1e-3f) + std::floor(py[i] * k + 1e-3f) +
-                        std::floor(pz[i] * k + 1e-3f);
-    // Blend weights instead of branches: odd squares take colour B, even ones colour A.
-    const float odd = cells - 2.0f * std::floor(0.5f * cells), on = float(checker[i]);
-    const float r = 1.0f - on + on * (odd * checkerB[0][i] + (1.0f - odd) * checkerA[0][i]);
-    const float g = 1.0f - on + on * (odd * checkerB[1][i] + (1.0f - odd) * checkerA[1][i]);
-    const float b = 1.0f - on + on * (odd * checkerB[2][i] + (1.0f - odd) * checkerA[2][i]);
-    albedo[0][i] *= r, albedo[1][i] *= g, albedo[2][i] *= b;
-  }
+  // Both normals onto the side the ray came from, and emission from front faces only.
   alignas(64) float frontFace[16];
   PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
@@ -225,9 +227,7 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
     out.px[i] = px[i], out.py[i] = py[i], out.pz[i] = pz[i];
     out.gx[i] = gx[i], out.gy[i] = gy[i], out.gz[i] = gz[i];
     out.nx[i] = nx[i], out.ny[i] = ny[i], out.nz[i] = nz[i];
-    const float dr = albedo[0][i] * (1.0f - mirror[0][i]);
-    const float dg = albedo[1][i] * (1.0f - mirror[1][i]);
-    const float db = albedo[2][i] * (1.0f - mirror[2][i]);
+    const float dr = diffuse[0][i], dg = diffuse[1][i], db = diffuse[2][i];
     out.diffuse.r[i] = dr, out.diffuse.g[i] = dg, out.diffuse.b[i] = db;
     out.mirror.r[i] = mirror[0][i], out.mirror.g[i] = mirror[1][i], out.mirror.b[i] = mirror[2][i];
     out.shade[i] = hit[i] & int32_t((dr > 0.0f) | (dg > 0.0f) | (db > 0.0f));
