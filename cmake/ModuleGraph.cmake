@@ -4,7 +4,7 @@
 # docs/architecture.md says the same. Every edge is there for a reason, given beside it.
 
 # Modules in dependency order: each may use only modules listed before it.
-set(PARALLAX_MODULES core image display scene io accel camera render sim quality window app)
+set(PARALLAX_MODULES core image display scene io accel camera render sim quality layers window app)
 
 set(PARALLAX_USES_core "")
 set(PARALLAX_USES_image core)
@@ -16,8 +16,9 @@ set(PARALLAX_USES_camera core display scene)   # display rays, placed by the sce
 set(PARALLAX_USES_render core image display scene accel camera)  # traces cameras' rays
 set(PARALLAX_USES_sim core image display)      # sees layers through a display's optics
 set(PARALLAX_USES_quality core image display scene accel camera render sim)  # ideal vs seen
+set(PARALLAX_USES_layers core image display scene accel camera render sim quality)  # fits layers to ideal views
 set(PARALLAX_USES_window core image)           # shows Images on monitors
-set(PARALLAX_USES_app core image display scene io accel camera render sim quality window)
+set(PARALLAX_USES_app core image display scene io accel camera render sim quality layers window)
 
 # Third-party include prefixes and the one module that may use each (only in its .cpp files).
 set(PARALLAX_THIRD_PARTY embree3 tbb nlohmann tiny_obj_loader tiny_gltf stb zlib CLI SDL2)

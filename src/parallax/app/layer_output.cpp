@@ -228,4 +228,31 @@ void writeDisplayLayers(const std::string& output, const Image& image, const Ima
               image.width(), image.height(), dir, mask.width(), mask.height(), dir);
 }
 
+void writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& frames,
+                      const DisplayDesign& design, JsonWriter& record) {
+  std::vector<std::string> imagePngs(frames.size()), maskPngs(frames.size());
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const std::string n = std::to_string(k + 1);
+    record.set("/frames/" + std::to_string(k) + "/image", "image-" + n + ".png");
+    record.set("/frames/" + std::to_string(k) + "/mask", "mask-" + n + ".png");
+    parallelInvoke(
+        0, [&] { imagePngs[k] = pngBytes(frames[k].image); },
+        [&] { maskPngs[k] = pngBytes(frames[k].mask); });
+  }
+  record.set("/outputs/display", "display.json");
+  writeDesignJson(record, "/design", design);
+  OutputSet set(output);
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const std::string n = std::to_string(k + 1);
+    writeFileAtomically(set.path("image-" + n + ".png"), imagePngs[k]);
+    writeFileAtomically(set.path("mask-" + n + ".png"), maskPngs[k]);
+  }
+  writeFileAtomically(set.path("display.json"), displayFileText(design.spec));
+  writeFileAtomically(set.path("render.json"), record.dump() + "\n");
+  set.commit();
+  std::printf("wrote %s/image-1..%zu.png, %s/mask-1..%zu.png (%dx%d), %s/render.json\n",
+              set.dir().c_str(), frames.size(), set.dir().c_str(), frames.size(),
+              frames[0].image.width(), frames[0].image.height(), set.dir().c_str());
+}
+
 }  // namespace parallax::app

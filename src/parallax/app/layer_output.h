@@ -4,10 +4,12 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "parallax/display/display.h"
 #include "parallax/image/image.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/layers/layer_solver.h"
 
 namespace parallax::app {
 
@@ -63,5 +65,11 @@ void checkQuiltWork(int columns, int rows, int width, int height, int spp, int t
 // record, with /outputs and /design added) as one set, and says where on stdout.
 void writeDisplayLayers(const std::string& output, const Image& image, const Image& mask,
                         const DisplayDesign& design, bool linear, JsonWriter& record);
+
+// Time-multiplexed layers (render --layers nmf --rank T): DIR/image-K.png and mask-K.png for
+// K = 1..T, shown in turn, with display.json and render.json (/frames lists the pairs), as one
+// set.
+void writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& frames,
+                      const DisplayDesign& design, JsonWriter& record);
 
 }  // namespace parallax::app

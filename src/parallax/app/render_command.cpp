@@ -20,6 +20,8 @@
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
+#include "parallax/layers/layer_solver.h"
+#include "parallax/layers/training.h"
 #include "parallax/render/display_render.h"
 #include "parallax/render/quilt.h"
 
@@ -37,7 +39,44 @@ struct RenderOptions {
   std::string quilt, size;  // --quilt CxR, --size WxH of one quilt view
   FilterOptions filter;
   FramingOptions framing;  // empty: the scene's (docs/display-geometry.md)
+  // Content-adaptive layers (docs/content-adaptive.md).
+  std::string layers = "slits";
+  int rank = 1, iterations = 0;  // 0: the method's default
+  double brightness = 0;         // 0: the method's default
+  int trainEyesPerView = 2;
 };
+
+// The layer methods and their defaults.
+int defaultIterations(const std::string& method) {
+  return method == "nmf" ? 10 : 20;
+}
+double defaultBrightness(const std::string& method, int rank) {
+  return method == "nmf" ? std::max(2.0, double(rank)) : 1.0;
+}
+
+void checkLayerOptions(const RenderOptions& o, bool lenticular) {
+  if (o.layers != "slits" && o.layers != "optimized-image" && o.layers != "nmf")
+    throw InputError("command line", "--layers",
+                     "expected slits, optimized-image or nmf, got '" + o.layers + "'");
+  if (o.rank < 1 || o.rank > 16)
+    throw InputError("command line", "--rank", "must be between 1 and 16 frames");
+  if (o.rank > 1 && o.layers != "nmf")
+    throw InputError("command line", "--rank", "time-multiplexed frames need --layers nmf");
+  if (o.iterations < 0 || o.iterations > 1000)
+    throw InputError("command line", "--iterations", "must be between 1 and 1000");
+  if (!(o.brightness >= 0) || o.brightness > 100)
+    throw InputError("command line", "--brightness", "must be between 0 (default) and 100");
+  if (o.trainEyesPerView < 1 || o.trainEyesPerView > 16)
+    throw InputError("command line", "--train-eyes", "must be between 1 and 16 eyes per view");
+  if (o.layers == "slits") return;
+  if (lenticular)
+    throw InputError("command line", "--layers",
+                     "a lenticular panel has one layer: only slits (its interlaced image)");
+  if (o.directMapping || !o.quilt.empty())
+    throw InputError("command line", "--layers",
+                     "optimised layers are made from the display camera's layers: not with "
+                     "--direct-mapping or --quilt");
+}
 
 // The framing in the record: what was asked (fit, focus, depth_budget: simulate --reference
 // frames the scene again from these) and what followed.
@@ -218,6 +257,71 @@ void runLenticular(const RenderOptions& o, const LenticularCalibration& calibrat
                  lenticularCalibrationText(calibration), "visual.json");
 }
 
+// --layers optimized-image | nmf: the training views, then the solver, from the slit layers.
+std::vector<LayerFrame> solveLayers(const RenderOptions& o, const Scene& scene,
+                                    const Accelerator& accelerator, const DisplayDesign& design,
+                                    TrainingOptions training, const DisplayLayers& slits,
+                                    JsonWriter& out) {
+  const auto start = std::chrono::steady_clock::now();
+  const double slitMean = meanTransmittance(slits.mask);
+  const double gain = o.brightness > 0 ? o.brightness : defaultBrightness(o.layers, o.rank);
+  training.targetScale = slitMean * gain;
+  std::vector<TrainingView> views;
+  {
+    ProgressBar bar("ideal views");
+    views = trainingViews(scene, accelerator, design, training,
+                          [&bar](int done, int total) { bar.update(done, total); });
+  }
+  const double trainSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const int iterations = o.iterations > 0 ? o.iterations : defaultIterations(o.layers);
+  SolveReport report;
+  std::vector<LayerFrame> frames;
+  if (o.layers == "optimized-image") {
+    frames.push_back(
+        {optimizeImageLayer(views, slits.image, slits.mask, iterations, training.threads, &report),
+         slits.mask});
+  } else {
+    // Start: T copies of the slit image; masks of T slit phases a period / T apart, their closed
+    // pixels at 0.2 so that the updates can open them (a zero stays zero under them).
+    const double period = design.slitPeriodPx;
+    for (int t = 0; t < o.rank; ++t) {
+      Image mask = slits.mask;
+      const int shift = int(std::lround(period * t / o.rank));
+      for (int y = 0; y < mask.height(); ++y)
+        for (int x = 0; x < mask.width(); ++x) {
+          const int from = std::clamp(x - shift, 0, mask.width() - 1);
+          const Vec3f v = slits.mask.at(from, y);
+          mask.at(x, y) = Vec3f(std::max(v.x, 0.2f), std::max(v.y, 0.2f), std::max(v.z, 0.2f));
+        }
+      frames.push_back({slits.image, std::move(mask)});
+    }
+    frames = factorizeLayers(views, std::move(frames), iterations, training.threads, &report);
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  double seen = 0;
+  for (const LayerFrame& f : frames) seen += meanTransmittance(f.image) * meanTransmittance(f.mask);
+  out.set("/layers/rank", int(frames.size()));
+  out.set("/layers/iterations", report.iterations);
+  out.set("/layers/brightness_gain", gain);
+  // simulate divides what the eye sees by this (the slit mask's mean transmittance times the
+  // gain), so that views compare with the ideal ones at the brightness the layers aimed at.
+  out.set("/layers/normalisation", slitMean * gain);
+  out.set("/layers/training_eyes", int(views.size()));
+  out.set("/layers/training_seconds", trainSeconds);
+  out.set("/layers/seconds", seconds);
+  out.set("/layers/objective_first", report.objective.front());
+  out.set("/layers/objective_last", report.objective.back());
+  out.set("/layers/mean_layer_product", seen / double(frames.size()));
+  std::printf(
+      "%s: %zu frame(s), %d iterations, objective %.3g -> %.3g (per pixel and channel), "
+      "%zu training eyes, %.1f s (ideal views %.1f s)\n",
+      o.layers.c_str(), frames.size(), report.iterations, report.objective.front(),
+      report.objective.back(), views.size(), seconds, trainSeconds);
+  return frames;
+}
+
 void runRender(const RenderOptions& o) {
   RenderSettings settings = o.sampling.settings();
   const ViewFilter filter = o.filter.filter();
@@ -233,6 +337,7 @@ void runRender(const RenderOptions& o) {
     throw InputError("command line", "--quilt",
                      "expected COLUMNSxROWS or auto, got '" + o.quilt + "'");
   const DisplayDescription description = loadDisplayOrDefault(o.display);
+  checkLayerOptions(o, description.kind == DisplayKind::Lenticular);
   if (description.kind == DisplayKind::Lenticular)
     return runLenticular(o, description.lenticular, layout, settings);
   DisplayDesign design = designDisplay(description.barrier);
@@ -243,6 +348,18 @@ void runRender(const RenderOptions& o) {
   }
   if (o.quilt.empty())
     checkLayerWork(design, o.directMapping, settings.samplesPerPixel, settings.threads, o.display);
+  TrainingOptions training;
+  training.eyesPerView = o.trainEyesPerView;
+  training.threads = settings.threads;
+  if (o.layers != "slits") {
+    // The training targets and, per frame, two layers and their gradients.
+    const double layerBytes = double(design.spec.imagePanel.width) * design.spec.imagePanel.height *
+                              sizeof(Vec3f) * (4.0 * o.rank + 6.0);
+    checkMemoryEstimate(trainingBytes(design, training) + layerBytes,
+                        o.display.empty() ? "the built-in display" : o.display,
+                        "the training views of --layers " + o.layers,
+                        "use fewer --train-eyes or a smaller display");
+  }
   Scene scene = loadSceneReportingWarnings(o.scene);
   const Framing framing = frameForRender(o, scene, design);
   if (!o.quilt.empty())
@@ -267,6 +384,10 @@ void runRender(const RenderOptions& o) {
 
   JsonWriter record;
   startRenderRecord(record, o.directMapping ? "direct-mapping" : "barrier-camera", o.display);
+  record.set("/layers/method", o.layers);
+  std::vector<LayerFrame> frames{{layers.image, layers.mask}};
+  if (o.layers != "slits")
+    frames = solveLayers(o, scene, accelerator, design, training, layers, record);
   record.set("/scene", scene.source);
   record.set("/spp", settings.samplesPerPixel);
   record.set("/seed", o.sampling.seed);
@@ -292,7 +413,10 @@ void runRender(const RenderOptions& o) {
   record.set("/scene_display/up", scene.display.up);
   record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
   recordFraming(record, framing);
-  writeDisplayLayers(o.output, layers.image, layers.mask, design, o.linear, record);
+  if (frames.size() == 1)
+    writeDisplayLayers(o.output, frames[0].image, frames[0].mask, design, o.linear, record);
+  else
+    writeLayerFrames(o.output, frames, design, record);
   std::printf("%d spp in %.2f s, %s\n", settings.samplesPerPixel, layers.stats.seconds,
               formatRate(raysPerSecond).c_str());
 }
@@ -325,6 +449,22 @@ void registerRenderCommand(CLI::App& cli) {
       ->type_name("CxR|auto")
       ->excludes(direct)
       ->excludes(subpixels);
+  cmd->add_option("--layers", options->layers,
+                  "slits: the paper's slit mask and ray-traced image; optimized-image: the image "
+                  "layer solved for eyes across the view zone behind the same slits; nmf: both "
+                  "layers solved (docs/content-adaptive.md)")
+      ->capture_default_str();
+  cmd->add_option("--rank", options->rank,
+                  "With --layers nmf: time-multiplexed frame pairs (image-K.png, mask-K.png)")
+      ->capture_default_str();
+  cmd->add_option("--iterations", options->iterations,
+                  "Solver iterations (default 20 for optimized-image, 10 for nmf)");
+  cmd->add_option("--brightness", options->brightness,
+                  "Brightness the optimised layers aim at, times the slits' (default 1 for "
+                  "optimized-image, max(2, rank) for nmf)");
+  cmd->add_option("--train-eyes", options->trainEyesPerView,
+                  "Training eyes per view at 0.8, 1 and 1.25 D for optimised layers")
+      ->capture_default_str();
   cmd->add_option("--size", options->size,
                   "With --quilt: the size of one view (default: the device quilt's tile, or the "
                   "image layer's resolution)")

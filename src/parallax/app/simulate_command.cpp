@@ -67,10 +67,44 @@ struct SimulateOptions {
 // The inputs: a `render` output folder, or its pictures with a display file, of any kind.
 struct Inputs {
   std::unique_ptr<DisplayModel> display;
-  LayerImages layers;
-  std::string scene;  // for --reference: the scene the layers were rendered from
+  LayerImages layers;               // the first frame
+  std::vector<LayerImages> frames;  // every frame (render --layers nmf --rank T), layers first
+  double normalisation = 0;         // render.json's /layers/normalisation (0: the mask's mean)
+  std::string scene;                // for --reference: the scene the layers were rendered from
   const DisplayDesign* barrier() const { return display->barrierDesign(); }
 };
+
+// The layers of a render folder: its frames when render.json lists them (/frames), else
+// image.png and mask.png; and the normalisation optimised layers aimed at.
+struct LayerSet {
+  std::vector<LayerImages> frames;
+  double normalisation = 0;
+};
+
+LayerSet loadLayerSet(const fs::path& dir, bool hasMask) {
+  LayerSet set;
+  const fs::path recordPath = dir / "render.json";
+  if (fs::exists(recordPath)) {
+    const JsonDocument record = JsonDocument::parseFile(recordPath.string());
+    if (const auto layers = record.root().find("layers"))
+      if (const auto n = layers->find("normalisation")) set.normalisation = n->number(0, 1e6);
+    if (const auto frames = record.root().find("frames")) {
+      for (const JsonReader& frame : frames->elements()) {
+        LayerImages f;
+        f.image = readImage((dir / frame["image"].string()).string());
+        if (hasMask) f.mask = readImage((dir / frame["mask"].string()).string());
+        set.frames.push_back(std::move(f));
+      }
+      if (set.frames.empty()) frames->fail("lists no frames");
+      return set;
+    }
+  }
+  LayerImages f;
+  f.image = readImage((dir / "image.png").string());
+  if (hasMask) f.mask = readImage((dir / "mask.png").string());
+  set.frames.push_back(std::move(f));
+  return set;
+}
 
 Inputs loadInputs(const SimulateOptions& o) {
   const fs::path dir(o.dir);
@@ -90,9 +124,17 @@ Inputs loadInputs(const SimulateOptions& o) {
   } else {
     in.display = makeBarrierDisplay(designDisplay(description.barrier));
   }
-  in.layers.image = readImage(o.image.empty() ? inDir("image.png") : o.image);
-  if (in.display->hasMaskLayer())
-    in.layers.mask = readImage(o.mask.empty() ? inDir("mask.png") : o.mask);
+  if (o.image.empty() && o.mask.empty()) {
+    LayerSet set = loadLayerSet(dir, in.display->hasMaskLayer());
+    in.frames = std::move(set.frames);
+    in.normalisation = set.normalisation;
+    in.layers = in.frames.front();
+  } else {
+    in.layers.image = readImage(o.image.empty() ? inDir("image.png") : o.image);
+    if (in.display->hasMaskLayer())
+      in.layers.mask = readImage(o.mask.empty() ? inDir("mask.png") : o.mask);
+    in.frames = {in.layers};
+  }
   if (in.scene.empty() && fs::exists(inDir("render.json"))) {
     const JsonDocument record = JsonDocument::parseFile(inDir("render.json"));
     in.scene = record.root().string("scene", "<built-in>");
@@ -231,17 +273,17 @@ void runDenseReference(const SimulateOptions& o, const Inputs& in, const Simulat
   // --compare: more renders of the same scene for the same display, scored at the same eyes
   // against the same ideal views (rendered once).
   std::vector<std::string> labels{o.dir};
-  std::vector<LayerImages> layers{in.layers};
+  std::vector<LayerSet> sets{{in.frames, in.normalisation}};
   for (const std::string& other : o.compare) {
-    const fs::path dir(other);
     labels.push_back(other);
-    layers.push_back({readImage((dir / "image.png").string()),
-                      display.hasMaskLayer() ? readImage((dir / "mask.png").string()) : Image()});
+    sets.push_back(loadLayerSet(fs::path(other), display.hasMaskLayer()));
   }
   std::vector<std::unique_ptr<SimulatedDisplay>> simulators;
   std::vector<const SimulatedDisplay*> pointers;
-  for (const LayerImages& l : layers) {
-    simulators.push_back(simulateDisplay(display, l, sim));
+  for (LayerSet& set : sets) {
+    SimulationOptions options = sim;
+    if (options.normalise) options.normalisation = set.normalisation;
+    simulators.push_back(simulateDisplay(display, std::move(set.frames), options));
     pointers.push_back(simulators.back().get());
   }
   std::vector<DenseEye> eyes = denseEyes(display, o.eyesPerView, distances);
@@ -403,7 +445,8 @@ void runSimulate(const SimulateOptions& o) {
   // --reference: the scene is read (and checked) before any picture is written.
   std::optional<Scene> scene;
   if (o.reference) scene = referenceScene(in, o);
-  const std::unique_ptr<SimulatedDisplay> simulator = simulateDisplay(display, in.layers, sim);
+  if (sim.normalise) sim.normalisation = in.normalisation;
+  const std::unique_ptr<SimulatedDisplay> simulator = simulateDisplay(display, in.frames, sim);
   const std::vector<Vec3d> eyes = eyePositions(o, display);
   std::optional<Accelerator> accelerator;
   if (o.reference) accelerator.emplace(*scene);

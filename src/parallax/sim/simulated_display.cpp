@@ -42,7 +42,40 @@ class SimulatedLenticular final : public SimulatedDisplay {
   Image panel_;
 };
 
+// Frames seen in turn: the average of their views.
+class SimulatedFrames final : public SimulatedDisplay {
+ public:
+  explicit SimulatedFrames(std::vector<std::unique_ptr<SimulatedDisplay>> frames)
+      : frames_(std::move(frames)) {}
+  Image view(const Vec3d& eyeMm) const override {
+    Image sum = frames_.front()->view(eyeMm);
+    for (size_t k = 1; k < frames_.size(); ++k) {
+      const Image next = frames_[k]->view(eyeMm);
+      for (size_t i = 0; i < sum.pixels().size(); ++i) sum.pixels()[i] += next.pixels()[i];
+    }
+    const float inv = 1.0f / float(frames_.size());
+    for (Vec3f& p : sum.pixels()) p = p * inv;
+    return sum;
+  }
+  Image atDisplayResolution(const Image& image) const override {
+    return frames_.front()->atDisplayResolution(image);
+  }
+
+ private:
+  std::vector<std::unique_ptr<SimulatedDisplay>> frames_;
+};
+
 }  // namespace
+
+std::unique_ptr<SimulatedDisplay> simulateDisplay(const DisplayModel& display,
+                                                  std::vector<LayerImages> frames,
+                                                  const SimulationOptions& options) {
+  if (frames.empty()) throw std::invalid_argument("simulateDisplay: no frames");
+  if (frames.size() == 1) return simulateDisplay(display, std::move(frames.front()), options);
+  std::vector<std::unique_ptr<SimulatedDisplay>> each;
+  for (LayerImages& f : frames) each.push_back(simulateDisplay(display, std::move(f), options));
+  return std::make_unique<SimulatedFrames>(std::move(each));
+}
 
 std::unique_ptr<SimulatedDisplay> simulateDisplay(const DisplayModel& display, LayerImages layers,
                                                   const SimulationOptions& options) {

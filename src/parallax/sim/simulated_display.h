@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "parallax/display/display_model.h"
 #include "parallax/image/image.h"
@@ -27,6 +28,12 @@ class SimulatedDisplay {
 // InputError naming the display's file when a layer's size differs from its panel. `options`
 // apply to the two-layer simulator; a lenticular one takes its eye only.
 std::unique_ptr<SimulatedDisplay> simulateDisplay(const DisplayModel& display, LayerImages layers,
+                                                  const SimulationOptions& options = {});
+
+// Time-multiplexed layers: frame pairs shown in turn faster than the eye follows, seen as the
+// average of their views (each through `options`). One frame is simulateDisplay's own.
+std::unique_ptr<SimulatedDisplay> simulateDisplay(const DisplayModel& display,
+                                                  std::vector<LayerImages> frames,
                                                   const SimulationOptions& options = {});
 
 // The barrier's display resolution (SimulatedDisplay::atDisplayResolution): a box one screen

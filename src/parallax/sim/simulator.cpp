@@ -7,6 +7,7 @@
 #include "parallax/core/error.h"
 #include "parallax/core/parallel.h"
 #include "parallax/display/mask.h"
+#include "parallax/sim/view_pieces.h"
 
 namespace parallax {
 
@@ -48,71 +49,13 @@ void checkOptions(const SimulationOptions& o) {
   if (!(o.diffuserSigmaMm >= 0) || !std::isfinite(o.diffuserSigmaMm))
     throw fail("/diffuser_sigma_mm", "must be 0 or positive");
   if (o.threads < 0) throw fail("/threads", "must be 0 (all cores) or positive");
+  if (!(o.normalisation >= 0) || !std::isfinite(o.normalisation))
+    throw fail("/normalisation", "must be 0 (the mask's mean) or positive");
 }
 
 // Probability that a normal variable of standard deviation sigma falls below x.
 double normalCdf(double x, double sigma) {
   return 0.5 * std::erfc(-x / (sigma * std::sqrt(2.0)));
-}
-
-// One piece of an output pixel along one axis: the front-layer cell and the rear-layer cell the
-// eye's lines meet over that piece, and the piece's share of the pixel.
-struct Piece {
-  int front = 0, rear = 0;
-  float weight = 0;
-};
-
-// The pieces of output pixels 0 .. count-1 along one axis, in order, with start[i] .. start[i+1]
-// those of pixel i. A position t in [0, 1] across the front layer lies in front cell
-// floor(t frontCells) and meets the rear layer at rear cell coordinate u(t) = u0 + du t (affine:
-// the eye's line through the front point, continued by the gap). samplesPerAxis 0: the pieces
-// between every front and rear cell edge inside the pixel, weighted by length (the exact
-// integral of the two box-pixel layers' product). n > 0: n point samples at the stratum
-// centres, 1/n each. A rear cell outside [0, rearCells) becomes `outside`.
-constexpr int kMaxRearCellsPerPixel = 64;
-
-void piecesAlongAxis(int count, int frontCells, int rearCells, double u0, double du,
-                     int samplesPerAxis, int outside, std::vector<Piece>& pieces,
-                     std::vector<uint32_t>& start) {
-  pieces.clear();
-  start.assign(size_t(count) + 1, 0);
-  const auto add = [&](double t, float weight) {
-    Piece piece;
-    piece.front = std::clamp(int(std::floor(t * frontCells)), 0, frontCells - 1);
-    const double u = std::floor(u0 + du * t);
-    piece.rear = u >= 0 && u < rearCells ? int(u) : outside;
-    piece.weight = weight;
-    pieces.push_back(piece);
-  };
-  std::vector<double> edges;
-  for (int i = 0; i < count; ++i) {
-    start[size_t(i)] = uint32_t(pieces.size());
-    const double t0 = double(i) / count, t1 = double(i + 1) / count;
-    // An eye almost touching the display stretches one output pixel over thousands of rear
-    // cells; there the exact pieces would cost without limit, and kMaxRearCells point samples
-    // per pixel are as good as the eye can tell.
-    const bool pointSampled =
-        samplesPerAxis > 0 || std::abs(du) * (t1 - t0) > double(kMaxRearCellsPerPixel);
-    if (pointSampled) {
-      const int n = samplesPerAxis > 0 ? samplesPerAxis : kMaxRearCellsPerPixel;
-      for (int k = 0; k < n; ++k) add(t0 + (t1 - t0) * (k + 0.5) / n, 1.0f / float(n));
-      continue;
-    }
-    edges.assign({t0, t1});
-    for (int k = int(std::ceil(t0 * frontCells)); k < t1 * frontCells; ++k)
-      if (k > t0 * frontCells) edges.push_back(double(k) / frontCells);
-    if (du != 0) {
-      const double ua = u0 + du * t0, ub = u0 + du * t1;
-      for (double m = std::ceil(std::min(ua, ub)); m < std::max(ua, ub); ++m)
-        edges.push_back((m - u0) / du);
-    }
-    std::sort(edges.begin(), edges.end());
-    for (size_t e = 0; e + 1 < edges.size(); ++e) {
-      const double a = std::clamp(edges[e], t0, t1), b = std::clamp(edges[e + 1], t0, t1);
-      if (b > a) add(0.5 * (a + b), float((b - a) / (t1 - t0)));
-    }
-  }
-  start[size_t(count)] = uint32_t(pieces.size());
 }
 
 }  // namespace
@@ -217,7 +160,10 @@ DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages laye
     // A stripe passes one channel of three: a filtered layer's mean throughput is 1/3.
     for (const Layer* layer : {&front_, &rear_})
       if (layer->striped) normaliser *= 3.0;
-    if (maskMean_ > 0) normaliser /= maskMean_;  // a black mask has nothing to normalise
+    if (options.normalisation > 0)
+      normaliser /= options.normalisation;
+    else if (maskMean_ > 0)
+      normaliser /= maskMean_;  // a black mask has nothing to normalise
   }
   scale_ = normaliser / double(pupilPoints({}).size());
 }

@@ -43,6 +43,10 @@ struct SimulationOptions {
   // Divide by the mean transmittance of the mask layer and of the colour filters (1/3 for each
   // filtered layer), so that a white image looks white whatever the aperture ratio; false: raw.
   bool normalise = true;
+  // With normalise: divide by this instead of the mask's mean transmittance (0: the mean).
+  // Optimised layers record the brightness they aimed at here (render --layers: the slit mask's
+  // mean times the gain), so that they compare with the ideal views at that brightness.
+  double normalisation = 0.0;
   Vec3f backlight{1.0f};
   int threads = 0;  // 0 = hardware concurrency; the result does not depend on it
 };

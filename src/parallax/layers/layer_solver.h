@@ -1,0 +1,57 @@
+// Content-adaptive layers: the layer images that best show a set of target views, solved over
+// eyes spread across the view zone (docs/content-adaptive.md). The model is the simulator's own
+// view (sim/seen_layers.h): at eye e the viewer sees V_e = B P_e(front, rear), bilinear in the
+// two layers; T time-multiplexed frame pairs are seen as their average, as the eye integrates
+// them. Two solvers minimise
+//
+//     E = 1/2 sum_e |V_e - t_e|^2,   every layer pixel in [0, 1] (linear transmittance),
+//
+//   - optimizeImageLayer: the mask fixed (the paper's slits), E is quadratic in the image layer:
+//     projected gradient descent with the exact step along the projected gradient, halved until
+//     E decreases (so E never increases);
+//   - factorizeLayers: both layers of T frames by weighted non-negative multiplicative updates
+//     (Lee and Seung 2001; Lanman et al. 2010, HR3D, eq. 7-8; Wetzstein et al. 2012, Tensor
+//     Displays): x <- clamp(x * (A^T t) / (A^T V), 0, 1) for all frames' images, then all their
+//     masks. Each update minimises a separable upper bound of E, and clamping a separable
+//     quadratic's minimiser to [0, 1] keeps it the bound's minimiser over the box, so E never
+//     increases either.
+#pragma once
+
+#include <vector>
+
+#include "parallax/image/image.h"
+#include "parallax/sim/seen_layers.h"
+
+namespace parallax {
+
+// One training eye: what it sees of the layers, and what it should see (through B, in the
+// layers' physical units: the ideal view times the brightness the layers aim at).
+struct TrainingView {
+  SeenLayers seen;
+  Image target;
+};
+
+// One frame of layers (image and mask panels), linear transmittance.
+struct LayerFrame {
+  Image image, mask;
+};
+
+struct SolveReport {
+  std::vector<double> objective;  // E / (pixels x channels x eyes): before, then per iteration
+  int iterations = 0;             // iterations run (fewer when a step no longer lowers E)
+};
+
+// E / (view pixels x 3 x eyes) of `frames` seen as their average.
+double layerObjective(const std::vector<TrainingView>& views, const std::vector<LayerFrame>& frames,
+                      int threads = 0);
+
+// The image layer for the fixed `mask`, starting from `image` (clamped to [0, 1]).
+Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
+                         int iterations, int threads = 0, SolveReport* report = nullptr);
+
+// Both layers of every frame, starting from `frames` (clamped to [0, 1]).
+std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
+                                        std::vector<LayerFrame> frames, int iterations,
+                                        int threads = 0, SolveReport* report = nullptr);
+
+}  // namespace parallax

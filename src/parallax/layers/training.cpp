@@ -1,0 +1,38 @@
+#include "parallax/layers/training.h"
+
+#include "parallax/quality/viewer_quality.h"
+
+namespace parallax {
+
+double trainingBytes(const DisplayDesign& design, const TrainingOptions& options) {
+  const Panel& front =
+      design.spec.order == LayerOrder::BarrierBack ? design.spec.imagePanel : design.spec.maskPanel;
+  const double eyes =
+      double(pixelViewCount(design)) * options.eyesPerView * double(options.distances.size());
+  return eyes * double(front.width) * double(front.height) * double(sizeof(Vec3f));
+}
+
+std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,
+                                        const DisplayDesign& design, const TrainingOptions& options,
+                                        const std::function<void(int, int)>& progress) {
+  const std::vector<DenseEye> eyes = denseEyes(design, options.eyesPerView, options.distances);
+  std::vector<TrainingView> views;
+  views.reserve(eyes.size());
+  for (size_t i = 0; i < eyes.size(); ++i) {
+    SeenLayers seen(design, eyes[i].position);
+    Image target = idealView(scene, accelerator, design, eyes[i].position, seen.width(),
+                             seen.height(), options.referenceSamplesPerPixel, options.threads);
+    for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);
+    views.push_back({std::move(seen), std::move(target)});
+    if (progress) progress(int(i) + 1, int(eyes.size()));
+  }
+  return views;
+}
+
+double meanTransmittance(const Image& layer) {
+  double sum = 0;
+  for (const Vec3f& p : layer.pixels()) sum += (double(p.x) + p.y + p.z) / 3.0;
+  return layer.empty() ? 0.0 : sum / double(layer.pixels().size());
+}
+
+}  // namespace parallax

@@ -1,0 +1,169 @@
+#include "parallax/sim/seen_layers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "parallax/core/parallel.h"
+
+namespace parallax {
+
+namespace {
+
+template <class Body>
+void forEachRow(int rows, int threads, const Body& body) {
+  parallelFor(rows, threads, 8, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row != end; ++row) body(int(row));
+  });
+}
+
+void checkLayer(const Image& layer, int columns, int rows, const char* what) {
+  if (layer.width() != columns || layer.height() != rows)
+    throw std::invalid_argument(std::string("SeenLayers: the ") + what +
+                                " layer's size differs from its panel");
+}
+
+}  // namespace
+
+SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool periodBox)
+    : design_(design), eye_(eye), periodBox_(periodBox) {
+  const DisplaySpec& spec = design.spec;
+  imageInFront_ = spec.order == LayerOrder::BarrierBack;
+  const Panel& front = imageInFront_ ? spec.imagePanel : spec.maskPanel;
+  const Panel& rear = imageInFront_ ? spec.maskPanel : spec.imagePanel;
+  frontColumns_ = width_ = front.width;
+  frontRows_ = height_ = front.height;
+  rearColumns_ = rear.width;
+  rearRows_ = rear.height;
+  // The simulator's geometry (DisplaySimulator::view): x across the front layer is
+  // (t - 1/2) frontWidth, and the eye's line through it meets the rear layer stretched by
+  // (e.z + g) / e.z about the eye.
+  const double stretch = (eye.z + design.gapMm) / eye.z;
+  const double frontWidth = front.widthMm(), frontHeight = front.heightMm();
+  const auto column = [&](double t) {
+    const double rearX = eye.x + ((t - 0.5) * frontWidth - eye.x) * stretch;
+    return (rearX + 0.5 * rear.widthMm()) / rear.pitchMm;
+  };
+  piecesAlongAxis(width_, frontColumns_, rearColumns_, column(0), column(1) - column(0), 0, -1,
+                  across_, acrossStart_);
+  const auto row = [&](double t) {
+    const double rearY = eye.y + ((0.5 - t) * frontHeight - eye.y) * stretch;
+    return (0.5 * rear.heightMm() - rearY) / rear.pitchMm;
+  };
+  piecesAlongAxis(height_, frontRows_, rearRows_, row(0), row(1) - row(0), 0, -1, down_,
+                  downStart_);
+  rearRowSources_.assign(size_t(rearRows_), {});
+  for (int j = 0; j < height_; ++j)
+    for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k)
+      if (down_[k].rear >= 0)
+        rearRowSources_[size_t(down_[k].rear)].push_back({j, down_[k].weight});
+
+  // B: boxFilterX(view, period) as taps. Output x averages the box-pixel row over
+  // [lo, hi] = [x + 1/2 - w/2, x + 1/2 + w/2] clipped to the row, divided by its length.
+  const double w = design.screenPeriodMm / (frontWidth / double(width_));
+  boxStart_.assign(size_t(width_) + 1, 0);
+  for (int x = 0; x < width_; ++x) {
+    boxStart_[size_t(x)] = uint32_t(boxTaps_.size());
+    const double lo = std::max(0.0, x + 0.5 - 0.5 * w);
+    const double hi = std::min(double(width_), x + 0.5 + 0.5 * w);
+    for (int k = int(std::floor(lo)); k < hi && k < width_; ++k) {
+      const double overlap = std::min(hi, k + 1.0) - std::max(lo, double(k));
+      if (overlap > 0) boxTaps_.push_back({k, float(overlap / (hi - lo))});
+    }
+  }
+  boxStart_[size_t(width_)] = uint32_t(boxTaps_.size());
+}
+
+Image SeenLayers::box(const Image& view, int threads) const {
+  if (!periodBox_) return view;
+  Image out(view.width(), view.height());
+  forEachRow(view.height(), threads, [&](int y) {
+    for (int x = 0; x < width_; ++x) {
+      Vec3f sum(0.0f);
+      for (uint32_t t = boxStart_[size_t(x)]; t < boxStart_[size_t(x) + 1]; ++t)
+        sum += view.at(boxTaps_[t].column, y) * boxTaps_[t].weight;
+      out.at(x, y) = sum;
+    }
+  });
+  return out;
+}
+
+Image SeenLayers::boxTransposed(const Image& view, int threads) const {
+  if (!periodBox_) return view;
+  Image out(view.width(), view.height());
+  forEachRow(view.height(), threads, [&](int y) {
+    for (int x = 0; x < width_; ++x) {
+      const Vec3f v = view.at(x, y);
+      for (uint32_t t = boxStart_[size_t(x)]; t < boxStart_[size_t(x) + 1]; ++t)
+        out.at(boxTaps_[t].column, y) += v * boxTaps_[t].weight;
+    }
+  });
+  return out;
+}
+
+Image SeenLayers::view(const Image& front, const Image& rear, int threads) const {
+  checkLayer(front, frontColumns_, frontRows_, "front");
+  checkLayer(rear, rearColumns_, rearRows_, "rear");
+  Image product(width_, height_);
+  forEachRow(height_, threads, [&](int j) {
+    for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
+      const Piece& vertical = down_[k];
+      if (vertical.rear < 0) continue;
+      for (int i = 0; i < width_; ++i) {
+        Vec3f light(0.0f);
+        for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
+          const Piece& p = across_[a];
+          if (p.rear < 0) continue;
+          light += front.at(p.front, vertical.front) * rear.at(p.rear, vertical.rear) * p.weight;
+        }
+        product.at(i, j) += light * vertical.weight;
+      }
+    }
+  });
+  return box(product, threads);
+}
+
+void SeenLayers::addFrontGradient(const Image& residual, const Image& rear, Image& gradFront,
+                                  int threads) const {
+  checkLayer(rear, rearColumns_, rearRows_, "rear");
+  checkLayer(gradFront, frontColumns_, frontRows_, "front");
+  const Image r = boxTransposed(residual, threads);
+  // Output row j's pieces all lie in front row j: rows in parallel write disjoint rows.
+  forEachRow(height_, threads, [&](int j) {
+    for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
+      const Piece& vertical = down_[k];
+      if (vertical.rear < 0) continue;
+      for (int i = 0; i < width_; ++i) {
+        const Vec3f v = r.at(i, j) * vertical.weight;
+        for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
+          const Piece& p = across_[a];
+          if (p.rear < 0) continue;
+          gradFront.at(p.front, vertical.front) += v * rear.at(p.rear, vertical.rear) * p.weight;
+        }
+      }
+    }
+  });
+}
+
+void SeenLayers::addRearGradient(const Image& residual, const Image& front, Image& gradRear,
+                                 int threads) const {
+  checkLayer(front, frontColumns_, frontRows_, "front");
+  checkLayer(gradRear, rearColumns_, rearRows_, "rear");
+  const Image r = boxTransposed(residual, threads);
+  // Each rear row gathers from the output rows that meet it, in row order.
+  forEachRow(rearRows_, threads, [&](int rearRow) {
+    for (const auto& [j, weight] : rearRowSources_[size_t(rearRow)]) {
+      const int frontRow = j;  // output row j lies in front row j
+      for (int i = 0; i < width_; ++i) {
+        const Vec3f v = r.at(i, j) * weight;
+        for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
+          const Piece& p = across_[a];
+          if (p.rear < 0) continue;
+          gradRear.at(p.rear, rearRow) += v * front.at(p.front, frontRow) * p.weight;
+        }
+      }
+    }
+  });
+}
+
+}  // namespace parallax

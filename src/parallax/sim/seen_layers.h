@@ -1,0 +1,64 @@
+// What one eye sees on a two-layer display as a bilinear function of the two layers, with its
+// adjoints: the operator the layer solvers (layers/) fit layers with. It is the simulator's
+// exact view (simulator.h: the product of the two layers' box pixels integrated over each output
+// pixel, pinhole eye, no colour filters or diffuser) at the front layer's resolution,
+// unnormalised (backlight 1), followed by the box one screen period wide along x that the dense
+// measure compares views through (atDisplayResolution):
+//
+//     V = B P(front, rear),   P(front, rear)[o] = sum over pieces k of o: w_k front[f_k] rear[r_k]
+//
+// Linear in each layer for the other fixed, so its adjoints give the gradient of
+// 1/2 |V - target|^2 with respect to either layer.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "parallax/display/display.h"
+#include "parallax/image/image.h"
+#include "parallax/sim/view_pieces.h"
+
+namespace parallax {
+
+class SeenLayers {
+ public:
+  // `periodBox`: apply B (false: V = P, for tests and other measures).
+  SeenLayers(const DisplayDesign& design, const Vec3d& eyeMm, bool periodBox = true);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool imageInFront() const { return imageInFront_; }
+  const Vec3d& eye() const { return eye_; }
+
+  // V for the layers as panel images (front and rear in the display's layer order).
+  Image view(const Image& front, const Image& rear, int threads = 0) const;
+  // gradFront += (dV/dfront)^T residual and gradRear += (dV/drear)^T residual: the gradient of
+  // 1/2 |V - target|^2 for residual = V - target. Sized as the layers; the same result for any
+  // thread count.
+  void addFrontGradient(const Image& residual, const Image& rear, Image& gradFront,
+                        int threads = 0) const;
+  void addRearGradient(const Image& residual, const Image& front, Image& gradRear,
+                       int threads = 0) const;
+  // B and its transpose on a view-sized image.
+  Image box(const Image& view, int threads = 0) const;
+  Image boxTransposed(const Image& view, int threads = 0) const;
+
+ private:
+  struct Tap {
+    int column = 0;
+    float weight = 0;
+  };
+  DisplayDesign design_;
+  Vec3d eye_;
+  bool imageInFront_ = true, periodBox_ = true;
+  int width_ = 0, height_ = 0, frontColumns_ = 0, frontRows_ = 0, rearColumns_ = 0, rearRows_ = 0;
+  std::vector<Piece> across_, down_;
+  std::vector<uint32_t> acrossStart_, downStart_;
+  // For each rear row, the output rows whose pieces meet it and those pieces' weights.
+  std::vector<std::vector<std::pair<int, float>>> rearRowSources_;
+  // B: output column x = sum of taps boxStart_[x] .. boxStart_[x+1] (boxFilterX's weights).
+  std::vector<Tap> boxTaps_;
+  std::vector<uint32_t> boxStart_;
+};
+
+}  // namespace parallax

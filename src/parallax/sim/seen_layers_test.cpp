@@ -1,0 +1,97 @@
+// The solvers' operator against the simulator it models (a second code path), and its adjoints
+// against itself (the dot-product test <A x, y> = <x, A^T y>).
+#include "parallax/sim/seen_layers.h"
+
+#include <gtest/gtest.h>
+
+#include "parallax/core/random.h"
+#include "parallax/display/display_model.h"
+#include "parallax/sim/simulated_display.h"
+#include "parallax/sim/simulator.h"
+
+namespace parallax {
+namespace {
+
+DisplayDesign smallDisplay(LayerOrder order, int width = 90, int height = 8) {
+  DisplaySpec s = defaultDisplaySpec();
+  s.order = order;
+  s.imagePanel.width = s.maskPanel.width = width;
+  s.imagePanel.height = s.maskPanel.height = height;
+  return designDisplay(s);
+}
+
+Image randomImage(int width, int height, uint64_t seed) {
+  Rng rng(seed);
+  Image image(width, height);
+  for (Vec3f& p : image.pixels()) p = {rng.uniform(), rng.uniform(), rng.uniform()};
+  return image;
+}
+
+double dot(const Image& a, const Image& b) {
+  double sum = 0;
+  for (size_t i = 0; i < a.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) sum += double(a.pixels()[i][c]) * b.pixels()[i][c];
+  return sum;
+}
+
+TEST(SeenLayers, EqualsTheSimulatorsExactViewInBothLayerOrders) {
+  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+    const DisplayDesign d = smallDisplay(order);
+    const Image image = randomImage(d.spec.imagePanel.width, d.spec.imagePanel.height, 3);
+    const Image mask = maskLayerImage(d);
+    const std::unique_ptr<DisplayModel> model = makeBarrierDisplay(d);
+    SimulationOptions options;
+    options.normalisation = 0.5;  // a known divisor: the operator is unnormalised
+    const auto simulated = simulateDisplay(*model, LayerImages{image, mask}, options);
+    for (const Vec3d eye : {Vec3d{0, 0, 600}, Vec3d{-37.5, 4, 520}, Vec3d{61, -3, 790}}) {
+      const SeenLayers seen(d, eye);
+      const SeenLayers unboxed(d, eye, false);
+      const bool front = order == LayerOrder::BarrierBack;
+      const Image a = front ? seen.view(image, mask) : seen.view(mask, image);
+      const Image b = front ? unboxed.view(image, mask) : unboxed.view(mask, image);
+      const Image raw = simulated->view(eye);
+      const Image boxed = simulated->atDisplayResolution(raw);
+      for (size_t i = 0; i < a.pixels().size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(b.pixels()[i][c], 0.5f * raw.pixels()[i][c], 1e-5f) << i;
+          EXPECT_NEAR(a.pixels()[i][c], 0.5f * boxed.pixels()[i][c], 1e-5f) << i;
+        }
+    }
+  }
+}
+
+TEST(SeenLayers, AdjointsPassTheDotProductTest) {
+  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+    const DisplayDesign d = smallDisplay(order, 60, 6);
+    const SeenLayers seen(d, {12, 2, 560});
+    const Image front = randomImage(60, 6, 1), rear = randomImage(60, 6, 2);
+    const Image y = randomImage(seen.width(), seen.height(), 4);
+    const Image v = seen.view(front, rear);
+    Image gFront(60, 6), gRear(60, 6);
+    seen.addFrontGradient(y, rear, gFront);
+    seen.addRearGradient(y, front, gRear);
+    // V is linear in each layer: <V(front, rear), y> = <front, A_rear^T y> = <rear, A_front^T y>.
+    EXPECT_NEAR(dot(v, y), dot(front, gFront), 1e-4 * dot(v, y));
+    EXPECT_NEAR(dot(v, y), dot(rear, gRear), 1e-4 * dot(v, y));
+    const Image boxed = seen.box(y), back = seen.boxTransposed(y);
+    EXPECT_NEAR(dot(boxed, v), dot(y, seen.boxTransposed(v)), 1e-4 * dot(boxed, v));
+    EXPECT_GT(dot(back, back), 0.0);
+  }
+}
+
+TEST(SeenLayers, SameGradientsForAnyThreadCount) {
+  const DisplayDesign d = smallDisplay(LayerOrder::BarrierBack, 60, 40);
+  const SeenLayers seen(d, {-20, 0, 640});
+  const Image front = randomImage(60, 40, 5), rear = randomImage(60, 40, 6);
+  const Image y = randomImage(60, 40, 7);
+  Image a(60, 40), b(60, 40), c(60, 40), e(60, 40);
+  seen.addFrontGradient(y, rear, a, 1);
+  seen.addFrontGradient(y, rear, b, 2);
+  seen.addRearGradient(y, front, c, 1);
+  seen.addRearGradient(y, front, e, 2);
+  EXPECT_EQ(a.pixels(), b.pixels());
+  EXPECT_EQ(c.pixels(), e.pixels());
+}
+
+}  // namespace
+}  // namespace parallax
