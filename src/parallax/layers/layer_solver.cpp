@@ -1,6 +1,7 @@
 #include "parallax/layers/layer_solver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -18,6 +19,57 @@ Image viewOf(const SeenLayers& seen, const Image& image, const Image& mask, int 
 void clampToUnit(Image& image) {
   for (Vec3f& p : image.pixels())
     for (int c = 0; c < 3; ++c) p[c] = std::clamp(std::isfinite(p[c]) ? p[c] : 0.0f, 0.0f, 1.0f);
+}
+
+// The squared slope of the sRGB encoding at x in [0, 1] (IEC 61966-2-1), tabulated on a
+// square-root scale (the slope changes fastest near black).
+class EncodingWeights {
+ public:
+  EncodingWeights() {
+    for (int i = 0; i < kSize; ++i) {
+      const double r = double(i) / (kSize - 1), x = r * r;
+      const double slope = x <= 0.0031308 ? 12.92 : 1.055 / 2.4 * std::pow(x, 1.0 / 2.4 - 1.0);
+      table_[size_t(i)] = float(slope * slope);
+    }
+  }
+  float operator()(float x) const {
+    const float r = std::sqrt(std::clamp(x, 0.0f, 1.0f));
+    return table_[size_t(std::lround(r * float(kSize - 1)))];
+  }
+
+ private:
+  static constexpr int kSize = 4096;
+  std::array<float, kSize> table_{};
+};
+
+const EncodingWeights& encodingWeights() {
+  static const EncodingWeights weights;
+  return weights;
+}
+
+// W x for one eye's view-sized image (x unchanged without weights).
+Image weighted(const TrainingView& v, Image x) {
+  if (!(v.encodingScale > 0)) return x;
+  const EncodingWeights& w = encodingWeights();
+  const float inv = 1.0f / v.encodingScale;
+  for (size_t i = 0; i < x.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) x.pixels()[i][c] *= w(v.target.pixels()[i][c] * inv);
+  return x;
+}
+
+// 1/2 |seen - target|_W^2 for one eye.
+double halfWeightedSquares(const TrainingView& v, const Image& seen) {
+  const EncodingWeights& w = encodingWeights();
+  const bool weigh = v.encodingScale > 0;
+  const float inv = weigh ? 1.0f / v.encodingScale : 0.0f;
+  double sum = 0;
+  for (size_t i = 0; i < seen.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float t = v.target.pixels()[i][c];
+      const double d = double(seen.pixels()[i][c]) - double(t);
+      sum += 0.5 * d * d * (weigh ? double(w(t * inv)) : 1.0);
+    }
+  return sum;
 }
 
 // a += s * b, a -= b, <a, b>, |a|^2 over images of one size.
@@ -85,14 +137,8 @@ double layerObjective(const std::vector<TrainingView>& views, const std::vector<
                       int threads) {
   checkViews(views);
   double sum = 0;
-  for (const TrainingView& v : views) {
-    const Image seen = averageView(v, frames, threads);
-    for (size_t i = 0; i < seen.pixels().size(); ++i)
-      for (int c = 0; c < 3; ++c) {
-        const double d = double(seen.pixels()[i][c]) - double(v.target.pixels()[i][c]);
-        sum += 0.5 * d * d;
-      }
-  }
+  for (const TrainingView& v : views)
+    sum += halfWeightedSquares(v, averageView(v, frames, threads));
   return sum * normaliser(views);
 }
 
@@ -102,16 +148,22 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
   clampToUnit(image);
   const auto energy = [&](const Image& x) {
     double sum = 0;
-    for (const TrainingView& v : views) {
-      const Image seen = viewOf(v.seen, x, mask, threads);
-      for (size_t i = 0; i < seen.pixels().size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-          const double diff = double(seen.pixels()[i][c]) - double(v.target.pixels()[i][c]);
-          sum += 0.5 * diff * diff;
-        }
-    }
+    for (const TrainingView& v : views)
+      sum += halfWeightedSquares(v, viewOf(v.seen, x, mask, threads));
     return sum * normaliser(views);
   };
+  // A diagonal preconditioner: 1 / (sum_e A_e^T A_e 1), the curvature each pixel would have if
+  // its neighbours moved with it (the scaling of SART and of the multiplicative updates). It
+  // keeps pixels seen by many eyes from taking the step of pixels seen by few.
+  Image precondition(image.width(), image.height());
+  {
+    const Image ones(image.width(), image.height(), Vec3f(1.0f));
+    for (const TrainingView& v : views)
+      addImageGradient(v, weighted(v, viewOf(v.seen, ones, mask, threads)), mask, precondition,
+                       threads);
+    for (Vec3f& p : precondition.pixels())
+      for (int c = 0; c < 3; ++c) p[c] = p[c] > 0.0f ? 1.0f / p[c] : 0.0f;
+  }
   double e = energy(image);
   SolveReport local;
   local.objective.push_back(e);
@@ -121,15 +173,15 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
     for (const TrainingView& v : views) {
       Image residual = viewOf(v.seen, image, mask, threads);
       addScaled(residual, v.target, -1.0f);
-      addImageGradient(v, residual, mask, grad, threads);
+      addImageGradient(v, weighted(v, std::move(residual)), mask, grad, threads);
     }
-    // Projected direction: no move out of [0, 1] at a bound.
+    // Projected, preconditioned direction: no move out of [0, 1] at a bound.
     Image d(image.width(), image.height());
     for (size_t i = 0; i < d.pixels().size(); ++i)
       for (int c = 0; c < 3; ++c) {
         const float x = image.pixels()[i][c], g = grad.pixels()[i][c];
         const bool stuck = (x <= 0.0f && g > 0.0f) || (x >= 1.0f && g < 0.0f);
-        d.pixels()[i][c] = stuck ? 0.0f : -g;
+        d.pixels()[i][c] = stuck ? 0.0f : -g * precondition.pixels()[i][c];
       }
     // The exact step of the quadratic along d: -<g, d> / sum_e |A_e d|^2 (A_e linear in the
     // image with the mask fixed).
@@ -138,7 +190,7 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
     double curvature = 0;
     for (const TrainingView& v : views) {
       const Image ad = viewOf(v.seen, d, mask, threads);
-      curvature += dot(ad, ad);
+      curvature += dot(ad, weighted(v, ad));
     }
     if (!(curvature > 0)) break;
     double step = -slope / curvature;
@@ -182,14 +234,15 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       denominator.emplace_back(x.width(), x.height());
     }
     for (const TrainingView& v : views) {
-      const Image seen = averageView(v, frames, threads);
+      const Image seen = weighted(v, averageView(v, frames, threads));
+      const Image target = weighted(v, v.target);
       for (size_t t = 0; t < frames.size(); ++t) {
         const LayerFrame& f = frames[t];
         if (updateImages) {
-          addImageGradient(v, v.target, f.mask, numerator[t], threads);
+          addImageGradient(v, target, f.mask, numerator[t], threads);
           addImageGradient(v, seen, f.mask, denominator[t], threads);
         } else {
-          addMaskGradient(v, v.target, f.image, numerator[t], threads);
+          addMaskGradient(v, target, f.image, numerator[t], threads);
           addMaskGradient(v, seen, f.image, denominator[t], threads);
         }
       }

@@ -4,11 +4,13 @@
 // two layers; T time-multiplexed frame pairs are seen as their average, as the eye integrates
 // them. Two solvers minimise
 //
-//     E = 1/2 sum_e |V_e - t_e|^2,   every layer pixel in [0, 1] (linear transmittance),
+//     E = 1/2 sum_e |V_e - t_e|_W^2,   every layer pixel in [0, 1] (linear transmittance),
+//
+// with per-pixel weights W (TrainingView::encodingScale; the ones of a plain sum without it),
 //
 //   - optimizeImageLayer: the mask fixed (the paper's slits), E is quadratic in the image layer:
-//     projected gradient descent with the exact step along the projected gradient, halved until
-//     E decreases (so E never increases);
+//     projected gradient descent, preconditioned by 1 / (sum_e A_e^T A_e 1), with the exact step
+//     along the projected direction, halved until E decreases (so E never increases);
 //   - factorizeLayers: both layers of T frames by weighted non-negative multiplicative updates
 //     (Lee and Seung 2001; Lanman et al. 2010, HR3D, eq. 7-8; Wetzstein et al. 2012, Tensor
 //     Displays): x <- clamp(x * (A^T t) / (A^T V), 0, 1) for all frames' images, then all their
@@ -29,6 +31,11 @@ namespace parallax {
 struct TrainingView {
   SeenLayers seen;
   Image target;
+  // > 0: each error is weighted by the square of the sRGB encoding's slope at the target's
+  // value over encodingScale (the layers' brightness), the least-squares form of the dense
+  // measure's PSNR on sRGB values (an error in the shadows costs what the eye and the measure
+  // see in it, as the gamma 2.2 of Wetzstein et al.'s course code intends). 0: unweighted.
+  float encodingScale = 0.0f;
 };
 
 // One frame of layers (image and mask panels), linear transmittance.
