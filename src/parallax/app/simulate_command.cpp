@@ -232,8 +232,11 @@ void setSummary(JsonWriter& json, const std::string& at, const QualitySummary& s
 }
 
 // The dense measure of several renders side by side: one row (one JSON entry) each.
+// `brightness[k]`: what render k's views send to the eye (their mean luminance times the
+// normalisation the simulator divided by), over the first render's.
 void printComparison(const SimulateOptions& o, const std::vector<std::string>& labels,
-                     const std::vector<ViewerQuality>& results) {
+                     const std::vector<ViewerQuality>& results,
+                     const std::vector<double>& brightness) {
   if (o.json) {
     JsonWriter json;
     json.set("/eyes_per_view", o.eyesPerView);
@@ -242,6 +245,7 @@ void printComparison(const SimulateOptions& o, const std::vector<std::string>& l
       json.set(at + "/dir", labels[k]);
       setSummary(json, at + "/mean", results[k].all);
       setSummary(json, at + "/design_eyes", results[k].designOnly);
+      json.set(at + "/brightness_vs_first", brightness[k]);
       for (size_t i = 0; i < results[k].byDistance.size(); ++i) {
         const std::string row = at + "/by_distance/" + std::to_string(i);
         json.set(row + "/distance", results[k].byDistance[i].first);
@@ -251,12 +255,13 @@ void printComparison(const SimulateOptions& o, const std::vector<std::string>& l
     std::printf("%s\n", json.dump().c_str());
     return;
   }
-  std::printf("%-28s %5s %9s %7s %9s %9s %12s\n", "render", "eyes", "mean dB", "SSIM", "worst dB",
-              "flicker", "design eyes");
+  std::printf("%-28s %5s %9s %7s %9s %9s %12s %11s\n", "render", "eyes", "mean dB", "SSIM",
+              "worst dB", "flicker", "design eyes", "brightness");
   for (size_t k = 0; k < results.size(); ++k) {
     const QualitySummary& s = results[k].all;
-    std::printf("%-28s %5d %9.2f %7.4f %9.2f %9.4f %12.2f\n", labels[k].c_str(), s.eyes, s.meanPsnr,
-                s.meanSsim, s.worstPsnr, s.meanFlicker, results[k].designOnly.meanPsnr);
+    std::printf("%-28s %5d %9.2f %7.4f %9.2f %9.4f %12.2f %10.2fx\n", labels[k].c_str(), s.eyes,
+                s.meanPsnr, s.meanSsim, s.worstPsnr, s.meanFlicker, results[k].designOnly.meanPsnr,
+                brightness[k]);
   }
 }
 
@@ -280,9 +285,18 @@ void runDenseReference(const SimulateOptions& o, const Inputs& in, const Simulat
   }
   std::vector<std::unique_ptr<SimulatedDisplay>> simulators;
   std::vector<const SimulatedDisplay*> pointers;
+  std::vector<double> normalisers;  // what each simulator divided its views by
   for (LayerSet& set : sets) {
     SimulationOptions options = sim;
     if (options.normalise) options.normalisation = set.normalisation;
+    double maskMean = 0;
+    for (const LayerImages& f : set.frames)
+      for (const Vec3f& p : f.mask.pixels()) maskMean += (double(p.x) + p.y + p.z) / 3.0;
+    const size_t maskPixels = set.frames.front().mask.pixels().size() * set.frames.size();
+    maskMean = maskPixels > 0 ? maskMean / double(maskPixels) : 1.0;
+    normalisers.push_back(!options.normalise          ? 1.0
+                          : options.normalisation > 0 ? options.normalisation
+                                                      : maskMean);
     simulators.push_back(simulateDisplay(display, std::move(set.frames), options));
     pointers.push_back(simulators.back().get());
   }
@@ -295,7 +309,13 @@ void runDenseReference(const SimulateOptions& o, const Inputs& in, const Simulat
                                    {o.referenceSpp, o.threads},
                                    [&bar](int done, int total) { bar.update(done, total); });
   }
-  if (results.size() > 1) return printComparison(o, labels, results);
+  if (results.size() > 1) {
+    std::vector<double> brightness;
+    const double first = results[0].all.meanLuminance * normalisers[0];
+    for (size_t k = 0; k < results.size(); ++k)
+      brightness.push_back(first > 0 ? results[k].all.meanLuminance * normalisers[k] / first : 0);
+    return printComparison(o, labels, results, brightness);
+  }
   const ViewerQuality& result = results.front();
   if (o.json) {
     JsonWriter json;
@@ -412,13 +432,17 @@ Quality qualityAt(const SimulateOptions& o, const Inputs& in, const SimulationOp
   q.psnr = psnr(seen, reference);
   q.ssim = ssim(seen, reference);
   if (const DisplayDesign* d = in.barrier()) {
-    // Brightness is the raw mean transmittance, whatever --raw says for the pictures.
+    // Brightness is the raw mean transmittance, whatever --raw says for the pictures; with
+    // time-multiplexed frames, the mean over the frames' masks (the eye averages them).
     SimulationOptions raw = sim;
     raw.normalise = false;
-    const CrosstalkResult c = measureCrosstalk(*d, in.layers.mask, raw, eye);
-    q.brightness = c.brightness;
-    q.crosstalk = c.crosstalk;
-    q.ownView = c.ownView;
+    q.brightness = q.crosstalk = 0;
+    for (const LayerImages& frame : in.frames) {
+      const CrosstalkResult c = measureCrosstalk(*d, frame.mask, raw, eye);
+      q.brightness += c.brightness / double(in.frames.size());
+      q.crosstalk += c.crosstalk / double(in.frames.size());
+      q.ownView = c.ownView;
+    }
   } else {
     q.brightness = 1.0;  // a lens passes all its light (no barrier)
     q.crosstalk = std::numeric_limits<double>::quiet_NaN();

@@ -23,7 +23,8 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
     Image target = idealView(scene, accelerator, design, eyes[i].position, seen.width(),
                              seen.height(), options.referenceSamplesPerPixel, options.threads);
     for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);
-    views.push_back({std::move(seen), std::move(target), float(options.targetScale)});
+    views.push_back({std::move(seen), std::move(target),
+                     options.srgbWeights ? float(options.targetScale) : 0.0f});
     if (progress) progress(int(i) + 1, int(eyes.size()));
   }
   return views;

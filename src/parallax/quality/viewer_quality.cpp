@@ -108,10 +108,11 @@ QualitySummary summarise(const std::vector<EyeQuality>& eyes) {
     ++s.eyes;
     s.meanPsnr += q.psnr;
     s.meanSsim += q.ssim;
+    s.meanLuminance += q.meanLuminance;
     if (q.psnr < s.worstPsnr) s.worstPsnr = q.psnr, s.worstEye = q.eye.position;
     if (!std::isnan(q.flicker)) s.meanFlicker += q.flicker, ++flickers;
   }
-  if (s.eyes > 0) s.meanPsnr /= s.eyes, s.meanSsim /= s.eyes;
+  if (s.eyes > 0) s.meanPsnr /= s.eyes, s.meanSsim /= s.eyes, s.meanLuminance /= s.eyes;
   s.meanFlicker =
       flickers > 0 ? s.meanFlicker / flickers : std::numeric_limits<double>::quiet_NaN();
   return s;
@@ -161,7 +162,7 @@ std::vector<ViewerQuality> measureViewerQuality(
             idealView(scene, accelerator, display, *simulators[s], eye.position, simulated.width(),
                       simulated.height(), options.referenceSamplesPerPixel, options.threads);
       EyeQuality q{eye, psnr(simulated, ideal), ssim(simulated, ideal),
-                   std::numeric_limits<double>::quiet_NaN()};
+                   std::numeric_limits<double>::quiet_NaN(), meanLuminance(simulated)};
       if (sameRow)
         q.flicker = flickerBetween(previousSimulated[s], previousIdeal, simulated, ideal);
       results[s].eyes.push_back(q);

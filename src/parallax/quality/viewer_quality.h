@@ -57,6 +57,8 @@ struct EyeQuality {
   // S simulated, R ideal. Angular aliasing (popping, ghosts) while the viewer moves raises it.
   // Not a number for the first eye of a row.
   double flicker = 0;
+  // The simulated view's mean luminance (linear, as the simulator normalised it).
+  double meanLuminance = 0;
 };
 
 struct QualitySummary {
@@ -64,7 +66,8 @@ struct QualitySummary {
   double meanPsnr = 0, meanSsim = 0;
   double worstPsnr = 0;  // the lowest per-eye PSNR (as the ICME 2018 light-field challenge)
   Vec3d worstEye;
-  double meanFlicker = 0;  // over the eyes that have one
+  double meanFlicker = 0;    // over the eyes that have one
+  double meanLuminance = 0;  // of the simulated views
 };
 
 struct ViewerQuality {

@@ -58,31 +58,47 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
       if (down_[k].rear >= 0)
         rearRowSources_[size_t(down_[k].rear)].push_back({j, down_[k].weight});
 
-  // B: boxFilterX(view, period) as taps. Output x averages the box-pixel row over
-  // [lo, hi] = [x + 1/2 - w/2, x + 1/2 + w/2] clipped to the row, divided by its length.
+  // B: boxFilterX(view, period): output column x reads its window [x + 1/2 - w/2,
+  // x + 1/2 + w/2] clipped to the row; B^T reads the same window around each column, where
+  // clipping it to the row stands for the zero row outside.
   const double w = design.screenPeriodMm / (frontWidth / double(width_));
-  boxStart_.assign(size_t(width_) + 1, 0);
+  const auto end = [this](double t) {
+    t = std::clamp(t, 0.0, double(width_));
+    const int index = std::min(int(std::floor(t)), width_ - 1);
+    return BoxEnd{index, t - index};
+  };
   for (int x = 0; x < width_; ++x) {
-    boxStart_[size_t(x)] = uint32_t(boxTaps_.size());
-    const double lo = std::max(0.0, x + 0.5 - 0.5 * w);
-    const double hi = std::min(double(width_), x + 0.5 + 0.5 * w);
-    for (int k = int(std::floor(lo)); k < hi && k < width_; ++k) {
-      const double overlap = std::min(hi, k + 1.0) - std::max(lo, double(k));
-      if (overlap > 0) boxTaps_.push_back({k, float(overlap / (hi - lo))});
-    }
+    const double lo = std::max(0.0, x + 0.5 - 0.5 * w),
+                 hi = std::min(double(width_), x + 0.5 + 0.5 * w);
+    boxLo_.push_back(end(lo));
+    boxHi_.push_back(end(hi));
+    boxInverseLength_.push_back(1.0 / (hi - lo));
+    unclippedLo_.push_back(end(x + 0.5 - 0.5 * w));
+    unclippedHi_.push_back(end(x + 0.5 + 0.5 * w));
   }
-  boxStart_[size_t(width_)] = uint32_t(boxTaps_.size());
 }
 
+// B as boxFilterX computes it: output x is the integral of the box-pixel row over
+// [lo_x, hi_x] = [x + 1/2 - w/2, x + 1/2 + w/2] clipped to the row, over its length, read off a
+// prefix sum. Its transpose: pixel k receives sum_x y_x / |[lo_x, hi_x]| times the overlap of
+// [k, k+1] with the unclipped window (the row clips nothing inside [k, k+1]), which is the
+// integral of the box-pixel row h_x = y_x / |[lo_x, hi_x]| over the window centred on k: the
+// same prefix-sum reading without the division.
 Image SeenLayers::box(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
   forEachRow(view.height(), threads, [&](int y) {
-    for (int x = 0; x < width_; ++x) {
-      Vec3f sum(0.0f);
-      for (uint32_t t = boxStart_[size_t(x)]; t < boxStart_[size_t(x) + 1]; ++t)
-        sum += view.at(boxTaps_[t].column, y) * boxTaps_[t].weight;
-      out.at(x, y) = sum;
+    const Vec3f* row = &view.at(0, y);
+    std::vector<double> prefix(static_cast<size_t>(width_) + 1);
+    for (int c = 0; c < 3; ++c) {
+      for (int x = 0; x < width_; ++x) prefix[size_t(x) + 1] = prefix[size_t(x)] + row[x][c];
+      // The integral of the box-pixel row over [0, t] at a window's end.
+      const auto integral = [&](const BoxEnd& e) {
+        return prefix[size_t(e.index)] + e.fraction * row[e.index][c];
+      };
+      for (int x = 0; x < width_; ++x)
+        out.at(x, y)[c] = float((integral(boxHi_[size_t(x)]) - integral(boxLo_[size_t(x)])) *
+                                boxInverseLength_[size_t(x)]);
     }
   });
   return out;
@@ -92,10 +108,20 @@ Image SeenLayers::boxTransposed(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
   forEachRow(view.height(), threads, [&](int y) {
-    for (int x = 0; x < width_; ++x) {
-      const Vec3f v = view.at(x, y);
-      for (uint32_t t = boxStart_[size_t(x)]; t < boxStart_[size_t(x) + 1]; ++t)
-        out.at(boxTaps_[t].column, y) += v * boxTaps_[t].weight;
+    const Vec3f* row = &view.at(0, y);
+    std::vector<double> h(static_cast<size_t>(width_)), prefix(static_cast<size_t>(width_) + 1);
+    for (int c = 0; c < 3; ++c) {
+      for (int x = 0; x < width_; ++x) {
+        h[size_t(x)] = row[x][c] * boxInverseLength_[size_t(x)];
+        prefix[size_t(x) + 1] = prefix[size_t(x)] + h[size_t(x)];
+      }
+      // The integral of h over [0, t] (h = 0 outside the row: t is clamped to it).
+      const auto integral = [&](const BoxEnd& e) {
+        return prefix[size_t(e.index)] + e.fraction * h[size_t(e.index)];
+      };
+      for (int k = 0; k < width_; ++k)
+        out.at(k, y)[c] =
+            float(integral(unclippedHi_[size_t(k)]) - integral(unclippedLo_[size_t(k)]));
     }
   });
   return out;

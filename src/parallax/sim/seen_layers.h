@@ -44,10 +44,6 @@ class SeenLayers {
   Image boxTransposed(const Image& view, int threads = 0) const;
 
  private:
-  struct Tap {
-    int column = 0;
-    float weight = 0;
-  };
   DisplayDesign design_;
   Vec3d eye_;
   bool imageInFront_ = true, periodBox_ = true;
@@ -56,9 +52,14 @@ class SeenLayers {
   std::vector<uint32_t> acrossStart_, downStart_;
   // For each rear row, the output rows whose pieces meet it and those pieces' weights.
   std::vector<std::vector<std::pair<int, float>>> rearRowSources_;
-  // B: output column x = sum of taps boxStart_[x] .. boxStart_[x+1] (boxFilterX's weights).
-  std::vector<Tap> boxTaps_;
-  std::vector<uint32_t> boxStart_;
+  // B: each output column's window [lo, hi] clipped to the row as (pixel, fraction into it),
+  // 1 / (hi - lo), and the window unclipped (clamped to the row's ends) for B^T.
+  struct BoxEnd {
+    int index = 0;
+    double fraction = 0;
+  };
+  std::vector<BoxEnd> boxLo_, boxHi_, unclippedLo_, unclippedHi_;
+  std::vector<double> boxInverseLength_;
 };
 
 }  // namespace parallax

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Content-adaptive layers from the command line: render --layers optimized-image | nmf on a
+# small display, simulate reading time-multiplexed frames, the dense measure telling the
+# optimised image layer from the slits' one, and refusals naming their option.
+# Usage: cli_layers_test.sh PARALLAX_BINARY SOURCE_DIR
+set -u
+source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
+
+cat >"$tmp/small.json" <<'JSON'
+{
+  "image_layer": {"resolution": [240, 60], "pixel_pitch_mm": 0.2745, "subpixels": "RGB"},
+  "layer_order": "barrier-back",
+  "gap_mm": 3,
+  "view_distance_mm": 600,
+  "views": 9,
+  "mask": {"type": "slits", "duty_cycle": 0.1111111111}
+}
+JSON
+record_number() {  # record_number FILE KEY: a number of render.json's /layers
+  python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["layers"][sys.argv[2]])' "$1" "$2"
+}
+
+check "render --layers slits" run 0 render --display "$tmp/small.json" --spp 4 -o "$tmp/slits"
+check "slits are recorded" grep -q '"method": "slits"' "$tmp/slits/render.json"
+check "render --layers optimized-image" run 0 render --display "$tmp/small.json" --spp 4 \
+  --layers optimized-image --iterations 6 --train-eyes 2 -o "$tmp/oi"
+check "optimized-image writes both layers" bash -c "test -s '$tmp/oi/image.png' && test -s '$tmp/oi/mask.png'"
+check "optimized-image keeps the slit mask" cmp "$tmp/slits/mask.png" "$tmp/oi/mask.png"
+first=$(record_number "$tmp/oi/render.json" objective_first)
+last=$(record_number "$tmp/oi/render.json" objective_last)
+check "optimized-image lowers its objective" awk -v a="$first" -v b="$last" 'BEGIN { exit !(b < a) }'
+
+check "render --layers nmf --rank 2" run 0 render --display "$tmp/small.json" --spp 4 \
+  --layers nmf --rank 2 --iterations 3 --train-eyes 1 -o "$tmp/nmf"
+for f in image-1.png image-2.png mask-1.png mask-2.png; do
+  check "nmf writes $f" test -s "$tmp/nmf/$f"
+done
+check "nmf lists its frames" python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert [f["image"] for f in d["frames"]] == ["image-1.png", "image-2.png"], d["frames"]
+assert d["layers"]["rank"] == 2 and d["layers"]["normalisation"] > 0
+' "$tmp/nmf/render.json"
+check "simulate reads the frames" run 0 simulate "$tmp/nmf" -o "$tmp/nmf-seen.png"
+check "simulate wrote the averaged view" test -s "$tmp/nmf-seen.png"
+
+# The dense measure at eyes the solver never saw (4 per view; it trained at 2 per view).
+check "dense measure of slits against optimized-image" run 0 simulate "$tmp/slits" --reference \
+  --eyes-per-view 4 --distances 0.8,1.25 --reference-spp 1 --compare "$tmp/oi" --compare "$tmp/nmf" --json
+check "optimized-image is seen better than slits" python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+slits, oi = d["renders"][0]["mean"]["psnr"], d["renders"][1]["mean"]["psnr"]
+assert oi > slits + 0.1, (slits, oi)
+' "$tmp/out"
+
+check "unknown --layers exits 2" run 2 render --display "$tmp/small.json" --layers best -o "$tmp/x"
+check "unknown --layers names the option" one_line_naming "--layers"
+check "--rank without nmf exits 2" run 2 render --display "$tmp/small.json" \
+  --layers optimized-image --rank 2 -o "$tmp/x"
+check "--rank without nmf names the option" one_line_naming "--rank"
+check "--rank 0 exits 2" run 2 render --display "$tmp/small.json" --layers nmf --rank 0 -o "$tmp/x"
+check "--layers nmf on a lenticular display exits 2" run 2 render --display lkg:portrait \
+  --layers nmf -o "$tmp/x"
+check "the lenticular refusal names --layers" one_line_naming "--layers"
+check "no output after refusals" test ! -e "$tmp/x"
+cli_summary
