@@ -59,6 +59,9 @@ check "unknown --layers names the option" one_line_naming "--layers"
 check "--rank without nmf exits 2" run 2 render --display "$tmp/small.json" \
   --layers optimized-image --rank 2 -o "$tmp/x"
 check "--rank without nmf names the option" one_line_naming "--rank"
+check "--layer-error srgb with nmf exits 2" run 2 render --display "$tmp/small.json" \
+  --layers nmf --layer-error srgb -o "$tmp/x"
+check "the --layer-error refusal names it" one_line_naming "--layer-error"
 check "--rank 0 exits 2" run 2 render --display "$tmp/small.json" --layers nmf --rank 0 -o "$tmp/x"
 check "--layers nmf on a lenticular display exits 2" run 2 render --display lkg:portrait \
   --layers nmf -o "$tmp/x"

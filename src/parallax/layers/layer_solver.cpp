@@ -21,55 +21,70 @@ void clampToUnit(Image& image) {
     for (int c = 0; c < 3; ++c) p[c] = std::clamp(std::isfinite(p[c]) ? p[c] : 0.0f, 0.0f, 1.0f);
 }
 
-// The squared slope of the sRGB encoding at x in [0, 1] (IEC 61966-2-1), tabulated on a
-// square-root scale (the slope changes fastest near black).
-class EncodingWeights {
+// The sRGB encoding S (IEC 61966-2-1) and its slope S', tabulated on a square-root scale (they
+// change fastest near black) and interpolated linearly; x is clamped to [0, 1] as the measure's
+// encoding clamps it.
+class SrgbTable {
  public:
-  EncodingWeights() {
+  SrgbTable() {
     for (int i = 0; i < kSize; ++i) {
       const double r = double(i) / (kSize - 1), x = r * r;
-      const double slope = x <= 0.0031308 ? 12.92 : 1.055 / 2.4 * std::pow(x, 1.0 / 2.4 - 1.0);
-      table_[size_t(i)] = float(slope * slope);
+      encode_[size_t(i)] = float(x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055);
+      slope_[size_t(i)] =
+          float(x <= 0.0031308 ? 12.92 : 1.055 / 2.4 * std::pow(x, 1.0 / 2.4 - 1.0));
     }
   }
-  float operator()(float x) const {
-    const float r = std::sqrt(std::clamp(x, 0.0f, 1.0f));
-    return table_[size_t(std::lround(r * float(kSize - 1)))];
+  // S(x) and S'(x); S' is 0 above 1, where the clamp holds S constant.
+  void operator()(float x, float& encoded, float& slope) const {
+    const float t = std::sqrt(std::clamp(x, 0.0f, 1.0f)) * float(kSize - 1);
+    const int i = std::min(int(t), kSize - 2);
+    const float f = t - float(i);
+    encoded = encode_[size_t(i)] + f * (encode_[size_t(i) + 1] - encode_[size_t(i)]);
+    slope = x <= 1.0f ? slope_[size_t(i)] + f * (slope_[size_t(i) + 1] - slope_[size_t(i)]) : 0.0f;
   }
 
  private:
   static constexpr int kSize = 4096;
-  std::array<float, kSize> table_{};
+  std::array<float, kSize> encode_{}, slope_{};
 };
 
-const EncodingWeights& encodingWeights() {
-  static const EncodingWeights weights;
-  return weights;
+const SrgbTable& srgbTable() {
+  static const SrgbTable table;
+  return table;
 }
 
-// W x for one eye's view-sized image (x unchanged without weights).
-Image weighted(const TrainingView& v, Image x) {
-  if (!(v.encodingScale > 0)) return x;
-  const EncodingWeights& w = encodingWeights();
-  const float inv = 1.0f / v.encodingScale;
-  for (size_t i = 0; i < x.pixels().size(); ++i)
-    for (int c = 0; c < 3; ++c) x.pixels()[i][c] *= w(v.target.pixels()[i][c] * inv);
-  return x;
-}
-
-// 1/2 |seen - target|_W^2 for one eye.
-double halfWeightedSquares(const TrainingView& v, const Image& seen) {
-  const EncodingWeights& w = encodingWeights();
-  const bool weigh = v.encodingScale > 0;
-  const float inv = weigh ? 1.0f / v.encodingScale : 0.0f;
+// One eye's error E_e for its view `seen`, and optionally the residual dE_e/dV (what the
+// adjoint takes) and the Gauss-Newton weights (E_e's curvature along V). In linear light
+// E_e = 1/2 |V - t|^2 (residual V - t, weights 1); with TrainingView::encodingScale c > 0,
+// E_e = 1/2 |S(V/c) - S(t/c)|^2, the dense measure's own squared error (residual
+// S'(V/c)/c (S(V/c) - S(t/c)), weights (S'(V/c)/c)^2).
+double eyeError(const TrainingView& v, const Image& seen, Image* residual, Image* weights) {
+  const bool srgb = v.encodingScale > 0;
+  const float inv = srgb ? 1.0f / v.encodingScale : 1.0f;
+  const SrgbTable& table = srgbTable();
   double sum = 0;
   for (size_t i = 0; i < seen.pixels().size(); ++i)
     for (int c = 0; c < 3; ++c) {
-      const float t = v.target.pixels()[i][c];
-      const double d = double(seen.pixels()[i][c]) - double(t);
-      sum += 0.5 * d * d * (weigh ? double(w(t * inv)) : 1.0);
+      const float value = seen.pixels()[i][c], target = v.target.pixels()[i][c];
+      float diff = value - target, slope = 1.0f;
+      if (srgb) {
+        float a = 0, b = 0, unused = 0;
+        table(value * inv, a, slope);
+        table(target * inv, b, unused);
+        diff = a - b;
+        slope *= inv;
+      }
+      sum += 0.5 * double(diff) * double(diff);
+      if (residual) residual->pixels()[i][c] = slope * diff;
+      if (weights) weights->pixels()[i][c] = slope * slope;
     }
   return sum;
+}
+
+Image elementwise(const Image& a, const Image& b) {
+  Image out = a;
+  for (size_t i = 0; i < out.pixels().size(); ++i) out.pixels()[i] = a.pixels()[i] * b.pixels()[i];
+  return out;
 }
 
 // a += s * b, a -= b, <a, b>, |a|^2 over images of one size.
@@ -138,7 +153,7 @@ double layerObjective(const std::vector<TrainingView>& views, const std::vector<
   checkViews(views);
   double sum = 0;
   for (const TrainingView& v : views)
-    sum += halfWeightedSquares(v, averageView(v, frames, threads));
+    sum += eyeError(v, averageView(v, frames, threads), nullptr, nullptr);
   return sum * normaliser(views);
 }
 
@@ -149,7 +164,7 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
   const auto energy = [&](const Image& x) {
     double sum = 0;
     for (const TrainingView& v : views)
-      sum += halfWeightedSquares(v, viewOf(v.seen, x, mask, threads));
+      sum += eyeError(v, viewOf(v.seen, x, mask, threads), nullptr, nullptr);
     return sum * normaliser(views);
   };
   // A diagonal preconditioner: 1 / (sum_e A_e^T A_e 1), the curvature each pixel would have if
@@ -158,9 +173,13 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
   Image precondition(image.width(), image.height());
   {
     const Image ones(image.width(), image.height(), Vec3f(1.0f));
-    for (const TrainingView& v : views)
-      addImageGradient(v, weighted(v, viewOf(v.seen, ones, mask, threads)), mask, precondition,
-                       threads);
+    for (const TrainingView& v : views) {
+      // The Gauss-Newton weights at the starting layers.
+      Image weights(v.seen.width(), v.seen.height());
+      eyeError(v, viewOf(v.seen, image, mask, threads), nullptr, &weights);
+      addImageGradient(v, elementwise(viewOf(v.seen, ones, mask, threads), weights), mask,
+                       precondition, threads);
+    }
     for (Vec3f& p : precondition.pixels())
       for (int c = 0; c < 3; ++c) p[c] = p[c] > 0.0f ? 1.0f / p[c] : 0.0f;
   }
@@ -168,12 +187,12 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
   SolveReport local;
   local.objective.push_back(e);
   for (int it = 0; it < iterations; ++it) {
-    // Gradient of E (times 1 / norm): sum over eyes of A_e^T (V_e - t_e).
+    // Gradient of E (times 1 / norm): sum over eyes of A_e^T dE_e/dV_e.
     Image grad(image.width(), image.height());
     for (const TrainingView& v : views) {
-      Image residual = viewOf(v.seen, image, mask, threads);
-      addScaled(residual, v.target, -1.0f);
-      addImageGradient(v, weighted(v, std::move(residual)), mask, grad, threads);
+      Image residual(v.seen.width(), v.seen.height());
+      eyeError(v, viewOf(v.seen, image, mask, threads), &residual, nullptr);
+      addImageGradient(v, residual, mask, grad, threads);
     }
     // Projected, preconditioned direction: no move out of [0, 1] at a bound.
     Image d(image.width(), image.height());
@@ -183,14 +202,22 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
         const bool stuck = (x <= 0.0f && g > 0.0f) || (x >= 1.0f && g < 0.0f);
         d.pixels()[i][c] = stuck ? 0.0f : -g * precondition.pixels()[i][c];
       }
-    // The exact step of the quadratic along d: -<g, d> / sum_e |A_e d|^2 (A_e linear in the
-    // image with the mask fixed).
+    // The exact step of the quadratic (Gauss-Newton: of its model) along d:
+    // -<g, d> / sum_e |A_e d|^2_W (A_e linear in the image with the mask fixed).
     const double slope = dot(grad, d);
     if (!(slope < 0)) break;
     double curvature = 0;
     for (const TrainingView& v : views) {
       const Image ad = viewOf(v.seen, d, mask, threads);
-      curvature += dot(ad, weighted(v, ad));
+      if (!(v.encodingScale > 0)) {
+        curvature += dot(ad, ad);
+        continue;
+      }
+      // The Gauss-Newton weights at the current layers (recomputed: kept for every eye they
+      // would double the solver's memory).
+      Image weights(v.seen.width(), v.seen.height());
+      eyeError(v, viewOf(v.seen, image, mask, threads), nullptr, &weights);
+      curvature += dot(ad, elementwise(ad, weights));
     }
     if (!(curvature > 0)) break;
     double step = -slope / curvature;
@@ -219,6 +246,9 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                                         SolveReport* report) {
   checkViews(views);
   if (frames.empty()) throw std::invalid_argument("factorizeLayers: no frames");
+  for (const TrainingView& v : views)
+    if (v.encodingScale > 0)
+      throw std::invalid_argument("factorizeLayers: multiplicative updates fit in linear light");
   for (LayerFrame& f : frames) clampToUnit(f.image), clampToUnit(f.mask);
   SolveReport local;
   local.objective.push_back(layerObjective(views, frames, threads));
@@ -234,8 +264,8 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       denominator.emplace_back(x.width(), x.height());
     }
     for (const TrainingView& v : views) {
-      const Image seen = weighted(v, averageView(v, frames, threads));
-      const Image target = weighted(v, v.target);
+      const Image seen = averageView(v, frames, threads);
+      const Image& target = v.target;
       for (size_t t = 0; t < frames.size(); ++t) {
         const LayerFrame& f = frames[t];
         if (updateImages) {

@@ -4,10 +4,9 @@
 // two layers; T time-multiplexed frame pairs are seen as their average, as the eye integrates
 // them. Two solvers minimise
 //
-//     E = 1/2 sum_e |V_e - t_e|_W^2,   every layer pixel in [0, 1] (linear transmittance),
+//     E = 1/2 sum_e |V_e - t_e|^2,   every layer pixel in [0, 1] (linear transmittance),
 //
-// with per-pixel weights W (TrainingView::encodingScale; the ones of a plain sum without it),
-//
+// (or, for the image layer, the same on sRGB-encoded values: TrainingView::encodingScale),
 //   - optimizeImageLayer: the mask fixed (the paper's slits), E is quadratic in the image layer:
 //     projected gradient descent, preconditioned by 1 / (sum_e A_e^T A_e 1), with the exact step
 //     along the projected direction, halved until E decreases (so E never increases);
@@ -31,10 +30,9 @@ namespace parallax {
 struct TrainingView {
   SeenLayers seen;
   Image target;
-  // > 0: each error is weighted by the square of the sRGB encoding's slope at the target's
-  // value over encodingScale (the layers' brightness), the least-squares form of the dense
-  // measure's PSNR on sRGB values (an error in the shadows costs what the eye and the measure
-  // see in it, as the gamma 2.2 of Wetzstein et al.'s course code intends). 0: unweighted.
+  // > 0 (optimizeImageLayer only): errors between the sRGB encodings of V / encodingScale and
+  // target / encodingScale (the layers' brightness), the dense measure's own squared error,
+  // solved by Gauss-Newton steps. 0: errors in linear light.
   float encodingScale = 0.0f;
 };
 

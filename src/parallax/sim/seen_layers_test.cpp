@@ -93,5 +93,26 @@ TEST(SeenLayers, SameGradientsForAnyThreadCount) {
   EXPECT_EQ(c.pixels(), e.pixels());
 }
 
+// Time-multiplexed frames are seen as the average of their views.
+TEST(SimulatedFrames, SeeTheAverageOfTheFramesViews) {
+  const DisplayDesign d = smallDisplay(LayerOrder::BarrierBack);
+  const std::unique_ptr<DisplayModel> model = makeBarrierDisplay(d);
+  SimulationOptions options;
+  options.normalisation = 0.25;
+  std::vector<LayerImages> frames;
+  for (uint64_t k = 0; k < 3; ++k)
+    frames.push_back({randomImage(90, 8, 10 + k), randomImage(90, 8, 20 + k)});
+  const auto all = simulateDisplay(*model, frames, options);
+  const Vec3d eye{14, -2, 610};
+  const Image seen = all->view(eye);
+  Image expected(seen.width(), seen.height());
+  for (const LayerImages& f : frames) {
+    const Image one = simulateDisplay(*model, f, options)->view(eye);
+    for (size_t i = 0; i < one.pixels().size(); ++i) expected.pixels()[i] += one.pixels()[i] / 3.0f;
+  }
+  for (size_t i = 0; i < seen.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(seen.pixels()[i][c], expected.pixels()[i][c], 1e-5f);
+}
+
 }  // namespace
 }  // namespace parallax
