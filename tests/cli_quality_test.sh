@@ -5,16 +5,8 @@
 set -u
 source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
 
-cat >"$tmp/small.json" <<'JSON'
-{
-  "image_layer": {"resolution": [240, 60], "pixel_pitch_mm": 0.2745, "subpixels": "RGB"},
-  "layer_order": "barrier-back",
-  "gap_mm": 3,
-  "view_distance_mm": 600,
-  "views": 9,
-  "mask": {"type": "slits", "duty_cycle": 0.1111111111}
-}
-JSON
+# A small display: 240 x 60 pixels of the built-in pitch, 9 views.
+cp "$src/tests/fixtures/displays/small-9-views.json" "$tmp/small.json"
 json_number() {  # json_number KEY_PATH_REGEX: the first number after it in $tmp/out
   tr -d ' \n' <"$tmp/out" | grep -o "$1" | head -1 | grep -o '[-0-9.e]*$'
 }

@@ -129,21 +129,18 @@ void checkViews(const std::vector<TrainingView>& views) {
       throw std::invalid_argument("layer solver: a target's size differs from its view");
 }
 
-// The image layer's gradient: the front or the rear gradient of each eye, with the mask fixed.
+// The gradient of one eye's view with respect to the image layer (imageLayer) or the mask,
+// the other layer fixed: the front or the rear adjoint, by the display's layer order.
+void addLayerGradient(const TrainingView& v, const Image& residual, const Image& other, Image& grad,
+                      bool imageLayer, int threads) {
+  if (v.seen.imageInFront() == imageLayer)
+    v.seen.addFrontGradient(residual, other, grad, threads);
+  else
+    v.seen.addRearGradient(residual, other, grad, threads);
+}
 void addImageGradient(const TrainingView& v, const Image& residual, const Image& mask, Image& grad,
                       int threads) {
-  if (v.seen.imageInFront())
-    v.seen.addFrontGradient(residual, mask, grad, threads);
-  else
-    v.seen.addRearGradient(residual, mask, grad, threads);
-}
-
-void addMaskGradient(const TrainingView& v, const Image& residual, const Image& image, Image& grad,
-                     int threads) {
-  if (v.seen.imageInFront())
-    v.seen.addRearGradient(residual, image, grad, threads);
-  else
-    v.seen.addFrontGradient(residual, image, grad, threads);
+  addLayerGradient(v, residual, mask, grad, true, threads);
 }
 
 }  // namespace
@@ -268,13 +265,9 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       const Image& target = v.target;
       for (size_t t = 0; t < frames.size(); ++t) {
         const LayerFrame& f = frames[t];
-        if (updateImages) {
-          addImageGradient(v, target, f.mask, numerator[t], threads);
-          addImageGradient(v, seen, f.mask, denominator[t], threads);
-        } else {
-          addMaskGradient(v, target, f.image, numerator[t], threads);
-          addMaskGradient(v, seen, f.image, denominator[t], threads);
-        }
+        const Image& other = updateImages ? f.mask : f.image;
+        addLayerGradient(v, target, other, numerator[t], updateImages, threads);
+        addLayerGradient(v, seen, other, denominator[t], updateImages, threads);
       }
     }
     for (size_t t = 0; t < frames.size(); ++t) {

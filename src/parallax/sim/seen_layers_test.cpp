@@ -6,19 +6,12 @@
 
 #include "parallax/core/random.h"
 #include "parallax/display/display_model.h"
+#include "parallax/sim/sim_test_support.h"
 #include "parallax/sim/simulated_display.h"
 #include "parallax/sim/simulator.h"
 
 namespace parallax {
 namespace {
-
-DisplayDesign smallDisplay(LayerOrder order, int width = 90, int height = 8) {
-  DisplaySpec s = defaultDisplaySpec();
-  s.order = order;
-  s.imagePanel.width = s.maskPanel.width = width;
-  s.imagePanel.height = s.maskPanel.height = height;
-  return designDisplay(s);
-}
 
 Image randomImage(int width, int height, uint64_t seed) {
   Rng rng(seed);
@@ -36,7 +29,7 @@ double dot(const Image& a, const Image& b) {
 
 TEST(SeenLayers, EqualsTheSimulatorsExactViewInBothLayerOrders) {
   for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
-    const DisplayDesign d = smallDisplay(order);
+    const DisplayDesign d = smallDisplay(order, 90, 8);
     const Image image = randomImage(d.spec.imagePanel.width, d.spec.imagePanel.height, 3);
     const Image mask = maskLayerImage(d);
     const std::unique_ptr<DisplayModel> model = makeBarrierDisplay(d);
@@ -95,7 +88,7 @@ TEST(SeenLayers, SameGradientsForAnyThreadCount) {
 
 // Time-multiplexed frames are seen as the average of their views.
 TEST(SimulatedFrames, SeeTheAverageOfTheFramesViews) {
-  const DisplayDesign d = smallDisplay(LayerOrder::BarrierBack);
+  const DisplayDesign d = smallDisplay(LayerOrder::BarrierBack, 90, 8);
   const std::unique_ptr<DisplayModel> model = makeBarrierDisplay(d);
   SimulationOptions options;
   options.normalisation = 0.25;

@@ -14,17 +14,10 @@
 #include "parallax/display/mask.h"
 #include "parallax/image/metrics.h"
 #include "parallax/sim/crosstalk.h"
+#include "parallax/sim/sim_test_support.h"
 
 namespace parallax {
 namespace {
-
-DisplayDesign smallDisplay(LayerOrder order, int width = 180, int height = 24) {
-  DisplaySpec s = defaultDisplaySpec();
-  s.order = order;
-  s.imagePanel.width = s.maskPanel.width = width;
-  s.imagePanel.height = s.maskPanel.height = height;
-  return designDisplay(s);
-}
 
 Image constantImage(const Panel& panel, float value) {
   return Image(panel.width, panel.height, Vec3f(value));
