@@ -7,9 +7,11 @@
 //     E = 1/2 sum_e |V_e - t_e|^2,   every layer pixel in [0, 1] (linear transmittance),
 //
 // (or, for the image layer, the same on sRGB-encoded values: TrainingView::encodingScale),
-//   - optimizeImageLayer: the mask fixed (the paper's slits), E is quadratic in the image layer:
-//     projected gradient descent, preconditioned by 1 / (sum_e A_e^T A_e 1), with the exact step
-//     along the projected direction, halved until E decreases (so E never increases);
+//   - optimizeImageLayer: the mask fixed (the paper's slits), V is linear in the image layer and
+//     E a least-squares problem in it (on sRGB values, solved by Gauss-Newton steps): projected
+//     gradient descent, preconditioned by 1 / (sum_e A_e^T W_e A_e 1), with the step that
+//     minimises E's Gauss-Newton model along the projected direction, halved until E decreases
+//     (so E never increases);
 //   - factorizeLayers: both layers of T frames by weighted non-negative multiplicative updates
 //     (Lee and Seung 2001; Lanman et al. 2010, HR3D, eq. 7-8; Wetzstein et al. 2012, Tensor
 //     Displays): x <- clamp(x * (A^T t) / (A^T V), 0, 1) for all frames' images, then all their
