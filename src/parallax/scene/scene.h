@@ -104,6 +104,19 @@ struct CameraSpec {
   float fovDegrees = 40.0f;  // vertical field of view
 };
 
+// Keys of a scene file's animation (docs/animation.md): at `seconds`, the view camera or the
+// display placement; between keys both are interpolated (scene/motion.h).
+struct CameraKey {
+  double seconds = 0;
+  CameraSpec camera;
+};
+struct DisplayKey {
+  double seconds = 0;
+  Vec3f center{0.0f};
+  Vec3f normal{0, 0, 1};
+  Vec3f up{0, 1, 0};
+};
+
 struct Scene {
   std::string source;  // file it came from, or "<built-in>"
   std::vector<TriangleMesh> meshes;
@@ -117,6 +130,8 @@ struct Scene {
   int maxDepth = 4;        // mirror bounces
   DisplayPlacement display;
   std::optional<CameraSpec> camera;
+  std::vector<CameraKey> cameraKeys;    // sorted by time; empty: the camera does not move
+  std::vector<DisplayKey> displayKeys;  // sorted by time; empty: the display does not move
   std::vector<std::string> warnings;
 
   size_t triangleCount() const;
