@@ -490,6 +490,8 @@ void runRender(const RenderOptions& o) {
   Scene scene = loadSceneReportingWarnings(o.scene);
   const SequencePlan plan = planSequence(o.sequence, scene);
   if (o.sequence.given()) prepareFraming(scene, plan);
+  noteAnimation(o.sequence, scene);
+
   const Framing framing = frameForRender(o, scene, design);
   if (!o.quilt.empty()) {
     const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(design);

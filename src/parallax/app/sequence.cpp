@@ -95,6 +95,17 @@ std::vector<double> SequencePlan::times() const {
   return t;
 }
 
+void noteAnimation(const SequenceOptions& options, const Scene& scene) {
+  if (options.given()) return;
+  const SceneMotion motion = sceneMotion(scene);
+  if (motion.empty()) return;
+  const SequencePlan plan = planSequence(options, scene);
+  std::fprintf(stderr,
+               "note: the scene is animated (%g s, %d frames at %g fps); this is its rest pose: "
+               "--frames 1:%d renders the frames (docs/animation.md)\n",
+               plan.seconds, plan.total, plan.fps, plan.total);
+}
+
 std::string frameName(int frame) {
   char text[32];
   std::snprintf(text, sizeof text, "frame-%04d", frame);

@@ -53,6 +53,10 @@ struct SequencePlan {
 // content (contentTurntable) by `turntable` degrees over it; keys last until their last time.
 SequencePlan planSequence(const SequenceOptions& options, const Scene& scene);
 
+// Without a sequence asked for, one line on stderr when the scene moves (keys or a glTF
+// animation): how to render its frames.
+void noteAnimation(const SequenceOptions& options, const Scene& scene);
+
 // "frame-0007": the folder (or, with a suffix, the file stem) of one frame, 4 digits at least.
 std::string frameName(int frame);
 

@@ -93,6 +93,7 @@ std::string numberedPath(const std::string& output, int frame) {
 void runView(const ViewOptions& o) {
   const RenderSettings settings = o.sampling.settings();
   Scene scene = loadSceneReportingWarnings(o.scene);
+  noteAnimation(o.sequence, scene);
   const std::unique_ptr<Camera> camera = makeCamera(o, scene);
   // Before anything is allocated: the film and the writer's 8-bit copy, and the time.
   const std::string size = std::to_string(camera->width()) + "x" + std::to_string(camera->height());

@@ -23,17 +23,23 @@ struct Turntable {
 
 struct SceneMotion {
   std::optional<Turntable> turntable;
-  // Copies of the scene's keys (Scene::cameraKeys, Scene::displayKeys).
+  // Copies of the scene's keys (Scene::cameraKeys, Scene::displayKeys, Scene::nodeAnimation).
   std::vector<CameraKey> cameraKeys;
   std::vector<DisplayKey> displayKeys;
+  NodeAnimation nodeAnimation;
 
-  bool movesGeometry() const { return turntable.has_value(); }
-  bool empty() const { return !turntable && cameraKeys.empty() && displayKeys.empty(); }
+  bool movesGeometry() const { return turntable.has_value() || !nodeAnimation.empty(); }
+  bool empty() const { return !movesGeometry() && cameraKeys.empty() && displayKeys.empty(); }
   // The time of the last key (0 without keys).
   double keyedSeconds() const;
 };
 
-// The scene's own motion (its keys), with no turntable.
+// A glTF node's transform at `seconds`: translation * rotation * scale (glTF 2.0,
+// "Transformations"), each channel interpolated between its keys (LINEAR: lerp, rotations by slerp;
+// STEP: the earlier key) and held outside them, times the parent's, up to the file's root.
+Mat4 fileFromNodeAt(const NodeAnimation& animation, int node, double seconds);
+
+// The scene's own motion (its keys and node animation), with no turntable.
 SceneMotion sceneMotion(const Scene& scene);
 
 // The turntable a user means by "turn the content": about the display's up axis, through the
