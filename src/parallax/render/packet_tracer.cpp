@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace parallax {
 
@@ -31,7 +33,12 @@ PacketTracer::PacketTracer(const Scene& scene, const Accelerator& accelerator,
       accelerator_(accelerator),
       lights_(lights),
       surfaces_(scene, accelerator),
-      bounces_(std::max(0, bounces)) {
+      bounces_(bounces) {
+  // Each bounce is one level of recursion (a few KiB of packets on the stack): the range is
+  // RenderSettings's, which the command line checks (--bounces).
+  if (bounces < 0 || bounces > RenderSettings::kMaxBounces)
+    throw std::invalid_argument("PacketTracer: bounces " + std::to_string(bounces) +
+                                " outside 0.." + std::to_string(RenderSettings::kMaxBounces));
   // The meshes whose emission next-event estimation already samples (light_sampler.h): a quad
   // light's visible quad and every emissive mesh light. A diffuse bounce that reaches one of
   // them adds nothing, or the light would be counted twice (docs/path-tracing.md).
