@@ -52,6 +52,9 @@ for cmd in render view bench "lenticular render $tmp/small.json"; do
     refuse "$cmd --seed '$bad'" --seed "$@" --seed "$bad" -o "$o"
   done
   refuse "$cmd --jitter" --jitter "$@" --jitter sideways -o "$o"
+  for bad in -1 65 abc 2.5; do
+    refuse "$cmd --bounces '$bad'" --bounces "$@" --bounces "$bad" -o "$o"
+  done
 done
 # The time estimate: a billion samples per pixel, and a small --max-time.
 refuse "view --spp 1e9" "--spp 1000000000" view --spp 1000000000 -o "$o"
