@@ -225,6 +225,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   record.set("/display_kind", displayKindName(display.kind()));
   record.set("/scene", scene.source);
   record.set("/spp", o.sampling.spp);
+  record.set("/bounces", settings.bounces);
   record.set("/seed", o.sampling.seed);
   record.set("/jitter", o.sampling.jitter);
   record.set("/threads", o.sampling.threads);
@@ -416,6 +417,7 @@ void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator&
     frames = solveLayers(o, scene, accelerator, design, training, layers, record);
   record.set("/scene", scene.source);
   record.set("/spp", settings.samplesPerPixel);
+  record.set("/bounces", settings.bounces);
   record.set("/seed", o.sampling.seed);
   record.set("/jitter", o.sampling.jitter);
   record.set("/threads", o.sampling.threads);
