@@ -480,6 +480,7 @@ void runRender(const RenderOptions& o) {
   training.eyesPerView = o.trainEyesPerView;
   training.srgbWeights = layerError(o) == "srgb";
   training.threads = settings.threads;
+  training.bounces = settings.bounces;
   if (o.layers != "slits") {
     // The training targets and, per frame, two layers and their gradients.
     const double layerBytes = double(design.spec.imagePanel.width) * design.spec.imagePanel.height *
