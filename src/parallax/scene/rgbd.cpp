@@ -67,36 +67,50 @@ TriangleMesh makeSheet(const std::string& name, uint32_t material, const std::ve
   return mesh;
 }
 
+// For each i of a line of n items, the index of the largest value(j) over the window
+// j in [i - r, i + r] (clipped to the line), ties to the smallest j: a sliding maximum with a
+// deque of candidates whose values decrease (equal values keep their order), so that each item
+// is pushed and popped once, whatever r. `deque` holds n ints.
+template <class Value>
+void slidingArgmax(int n, int r, const Value& value, int* deque, int* out) {
+  int head = 0, tail = 0;
+  for (int k = 0; k < n + r; ++k) {
+    if (k < n) {
+      const float v = value(k);
+      while (tail > head && value(deque[tail - 1]) < v) --tail;
+      deque[tail++] = k;
+    }
+    const int i = k - r;
+    if (i < 0) continue;
+    while (deque[head] < i - r) ++head;
+    out[i] = deque[head];
+  }
+}
+
 // The far-side dilation: for each pixel, the pixel of largest z within `radius` (a square
 // window, clipped at the borders), ties to the first in scan order, found as a horizontal then
-// a vertical pass (the maximum over a square is the maximum over rows of the row maxima). The
-// passes run in parallel over rows, then columns; each result depends only on its window.
+// a vertical pass (the maximum over a square is the maximum over rows of the row maxima; in
+// both passes an earlier position is an earlier pixel in scan order). The passes run in
+// parallel over rows, then columns; each result depends only on its window.
 std::vector<size_t> farthestNearby(const std::vector<float>& z, int width, int height, int radius) {
   std::vector<size_t> rowBest(z.size()), best(z.size());
   parallelFor(height, 0, 8, [&](int64_t begin, int64_t end) {
-    for (int64_t y = begin; y < end; ++y)
-      for (int x = 0; x < width; ++x) {
-        size_t pick = size_t(y) * size_t(width) + size_t(std::max(0, x - radius));
-        const int last = std::min(width - 1, x + radius);
-        for (int k = std::max(0, x - radius) + 1; k <= last; ++k) {
-          const size_t i = size_t(y) * size_t(width) + size_t(k);
-          if (z[i] > z[pick]) pick = i;
-        }
-        rowBest[size_t(y) * size_t(width) + size_t(x)] = pick;
-      }
+    std::vector<int> deque(static_cast<size_t>(width)), pick(static_cast<size_t>(width));
+    for (int64_t y = begin; y < end; ++y) {
+      const size_t row = size_t(y) * size_t(width);
+      slidingArgmax(
+          width, radius, [&](int x) { return z[row + size_t(x)]; }, deque.data(), pick.data());
+      for (int x = 0; x < width; ++x) rowBest[row + size_t(x)] = row + size_t(pick[size_t(x)]);
+    }
   });
   parallelFor(width, 0, 8, [&](int64_t begin, int64_t end) {
-    for (int64_t x = begin; x < end; ++x)
-      for (int y = 0; y < height; ++y) {
-        size_t pick = rowBest[size_t(std::max(0, y - radius)) * size_t(width) + size_t(x)];
-        const int last = std::min(height - 1, y + radius);
-        for (int k = std::max(0, y - radius) + 1; k <= last; ++k) {
-          const size_t candidate = rowBest[size_t(k) * size_t(width) + size_t(x)];
-          if (z[candidate] > z[pick] || (z[candidate] == z[pick] && candidate < pick))
-            pick = candidate;
-        }
-        best[size_t(y) * size_t(width) + size_t(x)] = pick;
-      }
+    std::vector<int> deque(static_cast<size_t>(height)), pick(static_cast<size_t>(height));
+    for (int64_t x = begin; x < end; ++x) {
+      const auto at = [&](int y) { return size_t(y) * size_t(width) + size_t(x); };
+      slidingArgmax(
+          height, radius, [&](int y) { return z[rowBest[at(y)]]; }, deque.data(), pick.data());
+      for (int y = 0; y < height; ++y) best[at(y)] = rowBest[at(pick[size_t(y)])];
+    }
   });
   return best;
 }

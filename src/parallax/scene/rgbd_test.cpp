@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -176,6 +177,37 @@ TEST(Rgbd, LayeredCutsTheDepthStepAndFillsItFromTheFarSide) {
       const Vec3f front = scene.meshes[0].positions[i];
       EXPECT_GT(-back.positions[i].z, -front.z);
       EXPECT_NEAR(back.positions[i].x / back.positions[i].z, front.x / front.z, 1e-6);
+    }
+}
+
+TEST(Rgbd, LayeredBackgroundIsTheFarthestPixelNearbyAsBruteForceFindsIt) {
+  // Few depth levels, so that many windows hold ties (the first pixel in scan order wins), and
+  // a colour that names its pixel, so that the background's colour says which pixel it took.
+  const int w = 23, h = 17, radius = 3;
+  Image colour(w, h);
+  DepthMap depth = constantDepth(w, h, 0.0f);
+  uint32_t state = 12345;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      state = state * 1664525u + 1013904223u;
+      depth.values[size_t(y * w + x)] = float((state >> 24) % 4) / 3.0f;
+      colour.at(x, y) = {float(x), float(y), 0.0f};
+    }
+  RgbdOptions o;
+  o.edges = RgbdEdges::Layered;
+  o.backgroundRadius = radius;
+  const Scene scene = makeRgbdScene(colour, depth, o);
+  const Image& back = scene.images[size_t(scene.textures[1].image)];
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      // Farthest = smallest disparity value; scan order, strictly smaller replaces.
+      int bx = -1, by = -1;
+      for (int yy = std::max(0, y - radius); yy <= std::min(h - 1, y + radius); ++yy)
+        for (int xx = std::max(0, x - radius); xx <= std::min(w - 1, x + radius); ++xx)
+          if (bx < 0 || depth.at(xx, yy) < depth.at(bx, by)) bx = xx, by = yy;
+      EXPECT_EQ(back.at(x, y), Vec3f(float(bx), float(by), 0.0f)) << x << "," << y;
+      EXPECT_NEAR(-scene.meshes[1].positions[size_t(y * w + x)].z,
+                  1.01 * depthFromValue(depth.at(bx, by), o), 1e-5);
     }
 }
 
