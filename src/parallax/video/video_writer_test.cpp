@@ -85,6 +85,9 @@ struct Case {
   const char* file;
   int width, height;
 };
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.codec << " " << c.file << " " << c.width << "x" << c.height;
+}
 
 class VideoRoundTrip : public VideoWriterTest, public ::testing::WithParamInterface<Case> {};
 
