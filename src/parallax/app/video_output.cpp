@@ -11,7 +11,7 @@
 
 namespace parallax::app {
 
-void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames) {
+void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames, bool withFps) {
   cmd.add_option("--video", o.file,
                  "Also write " + frames +
                      " as a video: .mp4 (H.264; H.265 above 4096 a side), .webm (VP9) or .mkv "
@@ -24,6 +24,7 @@ void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frame
                  "(18: visually lossless), 0 to 63 for vp9")
       ->capture_default_str()
       ->check(integerIn(0, 63));
+  if (!withFps) return;
   cmd.add_option("--fps", o.fps, "Frames per second of --video, above 0 and at most 240")
       ->capture_default_str()
       ->check(realIn(0, 240, Bound::Open));

@@ -26,9 +26,11 @@ struct VideoCliOptions {
   VideoOptions videoOptions() const { return {codec, quality, fps}; }
 };
 
-// Adds --video, --video-codec, --video-quality and --fps to `cmd`; `o` must outlive it (keep it
-// in the command's shared options). `frames` says what the frames are, for the help text.
-void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames);
+// Adds --video, --video-codec, --video-quality and (unless the command's sequence options
+// already have it: `withFps` false) --fps to `cmd`; `o` must outlive it (keep it in the
+// command's shared options). `frames` says what the frames are, for the help text.
+void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames,
+                     bool withFps = true);
 // Refuses bad video options (InputError naming the option) before any work is done.
 void checkVideoCliOptions(const VideoCliOptions& o);
 
