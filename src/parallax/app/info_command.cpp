@@ -24,6 +24,8 @@ const char* lightKindName(Light::Kind kind) {
       return "quad";
     case Light::Kind::Mesh:
       return "mesh";
+    case Light::Kind::Spot:
+      return "spot";
   }
   return "?";
 }

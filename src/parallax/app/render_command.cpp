@@ -34,6 +34,7 @@ namespace {
 
 struct RenderOptions {
   std::string scene, display;
+  SceneLoadOptions load;  // --camera
   SamplingOptions sampling;
   std::string output = "out";
   bool linear = false;
@@ -310,11 +311,11 @@ void runLenticular(const RenderOptions& o, const LenticularCalibration& calibrat
     if (o.sequence.given())
       throw InputError("command line", "--frames/--turntable",
                        "a lenticular panel's sequence is a sequence of quilts: add --quilt auto");
-    return runLenticularRender({calibration, o.scene, o.output, o.sampling, o.filter, 0.0});
+    return runLenticularRender({calibration, o.scene, o.output, o.sampling, o.filter, 0.0, o.load});
   }
   const LenticularDesign design = designLenticular(calibration);
   const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(design);
-  Scene scene = loadSceneReportingWarnings(o.scene);
+  Scene scene = loadSceneReportingWarnings(o.scene, o.load);
   settings.samplesPerPixel = o.sampling.spp;
   if (!o.sequence.given())
     return runQuiltRender(o, layout, *display, scene, settings, nullptr,
@@ -487,7 +488,7 @@ void runRender(const RenderOptions& o) {
                         "the training views of --layers " + o.layers,
                         "use fewer --train-eyes or a smaller display");
   }
-  Scene scene = loadSceneReportingWarnings(o.scene);
+  Scene scene = loadSceneReportingWarnings(o.scene, o.load);
   const SequencePlan plan = planSequence(o.sequence, scene);
   if (o.sequence.given()) prepareFraming(scene, plan);
   const Framing framing = frameForRender(o, scene, design);
@@ -532,6 +533,7 @@ void registerRenderCommand(CLI::App& cli) {
   CLI::App* cmd =
       cli.add_subcommand("render", "Render the image and mask layers of a parallax display");
   cmd->add_option("scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
+  addSceneLoadOptions(*cmd, options->load);
   cmd->add_option("--display", options->display,
                   "Display: a barrier display file, a lenticular calibration (visual.json), or a "
                   "Looking Glass preset lkg:NAME (built-in barrier display if omitted)");

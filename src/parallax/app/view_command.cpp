@@ -23,6 +23,7 @@ namespace {
 
 struct ViewOptions {
   std::string scene;
+  SceneLoadOptions load;  // --camera
   std::string eye, lookAt, up, size;
   std::string displayEye, display;
   FramingOptions framing;  // with --display-eye: framed as render frames it
@@ -92,7 +93,7 @@ std::string numberedPath(const std::string& output, int frame) {
 
 void runView(const ViewOptions& o) {
   const RenderSettings settings = o.sampling.settings();
-  Scene scene = loadSceneReportingWarnings(o.scene);
+  Scene scene = loadSceneReportingWarnings(o.scene, o.load);
   const std::unique_ptr<Camera> camera = makeCamera(o, scene);
   // Before anything is allocated: the film and the writer's 8-bit copy, and the time.
   const std::string size = std::to_string(camera->width()) + "x" + std::to_string(camera->height());
@@ -144,6 +145,7 @@ void registerViewCommand(CLI::App& cli) {
   cmd->add_option("scene", options->scene,
                   "Scene file (.json) or mesh (.obj .ply .stl .gltf .glb); built-in scene if "
                   "omitted");
+  addSceneLoadOptions(*cmd, options->load);
   cmd->add_option("--eye", options->eye, "Camera position X,Y,Z (scene units)");
   cmd->add_option("--look-at", options->lookAt, "Point the camera looks at, X,Y,Z");
   cmd->add_option("--up", options->up, "Up direction X,Y,Z");

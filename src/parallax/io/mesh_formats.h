@@ -25,6 +25,7 @@ struct FilePart {
   std::vector<Vec3f> normals;     // empty or one per position
   std::vector<Vec2f> uvs;         // empty or one per position; v = 0 is the image's bottom row
   std::vector<uint32_t> indices;  // three per triangle, not yet range-checked
+  std::vector<Vec3f> colors;      // vertex colours, linear RGB: empty or one per position
 };
 
 struct FileMaterial {
@@ -32,8 +33,24 @@ struct FileMaterial {
   int image = -1;     // index into FileContents::images, or -1
 };
 
+// A camera and a punctual light of a glTF file (docs/gltf.md), in the file's space: the
+// node's world transform already applied, the loader's worldFromFile not yet.
+struct FileCamera {
+  std::string name;
+  Vec3f eye, forward, up;  // forward and up: not necessarily unit
+  float yfov = 0;          // radians
+  float aspectRatio = 0;   // 0: not given
+  float znear = 0;
+};
+struct FileLight {
+  Light light;  // Point, Directional or Spot; position and direction in the file's space
+};
+
 struct FileContents {
   std::vector<FilePart> parts;
+  std::vector<FileCamera> cameras;
+  std::vector<FileLight> lights;
+  std::string note;  // what was taken and ignored (glTF), without the file name
   std::vector<FileMaterial> materials;
   std::vector<Image> images;          // linear RGB
   std::vector<std::string> warnings;  // without the file name; loadMeshFile adds it
