@@ -294,7 +294,7 @@ class GltfReader {
       fail(path_, where + ": expected {\"light\": INDEX}");
     const double index = extension.Get("light").GetNumberAsDouble();
     if (!(index >= 0 && index < double(model_.lights.size())) || index != std::floor(index))
-      fail(path_, where + ": light " + std::to_string(index) + " does not exist (" +
+      fail(path_, where + ": light " + (std::ostringstream() << index).str() + " does not exist (" +
                       count(model_.lights.size(), "light") + ")");
     const tinygltf::Light& source = model_.lights[size_t(index)];
     const std::string what = where + ": light " + std::to_string(size_t(index));

@@ -56,6 +56,31 @@ std::vector<std::array<Vec3f, 3>> emitters(const Scene& scene, const Light& ligh
   return triangles;
 }
 
+// Whether some point of `box` may lie within the spot's outer cone. A sphere of radius r
+// whose centre is d away, at angle a from the axis, lies wholly outside the cone if
+// a - asin(r / d) > outer; a box's bounding sphere is loose (a flat floor under the lamp holds
+// the lamp in its sphere), so a box that the test cannot rule out is split into eight, down
+// to `depth` levels. Conservative: it never rules out a box the cone reaches.
+constexpr int kConeDepth = 5;
+bool coneMayReach(const Light& spot, const Bounds3f& box, int depth) {
+  const Vec3f toCenter = box.center() - spot.position;
+  const float d = length(toCenter);
+  const float r = 0.5f * length(box.diagonal());
+  if (d > r) {
+    const float cosAxis = std::clamp(dot(toCenter, spot.direction) / d, -1.0f, 1.0f);
+    if (std::acos(cosAxis) - std::asin(r / d) > spot.outerCone) return false;
+  }
+  if (depth == 0) return true;
+  const Vec3f mid = box.center();
+  for (int i = 0; i < 8; ++i) {
+    Bounds3f child;
+    child.extend(boxCorner(box, i));
+    child.extend(mid);
+    if (coneMayReach(spot, child, depth - 1)) return true;
+  }
+  return false;
+}
+
 std::string describe(const Scene& scene, const Light& light, size_t index) {
   std::string name = "light " + std::to_string(index);
   if (light.mesh >= 0 && size_t(light.mesh) < scene.meshes.size())
@@ -88,15 +113,8 @@ std::vector<std::string> lightFacingWarnings(const Scene& scene) {
     } else if (light.kind == Light::Kind::Spot) {
       const std::vector<Bounds3f> boxes = objectBounds(scene, -1);
       if (boxes.empty()) continue;
-      // A sphere of radius r whose centre is d away, at angle a from the axis, lies wholly
-      // outside the cone of half-angle `outer` if a - asin(r / d) > outer.
       const bool reaches = std::any_of(boxes.begin(), boxes.end(), [&](const Bounds3f& b) {
-        const Vec3f toCenter = b.center() - light.position;
-        const float d = length(toCenter);
-        const float r = 0.5f * length(b.diagonal());
-        if (!(d > r)) return true;  // the light is inside the object's sphere
-        const float cosAxis = std::clamp(dot(toCenter, light.direction) / d, -1.0f, 1.0f);
-        return std::acos(cosAxis) - std::asin(r / d) <= light.outerCone;
+        return coneMayReach(light, b, kConeDepth);
       });
       if (!reaches)
         warnings.push_back(describe(scene, light, index) +
