@@ -105,6 +105,7 @@ void runLenticularRender(const LenticularRenderJob& o) {
   record.set("/version", PARALLAX_VERSION);
   record.set("/method", "lenticular: rays per subpixel around its view");
   record.set("/scene", scene.source);
+  if (!o.load.camera.empty()) record.set("/scene_camera", o.load.camera);  // docs/gltf.md
   record.set("/spp", settings.samplesPerPixel);
   record.set("/filter/kind", viewFilterName(filter.kind));
   record.set("/filter/width_views", filter.widthViews);

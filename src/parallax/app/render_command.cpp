@@ -225,6 +225,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   startRenderRecord(record, "quilt", o.display);
   record.set("/display_kind", displayKindName(display.kind()));
   record.set("/scene", scene.source);
+  if (!o.load.camera.empty()) record.set("/scene_camera", o.load.camera);  // docs/gltf.md
   record.set("/spp", o.sampling.spp);
   record.set("/seed", o.sampling.seed);
   record.set("/jitter", o.sampling.jitter);
@@ -416,6 +417,7 @@ void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator&
   if (o.layers != "slits")
     frames = solveLayers(o, scene, accelerator, design, training, layers, record);
   record.set("/scene", scene.source);
+  if (!o.load.camera.empty()) record.set("/scene_camera", o.load.camera);  // docs/gltf.md
   record.set("/spp", settings.samplesPerPixel);
   record.set("/seed", o.sampling.seed);
   record.set("/jitter", o.sampling.jitter);

@@ -210,6 +210,20 @@ TEST(Gltf, CameraOptionChoosesByNameOrIndex) {
   EXPECT_THROW(loadScene(path, unknown), InputError);
 }
 
+// simulate --reference loads the scene as the render did: with the camera render.json records.
+TEST(Gltf, SceneAsRenderedUsesTheRecordedCamera) {
+  TempDir dir;
+  const std::string path = dir.file("lit.gltf");
+  writeFile(path, lightsAndColoursGltf());
+  writeFile(dir.file("render.json"), R"({"scene_camera": "Side"})");
+  const Scene scene = loadSceneAsRendered(path, dir.file(""));
+  ASSERT_TRUE(scene.camera);
+  expectNear(scene.camera->eye, {5, 0, 0});
+  expectNear(scene.display.normal, {1, 0, 0});
+  writeFile(dir.file("render.json"), "{}");
+  expectNear(loadSceneAsRendered(path, dir.file("")).camera->eye, {0, 0, 5});
+}
+
 // 2CylinderEngine.glb's only camera, node 81 (read by hand from the file's JSON chunk): a
 // column-major matrix with columns x = (0.70711, -2.2e-7, -0.70711), y = (-0.33129, 0.88345,
 // -0.33129), z = (0.62470, 0.46852, 0.62470), translation (1005.987, 766.317, 953.346), and

@@ -863,11 +863,16 @@ Scene loadScene(const std::string& path, const SceneLoadOptions& options) {
 namespace parallax {
 
 Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir) {
-  Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath);
   const fs::path record = fs::path(renderDir) / "render.json";
-  if (renderDir.empty() || !fs::is_regular_file(record)) return scene;
+  if (renderDir.empty() || !fs::is_regular_file(record))
+    return scenePath.empty() ? defaultScene() : loadScene(scenePath);
   const JsonDocument document = JsonDocument::parseFile(record.string());
   const JsonReader root = document.root();
+  // The glTF camera the render used (--camera; docs/gltf.md) places the display again.
+  SceneLoadOptions options;
+  if (const auto camera = root.find("scene_camera"); camera && camera->isString())
+    options.camera = camera->string();
+  Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, options);
   const auto framing = root.find("framing");
   if (!framing) return scene;
   DisplayPlacement& p = scene.display;
