@@ -210,6 +210,28 @@ TEST(Gltf, CameraOptionChoosesByNameOrIndex) {
   EXPECT_THROW(loadScene(path, unknown), InputError);
 }
 
+// A .json scene with the file as a mesh object, moved by its transform: no camera unless
+// --camera picks one (in world space), and the scene's display width stays.
+TEST(Gltf, JsonSceneCamerasAreChosenOnlyOnRequest) {
+  TempDir dir;
+  writeFile(dir.file("lit.gltf"), lightsAndColoursGltf());
+  const std::string scenePath = dir.file("scene.json");
+  writeFile(scenePath, R"({"objects": [{"shape": "mesh", "file": "lit.gltf",
+    "transform": [{"translate": [0, 10, 0]}]}], "display": {"width": 3}})");
+  const Scene plain = loadScene(scenePath);
+  EXPECT_EQ(plain.cameras.size(), 2u);
+  expectNear(plain.display.normal, {0, 0, 1});  // the scene's own
+  SceneLoadOptions options;
+  options.camera = "Side";
+  const Scene chosen = loadScene(scenePath, options);
+  ASSERT_TRUE(chosen.camera);
+  expectNear(chosen.camera->eye, {5, 10, 0});
+  expectNear(chosen.display.normal, {1, 0, 0});
+  expectNear(chosen.display.center, {2.5f, 10, 0});
+  EXPECT_FLOAT_EQ(chosen.display.width, 3.0f);
+  EXPECT_FALSE(chosen.display.fit);
+}
+
 // simulate --reference loads the scene as the render did: with the camera render.json records.
 TEST(Gltf, SceneAsRenderedUsesTheRecordedCamera) {
   TempDir dir;

@@ -748,7 +748,7 @@ void addEmissiveMeshLights(Scene& scene) {
   }
 }
 
-// The cameras as "0 'Camera' (file.glb), 1 'Side'" for messages.
+// The cameras as "the scene's cameras: 0 'Camera', 1 'Side'" for messages.
 std::string cameraList(const Scene& scene) {
   if (scene.cameras.empty()) return "the scene has no cameras";
   std::string list;
@@ -785,6 +785,10 @@ void useFileCamera(Scene& scene, size_t index) {
   placement.fitMode = scene.display.fitMode;
   placement.focusMm = scene.display.focusMm;
   placement.depthBudgetMm = scene.display.depthBudgetMm;
+  if (!scene.display.fit) {  // a scene file's given display width stays
+    placement.width = scene.display.width;
+    placement.fit.reset();
+  }
   if (!content.empty()) {
     // On the line of sight, at the depth of the content's centre; content behind the camera
     // (a camera inside or past the model) keeps the distance to that centre.

@@ -33,8 +33,9 @@ Scene sceneFromMesh(const std::string& path, const SceneLoadOptions& options = {
 // Makes scene.cameras[index] the scene's camera and places the display on its line of sight:
 // the display's normal points back toward the camera, its up is the camera's up, its centre is
 // where the line of sight passes the content's centre depth, and its width is fitted to the
-// content (DisplayPlacement::fit), so that a viewer in front of the display sees the scene
-// from where the camera saw it. Appends which camera is used to the file's note.
+// content (DisplayPlacement::fit) unless a scene file gives one, so that a viewer in front of the
+// display sees the scene from where the camera saw it. Appends which camera is used to the file's
+// note.
 void useFileCamera(Scene& scene, size_t index);
 
 // The scene `render` drew into `renderDir`: loadScene(scenePath) (the built-in scene when
