@@ -84,6 +84,30 @@ TEST(VertexColours, NonFiniteColoursAreInputErrors) {
   expectInputError(path, "vertex 1: colour is not finite");
 }
 
+// An MTL Ke makes its faces an area light of a bare OBJ, in place of the default key light.
+TEST(MtlEmission, KeMakesAMeshLight) {
+  TempDir dir;
+  writeFile(dir.file("lamp.mtl"), "newmtl lamp\nKd 0 0 0\nKe 5 4 3\nnewmtl floor\nKd 1 1 1\n");
+  writeFile(dir.file("lamp.obj"),
+            "mtllib lamp.mtl\n"
+            "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\n"
+            "v 0 1 0\nv 0 1 1\nv 1 1 1\nv 1 1 0\n"
+            "usemtl floor\nf 1 4 3 2\n"   // faces +y
+            "usemtl lamp\nf 5 8 7 6\n");  // faces -y, toward the floor
+  const Scene scene = loadScene(dir.file("lamp.obj"));
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].kind, Light::Kind::Mesh);
+  expectNear(scene.lights[0].intensity, {5, 4, 3});
+  EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+  // Turned the other way, it lights nothing, and loadScene says so.
+  std::string obj = readFile(dir.file("lamp.obj"));
+  obj.replace(obj.find("f 5 8 7 6"), 9, "f 5 6 7 8");
+  writeFile(dir.file("lamp.obj"), obj);
+  const Scene flipped = loadScene(dir.file("lamp.obj"));
+  ASSERT_EQ(flipped.warnings.size(), 1u);
+  EXPECT_NE(flipped.warnings[0].find("lights nothing"), std::string::npos) << flipped.warnings[0];
+}
+
 // cornell_box.mtl gives its lamp "Ka 20 20 20" and no Ke: read as emission, the lamp becomes a
 // mesh light, it faces into the box (no facing-away warning), and no default key light is
 // added.
