@@ -341,14 +341,25 @@ void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& 
       ->capture_default_str();
 }
 
-Scene loadSceneOrDefault(const std::string& path) {
-  return path.empty() ? defaultScene() : loadScene(path);
+Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& options) {
+  if (path.empty() && !options.camera.empty())
+    throw InputError("command line", "--camera", "the built-in scene has no cameras");
+  return path.empty() ? defaultScene() : loadScene(path, options);
 }
 
-Scene loadSceneReportingWarnings(const std::string& path) {
-  Scene scene = loadSceneOrDefault(path);
+Scene loadSceneReportingWarnings(const std::string& path, const SceneLoadOptions& options) {
+  Scene scene = loadSceneOrDefault(path, options);
+  for (const auto& n : scene.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
   for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return scene;
+}
+
+void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options) {
+  cmd.add_option("--camera", options.camera,
+                 "A camera of the scene's glTF files, by name or index: the view's camera, and "
+                 "for render the display seen as that camera saw the scene (docs/gltf.md). "
+                 "Default: a bare glTF file's first camera")
+      ->type_name("NAME|INDEX");
 }
 
 DisplayDesign loadDesignOrDefault(const std::string& path) {

@@ -14,6 +14,7 @@
 #include "parallax/display/view_filter.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/io/scene_file.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
 
@@ -126,9 +127,13 @@ void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& 
                       const std::string& viewUnit);
 
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
-Scene loadSceneOrDefault(const std::string& path);
-// The same, with the scene's warnings printed to stderr (for the commands that render it).
-Scene loadSceneReportingWarnings(const std::string& path);
+Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& options = {});
+// The same, with the scene's notes and warnings printed to stderr (for the commands that
+// render it).
+Scene loadSceneReportingWarnings(const std::string& path, const SceneLoadOptions& options = {});
+// --camera NAME|INDEX (render, view): which camera of the scene's glTF files to use
+// (io/scene_file.h, SceneLoadOptions::camera).
+void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options);
 
 // The built-in display when `path` is empty, otherwise the display file; checked (G1-G4).
 // A lenticular calibration is refused here, naming the command's barrier-only `what`.

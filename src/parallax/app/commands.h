@@ -20,7 +20,8 @@ struct LenticularRenderJob {
   std::string scene, output;
   SamplingOptions sampling;
   FilterOptions filter;
-  double distance = 0;  // the design viewer's distance in mm; 0: the default
+  double distance = 0;    // the design viewer's distance in mm; 0: the default
+  SceneLoadOptions load;  // --camera
 };
 void runLenticularRender(const LenticularRenderJob& job);
 

@@ -24,6 +24,8 @@ const char* lightKindName(Light::Kind kind) {
       return "quad";
     case Light::Kind::Mesh:
       return "mesh";
+    case Light::Kind::Spot:
+      return "spot";
   }
   return "?";
 }
@@ -66,6 +68,15 @@ void printJson(const Scene& scene) {
   json.setEmptyArray("/lights");
   for (size_t i = 0; i < scene.lights.size(); ++i)
     json.set("/lights/" + std::to_string(i) + "/type", lightKindName(scene.lights[i].kind));
+  // The cameras of glTF files, for --camera NAME|INDEX (docs/gltf.md).
+  json.setEmptyArray("/cameras");
+  for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const std::string at = "/cameras/" + std::to_string(i);
+    json.set(at + "/name", scene.cameras[i].name);
+    json.set(at + "/eye", scene.cameras[i].spec.eye);
+    json.set(at + "/fov", double(scene.cameras[i].spec.fovDegrees));
+  }
+  json.set("/notes", scene.notes);
   json.set("/display/center", scene.display.center);
   json.set("/display/normal", scene.display.normal);
   json.set("/display/up", scene.display.up);
@@ -96,6 +107,13 @@ void printText(const Scene& scene) {
               scene.textures.size(), scene.images.size());
   std::printf("lights:\n");
   for (const auto& l : scene.lights) std::printf("  %s\n", lightKindName(l.kind));
+  if (!scene.cameras.empty()) std::printf("cameras (--camera NAME|INDEX):\n");
+  for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const NamedCamera& c = scene.cameras[i];
+    std::printf("  %zu '%s' at (%g, %g, %g), vertical fov %g degrees\n", i, c.name.c_str(),
+                c.spec.eye.x, c.spec.eye.y, c.spec.eye.z, c.spec.fovDegrees);
+  }
+  for (const auto& n : scene.notes) std::printf("note: %s\n", n.c_str());
   const auto& d = scene.display;
   std::printf("display   centre (%g, %g, %g), normal (%g, %g, %g), width %g%s\n", d.center.x,
               d.center.y, d.center.z, d.normal.x, d.normal.y, d.normal.z,

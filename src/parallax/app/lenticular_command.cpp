@@ -28,6 +28,7 @@ namespace fs = std::filesystem;
 
 struct LenticularRenderOptions {
   std::string calibration, scene, output = "out";
+  SceneLoadOptions load;     // --camera
   SamplingOptions sampling;  // 16 rays per subpixel over its view window, as render
   FilterOptions filter;
   double distance = 0;
@@ -41,7 +42,7 @@ struct LenticularSimulateOptions {
 
 void runRender(const LenticularRenderOptions& o) {
   runLenticularRender({loadDisplayOrDefault(o.calibration).lenticular, o.scene, o.output,
-                       o.sampling, o.filter, o.distance});
+                       o.sampling, o.filter, o.distance, o.load});
 }
 
 void runSimulate(const LenticularSimulateOptions& o) {
@@ -90,7 +91,7 @@ void runLenticularRender(const LenticularRenderJob& o) {
   checkMemoryEstimate(imageBytes(3 * w, h) + imageBytes(w, h) + imageBytes(w, h, kRgba8PixelBytes),
                       o.calibration.source, "the panel image", "use a smaller panel");
   o.sampling.checkWork(3 * w, h);
-  const Scene scene = loadSceneReportingWarnings(o.scene);
+  const Scene scene = loadSceneReportingWarnings(o.scene, o.load);
   const Accelerator accelerator(scene,
                                 acceleratorForCameraRays(3 * w * h * settings.samplesPerPixel));
   DisplayLayers out;
@@ -104,6 +105,7 @@ void runLenticularRender(const LenticularRenderJob& o) {
   record.set("/version", PARALLAX_VERSION);
   record.set("/method", "lenticular: rays per subpixel around its view");
   record.set("/scene", scene.source);
+  if (!o.load.camera.empty()) record.set("/scene_camera", o.load.camera);  // docs/gltf.md
   record.set("/spp", settings.samplesPerPixel);
   record.set("/filter/kind", viewFilterName(filter.kind));
   record.set("/filter/width_views", filter.widthViews);
@@ -143,6 +145,7 @@ void registerLenticularCommand(CLI::App& cli) {
       "render", "The panel image: one ray per subpixel along its calibrated view");
   render->add_option("calibration", r->calibration, "Calibration file (visual.json)")->required();
   render->add_option("scene", r->scene, "Scene or mesh file (built-in scene if omitted)");
+  addSceneLoadOptions(*render, r->load);
   addSamplingOptions(
       *render, r->sampling,
       "Rays per subpixel (n*n over its area and its view window; 1: the formula's ray)");

@@ -35,6 +35,7 @@ namespace {
 
 struct RenderOptions {
   std::string scene, display;
+  SceneLoadOptions load;  // --camera
   SamplingOptions sampling;
   std::string output = "out";
   bool linear = false;
@@ -55,7 +56,7 @@ struct RenderOptions {
 
 // The scene file, or the RGB-D photo's scene.
 Scene loadRenderScene(const RenderOptions& o) {
-  return o.rgbd.given() ? loadRgbdFromOptions(o.rgbd) : loadSceneReportingWarnings(o.scene);
+  return o.rgbd.given() ? loadRgbdFromOptions(o.rgbd) : loadSceneReportingWarnings(o.scene, o.load);
 }
 
 // The layer methods and their defaults.
@@ -232,6 +233,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   record.set("/display_kind", displayKindName(display.kind()));
   record.set("/scene", scene.source);
   if (o.rgbd.given()) recordRgbd(record, o.rgbd, scene);
+  if (!o.load.camera.empty()) record.set("/scene_camera", o.load.camera);  // docs/gltf.md
   record.set("/spp", o.sampling.spp);
   record.set("/bounces", settings.bounces);
   record.set("/seed", o.sampling.seed);
@@ -328,7 +330,7 @@ void runLenticular(const RenderOptions& o, const LenticularCalibration& calibrat
     if (o.sequence.given())
       throw InputError("command line", "--frames/--turntable",
                        "a lenticular panel's sequence is a sequence of quilts: add --quilt auto");
-    return runLenticularRender({calibration, o.scene, o.output, o.sampling, o.filter, 0.0});
+    return runLenticularRender({calibration, o.scene, o.output, o.sampling, o.filter, 0.0, o.load});
   }
   const LenticularDesign design = designLenticular(calibration);
   const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(design);
@@ -434,6 +436,7 @@ void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator&
     frames = solveLayers(o, scene, accelerator, design, training, layers, record);
   record.set("/scene", scene.source);
   if (o.rgbd.given()) recordRgbd(record, o.rgbd, scene);
+  if (!o.load.camera.empty()) record.set("/scene_camera", o.load.camera);  // docs/gltf.md
   record.set("/spp", settings.samplesPerPixel);
   record.set("/bounces", settings.bounces);
   record.set("/seed", o.sampling.seed);
@@ -564,6 +567,7 @@ void registerRenderCommand(CLI::App& cli) {
   CLI::Option* sceneOption =
       cmd->add_option("scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
   addRgbdOptions(*cmd, options->rgbd)->excludes(sceneOption);
+  addSceneLoadOptions(*cmd, options->load);
   cmd->add_option("--display", options->display,
                   "Display: a barrier display file, a lenticular calibration (visual.json), or a "
                   "Looking Glass preset lkg:NAME (built-in barrier display if omitted)");

@@ -24,6 +24,7 @@ namespace {
 
 struct ViewOptions {
   std::string scene;
+  SceneLoadOptions load;  // --camera
   std::string eye, lookAt, up, size;
   std::string displayEye, display;
   FramingOptions framing;  // with --display-eye: framed as render frames it
@@ -95,7 +96,8 @@ std::string numberedPath(const std::string& output, int frame) {
 void runView(const ViewOptions& o) {
   const RenderSettings settings = o.sampling.settings();
   o.sequence.videoOptions();  // refuses bad --video options before any work
-  Scene scene = o.rgbd.given() ? loadRgbdFromOptions(o.rgbd) : loadSceneReportingWarnings(o.scene);
+  Scene scene =
+      o.rgbd.given() ? loadRgbdFromOptions(o.rgbd) : loadSceneReportingWarnings(o.scene, o.load);
   noteAnimation(o.sequence, scene);
   const std::unique_ptr<Camera> camera = makeCamera(o, scene);
   // Before anything is allocated: the film and the writer's 8-bit copy, and the time.
@@ -150,6 +152,7 @@ void registerViewCommand(CLI::App& cli) {
       "scene", options->scene,
       "Scene file (.json) or mesh (.obj .ply .stl .gltf .glb); built-in scene if omitted");
   addRgbdOptions(*cmd, options->rgbd)->excludes(sceneOption);
+  addSceneLoadOptions(*cmd, options->load);
   cmd->add_option("--eye", options->eye, "Camera position X,Y,Z (scene units)");
   cmd->add_option("--look-at", options->lookAt, "Point the camera looks at, X,Y,Z");
   cmd->add_option("--up", options->up, "Up direction X,Y,Z");

@@ -196,6 +196,16 @@ void validate(const std::string& path, const FilePart& part) {
     if (!std::isfinite(part.uvs[i].x) || !std::isfinite(part.uvs[i].y))
       fail(path,
            where(part) + "vertex " + std::to_string(i) + ": texture coordinate is not finite");
+  // Vertex colours (glTF COLOR_0, PLY red/green/blue, OBJ "v x y z r g b"): one per position,
+  // finite, not negative.
+  if (!part.colors.empty() && part.colors.size() != part.positions.size())
+    fail(path, where(part) + std::to_string(part.colors.size()) + " vertex colours for " +
+                   std::to_string(part.positions.size()) + " vertices");
+  for (size_t i = 0; i < part.colors.size(); ++i)
+    if (!isFinite(part.colors[i]) || part.colors[i].x < 0 || part.colors[i].y < 0 ||
+        part.colors[i].z < 0)
+      fail(path,
+           where(part) + "vertex " + std::to_string(i) + ": colour is not finite or is negative");
   for (size_t i = 0; i < part.indices.size(); ++i)
     if (part.indices[i] >= part.positions.size())
       fail(path, where(part) + "triangle " + std::to_string(i / 3) + ": vertex index " +
@@ -247,6 +257,7 @@ class SceneAppender {
           mesh->positions.push_back(part.positions[v]);
           if (!part.normals.empty()) mesh->normals.push_back(part.normals[v]);
           if (!part.uvs.empty()) mesh->uvs.push_back(part.uvs[v]);
+          addColor(part, v, *mesh);
         }
         mesh->indices.push_back(remap[v]);
       }
@@ -266,6 +277,7 @@ class SceneAppender {
         animated.node = firstNode + key.second;
         scene_.nodeAnimation.meshes.push_back(animated);
       }
+      if (!mesh.colors.empty()) mesh.colors.resize(mesh.positions.size(), Vec3f(1.0f));
       scene_.meshes.push_back(std::move(mesh));
     }
     if (!animatedMeshes_.empty()) appendNodes(contents_.nodeAnimation);
@@ -278,6 +290,14 @@ class SceneAppender {
 
  private:
   static constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
+
+  // Vertex colours of the vertex just appended: parts with and without colours may share a
+  // material, so a mesh with any colours gives the others white (the albedo unchanged).
+  static void addColor(const FilePart& part, uint32_t v, TriangleMesh& mesh) {
+    if (part.colors.empty() && mesh.colors.empty()) return;
+    mesh.colors.resize(mesh.positions.size() - 1, Vec3f(1.0f));
+    mesh.colors.push_back(part.colors.empty() ? Vec3f(1.0f) : part.colors[v]);
+  }
 
   void transformNormals(const Transform& worldFromPart, FilePart& part) {
     for (Vec3f& n : part.normals) {
@@ -370,6 +390,48 @@ class SceneAppender {
 
 }  // namespace
 
+// The file's cameras and punctual lights moved to world space, and its note (docs/gltf.md).
+static void addCamerasAndLights(const std::string& path, const MeshLoadOptions& options,
+                                const FileContents& contents, Scene& scene) {
+  const int note = contents.note.empty() ? -1 : int(scene.notes.size());
+  if (!contents.note.empty()) scene.notes.push_back(path + ": " + contents.note);
+  const Transform& world = options.worldFromFile;
+  for (const meshio::FileCamera& source : contents.cameras) {
+    const Vec3f eye = world.point(source.eye);
+    const Vec3f forward = world.vector(source.forward), up = world.vector(source.up);
+    if (!isFinite(eye) || !(length(cross(forward, up)) > 0) || !isFinite(forward) ||
+        !isFinite(up)) {
+      scene.warnings.push_back(path + ": camera '" + source.name +
+                               "' has no usable world transform; ignoring it");
+      continue;
+    }
+    NamedCamera camera;
+    camera.name = source.name;
+    camera.source = path;
+    camera.spec.eye = eye;
+    camera.spec.lookAt = eye + normalize(forward);
+    // Up across the line of sight (a sheared node may tilt it).
+    const Vec3f f = normalize(forward);
+    camera.spec.up = normalize(up - f * dot(up, f));
+    camera.spec.fovDegrees = source.yfov * (180.0f / kPi);
+    camera.aspectRatio = source.aspectRatio;
+    camera.znear = source.znear;
+    camera.note = note;
+    scene.cameras.push_back(std::move(camera));
+  }
+  for (const meshio::FileLight& source : contents.lights) {
+    Light light = source.light;
+    light.position = world.point(light.position);
+    if (light.kind != Light::Kind::Point) {
+      const Vec3f d = world.vector(light.direction);
+      if (!(length(d) > 0) || !isFinite(d)) continue;
+      light.direction = normalize(d);
+    }
+    if (!isFinite(light.position)) continue;
+    scene.lights.push_back(light);
+  }
+}
+
 bool isMeshFile(const std::string& path) {
   const std::string ext = lowerExtension(path);
   return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
@@ -405,6 +467,7 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
     scene.warnings.push_back(path + ": " + warning);
   for (FilePart& part : contents.parts) appender.add(part);
   appender.finish();
+  addCamerasAndLights(path, options, contents, scene);
 }
 
 }  // namespace parallax

@@ -21,8 +21,10 @@ struct MeshLoadOptions {
 
 // Appends the file's triangles to `scene` as world-space meshes (one per material), and its
 // materials, textures and images. Degenerate triangles are dropped with one warning per file
-// in scene.warnings that counts them. Throws InputError naming the file for a missing,
-// empty, truncated or malformed file, NaN/inf vertices or indices out of range.
+// in scene.warnings that counts them. A glTF file's perspective cameras go to scene.cameras,
+// its KHR_lights_punctual lights to scene.lights (both moved by worldFromFile), and one line
+// saying what was taken and ignored to scene.notes (docs/gltf.md). Throws InputError naming the
+// file for a missing, empty, truncated or malformed file, NaN/inf vertices or indices out of range.
 void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene& scene);
 
 // True if the extension names a mesh format that loadMeshFile reads.

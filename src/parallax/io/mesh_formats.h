@@ -28,6 +28,7 @@ struct FilePart {
   // glTF: the node the part hangs from when it or an ancestor is animated, an index into
   // FileContents::nodeAnimation.nodes; -1 otherwise.
   int node = -1;
+  std::vector<Vec3f> colors;  // vertex colours, linear RGB: empty or one per position
 };
 
 struct FileMaterial {
@@ -35,8 +36,24 @@ struct FileMaterial {
   int image = -1;     // index into FileContents::images, or -1
 };
 
+// A camera and a punctual light of a glTF file (docs/gltf.md), in the file's space: the
+// node's world transform already applied, the loader's worldFromFile not yet.
+struct FileCamera {
+  std::string name;
+  Vec3f eye, forward, up;  // forward and up: not necessarily unit
+  float yfov = 0;          // radians
+  float aspectRatio = 0;   // 0: not given
+  float znear = 0;
+};
+struct FileLight {
+  Light light;  // Point, Directional or Spot; position and direction in the file's space
+};
+
 struct FileContents {
   std::vector<FilePart> parts;
+  std::vector<FileCamera> cameras;
+  std::vector<FileLight> lights;
+  std::string note;  // what was taken and ignored (glTF), without the file name
   std::vector<FileMaterial> materials;
   std::vector<Image> images;          // linear RGB
   std::vector<std::string> warnings;  // without the file name; loadMeshFile adds it

@@ -2,10 +2,14 @@
 // JSON, loads buffers and decodes images. We walk the node tree of the scene ourselves
 // (glTF 2.0 specification, "Transformations": a node's matrix, or T * R * S, applies to its
 // children too), expanding a mesh once per node that uses it, and read accessors with our own
-// bounds checks (specification, "Accessors") since the file may be malformed.
+// bounds checks (specification, "Accessors") since the file may be malformed. Cameras and
+// KHR_lights_punctual lights come from the same walk, with their node's world transform;
+// vertex colours from COLOR_0. What the file has that we do not use is listed in the file's
+// note (docs/gltf.md).
 #include <tiny_gltf.h>
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -23,6 +27,12 @@ static_assert(std::endian::native == std::endian::little, "glTF buffers are litt
 
 constexpr size_t kMaxNodeDepth = 1000;
 constexpr size_t kMaxNodeInstances = 1000000;
+
+// KHR_lights_punctual gives point and spot intensities in candela (lm/sr) and directional
+// ones in lux (lm/m^2); our lights are radiometric (W/sr, W/m^2). Dividing by 683 lm/W (the
+// luminous efficacy at 555 nm, the constant Blender's exporter multiplies by in its default
+// "Standard" lighting mode) gives back the watts Blender's lamps have (docs/gltf.md, "Units").
+constexpr double kLumensPerWatt = 683.0;
 
 // Our image loader (tinygltf::TinyGLTF::SetImageLoader): checks that an image's buffer view
 // lies inside its buffer before reading it, and decodes through decodeImage, which refuses
@@ -88,7 +98,32 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
 
 // Extensions in extensionsRequired that we honour (or that need nothing from us).
 bool isSupportedExtension(const std::string& name) {
-  return name == "KHR_materials_emissive_strength" || name == "KHR_mesh_quantization";
+  return name == "KHR_materials_emissive_strength" || name == "KHR_mesh_quantization" ||
+         name == "KHR_lights_punctual";
+}
+
+// "1 camera", "3 cameras".
+std::string count(size_t n, const std::string& what) {
+  return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+  return text;
+}
+
+// A point and a direction through a node's world matrix (row-major, affine).
+Vec3f transformPoint(const Mat4& m, const Vec3f& p) {
+  Vec3f out;
+  for (int r = 0; r < 3; ++r)
+    out[r] = m.m[r][0] * p.x + m.m[r][1] * p.y + m.m[r][2] * p.z + m.m[r][3];
+  return out;
+}
+Vec3f transformVector(const Mat4& m, const Vec3f& v) {
+  Vec3f out;
+  for (int r = 0; r < 3; ++r) out[r] = m.m[r][0] * v.x + m.m[r][1] * v.y + m.m[r][2] * v.z;
+  return out;
 }
 
 // A glTF matrix is column-major; Mat4 is row-major.
@@ -136,6 +171,7 @@ class GltfReader {
     if (skippedPrimitives_ > 0)
       contents_.warnings.push_back("skipped " + std::to_string(skippedPrimitives_) +
                                    " point or line primitives");
+    contents_.note = note();
     return std::move(contents_);
   }
 
@@ -189,6 +225,10 @@ class GltfReader {
       const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
       const Mat4 fileFromNode = fileFromParent * nodeMatrix(node);
       if (node.mesh >= 0) addMesh(node.mesh, fileFromNode, nodeIndex);
+      if (node.camera >= 0) addCamera(node, nodeIndex, fileFromNode);
+      if (const auto light = node.extensions.find("KHR_lights_punctual");
+          light != node.extensions.end())
+        addLight(light->second, nodeIndex, fileFromNode);
       stack.push_back({nodeIndex, fileFromNode, 0});
     };
     enter(root, Mat4::identity());
@@ -206,9 +246,159 @@ class GltfReader {
     }
   }
 
+  // A perspective camera looks down its node's -Z with +Y up (specification, "Cameras");
+  // orthographic cameras are counted for the note and otherwise ignored.
+  void addCamera(const tinygltf::Node& node, int nodeIndex, const Mat4& fileFromNode) {
+    const std::string where =
+        "node " + std::to_string(nodeIndex) + ": camera " + std::to_string(node.camera);
+    if (size_t(node.camera) >= model_.cameras.size()) fail(path_, where + " does not exist");
+    const tinygltf::Camera& source = model_.cameras[size_t(node.camera)];
+    if (source.type == "orthographic") {
+      ++orthographicCameras_;
+      return;
+    }
+    if (source.type != "perspective")
+      fail(path_, where + ": unknown camera type '" + source.type + "'");
+    const tinygltf::PerspectiveCamera& p = source.perspective;
+    // The specification requires 0 < yfov; a view needs it below 180 degrees too.
+    if (!(p.yfov > 0 && p.yfov < kPi))
+      fail(path_, where + ": yfov " + std::to_string(p.yfov) +
+                      " is not an angle between 0 and pi radians");
+    FileCamera camera;
+    camera.name = !source.name.empty() ? source.name
+                  : !node.name.empty() ? node.name
+                                       : "camera " + std::to_string(contents_.cameras.size());
+    camera.eye = transformPoint(fileFromNode, Vec3f(0.0f));
+    camera.forward = transformVector(fileFromNode, {0, 0, -1});
+    camera.up = transformVector(fileFromNode, {0, 1, 0});
+    camera.yfov = float(p.yfov);
+    camera.aspectRatio =
+        std::isfinite(p.aspectRatio) && p.aspectRatio > 0 ? float(p.aspectRatio) : 0;
+    camera.znear = std::isfinite(p.znear) && p.znear > 0 ? float(p.znear) : 0;
+    const bool usable = isFinite(camera.eye) && length(camera.forward) > 0 &&
+                        length(cross(camera.forward, camera.up)) > 0 &&
+                        std::isfinite(length(camera.forward)) && std::isfinite(length(camera.up));
+    if (!usable) {
+      contents_.warnings.push_back(where + " ('" + camera.name +
+                                   "'): its node's transform is singular; ignoring the camera");
+      return;
+    }
+    contents_.cameras.push_back(std::move(camera));
+  }
+
+  // KHR_lights_punctual: a light shines down its node's -Z from the node's origin. Colour
+  // times intensity, divided by kLumensPerWatt, is our W/sr (point, spot) or W/m^2
+  // (directional); `range` is ignored (our lights fall off with 1/r^2 forever).
+  void addLight(const tinygltf::Value& extension, int nodeIndex, const Mat4& fileFromNode) {
+    const std::string where = "node " + std::to_string(nodeIndex) + ": KHR_lights_punctual";
+    if (!extension.IsObject() || !extension.Has("light") || !extension.Get("light").IsNumber())
+      fail(path_, where + ": expected {\"light\": INDEX}");
+    const double index = extension.Get("light").GetNumberAsDouble();
+    if (!(index >= 0 && index < double(model_.lights.size())) || index != std::floor(index))
+      fail(path_, where + ": light " + (std::ostringstream() << index).str() + " does not exist (" +
+                      count(model_.lights.size(), "light") + ")");
+    const tinygltf::Light& source = model_.lights[size_t(index)];
+    const std::string what = where + ": light " + std::to_string(size_t(index));
+    Vec3f color(1.0f);
+    if (source.color.size() == 3)
+      color = {float(source.color[0]), float(source.color[1]), float(source.color[2])};
+    else if (!source.color.empty())
+      fail(path_, what + ": 'color' needs 3 numbers");
+    if (!isFinite(color) || color.x < 0 || color.y < 0 || color.z < 0)
+      fail(path_, what + ": 'color' must be finite and not negative");
+    if (!std::isfinite(source.intensity) || source.intensity < 0)
+      fail(path_, what + ": 'intensity' must be finite and not negative");
+    FileLight light;
+    light.light.intensity = color * float(source.intensity / kLumensPerWatt);
+    light.light.position = transformPoint(fileFromNode, Vec3f(0.0f));
+    const Vec3f axis = transformVector(fileFromNode, {0, 0, -1});
+    if (source.type == "point") {
+      light.light.kind = Light::Kind::Point;
+    } else if (source.type == "directional" || source.type == "spot") {
+      light.light.kind = source.type == "spot" ? Light::Kind::Spot : Light::Kind::Directional;
+      if (!(length(axis) > 0) || !std::isfinite(length(axis))) {
+        contents_.warnings.push_back(what + ": its node's transform is singular; ignoring it");
+        return;
+      }
+      light.light.direction = normalize(axis);
+    } else {
+      fail(path_, what + ": unknown light type '" + source.type + "'");
+    }
+    if (source.type == "spot") {
+      // The extension requires 0 <= inner < outer <= pi / 2.
+      const double inner = source.spot.innerConeAngle, outer = source.spot.outerConeAngle;
+      if (!(inner >= 0 && inner < outer && outer <= kPi / 2 + 1e-6))
+        fail(path_, what +
+                        ": spot cone angles must satisfy 0 <= innerConeAngle < "
+                        "outerConeAngle <= pi/2 (got " +
+                        std::to_string(inner) + " and " + std::to_string(outer) + ")");
+      light.light.innerCone = float(inner);
+      light.light.outerCone = float(outer);
+    }
+    if (!isFinite(light.light.position)) {
+      contents_.warnings.push_back(what + ": its position is not finite; ignoring it");
+      return;
+    }
+    if (source.range > 0) ++rangedLights_;
+    contents_.lights.push_back(std::move(light));
+  }
+
+  // "glTF: took 2 meshes, 1 camera, 1 light, vertex colours; ignored: ...": only what the
+  // file has.
+  std::string note() const {
+    std::vector<std::string> taken, ignored;
+    taken.push_back(std::to_string(meshesUsed_.size()) +
+                    (meshesUsed_.size() == 1 ? " mesh" : " meshes"));
+    if (!contents_.cameras.empty()) taken.push_back(count(contents_.cameras.size(), "camera"));
+    if (!contents_.lights.empty()) taken.push_back(count(contents_.lights.size(), "light"));
+    if (coloredPrimitives_ > 0) taken.push_back("vertex colours (COLOR_0)");
+    if (!model_.animations.empty())
+      taken.push_back(count(model_.animations.size(), "animation") + " (played by --frames)");
+
+    bool metallic = false, normalMaps = false, occlusion = false, emissiveMaps = false,
+         alpha = false;
+    std::set<std::string> materialExtensions;
+    for (const tinygltf::Material& m : model_.materials) {
+      const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+      metallic |= pbr.metallicFactor != 1.0 || pbr.roughnessFactor != 1.0 ||
+                  pbr.metallicRoughnessTexture.index >= 0;
+      normalMaps |= m.normalTexture.index >= 0;
+      occlusion |= m.occlusionTexture.index >= 0;
+      emissiveMaps |= m.emissiveTexture.index >= 0;
+      alpha |= (!m.alphaMode.empty() && m.alphaMode != "OPAQUE") ||
+               (pbr.baseColorFactor.size() == 4 && pbr.baseColorFactor[3] < 1.0);
+      for (const auto& [name, value] : m.extensions)
+        if (name != "KHR_materials_emissive_strength") materialExtensions.insert(name);
+    }
+    if (metallic) ignored.push_back("metallic/roughness (base colour only)");
+    if (normalMaps) ignored.push_back("normal maps");
+    if (occlusion) ignored.push_back("occlusion maps");
+    if (emissiveMaps) ignored.push_back("emissive textures (the factor is used)");
+    if (alpha) ignored.push_back("alpha (BLEND/MASK, base colour alpha)");
+    if (!materialExtensions.empty())
+      ignored.push_back("material extensions (" +
+                        joined({materialExtensions.begin(), materialExtensions.end()}) + ")");
+    if (!model_.samplers.empty())
+      ignored.push_back("texture samplers (wrap and filter: we repeat and filter bilinearly)");
+    if (!model_.skins.empty()) ignored.push_back(count(model_.skins.size(), "skin"));
+    if (morphTargets_) ignored.push_back("morph targets");
+    if (orthographicCameras_ > 0)
+      ignored.push_back(count(orthographicCameras_, "orthographic camera"));
+    if (rangedLights_ > 0)
+      ignored.push_back("the range of " + count(rangedLights_, "light") +
+                        " (ours fall off with 1/r^2 without a cut-off)");
+    std::vector<std::string> extensions;
+    for (const std::string& name : model_.extensionsUsed)
+      if (!isSupportedExtension(name) && name.rfind("KHR_materials_", 0) != 0)
+        extensions.push_back(name);
+    if (!extensions.empty()) ignored.push_back("extensions " + joined(extensions));
+    return "glTF: took " + joined(taken) + (ignored.empty() ? "" : "; ignored: " + joined(ignored));
+  }
+
   void addMesh(int meshIndex, const Mat4& fileFromNode, int nodeIndex) {
     if (size_t(meshIndex) >= model_.meshes.size())
       fail(path_, "mesh index " + std::to_string(meshIndex) + " does not exist");
+    meshesUsed_.insert(meshIndex);
     const tinygltf::Mesh& mesh = model_.meshes[size_t(meshIndex)];
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const std::string context =
@@ -378,6 +568,10 @@ class GltfReader {
       for (size_t i = 0; i < uvs.count; ++i)
         part.uvs[i] = {float(value(uvs, i, 0)), 1.0f - float(value(uvs, i, 1))};
     }
+    if (!primitive.targets.empty()) morphTargets_ = true;
+    if (const auto color = primitive.attributes.find("COLOR_0");
+        color != primitive.attributes.end())
+      readColors(color->second, positions.count, context, part);
 
     std::vector<uint32_t> corners;
     if (primitive.indices >= 0) {
@@ -414,6 +608,30 @@ class GltfReader {
       else
         out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
     }
+  }
+
+  // COLOR_0 (specification, "Meshes"): VEC3 or VEC4 of floats, or of normalised unsigned
+  // bytes or shorts; linear RGB, so no transfer function. The alpha of VEC4 is ignored.
+  void readColors(int accessor, size_t positionCount, const std::string& context, FilePart& part) {
+    const std::string what = context + ": COLOR_0";
+    if (accessor < 0 || size_t(accessor) >= model_.accessors.size())
+      fail(path_, what + ": accessor " + std::to_string(accessor) + " does not exist");
+    const int type = model_.accessors[size_t(accessor)].type;
+    if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
+      fail(path_, what + ": must be VEC3 or VEC4");
+    AccessorView colors = view(accessor, type, what);
+    if (colors.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT &&
+        colors.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        colors.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+      fail(path_, what + ": must be floats or normalised unsigned bytes or shorts");
+    // The specification requires `normalized` for the integer types; read them as such even
+    // when a writer forgot the flag.
+    colors.normalized = true;
+    requireCount(colors, positionCount, what);
+    part.colors.resize(colors.count);
+    for (size_t i = 0; i < colors.count; ++i)
+      for (int a = 0; a < 3; ++a) part.colors[i][a] = float(value(colors, i, a));
+    ++coloredPrimitives_;
   }
 
   void requireCount(const AccessorView& a, size_t count, const std::string& what) {
@@ -553,6 +771,10 @@ class GltfReader {
   std::vector<bool> onPath_;  // nodes between the root and the one being visited
   size_t nodeInstances_ = 0;
   size_t skippedPrimitives_ = 0;
+  // For the note.
+  std::set<int> meshesUsed_;
+  size_t orthographicCameras_ = 0, rangedLights_ = 0, coloredPrimitives_ = 0;
+  bool morphTargets_ = false;
 };
 
 std::vector<std::string> lines(const std::string& text) {

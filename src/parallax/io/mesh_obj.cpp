@@ -3,7 +3,9 @@
 // indices and reads unparsable numbers ("nan") as 0, so numbers are checked in a first pass.
 // Materials: Kd -> diffuse, map_Kd -> diffuse texture (path relative to the OBJ's folder),
 // Ke -> emission, Ks -> mirror for illum 3 and 5 (the MTL "ray-traced reflection" models).
-// Polygons are split by triangulatePolygon, so concave ones come out right.
+// Polygons are split by triangulatePolygon, so concave ones come out right. Vertex colours
+// ("v x y z r g b", an extension MeshLab and others write) are read when every vertex has
+// them; they are display values, sRGB-encoded in [0, 1], and decoded to linear.
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -84,6 +86,15 @@ void readMaterials(const std::vector<tinyobj::material_t>& source, const std::st
     material.material.name = m.name;
     material.material.diffuse = toVec3(m.diffuse);
     material.material.emission = toVec3(m.emission);
+    // Ke is the emission. Files from before Ke (the classic Cornell box that tinyobjloader
+    // and others ship: its lamp is "Ka 20 20 20") put it in the ambient colour, where a
+    // reflectance above 1 makes no sense otherwise: read such a Ka as the emission.
+    const Vec3f ambient = toVec3(m.ambient);
+    if (material.material.emission == Vec3f(0.0f) && maxComponent(ambient) > 1.0f) {
+      material.material.emission = ambient;
+      contents.warnings.push_back("material '" + m.name +
+                                  "': no Ke, and Ka above 1; reading Ka as its emission");
+    }
     if (m.illum == 3 || m.illum == 5) material.material.mirror = toVec3(m.specular);
     if (!m.diffuse_texname.empty()) {
       std::string name = m.diffuse_texname;
@@ -117,6 +128,14 @@ class PartBuilder {
     auto [it, inserted] = vertices_.try_emplace(key, uint32_t(part_.positions.size()));
     if (!inserted) return it->second;
     part_.positions.push_back(toVec3(&attrib_.vertices[3 * size_t(index.vertex_index)]));
+    // tinyobjloader keeps the colours only when every v line has them (vertex_color = false:
+    // no white fallback), one triple per vertex.
+    if (attrib_.colors.size() == attrib_.vertices.size()) {
+      const Vec3f c = toVec3(&attrib_.colors[3 * size_t(index.vertex_index)]);
+      part_.colors.push_back({srgbToLinear(std::clamp(c.x, 0.0f, 1.0f)),
+                              srgbToLinear(std::clamp(c.y, 0.0f, 1.0f)),
+                              srgbToLinear(std::clamp(c.z, 0.0f, 1.0f))});
+    }
     if (index.normal_index >= 0)
       part_.normals.push_back(toVec3(&attrib_.normals[3 * size_t(index.normal_index)]));
     else

@@ -1,8 +1,9 @@
 // PLY reader (Greg Turk's format, http://paulbourke.net/dataformats/ply/): a text header
 // declaring elements and their properties, then the data as ASCII or binary (little or big
 // endian). Reads vertex x y z, optional nx ny nz and u v (also named s t, texture_u texture_v,
-// texture_s texture_t) and face lists named vertex_indices or vertex_index, split into
-// triangle fans. Every other element and property is read past and ignored.
+// texture_s texture_t), red green blue (vertex colours, also diffuse_red ...; see
+// colorScale) and face lists named vertex_indices or vertex_index, split into triangle fans.
+// Every other element and property is read past and ignored.
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -229,6 +230,7 @@ struct VertexLayout {
   int position[3] = {-1, -1, -1};
   int normal[3] = {-1, -1, -1};
   int uv[2] = {-1, -1};
+  int color[3] = {-1, -1, -1};
 
   explicit VertexLayout(const Element& vertex) {
     for (size_t i = 0; i < vertex.properties.size(); ++i) {
@@ -244,8 +246,12 @@ struct VertexLayout {
       if (n == "nz") normal[2] = index;
       if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s") uv[0] = index;
       if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t") uv[1] = index;
+      if (n == "red" || n == "diffuse_red") color[0] = index;
+      if (n == "green" || n == "diffuse_green") color[1] = index;
+      if (n == "blue" || n == "diffuse_blue") color[2] = index;
     }
   }
+  bool hasColor() const { return color[0] >= 0 && color[1] >= 0 && color[2] >= 0; }
   bool hasPosition() const { return position[0] >= 0 && position[1] >= 0 && position[2] >= 0; }
   bool hasNormal() const { return normal[0] >= 0 && normal[1] >= 0 && normal[2] >= 0; }
   bool hasUv() const { return uv[0] >= 0 && uv[1] >= 0; }
@@ -319,6 +325,7 @@ class PlyParser {
     part.positions.resize(element.count);
     if (layout.hasNormal()) part.normals.resize(element.count);
     if (layout.hasUv()) part.uvs.resize(element.count);
+    if (layout.hasColor()) part.colors.resize(element.count);
     std::vector<double> scalars(element.properties.size());
     for (size_t v = 0; v < element.count; ++v) {
       const std::string where = "vertex " + std::to_string(v);
@@ -334,7 +341,26 @@ class PlyParser {
         for (int a = 0; a < 3; ++a) part.normals[v][a] = float(scalars[size_t(layout.normal[a])]);
       if (layout.hasUv())
         part.uvs[v] = {float(scalars[size_t(layout.uv[0])]), float(scalars[size_t(layout.uv[1])])};
+      if (layout.hasColor())
+        for (int a = 0; a < 3; ++a) {
+          const Property& p = element.properties[size_t(layout.color[a])];
+          part.colors[v][a] = plyColor(scalars[size_t(layout.color[a])], p.type);
+        }
     }
+  }
+
+  // PLY colours (MeshLab, Blender, scanners) are display values: 8-bit codes 0..255 (16-bit
+  // 0..65535, floats 0..1) in sRGB, decoded to linear with the sRGB transfer function
+  // (IEC 61966-2-1). Values outside the range are clamped into it.
+  static float plyColor(double value, Type type) {
+    double scale = 1.0;
+    if (type == Type::UInt8 || type == Type::Int8) scale = 255.0;
+    if (type == Type::UInt16 || type == Type::Int16) scale = 65535.0;
+    if (type == Type::UInt32 || type == Type::Int32) scale = 4294967295.0;
+    if (!std::isfinite(value)) return float(value);  // loadMeshFile reports it
+    const double encoded = std::clamp(value / scale, 0.0, 1.0);
+    if (type == Type::UInt8) return srgb8ToLinear(uint8_t(value));
+    return srgbToLinear(float(encoded));
   }
 
   void readFaces(const Element& element) {

@@ -14,6 +14,7 @@
 #include "parallax/io/input_file.h"
 #include "parallax/io/json_reader.h"
 #include "parallax/io/mesh_file.h"
+#include "parallax/scene/light_checks.h"
 
 namespace parallax {
 namespace {
@@ -734,9 +735,81 @@ class SceneFileLoader {
   Bounds3f subjects_;
 };
 
+// Every mesh with an emissive material becomes an area light (as a .json scene's do).
+void addEmissiveMeshLights(Scene& scene) {
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const Vec3f emission = scene.materials[scene.meshes[i].material].emission;
+    if (!(maxComponent(emission) > 0)) continue;
+    Light light;
+    light.kind = Light::Kind::Mesh;
+    light.intensity = emission;
+    light.mesh = int(i);
+    scene.lights.push_back(light);
+  }
+}
+
+// The cameras as "the scene's cameras: 0 'Camera', 1 'Side'" for messages.
+std::string cameraList(const Scene& scene) {
+  if (scene.cameras.empty()) return "the scene has no cameras";
+  std::string list;
+  for (size_t i = 0; i < scene.cameras.size(); ++i)
+    list += (list.empty() ? "" : ", ") + std::to_string(i) + " '" + scene.cameras[i].name + "'";
+  return "the scene's cameras: " + list;
+}
+
+// --camera NAME|INDEX: a name first (a camera may be called "1"), then an index.
+size_t findCamera(const Scene& scene, const std::string& selection) {
+  for (size_t i = 0; i < scene.cameras.size(); ++i)
+    if (scene.cameras[i].name == selection) return i;
+  int64_t index = -1;
+  const bool digits =
+      !selection.empty() && std::all_of(selection.begin(), selection.end(),
+                                        [](unsigned char c) { return std::isdigit(c) != 0; });
+  if (digits && selection.size() < 10) index = std::stoll(selection);
+  if (index >= 0 && size_t(index) < scene.cameras.size()) return size_t(index);
+  throw InputError("command line", "--camera",
+                   "no camera '" + selection + "' (" + cameraList(scene) + ")");
+}
+
 }  // namespace
 
-Scene sceneFromMesh(const std::string& path) {
+void useFileCamera(Scene& scene, size_t index) {
+  const NamedCamera& camera = scene.cameras.at(index);
+  scene.camera = camera.spec;
+  const Vec3f eye = camera.spec.eye;
+  const Vec3f forward = normalize(camera.spec.lookAt - eye);
+  const Bounds3f content = scene.display.content ? *scene.display.content : scene.bounds();
+  // The display faces the camera: its normal is -forward, its up the camera's up.
+  const Vec3f up = normalize(camera.spec.up - forward * dot(camera.spec.up, forward));
+  DisplayPlacement placement = placeDisplay(content, -forward, up);
+  placement.fitMode = scene.display.fitMode;
+  placement.focusMm = scene.display.focusMm;
+  placement.depthBudgetMm = scene.display.depthBudgetMm;
+  if (!scene.display.fit) {  // a scene file's given display width stays
+    placement.width = scene.display.width;
+    placement.fit.reset();
+  }
+  if (!content.empty()) {
+    // On the line of sight, at the depth of the content's centre; content behind the camera
+    // (a camera inside or past the model) keeps the distance to that centre.
+    const Vec3f toCenter = content.center() - eye;
+    float depth = dot(toCenter, forward);
+    if (!(depth > 0)) depth = length(toCenter) > 0 ? length(toCenter) : 1.0f;
+    placement.center = eye + forward * depth;
+    // The depth along the line of sight is what the camera's view is framed on: the look-at
+    // point is the display's centre.
+    scene.camera->lookAt = placement.center;
+  }
+  scene.display = placement;
+  const std::string used = "camera " + std::to_string(index) + " '" + camera.name + "' used" +
+                           (scene.cameras.size() > 1 ? " (--camera picks another)" : "");
+  if (camera.note >= 0 && size_t(camera.note) < scene.notes.size())
+    scene.notes[size_t(camera.note)] += "; " + used;
+  else
+    scene.notes.push_back(camera.source + ": " + used);
+}
+
+Scene sceneFromMesh(const std::string& path, const SceneLoadOptions& options) {
   requireRegularFile(path);
   Scene scene;
   scene.source = path;
@@ -751,26 +824,42 @@ Scene sceneFromMesh(const std::string& path) {
     if (mesh.material >= scene.materials.size()) mesh.material = 0;
   const Bounds3f bounds = scene.bounds();
   if (bounds.empty()) throw InputError(path, "", "the file has no triangles");
-  // A key light from above, front and left: directional, so it needs no scale; the ambient
-  // fill keeps the sides it misses readable. A white surface facing the key shows 0.8/pi*2.5
-  // + 0.8*0.15, about 0.76.
-  Light key;
-  key.kind = Light::Kind::Directional;
-  key.direction = normalize(Vec3f(0.4f, -1.0f, -0.6f));
-  key.intensity = Vec3f(2.5f);
-  scene.lights.push_back(key);
-  scene.ambient = Vec3f(0.15f);
+  addEmissiveMeshLights(scene);
+  if (scene.lights.empty()) {
+    // A key light from above, front and left: directional, so it needs no scale; the ambient
+    // fill keeps the sides it misses readable. A white surface facing the key shows 0.8/pi*2.5
+    // + 0.8*0.15, about 0.76. A file with lights of its own is lit by them alone.
+    Light key;
+    key.kind = Light::Kind::Directional;
+    key.direction = normalize(Vec3f(0.4f, -1.0f, -0.6f));
+    key.intensity = Vec3f(2.5f);
+    scene.lights.push_back(key);
+    scene.ambient = Vec3f(0.15f);
+  }
   scene.background = Vec3f(0.02f);
   scene.display = placeDisplay(bounds, {0, 0, 1}, {0, 1, 0});
   scene.camera = frameScene(scene);
+  if (!options.camera.empty())
+    useFileCamera(scene, findCamera(scene, options.camera));
+  else if (!scene.cameras.empty())
+    useFileCamera(scene, 0);
   return scene;
 }
 
-Scene loadScene(const std::string& path) {
+Scene loadScene(const std::string& path, const SceneLoadOptions& options) {
   requireRegularFile(path);
-  if (lowerExtension(path) == ".json") return SceneFileLoader(path).load();
-  if (isMeshFile(path)) return sceneFromMesh(path);
-  throw InputError(path, "", "unknown scene format (expected a .json scene or a mesh file)");
+  Scene scene;
+  if (lowerExtension(path) == ".json") {
+    scene = SceneFileLoader(path).load();
+    if (!options.camera.empty()) useFileCamera(scene, findCamera(scene, options.camera));
+  } else if (isMeshFile(path)) {
+    scene = sceneFromMesh(path, options);
+  } else {
+    throw InputError(path, "", "unknown scene format (expected a .json scene or a mesh file)");
+  }
+  for (const std::string& warning : lightFacingWarnings(scene))
+    scene.warnings.push_back(path + ": " + warning);
+  return scene;
 }
 
 }  // namespace parallax
@@ -778,11 +867,16 @@ Scene loadScene(const std::string& path) {
 namespace parallax {
 
 Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir) {
-  Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath);
   const fs::path record = fs::path(renderDir) / "render.json";
-  if (renderDir.empty() || !fs::is_regular_file(record)) return scene;
+  if (renderDir.empty() || !fs::is_regular_file(record))
+    return scenePath.empty() ? defaultScene() : loadScene(scenePath);
   const JsonDocument document = JsonDocument::parseFile(record.string());
   const JsonReader root = document.root();
+  // The glTF camera the render used (--camera; docs/gltf.md) places the display again.
+  SceneLoadOptions options;
+  if (const auto camera = root.find("scene_camera"); camera && camera->isString())
+    options.camera = camera->string();
+  Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, options);
   const auto framing = root.find("framing");
   if (!framing) return scene;
   DisplayPlacement& p = scene.display;

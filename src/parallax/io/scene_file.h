@@ -8,15 +8,35 @@
 
 namespace parallax {
 
+// Choices made when a scene is loaded (the command line's scene options).
+struct SceneLoadOptions {
+  // --camera NAME|INDEX: one of the cameras the scene's mesh files bring (glTF), by name or by
+  // index in Scene::cameras. It becomes scene.camera (`view`) and places the display (`render`)
+  // so that the display is seen as the camera saw the scene (useFileCamera). Empty: the first
+  // camera of a bare mesh file, none for a .json scene.
+  std::string camera;
+};
+
 // Loads a .json scene or a bare mesh file (see isMeshFile). Throws InputError with the file
 // and the JSON pointer of the offending key: "scene.json: /objects/3/material/color: expected
-// 3 numbers". Unknown keys are errors.
-Scene loadScene(const std::string& path);
+// 3 numbers". Unknown keys are errors. An unknown options.camera is an InputError naming
+// --camera and listing the scene's cameras. Lights facing away from everything are warned
+// about (scene/light_checks.h).
+Scene loadScene(const std::string& path, const SceneLoadOptions& options = {});
 
-// Wraps a bare mesh file in a scene: a grey diffuse material unless the file has its own, a
-// key light and ambient fill, the display placed at the mesh's centre facing +z, scaled to
-// the mesh's width, and a camera framing it.
-Scene sceneFromMesh(const std::string& path);
+// Wraps a bare mesh file in a scene: a grey diffuse material unless the file has its own, the
+// file's lights (glTF punctual lights, emissive meshes) or else a key light and ambient fill,
+// the display placed at the mesh's centre facing +z, scaled to the mesh's width, and a camera
+// framing it; with a camera of the file's (the first, or options.camera), that camera's view.
+Scene sceneFromMesh(const std::string& path, const SceneLoadOptions& options = {});
+
+// Makes scene.cameras[index] the scene's camera and places the display on its line of sight:
+// the display's normal points back toward the camera, its up is the camera's up, its centre is
+// where the line of sight passes the content's centre depth, and its width is fitted to the
+// content (DisplayPlacement::fit) unless a scene file gives one, so that a viewer in front of the
+// display sees the scene from where the camera saw it. Appends which camera is used to the file's
+// note.
+void useFileCamera(Scene& scene, size_t index);
 
 // The scene `render` drew into `renderDir`: loadScene(scenePath) (the built-in scene when
 // empty) with the framing that DIR/render.json records (/framing/fit, /focus, /depth_budget),

@@ -8,6 +8,28 @@ namespace parallax {
 
 namespace {
 constexpr float kShadowShorten = 1.0f - 1e-4f;  // stop shadow rays just before the light
+
+// The spot falloff as a linear map of cos(theta) before the clamp and square (spotAttenuation);
+// point and directional lights use scale 0 and offset 1, a factor of 1 everywhere.
+struct SpotMap {
+  float scale = 0.0f, offset = 1.0f;
+};
+SpotMap spotMap(const Light& light) {
+  if (light.kind != Light::Kind::Spot) return {};
+  const float scale =
+      1.0f / std::max(0.001f, std::cos(light.innerCone) - std::cos(light.outerCone));
+  return {scale, -std::cos(light.outerCone) * scale};
+}
+}  // namespace
+
+float spotAttenuation(float cosTheta, float innerCone, float outerCone) {
+  Light light;
+  light.kind = Light::Kind::Spot;
+  light.innerCone = innerCone;
+  light.outerCone = outerCone;
+  const SpotMap map = spotMap(light);
+  const float a = std::clamp(cosTheta * map.scale + map.offset, 0.0f, 1.0f);
+  return a * a;
 }
 
 LightSampler::LightSampler(const Scene& scene) {
@@ -64,13 +86,21 @@ LightSample LightSampler::sample(size_t index, const Vec3f& p, const Vec3f& n, f
   const Entry& e = lights_[index];
   LightSample s;
   switch (e.light.kind) {
-    case Light::Kind::Point: {
-      // E = I cos(theta) / r^2
+    case Light::Kind::Point:
+    case Light::Kind::Spot: {
+      // E = I cos(theta) / r^2, for a spot times its falloff at the angle from its axis.
       s.toLight = e.light.position - p;
       const float r2 = dot(s.toLight, s.toLight);
-      const float cosTheta = dot(n, s.toLight) / std::sqrt(r2);
+      const float invR = 1.0f / std::sqrt(r2);
+      const float cosTheta = dot(n, s.toLight) * invR;
       if (!(cosTheta > 0.0f)) return s;
-      s.irradiance = e.light.intensity * (cosTheta / r2);
+      float falloff = 1.0f;
+      if (e.light.kind == Light::Kind::Spot) {
+        falloff = spotAttenuation(-dot(e.light.direction, s.toLight) * invR, e.light.innerCone,
+                                  e.light.outerCone);
+        if (!(falloff > 0.0f)) return s;
+      }
+      s.irradiance = e.light.intensity * (cosTheta * falloff / r2);
       s.tMax = kShadowShorten;
       break;
     }
@@ -173,23 +203,33 @@ void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float
     (void)u3;
     return;
   }
-  if (light.kind == Light::Kind::Directional || light.kind == Light::Kind::Point) {
-    // Lane loops of sample()'s first two cases: E = I cos(theta) along a fixed direction, or
-    // E = I cos(theta) / r^2 toward a point.
+  if (light.kind == Light::Kind::Directional || light.kind == Light::Kind::Point ||
+      light.kind == Light::Kind::Spot) {
+    // Lane loops of sample()'s first cases: E = I cos(theta) along a fixed direction, or
+    // E = I cos(theta) / r^2 toward a point, times the spot falloff (1 for the others).
     const Receivers16 r(sp);
-    const float point = light.kind == Light::Kind::Point ? 1.0f : 0.0f;
+    const float point = light.kind != Light::Kind::Directional ? 1.0f : 0.0f;
     // toLight = at - point * p: the light's position, or the fixed direction.
     const Vec3f at = point > 0 ? light.position : -light.direction;
     const float ax = at.x, ay = at.y, az = at.z;
     const float Ir = light.intensity.x, Ig = light.intensity.y, Ib = light.intensity.z;
+    const float sx = light.direction.x, sy = light.direction.y, sz = light.direction.z;
+    const SpotMap spot = spotMap(light);
+    const float spotScale = spot.scale, spotOffset = spot.offset;
     LightLanes16 lanes;
     PARALLAX_SIMD
     for (int i = 0; i < 16; ++i) {
       const float x = ax - point * r.px[i], y = ay - point * r.py[i], z = az - point * r.pz[i];
       const float r2 = point > 0 ? x * x + y * y + z * z : 1.0f;
-      const float cosTheta = (r.nx[i] * x + r.ny[i] * y + r.nz[i] * z) / std::sqrt(r2);
-      const int32_t ok = int32_t(r.shade[i] != 0) & int32_t(cosTheta > 0.0f);
-      const float scale = ok ? cosTheta / r2 : 0.0f;
+      const float invR = 1.0f / std::sqrt(r2);
+      const float cosTheta = (r.nx[i] * x + r.ny[i] * y + r.nz[i] * z) * invR;
+      // The angle from the spot's axis: between the axis and light -> receiver (-toLight).
+      const float cosAxis = -(sx * x + sy * y + sz * z) * invR;
+      const float a = std::min(std::max(cosAxis * spotScale + spotOffset, 0.0f), 1.0f);
+      const float falloff = a * a;
+      const int32_t ok =
+          int32_t(r.shade[i] != 0) & int32_t(cosTheta > 0.0f) & int32_t(falloff > 0.0f);
+      const float scale = ok ? cosTheta * falloff / r2 : 0.0f;
       lanes.tx[i] = x, lanes.ty[i] = y, lanes.tz[i] = z;
       lanes.er[i] = Ir * scale, lanes.eg[i] = Ig * scale, lanes.eb[i] = Ib * scale;
       lanes.valid[i] = ok;
@@ -213,6 +253,7 @@ void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float
 int LightSampler::uniformsFor(size_t light) const {
   switch (lights_[light].light.kind) {
     case Light::Kind::Point:
+    case Light::Kind::Spot:
     case Light::Kind::Directional:
       return 0;
     case Light::Kind::Quad:
@@ -228,6 +269,7 @@ Vec3f LightSampler::representativePoint(const Vec3f& fallback) const {
   const Entry& e = lights_.front();
   switch (e.light.kind) {
     case Light::Kind::Point:
+    case Light::Kind::Spot:
       return e.light.position;
     case Light::Kind::Directional:
       return fallback - e.light.direction * 1e4f;

@@ -19,13 +19,18 @@ struct LightSample {
   bool valid = false;
 };
 
+// KHR_lights_punctual's spot falloff (the extension's README, "Spot"): with
+// scale = 1 / max(0.001, cos(inner) - cos(outer)) and offset = -cos(outer) * scale, the
+// intensity factor at angle theta from the axis is clamp(cos(theta) * scale + offset, 0, 1)^2.
+float spotAttenuation(float cosTheta, float innerCone, float outerCone);
+
 class LightSampler {
  public:
   explicit LightSampler(const Scene& scene);
 
   size_t lightCount() const { return lights_.size(); }
   int samplesFor(size_t light) const { return lights_[light].samples; }
-  // How many of a sample's uniform numbers (u1, u2, u3) `light` reads: 0 for point and
+  // How many of a sample's uniform numbers (u1, u2, u3) `light` reads: 0 for point, spot and
   // directional lights, 2 for quads, 3 for meshes (the triangle, then the point on it).
   int uniformsFor(size_t light) const;
   // A sample of `light` for the point `p` with unit normal `n`; (u1, u2, u3) uniform in [0,1).

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "parallax/core/random.h"
@@ -71,6 +72,13 @@ TEST(LightSampler, PacketMatchesScalar) {
   d.direction = normalize(Vec3f{0.3f, -1.0f, 0.2f});
   d.intensity = {1.0f, 2.0f, 3.0f};
   scene.lights.push_back(d);
+  Light spot;  // a narrow cone: some lanes fall outside it, some in the falloff
+  spot.kind = Light::Kind::Spot;
+  spot.position = {0.2f, 2, -0.3f};
+  spot.direction = normalize(Vec3f{0.2f, -1.0f, 0.1f});
+  spot.innerCone = 0.2f, spot.outerCone = 0.6f;
+  spot.intensity = {4.0f, 5.0f, 6.0f};
+  scene.lights.push_back(spot);
   const LightSampler sampler(scene);
   Rng rng(3);
   SurfacePacket16 sp{};
@@ -101,6 +109,52 @@ TEST(LightSampler, PacketMatchesScalar) {
       EXPECT_EQ(out.tMax[i], s.tMax);
     }
   }
+}
+
+// The spot's irradiance against KHR_lights_punctual's falloff, written out here from the
+// extension's README in double precision: E = I cos(theta_receiver) / r^2 times
+// clamp(cd * scale + offset, 0, 1)^2, scale = 1 / max(0.001, cos(inner) - cos(outer)),
+// offset = -cos(outer) * scale, cd the cosine between the axis and light -> point.
+TEST(LightSampler, SpotFalloffFollowsTheGltfFormula) {
+  const double inner = 0.25, outer = 0.5;
+  Scene scene;
+  Light spot;
+  spot.kind = Light::Kind::Spot;
+  spot.position = {0, 2, 0};
+  spot.direction = {0, -1, 0};
+  spot.innerCone = float(inner), spot.outerCone = float(outer);
+  spot.intensity = Vec3f(10.0f);
+  scene.lights.push_back(spot);
+  const LightSampler sampler(scene);
+  const double scale = 1.0 / std::max(0.001, std::cos(inner) - std::cos(outer));
+  const double offset = -std::cos(outer) * scale;
+  int inCone = 0, inFalloff = 0, outside = 0;
+  for (int k = 0; k <= 60; ++k) {
+    // Receivers on the floor y = 0 at angles 0 .. 0.6 rad from the axis.
+    const double angle = 0.01 * k;
+    const Vec3f p{float(2 * std::tan(angle)), 0, 0};
+    const double r2 = 4 + double(p.x) * p.x;
+    const double cd = 2 / std::sqrt(r2);  // the axis is -y; light -> p has y component -2
+    const double a = std::clamp(cd * scale + offset, 0.0, 1.0);
+    const double expected = 10.0 * (2 / std::sqrt(r2)) / r2 * a * a;
+    const LightSample s = sampler.sample(0, p, {0, 1, 0}, 0, 0, 0);
+    EXPECT_NEAR(s.irradiance.x, expected, 1e-5 * (1 + expected)) << "angle " << angle;
+    EXPECT_NEAR(spotAttenuation(float(cd), float(inner), float(outer)), a * a, 1e-5);
+    if (angle < inner - 0.005) {
+      EXPECT_NEAR(a, 1.0, 1e-12);  // full intensity inside the inner cone
+      ++inCone;
+    } else if (angle > outer + 0.005) {
+      EXPECT_FALSE(s.valid);  // nothing beyond the outer cone
+      ++outside;
+    } else if (angle > inner + 0.005 && angle < outer - 0.005) {
+      EXPECT_GT(a, 0.0);
+      EXPECT_LT(a, 1.0);
+      ++inFalloff;
+    }
+  }
+  EXPECT_GT(inCone, 10);
+  EXPECT_GT(inFalloff, 10);
+  EXPECT_GT(outside, 5);
 }
 
 // uniformsFor() says which of (u1, u2, u3) a light reads (the tracer draws only those): a

@@ -38,6 +38,7 @@ SurfaceShader::SurfaceShader(const Scene& scene, const Accelerator& accelerator)
       const auto& idx = g.mesh->indices;
       for (size_t t = 0; !n.empty() && t + 2 < idx.size() && !g.smoothNormals; t += 3)
         g.smoothNormals = !(n[idx[t]] == n[idx[t + 1]] && n[idx[t]] == n[idx[t + 2]]);
+      g.colors = g.mesh->colors.size() == g.mesh->positions.size() && !g.mesh->colors.empty();
     } else {
       g.sphere = &scene.spheres[ref.index];
       g.material = &scene.materials[g.sphere->material];
@@ -54,6 +55,7 @@ SurfacePoint SurfaceShader::evaluate(const Ray& ray, const Hit& hit) const {
   Vec3f ng = normalize(hit.geometricNormal);
   Vec3f ns = ng;
   Vec2f uv{hit.u, hit.v};
+  Vec3f vertexColor(1.0f);
   if (g.mesh) {
     const TriangleMesh& mesh = *g.mesh;
     const uint32_t* tri = &mesh.indices[size_t(hit.primitive) * 3];
@@ -68,6 +70,10 @@ SurfacePoint SurfaceShader::evaluate(const Ray& ray, const Hit& hit) const {
       const Vec2f a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
       uv = {a.x * w0 + b.x * hit.u + c.x * hit.v, a.y * w0 + b.y * hit.u + c.y * hit.v};
     }
+    // Vertex colours, interpolated like the normals: c = w0 c0 + u c1 + v c2.
+    if (g.colors)
+      vertexColor =
+          mesh.colors[tri[0]] * w0 + mesh.colors[tri[1]] * hit.u + mesh.colors[tri[2]] * hit.v;
   } else {
     ng = normalize(sp.position - g.sphere->center);
     ns = ng;
@@ -82,7 +88,7 @@ SurfacePoint SurfaceShader::evaluate(const Ray& ray, const Hit& hit) const {
   sp.shadingNormal = ns;
 
   const Material& material = *g.material;
-  Vec3f albedo = material.diffuse;
+  Vec3f albedo = material.diffuse * vertexColor;
   if (g.texture) albedo = albedo * evaluateTexture(scene_, *g.texture, sp.position, uv);
   sp.mirror = material.mirror;
   sp.diffuse = albedo * (Vec3f(1.0f) - material.mirror);
@@ -179,7 +185,7 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
     uint32_t done = 0;
     for (int i = 0; i < 16; ++i) done |= geometry[i] == id ? 1u << i : 0u;
     pending &= ~done;
-    if (!g.sphere && !g.smoothNormals && (!g.texture || isChecker)) continue;
+    if (!g.sphere && !g.smoothNormals && !g.colors && (!g.texture || isChecker)) continue;
     for (int i = first; i < 16; ++i) {
       if (geometry[i] != id) continue;
       if (g.sphere) {
@@ -196,6 +202,11 @@ void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
           const float inv = 1.0f / std::sqrt(len2);
           nx[i] = n.x * inv, ny[i] = n.y * inv, nz[i] = n.z * inv;
         }
+      }
+      if (g.colors) {
+        const auto& colors = g.mesh->colors;
+        const Vec3f c = colors[tri[0]] * b0 + colors[tri[1]] * b1 + colors[tri[2]] * b2;
+        for (int k = 0; k < 3; ++k) diffuse[k][i] *= c[k];
       }
       if (!g.texture || isChecker) continue;
       Vec2f uv{b1, b2};

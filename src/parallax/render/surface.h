@@ -38,6 +38,7 @@ class SurfaceShader {
     // The mesh has vertex normals that differ within some triangle; flat-shaded meshes (every
     // triangle's three normals equal) use the geometric normal and skip the interpolation.
     bool smoothNormals = false;
+    bool colors = false;  // the mesh has vertex colours (multiplied into the albedo)
   };
   const Scene& scene_;
   std::vector<Geometry> geometries_;

@@ -36,6 +36,13 @@ Scene mixedScene() {
   smooth.normals = {normalize(Vec3f{-1, 0, 1}), normalize(Vec3f{1, 0, 1}), {0, 1, 0}};
   smooth.indices = {0, 1, 2};
   scene.meshes.push_back(smooth);
+  // A flat triangle with red, green and blue corners.
+  TriangleMesh painted;
+  painted.name = "painted";
+  painted.positions = {{1.5f, 0.5f, -2}, {2.5f, 0.5f, -2}, {1.5f, 1.5f, -2}};
+  painted.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  painted.indices = {0, 1, 2};
+  scene.meshes.push_back(painted);
   return scene;
 }
 
@@ -82,6 +89,48 @@ TEST(SurfaceShader, PacketMatchesScalarLaneByLane) {
     }
   }
   EXPECT_GT(hits, 1000);
+}
+
+// A triangle with red, green and blue corners, hit where its barycentrics are known from the
+// geometry alone: the point a + 0.2 (b - a) + 0.3 (c - a) has weights (0.5, 0.2, 0.3), so
+// the albedo is the material's times (0.5, 0.2, 0.3), in the scalar and the packet shader.
+TEST(SurfaceShader, VertexColoursInterpolateWithBarycentrics) {
+  Scene scene;
+  Material grey;
+  grey.diffuse = {0.8f, 0.6f, 0.4f};
+  scene.materials.push_back(grey);
+  TriangleMesh mesh;
+  const Vec3f a{-1, -1, 0}, b{2, -1, 0}, c{-1, 3, 0};
+  mesh.positions = {a, b, c};
+  mesh.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  mesh.indices = {0, 1, 2};
+  scene.meshes.push_back(mesh);
+  const Accelerator accel(scene);
+  const SurfaceShader shader(scene, accel);
+
+  const float wb = 0.2f, wc = 0.3f;
+  const Vec3f target = a + (b - a) * wb + (c - a) * wc;
+  const Vec3f origin = target + Vec3f(0.3f, -0.2f, 2.0f);
+  const Ray ray{origin, normalize(target - origin)};
+  const Hit hit = accel.intersect(ray);
+  ASSERT_TRUE(hit.valid());
+  const Vec3f expected = grey.diffuse * Vec3f(1 - wb - wc, wb, wc);
+  const SurfacePoint s = shader.evaluate(ray, hit);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.diffuse[k], expected[k], 1e-5f) << k;
+
+  RayPacket16 rays;
+  for (int lane = 0; lane < 16; ++lane) rays.set(lane, ray);
+  HitPacket16 hits;
+  accel.intersect16(rays, hits);
+  SurfacePacket16 sp;
+  Color16 emitted;
+  emitted.fill(0.0f);
+  shader.evaluate16(rays, hits, sp, emitted);
+  for (int lane = 0; lane < 16; ++lane) {
+    EXPECT_NEAR(sp.diffuse.r[lane], expected.x, 1e-5f);
+    EXPECT_NEAR(sp.diffuse.g[lane], expected.y, 1e-5f);
+    EXPECT_NEAR(sp.diffuse.b[lane], expected.z, 1e-5f);
+  }
 }
 
 TEST(Texture, CheckerAlternatesBySquare) {

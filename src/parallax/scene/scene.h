@@ -40,6 +40,10 @@ struct TriangleMesh {
   std::vector<Vec3f> positions;
   std::vector<Vec3f> normals;
   std::vector<Vec2f> uvs;
+  // Vertex colours (linear RGB), multiplied into the material's diffuse albedo and
+  // interpolated with the barycentrics (docs/gltf.md, "Vertex colours"); empty or one per
+  // position.
+  std::vector<Vec3f> colors;
   std::vector<uint32_t> indices;  // three per triangle
 
   size_t triangleCount() const { return indices.size() / 3; }
@@ -53,11 +57,16 @@ struct Sphere {
 };
 
 struct Light {
-  enum class Kind { Point, Directional, Quad, Mesh };
+  enum class Kind { Point, Directional, Quad, Mesh, Spot };
   Kind kind = Kind::Point;
-  Vec3f intensity{1.0f};  // Point: W/sr per channel; Directional: irradiance; Quad/Mesh: radiance
-  Vec3f position;         // Point
-  Vec3f direction{0, -1, 0};   // Directional: the direction light travels (unit)
+  // Point/Spot: W/sr per channel (on the axis for Spot); Directional: irradiance; Quad/Mesh:
+  // radiance.
+  Vec3f intensity{1.0f};
+  Vec3f position;             // Point, Spot
+  Vec3f direction{0, -1, 0};  // Directional: the direction light travels; Spot: its axis (unit)
+  // Spot: full intensity within innerCone of the axis, none beyond outerCone (radians), with
+  // KHR_lights_punctual's smooth falloff between (spotAttenuation, render/light_sampler.h).
+  float innerCone = 0.0f, outerCone = 0.7853982f;
   Vec3f corner, edgeU, edgeV;  // Quad: emits from the side of cross(edgeU, edgeV)
   bool twoSided = false;       // Quad/Mesh: emit from both faces
   int mesh = -1;               // Mesh: index into Scene::meshes (its material's emission)
@@ -150,6 +159,17 @@ struct NodeAnimation {
   bool empty() const { return meshes.empty(); }
 };
 
+// A camera a mesh file brings (glTF), in world space; `parallax view` and `render` use the
+// chosen one (--camera, docs/gltf.md).
+struct NamedCamera {
+  std::string name;       // the camera's name, else its node's, else "camera N"
+  std::string source;     // the file
+  CameraSpec spec;        // eye, a point on the line of sight, up, vertical field of view
+  float aspectRatio = 0;  // width / height from the file; 0: not given
+  float znear = 0;        // the near plane from the file (informational: we do not clip)
+  int note = -1;          // index of the file's line in Scene::notes, or -1
+};
+
 struct Scene {
   std::string source;  // file it came from, or "<built-in>"
   std::vector<TriangleMesh> meshes;
@@ -166,7 +186,10 @@ struct Scene {
   std::vector<CameraKey> cameraKeys;    // sorted by time; empty: the camera does not move
   std::vector<DisplayKey> displayKeys;  // sorted by time; empty: the display does not move
   NodeAnimation nodeAnimation;          // glTF node animation; empty: nothing animated
+  std::vector<NamedCamera> cameras;     // cameras of the loaded files, in file order
   std::vector<std::string> warnings;
+  // What was taken from and ignored in each loaded file (one line per glTF file; docs/gltf.md).
+  std::vector<std::string> notes;
 
   size_t triangleCount() const;
   Bounds3f bounds() const;
