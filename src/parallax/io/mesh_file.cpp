@@ -12,7 +12,9 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <sstream>
+#include <unordered_map>
 
 #include "parallax/io/input_file.h"
 #include "parallax/io/mesh_formats.h"
@@ -209,6 +211,96 @@ bool isDegenerate(const Vec3f& a, const Vec3f& b, const Vec3f& c) {
   return cross(b - a, c - a) == Vec3f(0.0f);
 }
 
+// Angle-weighted vertex normals with a crease angle, for a part whose file gave none: each
+// face adds its unit normal weighted by its angle at the vertex (Thürmer and Wüthrich 1998,
+// "Computing vertex normals from polygonal facets"; the weights do not depend on how a
+// surface is split into triangles). A corner only takes the faces around its vertex whose
+// normals are within the crease angle of its own face's, so faces meeting at a sharper edge
+// keep separate normals; vertices get split where their corners' normals differ. Corners
+// are matched by position (STL repeats every vertex per face), so seams in the file's vertex
+// list do not show. `part` is in world space; `flip` says that the appender will swap corners
+// 1 and 2 (a mirroring transform), so the front face is the other side.
+void generateNormals(FilePart& part, bool flip, float creaseDegrees) {
+  const size_t triangles = part.indices.size() / 3;
+  // Same position, same vertex; + 0.0f turns -0 into +0 so that both weld.
+  struct Key {
+    float x, y, z;
+    bool operator==(const Key&) const = default;
+  };
+  struct KeyHash {
+    size_t operator()(const Key& k) const {
+      const std::hash<float> h;
+      return h(k.x) * 73856093u ^ h(k.y) * 19349663u ^ h(k.z) * 83492791u;
+    }
+  };
+  std::unordered_map<Key, uint32_t, KeyHash> weldOf;
+  weldOf.reserve(part.positions.size());
+  std::vector<uint32_t> weld(part.positions.size());
+  for (size_t v = 0; v < part.positions.size(); ++v) {
+    const Vec3f& p = part.positions[v];
+    weld[v] = weldOf.try_emplace(Key{p.x + 0.0f, p.y + 0.0f, p.z + 0.0f}, uint32_t(weldOf.size()))
+                  .first->second;
+  }
+
+  // Unit face normals and corner angles; degenerate faces get weight 0 (they are dropped).
+  std::vector<Vec3f> faceNormal(triangles, Vec3f(0.0f));
+  std::vector<float> angle(triangles * 3, 0.0f);
+  for (size_t t = 0; t < triangles; ++t) {
+    const Vec3f* p[3];
+    for (int k = 0; k < 3; ++k) p[k] = &part.positions[part.indices[3 * t + size_t(k)]];
+    const Vec3f n = cross(*p[1] - *p[0], *p[2] - *p[0]);
+    const float len = length(n);
+    if (!(len > 0.0f) || !std::isfinite(len)) continue;
+    faceNormal[t] = n / (flip ? -len : len);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3f e1 = *p[(k + 1) % 3] - *p[k], e2 = *p[(k + 2) % 3] - *p[k];
+      angle[3 * t + size_t(k)] = std::atan2(length(cross(e1, e2)), dot(e1, e2));
+    }
+  }
+
+  // The corners around each welded vertex (compressed rows).
+  std::vector<uint32_t> start(weldOf.size() + 1, 0);
+  for (uint32_t index : part.indices) ++start[weld[index] + 1];
+  for (size_t w = 0; w < weldOf.size(); ++w) start[w + 1] += start[w];
+  std::vector<uint32_t> corners(part.indices.size()), fill(start.begin(), start.end() - 1);
+  for (size_t c = 0; c < triangles * 3; ++c) corners[fill[weld[part.indices[c]]]++] = uint32_t(c);
+
+  const float cosCrease = std::cos(creaseDegrees * std::numbers::pi_v<float> / 180.0f);
+  std::vector<Vec3f> positions, normals;
+  std::vector<Vec2f> uvs;
+  // Per original vertex, the (normal, new vertex) pairs made so far: corners of a smooth
+  // region sum the same faces in the same order, so their normals are equal bit for bit.
+  std::vector<std::vector<std::pair<Vec3f, uint32_t>>> made(part.positions.size());
+  std::vector<uint32_t> indices(part.indices.size());
+  for (size_t c = 0; c < triangles * 3; ++c) {
+    const uint32_t v = part.indices[c];
+    const Vec3f& own = faceNormal[c / 3];
+    Vec3f sum(0.0f);
+    const uint32_t w = weld[v];
+    for (uint32_t i = start[w]; i < start[w + 1]; ++i) {
+      const uint32_t other = corners[i];
+      if (dot(own, faceNormal[other / 3]) >= cosCrease) sum += faceNormal[other / 3] * angle[other];
+    }
+    const float len = length(sum);
+    const Vec3f n = len > 0.0f && std::isfinite(len) ? sum / len : own;
+    auto& options = made[v];
+    auto found = std::find_if(options.begin(), options.end(),
+                              [&](const auto& entry) { return entry.first == n; });
+    if (found == options.end()) {
+      options.emplace_back(n, uint32_t(positions.size()));
+      found = options.end() - 1;
+      positions.push_back(part.positions[v]);
+      normals.push_back(n);
+      if (!part.uvs.empty()) uvs.push_back(part.uvs[v]);
+    }
+    indices[c] = found->second;
+  }
+  part.positions = std::move(positions);
+  part.normals = std::move(normals);
+  part.uvs = std::move(uvs);
+  part.indices = std::move(indices);
+}
+
 // Collects the world-space meshes of one file, one per scene material, and creates the
 // scene materials, textures and images the first time a kept triangle needs them.
 class SceneAppender {
@@ -219,16 +311,20 @@ class SceneAppender {
     prefix_ = options.name.empty() ? std::filesystem::path(path).stem().string() : options.name;
   }
 
-  // `part` must have passed validate().
-  void add(FilePart& part) {
-    const Transform worldFromPart = options_.worldFromFile * part.fileFromPart;
+  // `part` must have passed validate(). `fileFromReader` turns a Z-up file Y-up.
+  void add(FilePart& part, const Transform& fileFromReader) {
+    const Transform worldFromPart = options_.worldFromFile * fileFromReader * part.fileFromPart;
     for (Vec3f& p : part.positions) {
       p = worldFromPart.point(p);
       if (!isFinite(p))
         fail(path_, where(part) + "a vertex moved to world space overflows (transform too large)");
     }
+    const bool hadNormals = !part.normals.empty();
     transformNormals(worldFromPart, part);
     const bool flip = worldFromPart.swapsHandedness();
+    const bool generate = !hadNormals && options_.creaseDegrees > 0.0f;
+    if (generate) generateNormals(part, flip, options_.creaseDegrees);
+    (hadNormals ? fileNormals_ : generate ? generatedNormals_ : faceted_) = true;
 
     TriangleMesh* mesh = nullptr;
     std::vector<uint32_t> remap(part.positions.size(), kUnused);
@@ -250,7 +346,28 @@ class SceneAppender {
         }
         mesh->indices.push_back(remap[v]);
       }
+      ++triangles_;
     }
+  }
+
+  // What was done, for Scene::imports.
+  void record(const std::string& reader, UpAxis up) {
+    Scene::ImportRecord r;
+    r.file = path_;
+    r.reader = reader;
+    r.up = up == UpAxis::Z ? "z" : "y";
+    std::vector<std::string> kinds;
+    if (fileNormals_) kinds.push_back("file");
+    if (generatedNormals_) {
+      std::ostringstream text;
+      text << "generated (crease " << options_.creaseDegrees << "°)";
+      kinds.push_back(text.str());
+    }
+    if (faceted_) kinds.push_back("faceted");
+    for (size_t i = 0; i < kinds.size(); ++i) r.normals += (i ? " + " : "") + kinds[i];
+    if (kinds.empty()) r.normals = "none (no triangles)";
+    r.triangles = triangles_;
+    scene_.imports.push_back(std::move(r));
   }
 
   void finish() {
@@ -337,13 +454,41 @@ class SceneAppender {
   std::map<int, uint32_t> materials_;        // file material -> scene material
   std::map<int, int> textures_;              // file image -> scene texture
   size_t dropped_ = 0;
+  size_t triangles_ = 0;
+  bool fileNormals_ = false, generatedNormals_ = false, faceted_ = false;
 };
+
+}  // namespace
+
+const char* upAxisName(UpAxis up) {
+  switch (up) {
+    case UpAxis::Y:
+      return "y";
+    case UpAxis::Z:
+      return "z";
+    case UpAxis::Auto:
+      break;
+  }
+  return "auto";
+}
+
+bool parseUpAxis(const std::string& text, UpAxis& up) {
+  for (UpAxis candidate : {UpAxis::Auto, UpAxis::Y, UpAxis::Z})
+    if (text == upAxisName(candidate)) return up = candidate, true;
+  return false;
+}
+
+namespace {
+
+bool ourFormat(const std::string& ext) {
+  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
+}
 
 }  // namespace
 
 bool isMeshFile(const std::string& path) {
   const std::string ext = lowerExtension(path);
-  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
+  return ourFormat(ext) || meshio::assimpReads(ext);
 }
 
 void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene& scene) {
@@ -355,27 +500,51 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
                                 std::to_string(*options.materialOverride) +
                                 " is not a scene material");
 
+  if (!(options.creaseDegrees >= 0.0f && options.creaseDegrees <= 180.0f))
+    throw std::invalid_argument("loadMeshFile: crease angle " +
+                                std::to_string(options.creaseDegrees) + " is not in [0, 180]");
+
   const std::string ext = lowerExtension(path);
   FileContents contents;
-  if (ext == ".obj") {
+  std::string reader = "parallax-" + ext.substr(ext.empty() ? 0 : 1);
+  if (options.forceAssimp || !ourFormat(ext)) {
+    if (!meshio::assimpReads(ext))
+      fail(path, "unknown mesh format '" + ext +
+                     "' (docs/import.md lists the formats; assimp does not know this one)");
+    contents = meshio::readAssimp(path);
+    reader = "assimp";
+  } else if (ext == ".obj") {
     contents = meshio::readObj(path);
   } else if (ext == ".ply") {
     contents = meshio::readPly(path);
   } else if (ext == ".stl") {
     contents = meshio::readStl(path);
-  } else if (ext == ".gltf" || ext == ".glb") {
-    contents = meshio::readGltf(path);
   } else {
-    fail(path, "unknown mesh format '" + ext + "' (expected .obj, .ply, .stl, .gltf or .glb)");
+    contents = meshio::readGltf(path);
+    reader = "parallax-gltf";
   }
+
+  // The up axis (docs/import.md): what the file declares, else the format's convention. STL
+  // comes from CAD and 3-D printing, where Z is up; assimp's Collada, Blender and 3DS
+  // importers already turn their Z-up files Y-up; glTF is Y-up by its specification.
+  UpAxis up = options.up;
+  if (up == UpAxis::Auto) up = contents.declaredUp;
+  if (up == UpAxis::Auto) up = ext == ".stl" ? UpAxis::Z : UpAxis::Y;
+  // -90 degrees about X: (x, y, z) -> (x, z, -y), so that +Z becomes +Y (a rotation: the
+  // handedness and the winding stay).
+  Mat4 zToY = Mat4::identity();  // exact, where rotate() would leave cos(90 deg) = 6e-17
+  zToY.m[1] = {0, 0, 1, 0};
+  zToY.m[2] = {0, -1, 0, 0};
+  const Transform fileFromReader = up == UpAxis::Z ? Transform(zToY) : Transform();
 
   // Validate everything before touching the scene, so a bad file leaves it unchanged.
   for (const FilePart& part : contents.parts) validate(path, part);
   SceneAppender appender(path, options, contents, scene);
   for (const std::string& warning : contents.warnings)
     scene.warnings.push_back(path + ": " + warning);
-  for (FilePart& part : contents.parts) appender.add(part);
+  for (FilePart& part : contents.parts) appender.add(part, fileFromReader);
   appender.finish();
+  appender.record(reader, up);
 }
 
 }  // namespace parallax

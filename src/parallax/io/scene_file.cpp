@@ -247,8 +247,8 @@ Vec3f positiveSize(const JsonReader& value) {
 
 class SceneFileLoader {
  public:
-  explicit SceneFileLoader(const std::string& path)
-      : path_(path), folder_(fs::path(path).parent_path()) {}
+  SceneFileLoader(const std::string& path, const ImportOptions& import)
+      : path_(path), folder_(fs::path(path).parent_path()), import_(import) {}
 
   Scene load() {
     const JsonDocument document = JsonDocument::parseFile(path_);
@@ -404,7 +404,7 @@ class SceneFileLoader {
         {"box", {"min", "max", "size", "center"}},
         {"quad", {"corner", "edge_u", "edge_v"}},
         {"plane", {"center", "normal", "up", "size"}},
-        {"mesh", {"file"}}};
+        {"mesh", {"file", "up", "crease"}}};
     std::vector<std::string> allowed = common;
     if (!object.has("shape")) {  // a misspelt "shape" is better reported as unknown key
       for (const auto& [shape, keys] : shapeKeys)
@@ -461,7 +461,7 @@ class SceneFileLoader {
                                   "but do not light the scene (use a mesh or a quad light)");
       scene_.spheres.push_back(sphere);
     } else if (shape == "mesh") {
-      addMeshFile(object["file"], name, worldFromObject, material);
+      addMeshFile(object, name, worldFromObject, material);
     } else {
       addFlatShape(object, shape, name, *material);
       transformMesh(scene_.meshes.back(), worldFromObject);
@@ -526,8 +526,9 @@ class SceneFileLoader {
     }
   }
 
-  void addMeshFile(const JsonReader& fileKey, const std::string& name,
+  void addMeshFile(const JsonReader& object, const std::string& name,
                    const Transform& worldFromObject, std::optional<uint32_t> material) {
+    const JsonReader fileKey = object["file"];
     const std::string file = resolve(fileKey.string());
     if (!fs::exists(file)) fileKey.fail("mesh file not found: " + file);
     try {
@@ -536,8 +537,14 @@ class SceneFileLoader {
       fileKey.fail(e.what());
     }
     if (!isMeshFile(file))
-      fileKey.fail("not a mesh file this build reads (.obj, .ply, .stl, .gltf, .glb): " + file);
+      fileKey.fail("not a mesh file this build reads (docs/import.md lists the formats): " + file);
     MeshLoadOptions options;
+    options.up = import_.up;
+    if (const auto up = object.find("up"); up && !parseUpAxis(up->string(), options.up))
+      up->fail("expected \"auto\", \"y\" or \"z\", found \"" + up->string() + "\"");
+    options.creaseDegrees = import_.creaseDegrees;
+    if (const auto crease = object.find("crease"))
+      options.creaseDegrees = float(crease->number(0, 180));
     options.worldFromFile = worldFromObject;
     options.materialOverride = material;
     options.name = name;
@@ -678,6 +685,7 @@ class SceneFileLoader {
 
   std::string path_;
   fs::path folder_;
+  ImportOptions import_;
   Scene scene_;
   std::map<std::string, int> namedTextures_, namedMaterials_, images_;
   std::optional<uint32_t> defaultMaterial_;
@@ -689,11 +697,14 @@ class SceneFileLoader {
 
 }  // namespace
 
-Scene sceneFromMesh(const std::string& path) {
+Scene sceneFromMesh(const std::string& path, const ImportOptions& import) {
   requireRegularFile(path);
   Scene scene;
   scene.source = path;
-  loadMeshFile(path, MeshLoadOptions{}, scene);
+  MeshLoadOptions options;
+  options.up = import.up;
+  options.creaseDegrees = import.creaseDegrees;
+  loadMeshFile(path, options, scene);
   if (scene.materials.empty()) {
     Material grey;
     grey.name = "default";
@@ -719,10 +730,10 @@ Scene sceneFromMesh(const std::string& path) {
   return scene;
 }
 
-Scene loadScene(const std::string& path) {
+Scene loadScene(const std::string& path, const ImportOptions& import) {
   requireRegularFile(path);
-  if (lowerExtension(path) == ".json") return SceneFileLoader(path).load();
-  if (isMeshFile(path)) return sceneFromMesh(path);
+  if (lowerExtension(path) == ".json") return SceneFileLoader(path, import).load();
+  if (isMeshFile(path)) return sceneFromMesh(path, import);
   throw InputError(path, "", "unknown scene format (expected a .json scene or a mesh file)");
 }
 
@@ -730,8 +741,9 @@ Scene loadScene(const std::string& path) {
 
 namespace parallax {
 
-Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir) {
-  Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath);
+Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir,
+                          const ImportOptions& import) {
+  Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, import);
   const fs::path record = fs::path(renderDir) / "render.json";
   if (renderDir.empty() || !fs::is_regular_file(record)) return scene;
   const JsonDocument document = JsonDocument::parseFile(record.string());

@@ -118,6 +118,16 @@ struct Scene {
   DisplayPlacement display;
   std::optional<CameraSpec> camera;
   std::vector<std::string> warnings;
+  // What loading each mesh file did (io/mesh_file.h, docs/import.md); written to render.json.
+  struct ImportRecord {
+    std::string file;
+    std::string
+        reader;      // "parallax-obj", "parallax-ply", "parallax-stl", "parallax-gltf", "assimp"
+    std::string up;  // the file's up axis as used: "y" or "z"
+    std::string normals;  // "file", "generated (crease 60°)", "faceted", or a mix joined by " + "
+    size_t triangles = 0;
+  };
+  std::vector<ImportRecord> imports;
 
   size_t triangleCount() const;
   Bounds3f bounds() const;
