@@ -156,21 +156,33 @@ class AssimpConverter {
     } else {
       std::string name = reference;
       std::replace(name.begin(), name.end(), '\\', '/');  // files written on Windows
-      const std::string file = (folder_ / name).string();
+      std::string file = (folder_ / name).string();
       std::error_code error;
+      // Files written elsewhere often name their textures by absolute paths of the machine
+      // that wrote them ("D:\\models\\wood.jpg"); the texture is then usually beside the file.
+      if (!std::filesystem::exists(file, error))
+        file = (folder_ / std::filesystem::path(name).filename()).string();
       if (!std::filesystem::exists(file, error)) {
         contents_.warnings.push_back(where + ": file not found; using its colour alone");
         return -1;
       }
-      decoded = readImage(file);
+      // The long tail brings textures we cannot decode (TGA, BMP, DDS): unlike an OBJ's,
+      // they cost the texture, not the model.
+      try {
+        decoded = readImage(file);
+      } catch (const InputError& e) {
+        contents_.warnings.push_back(where + ": not readable (" + e.what() +
+                                     "); using its colour alone");
+        return -1;
+      }
     }
     contents_.images.push_back(std::move(decoded));
     return it->second = int(contents_.images.size()) - 1;
   }
 
   // FBX files say which axis is up (metadata UpAxis 0/1/2 = X/Y/Z with UpAxisSign); assimp
-  // keeps it as metadata without applying it. Collada's <up_axis> and the Blender and 3DS
-  // Z-up conventions are applied by assimp's importers themselves (docs/import.md).
+  // keeps it as metadata without applying it. Collada's <up_axis> and the 3DS Z-up convention
+  // are applied by assimp's importers themselves; Blender's is not (docs/import.md).
   void readUpAxis() {
     if (!scene_.mMetaData) return;
     int32_t axis = -1, sign = 1;

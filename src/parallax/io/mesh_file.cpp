@@ -524,12 +524,15 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
     reader = "parallax-gltf";
   }
 
-  // The up axis (docs/import.md): what the file declares, else the format's convention. STL
-  // comes from CAD and 3-D printing, where Z is up; assimp's Collada, Blender and 3DS
-  // importers already turn their Z-up files Y-up; glTF is Y-up by its specification.
+  // The up axis (docs/import.md): what the file declares (FBX), else the format's convention.
+  // The 3-D printing formats (STL, 3MF and AMF, whose specifications put the build platform
+  // in the XY plane) and Blender are Z-up, and assimp leaves their axes alone; its Collada
+  // (<up_axis>) and 3DS importers turn Z-up files Y-up themselves; glTF is Y-up by its
+  // specification, and the scanned models in PLY and OBJ (Stanford's) are Y-up.
   UpAxis up = options.up;
   if (up == UpAxis::Auto) up = contents.declaredUp;
-  if (up == UpAxis::Auto) up = ext == ".stl" ? UpAxis::Z : UpAxis::Y;
+  if (up == UpAxis::Auto)
+    up = ext == ".stl" || ext == ".3mf" || ext == ".amf" || ext == ".blend" ? UpAxis::Z : UpAxis::Y;
   // -90 degrees about X: (x, y, z) -> (x, z, -y), so that +Z becomes +Y (a rotation: the
   // handedness and the winding stay).
   Mat4 zToY = Mat4::identity();  // exact, where rotate() would leave cos(90 deg) = 6e-17
