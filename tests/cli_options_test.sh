@@ -3,7 +3,7 @@
 # refused with the memory estimate, the time estimate, --max-memory, CLI11's own errors as one
 # line, and output sets that are replaced whole or not at all.
 # Usage: cli_options_test.sh PARALLAX_BINARY SOURCE_DIR
-# CASES: 219 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
+# CASES: 239 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
 # output written) and 16 further cases (help, limits that let work run, output sets).
 set -u
 source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
@@ -52,6 +52,12 @@ for cmd in render view bench "lenticular render $tmp/small.json"; do
     refuse "$cmd --seed '$bad'" --seed "$@" --seed "$bad" -o "$o"
   done
   refuse "$cmd --jitter" --jitter "$@" --jitter sideways -o "$o"
+  # The import options come with the sampling options (docs/import.md).
+  for bad in -1 180.5 abc nan; do
+    refuse "$cmd --crease '$bad'" --crease "$@" --crease "$bad" -o "$o"
+  done
+  # (CLI11 names it --up where that is its first name, --mesh-up on view)
+  refuse "$cmd --mesh-up" "up: x not in" "$@" --mesh-up x -o "$o"
 done
 # The time estimate: a billion samples per pixel, and a small --max-time.
 refuse "view --spp 1e9" "--spp 1000000000" view --spp 1000000000 -o "$o"

@@ -341,10 +341,12 @@ std::vector<Scene::ImportRecord> gImportRecords;
 }  // namespace
 
 void addImportOptions(CLI::App& cmd) {
-  if (cmd.get_option_no_throw("--up")) return;
-  cmd.add_option("--up", gUpAxis,
-                 "Which axis of the mesh files points up: auto (Z for STL and for FBX files "
-                 "that say so, Y otherwise), y or z (turned Y-up); docs/import.md")
+  if (cmd.get_option_no_throw("--mesh-up")) return;  // added already
+  // view has --up already (the camera's up vector); --mesh-up works on every command.
+  const bool upFree = cmd.get_option_no_throw("--up") == nullptr;
+  cmd.add_option(upFree ? "--up,--mesh-up" : "--mesh-up", gUpAxis,
+                 "Which axis of the mesh files points up: auto (Z for STL, 3MF, AMF, Blender and "
+                 "FBX files that say so; Y otherwise), y, or z (turned Y-up); docs/import.md")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "y", "z"}));
   cmd.add_option("--crease", gCreaseDegrees,

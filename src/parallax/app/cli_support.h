@@ -125,10 +125,11 @@ struct FilterOptions {
 void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& scope,
                       const std::string& viewUnit);
 
-// --up auto|y|z and --crease DEGREES (docs/import.md): how the scene's mesh files are imported
-// (a scene file's mesh objects may say otherwise). addSamplingOptions and addFramingOptions
-// add them, so every command that loads a scene has them (render, view, bench, lenticular
-// render, design; info adds them itself); a second call on the same command does nothing.
+// --up auto|y|z (also --mesh-up; only that on view, whose --up is the camera's) and --crease
+// DEGREES (docs/import.md): how the scene's mesh files are imported (a scene file's mesh
+// objects may say otherwise). addSamplingOptions and addFramingOptions add them, so every
+// command that loads a scene has them (render, view, bench, lenticular render, design; info
+// adds them itself); a second call on the same command does nothing.
 void addImportOptions(CLI::App& cmd);
 // What the command line chose (the defaults if the command has no such options).
 ImportOptions importOptions();
