@@ -16,6 +16,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "parallax/core/parallel.h"
 #include "parallax/io/input_file.h"
 #include "parallax/io/mesh_formats.h"
 
@@ -30,8 +31,18 @@ std::string readFileBytes(const std::string& path) {
   return readInputFile(path);
 }
 
+namespace {
+
+// std::isspace of the "C" locale, inline: the call into the C library was a quarter of the
+// time of reading an ASCII PLY (the dragon, docs/import.md).
+bool isSpace(char c) {
+  return c == ' ' || (c >= '\t' && c <= '\r');
+}
+
+}  // namespace
+
 void TextTokens::skipSpace() {
-  while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {
+  while (pos_ < text_.size() && isSpace(text_[pos_])) {
     if (text_[pos_] == '\n') ++line_;
     ++pos_;
   }
@@ -41,7 +52,7 @@ std::string_view TextTokens::next() {
   skipSpace();
   tokenLine_ = line_;
   const size_t begin = pos_;
-  while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+  while (pos_ < text_.size() && !isSpace(text_[pos_])) ++pos_;
   return text_.substr(begin, pos_ - begin);
 }
 
@@ -265,35 +276,51 @@ void generateNormals(FilePart& part, bool flip, float creaseDegrees) {
   std::vector<uint32_t> corners(part.indices.size()), fill(start.begin(), start.end() - 1);
   for (size_t c = 0; c < triangles * 3; ++c) corners[fill[weld[part.indices[c]]]++] = uint32_t(c);
 
+  // Each corner's normal on its own, in parallel: it reads only its face's neighbours, so
+  // the result does not depend on the thread count.
   const float cosCrease = std::cos(creaseDegrees * std::numbers::pi_v<float> / 180.0f);
+  std::vector<Vec3f> cornerNormal(triangles * 3);
+  parallelFor(int64_t(triangles * 3), 0, 1 << 14, [&](int64_t begin, int64_t end) {
+    for (auto c = size_t(begin); c < size_t(end); ++c) {
+      const Vec3f& own = faceNormal[c / 3];
+      Vec3f sum(0.0f);
+      const uint32_t w = weld[part.indices[c]];
+      for (uint32_t i = start[w]; i < start[w + 1]; ++i) {
+        const uint32_t other = corners[i];
+        if (dot(own, faceNormal[other / 3]) >= cosCrease)
+          sum += faceNormal[other / 3] * angle[other];
+      }
+      const float len = length(sum);
+      cornerNormal[c] = len > 0.0f && std::isfinite(len) ? sum / len : own;
+    }
+  });
+
+  // One vertex per (file vertex, normal): corners of a smooth region sum the same faces in
+  // the same order, so their normals are equal bit for bit. The vertices made from one file
+  // vertex are chained (first[v], then next[]), in the order of their first corner.
+  constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> first(part.positions.size(), kNone), next;
   std::vector<Vec3f> positions, normals;
   std::vector<Vec2f> uvs;
-  // Per original vertex, the (normal, new vertex) pairs made so far: corners of a smooth
-  // region sum the same faces in the same order, so their normals are equal bit for bit.
-  std::vector<std::vector<std::pair<Vec3f, uint32_t>>> made(part.positions.size());
+  positions.reserve(part.positions.size());
+  normals.reserve(part.positions.size());
+  next.reserve(part.positions.size());
   std::vector<uint32_t> indices(part.indices.size());
   for (size_t c = 0; c < triangles * 3; ++c) {
     const uint32_t v = part.indices[c];
-    const Vec3f& own = faceNormal[c / 3];
-    Vec3f sum(0.0f);
-    const uint32_t w = weld[v];
-    for (uint32_t i = start[w]; i < start[w + 1]; ++i) {
-      const uint32_t other = corners[i];
-      if (dot(own, faceNormal[other / 3]) >= cosCrease) sum += faceNormal[other / 3] * angle[other];
-    }
-    const float len = length(sum);
-    const Vec3f n = len > 0.0f && std::isfinite(len) ? sum / len : own;
-    auto& options = made[v];
-    auto found = std::find_if(options.begin(), options.end(),
-                              [&](const auto& entry) { return entry.first == n; });
-    if (found == options.end()) {
-      options.emplace_back(n, uint32_t(positions.size()));
-      found = options.end() - 1;
+    const Vec3f& n = cornerNormal[c];
+    uint32_t* link = &first[v];
+    while (*link != kNone && normals[*link] != n) link = &next[*link];
+    if (*link == kNone) {
+      *link = uint32_t(positions.size());  // before next grows: `link` may point into it
       positions.push_back(part.positions[v]);
       normals.push_back(n);
+      next.push_back(kNone);
       if (!part.uvs.empty()) uvs.push_back(part.uvs[v]);
+      indices[c] = uint32_t(positions.size() - 1);
+    } else {
+      indices[c] = *link;
     }
-    indices[c] = found->second;
   }
   part.positions = std::move(positions);
   part.normals = std::move(normals);
