@@ -274,6 +274,38 @@ TEST(UpAxis, Names) {
   EXPECT_EQ(up, UpAxis::Z);
 }
 
+TEST_F(RealModels, FbxDeclaresItsUpAxis) {
+  // assimp's box.FBX (embedded_ascii) says UpAxis 2 (+Z): auto turns it Y-up, and the box,
+  // 1.2 units tall from its base at z = 0, then stands on y = 0.
+  const std::string zUp = model("assimp/FBX/embedded_ascii/box.FBX");
+  const Scene standing = load(zUp);
+  EXPECT_EQ(standing.imports[0].up, "z");
+  expectBounds(standing, {-0.6f, 0, -0.6f}, {0.6f, 1.2f, 0.6f}, 1e-6f);
+  MeshLoadOptions asY;
+  asY.up = UpAxis::Y;
+  const Scene asFile = load(zUp, asY);
+  expectBounds(asFile, {-0.6f, -0.6f, 0}, {0.6f, 0.6f, 1.2f}, 1e-6f);
+
+  // The same ASCII file twice, differing only in the UpAxis it declares: the metadata alone
+  // decides, and Z gives the rotation of the Y file's bounds, (x, y, z) -> (x, z, -y).
+  TempDir dir;
+  const std::string text =
+      readFile(model("assimp/FBX/embedded_ascii/box_embedded_texture_fragmented.fbx"));
+  const std::string yLine = R"(P: "UpAxis", "int", "Integer", "",1)";
+  const size_t at = text.find(yLine);
+  ASSERT_NE(at, std::string::npos);
+  std::string zText = text;
+  zText[at + yLine.size() - 1] = '2';
+  writeFile(dir.file("y.fbx"), text);
+  writeFile(dir.file("z.fbx"), zText);
+  const Scene y = load(dir.file("y.fbx")), z = load(dir.file("z.fbx"));
+  EXPECT_EQ(y.imports[0].up, "y");
+  EXPECT_EQ(z.imports[0].up, "z");
+  const Bounds3f by = y.bounds(), bz = z.bounds();
+  expectNear(bz.lo, {by.lo.x, by.lo.z, -by.hi.y}, 1e-6f);
+  expectNear(bz.hi, {by.hi.x, by.hi.z, -by.lo.y}, 1e-6f);
+}
+
 // ---- assimp formats ----------------------------------------------------------------------
 
 TEST(MeshFile, IsMeshFileKnowsAssimpFormats) {
@@ -329,6 +361,12 @@ TEST_F(RealModels, AssimpReadsTexturesAndTheirMissingFiles) {
   ASSERT_GE(duck.materials[0].diffuseTexture, 0);
   EXPECT_EQ(duck.images.size(), 1u);
   EXPECT_FALSE(duck.meshes[0].uvs.empty());
+  // An FBX with its texture embedded (a PNG inside the file, as "*0" or its file name).
+  const Scene boxed = load(model("assimp/FBX/embedded_ascii/box_embedded_texture_fragmented.fbx"));
+  ASSERT_EQ(boxed.materials.size(), 1u);
+  ASSERT_GE(boxed.materials[0].diffuseTexture, 0);
+  ASSERT_EQ(boxed.images.size(), 1u);
+  EXPECT_GT(boxed.images[0].width(), 1);
   const Scene spider = load(model("assimp/FBX/spider.fbx"));
   EXPECT_EQ(spider.triangleCount(), 1312u);
   size_t missing = 0;
