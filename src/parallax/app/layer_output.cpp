@@ -156,7 +156,11 @@ void startRenderRecord(JsonWriter& record, const std::string& method,
   record.set("/created", utcNow());
   record.set("/method", method);
   record.set("/display_file", displayFile.empty() ? std::string("<built-in>") : displayFile);
-  // docs/import.md, "What was done": one object per mesh file, in loading order.
+  // docs/import.md, "What was done": the command's import options (which simulate's
+  // loadSceneAsRendered reuses) and one object per mesh file, in loading order.
+  const ImportOptions options = importOptions();
+  record.set("/import_options/up", upAxisName(options.up));
+  record.set("/import_options/crease", double(options.creaseDegrees));
   record.setEmptyArray("/import");
   const auto& imports = importRecords();
   for (size_t i = 0; i < imports.size(); ++i) {

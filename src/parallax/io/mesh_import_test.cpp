@@ -497,6 +497,28 @@ TEST_F(RealModels, SceneFileUpAndCreaseKeys) {
   }
 }
 
+TEST_F(RealModels, SimulateReloadsWithTheRecordedImportOptions) {
+  // simulate --reference reloads the scene a render drew (loadSceneAsRendered): the import
+  // options in its render.json make the meshes the same.
+  TempDir dir;
+  const std::string spider = model("assimp/STL/Spider_ascii.stl");
+  writeFile(dir.file("render.json"), R"({"import_options": {"up": "y", "crease": 0}})");
+  const Scene recorded = loadSceneAsRendered(spider, dir.file(""));
+  EXPECT_EQ(recorded.imports[0].up, "y");
+  EXPECT_EQ(recorded.imports[0].normals, "faceted");
+  writeFile(dir.file("render.json"), "{}");  // a record from before: the defaults
+  const Scene old = loadSceneAsRendered(spider, dir.file(""));
+  EXPECT_EQ(old.imports[0].up, "z");
+  EXPECT_EQ(old.imports[0].normals, "generated (crease 60°)");
+  writeFile(dir.file("render.json"), R"({"import_options": {"up": "sideways", "crease": 0}})");
+  try {
+    loadSceneAsRendered(spider, dir.file(""));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/import_options/up"), std::string::npos) << e.what();
+  }
+}
+
 // ---- The bunny ---------------------------------------------------------------------------
 
 TEST_F(RealModels, BunnyNormalsPointOutward) {

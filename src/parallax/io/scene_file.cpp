@@ -741,13 +741,21 @@ Scene loadScene(const std::string& path, const ImportOptions& import) {
 
 namespace parallax {
 
-Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir,
-                          const ImportOptions& import) {
-  Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, import);
+Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir) {
   const fs::path record = fs::path(renderDir) / "render.json";
-  if (renderDir.empty() || !fs::is_regular_file(record)) return scene;
+  if (renderDir.empty() || !fs::is_regular_file(record))
+    return scenePath.empty() ? defaultScene() : loadScene(scenePath);
   const JsonDocument document = JsonDocument::parseFile(record.string());
   const JsonReader root = document.root();
+  // The import options the render used (docs/import.md), so that the meshes are the ones it
+  // drew; records written before they were recorded get the defaults, as then.
+  ImportOptions import;
+  if (const auto options = root.find("import_options")) {
+    const JsonReader up = (*options)["up"];
+    if (!parseUpAxis(up.string(), import.up)) up.fail("expected \"auto\", \"y\" or \"z\"");
+    import.creaseDegrees = float((*options)["crease"].number(0, 180));
+  }
+  Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, import);
   const auto framing = root.find("framing");
   if (!framing) return scene;
   DisplayPlacement& p = scene.display;

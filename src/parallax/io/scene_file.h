@@ -22,9 +22,9 @@ Scene sceneFromMesh(const std::string& path, const ImportOptions& import = {});
 
 // The scene `render` drew into `renderDir`: loadScene(scenePath) (the built-in scene when
 // empty) with the framing that DIR/render.json records (/framing/fit, /focus, /depth_budget),
-// so that frameForDisplay (camera/framing.h) frames it as the render did. Without a record the
-// scene's own framing is kept.
-Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir,
-                          const ImportOptions& import = {});
+// so that frameForDisplay (camera/framing.h) frames it as the render did, and its meshes imported
+// with the record's /import_options (up, crease; docs/import.md). Without a record the scene's
+// own framing and the default import options are kept.
+Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir);
 
 }  // namespace parallax
