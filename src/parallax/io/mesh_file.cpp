@@ -230,7 +230,14 @@ bool isDegenerate(const Vec3f& a, const Vec3f& b, const Vec3f& c) {
 // are matched by position (STL repeats every vertex per face), so seams in the file's vertex
 // list do not show. `part` is in world space; `flip` says that the appender will swap corners
 // 1 and 2 (a mirroring transform), so the front face is the other side.
-void generateNormals(FilePart& part, bool flip, float creaseDegrees) {
+// A vertex shared by more faces than this keeps its faces' own normals: comparing every face
+// there with every other costs the square of their number (a hostile file could make one
+// vertex the corner of millions), and real meshes stay far below it (the centre of a
+// 4096-segment disc).
+constexpr uint32_t kMaxSmoothedValence = 4096;
+
+// Returns how many vertices were left faceted for exceeding kMaxSmoothedValence.
+size_t generateNormals(FilePart& part, bool flip, float creaseDegrees) {
   const size_t triangles = part.indices.size() / 3;
   // Same position, same vertex: sorting the vertices by position puts equal ones side by side
   // (contiguous, unlike a node-based hash map, whose cache misses dominated on the dragon).
@@ -287,6 +294,11 @@ void generateNormals(FilePart& part, bool flip, float creaseDegrees) {
   parallelFor(int64_t(weldCount), 0, 1 << 12, [&](int64_t begin, int64_t end) {
     std::vector<std::pair<Vec3f, float>> around;  // (face normal, angle) of each corner
     for (auto w = size_t(begin); w < size_t(end); ++w) {
+      if (start[w + 1] - start[w] > kMaxSmoothedValence) {
+        for (uint32_t i = start[w]; i < start[w + 1]; ++i)
+          cornerNormal[corners[i]] = faceNormal[corners[i] / 3];
+        continue;
+      }
       around.clear();
       for (uint32_t i = start[w]; i < start[w + 1]; ++i)
         around.emplace_back(faceNormal[corners[i] / 3], angle[corners[i]]);
@@ -332,6 +344,9 @@ void generateNormals(FilePart& part, bool flip, float creaseDegrees) {
   part.normals = std::move(normals);
   part.uvs = std::move(uvs);
   part.indices = std::move(indices);
+  size_t crowded = 0;
+  for (size_t w = 0; w < weldCount; ++w) crowded += start[w + 1] - start[w] > kMaxSmoothedValence;
+  return crowded;
 }
 
 // Collects the world-space meshes of one file, one per scene material, and creates the
@@ -356,7 +371,12 @@ class SceneAppender {
     transformNormals(worldFromPart, part);
     const bool flip = worldFromPart.swapsHandedness();
     const bool generate = !hadNormals && options_.creaseDegrees > 0.0f;
-    if (generate) generateNormals(part, flip, options_.creaseDegrees);
+    if (generate)
+      if (const size_t crowded = generateNormals(part, flip, options_.creaseDegrees))
+        scene_.warnings.push_back(path_ + ": " + where(part) + std::to_string(crowded) +
+                                  (crowded == 1 ? " vertex" : " vertices") +
+                                  " shared by more than " + std::to_string(kMaxSmoothedValence) +
+                                  " triangles keep their faces' normals");
     (hadNormals ? fileNormals_ : generate ? generatedNormals_ : faceted_) = true;
 
     TriangleMesh* mesh = nullptr;

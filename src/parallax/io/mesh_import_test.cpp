@@ -173,6 +173,42 @@ TEST(GeneratedNormals, CreaseAngleDecidesEitherSideOfTheThreshold) {
   }
 }
 
+// A low cone (apex at height 0.1 over a unit disc) of `segments` triangles around its apex.
+std::string coneObj(int segments) {
+  std::ostringstream obj;
+  obj << "v 0 0.1 0\n";
+  for (int j = 0; j < segments; ++j) {
+    const float phi = 2 * kPi * float(j) / float(segments);
+    obj << "v " << std::cos(phi) << " 0 " << -std::sin(phi) << "\n";
+  }
+  for (int j = 0; j < segments; ++j)
+    obj << "f 1 " << 2 + j << " " << 2 + (j + 1) % segments << "\n";
+  return obj.str();
+}
+
+TEST(GeneratedNormals, CrowdedVerticesAreBoundedAndSaySo) {
+  TempDir dir;
+  // 4000 faces around the apex, all within 12 degrees of each other: smooth, and by symmetry
+  // the apex normal is the axis.
+  writeFile(dir.file("cone.obj"), coneObj(4000));
+  const Scene smooth = load(dir.file("cone.obj"));
+  EXPECT_TRUE(smooth.warnings.empty());
+  for (const Corner& c : corners(smooth.meshes[0]))
+    if (c.position == Vec3f(0, 0.1f, 0)) expectNear(c.normal, {0, 1, 0}, 1e-4f);
+  // 5000: more than the 4096 compared pairwise; the apex keeps its faces' normals, with a
+  // warning, instead of 25 million comparisons per crowded vertex.
+  writeFile(dir.file("cone.obj"), coneObj(5000));
+  const Scene crowded = load(dir.file("cone.obj"));
+  ASSERT_EQ(crowded.warnings.size(), 1u);
+  EXPECT_NE(crowded.warnings[0].find("1 vertex shared by more than 4096 triangles"),
+            std::string::npos)
+      << crowded.warnings[0];
+  size_t apexCorners = 0;
+  for (const Corner& c : corners(crowded.meshes[0]))
+    if (c.position == Vec3f(0, 0.1f, 0)) expectNear(c.normal, c.face, 1e-6f), ++apexCorners;
+  EXPECT_EQ(apexCorners, 5000u);
+}
+
 TEST(GeneratedNormals, CreaseZeroIsFacetedAsBefore) {
   TempDir dir;
   const std::string path = dir.file("sphere.obj");
