@@ -3,7 +3,7 @@
 # refused with the memory estimate, the time estimate, --max-memory, CLI11's own errors as one
 # line, and output sets that are replaced whole or not at all.
 # Usage: cli_options_test.sh PARALLAX_BINARY SOURCE_DIR
-# CASES: 239 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
+# CASES: 255 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
 # output written) and 20 further cases (help, limits that let work run, output sets, the
 # import record).
 set -u
@@ -53,6 +53,9 @@ for cmd in render view bench "lenticular render $tmp/small.json"; do
     refuse "$cmd --seed '$bad'" --seed "$@" --seed "$bad" -o "$o"
   done
   refuse "$cmd --jitter" --jitter "$@" --jitter sideways -o "$o"
+  for bad in -1 65 abc 2.5; do
+    refuse "$cmd --bounces '$bad'" --bounces "$@" --bounces "$bad" -o "$o"
+  done
   # The import options come with the sampling options (docs/import.md).
   for bad in -1 180.5 abc nan; do
     refuse "$cmd --crease '$bad'" --crease "$@" --crease "$bad" -o "$o"

@@ -12,6 +12,8 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "parallax/core/error.h"
 
@@ -70,6 +72,9 @@ struct Accelerator::Impl {
   uint32_t sphereCount = 0;
   int packetWidth = 16, nativePacketWidth = 16;
   BuildQuality quality = BuildQuality::High;
+  bool dynamic = false;
+  // What refit() must find again: each mesh's vertex and index counts.
+  std::vector<std::pair<size_t, size_t>> meshSizes;
   std::mutex errorMutex;
   std::string firstError;  // first message Embree reported through the error callback
 
@@ -354,27 +359,67 @@ Accelerator::Accelerator(const Scene& scene, const AcceleratorOptions& options)
   impl.scene = rtcNewScene(impl.device);
   impl.throwIfError("scene creation");
   // Static scenes are built once and traced many times: the quality follows how many.
-  rtcSetSceneFlags(impl.scene, RTC_SCENE_FLAG_NONE);
-  rtcSetSceneBuildQuality(impl.scene, quality);
+  // A moving one is refitted per frame (Embree 3: RTC_SCENE_FLAG_DYNAMIC with geometries of
+  // RTC_BUILD_QUALITY_REFIT keep their BVH's topology and update its bounds).
+  impl.dynamic = options.dynamic;
+  rtcSetSceneFlags(impl.scene, impl.dynamic ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE);
+  rtcSetSceneBuildQuality(impl.scene, impl.dynamic ? RTC_BUILD_QUALITY_LOW : quality);
 
   auto attach = [&](RTCGeometry geometry, uint32_t geomID) {
     if (!geometry) {
       impl.throwIfError("geometry creation");
       throw std::runtime_error("Embree: cannot create a geometry");
     }
-    rtcSetGeometryBuildQuality(geometry, quality);
+    rtcSetGeometryBuildQuality(geometry, impl.dynamic ? RTC_BUILD_QUALITY_REFIT : quality);
     rtcCommitGeometry(geometry);
     rtcAttachGeometryByID(impl.scene, geometry, geomID);
     rtcReleaseGeometry(geometry);  // the scene holds its own reference
     impl.throwIfError("geometry setup");
   };
-  for (uint32_t i = 0; i < impl.meshCount; ++i)
+  for (uint32_t i = 0; i < impl.meshCount; ++i) {
     attach(newTriangleGeometry(impl.device, scene.meshes[i]), i);
+    impl.meshSizes.emplace_back(scene.meshes[i].positions.size(), scene.meshes[i].indices.size());
+  }
   for (uint32_t i = 0; i < impl.sphereCount; ++i)
     attach(newSphereGeometry(impl.device, scene.spheres[i]), impl.meshCount + i);
 
   rtcCommitScene(impl.scene);
   impl.throwIfError("scene build");
+}
+
+void Accelerator::refit(const Scene& scene) {
+  Impl& impl = *impl_;
+  if (scene.meshes.size() != impl.meshCount || scene.spheres.size() != impl.sphereCount)
+    throw std::invalid_argument("refit: the scene has other meshes or spheres than the BVH");
+  for (uint32_t i = 0; i < impl.meshCount; ++i) {
+    const TriangleMesh& mesh = scene.meshes[i];
+    if (mesh.positions.size() != impl.meshSizes[i].first ||
+        mesh.indices.size() != impl.meshSizes[i].second)
+      throw std::invalid_argument("refit: mesh " + std::to_string(i) + " '" + mesh.name +
+                                  "' changed its vertex or index count");
+    RTCGeometry geometry = rtcGetGeometry(impl.scene, i);
+    auto* vertices =
+        static_cast<float*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      vertices[3 * v + 0] = mesh.positions[v].x;
+      vertices[3 * v + 1] = mesh.positions[v].y;
+      vertices[3 * v + 2] = mesh.positions[v].z;
+    }
+    rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(geometry);
+  }
+  for (uint32_t i = 0; i < impl.sphereCount; ++i) {
+    const Sphere& sphere = scene.spheres[i];
+    RTCGeometry geometry = rtcGetGeometry(impl.scene, impl.meshCount + i);
+    auto* point =
+        static_cast<float*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+    point[0] = sphere.center.x, point[1] = sphere.center.y, point[2] = sphere.center.z;
+    point[3] = sphere.radius;
+    rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(geometry);
+  }
+  rtcCommitScene(impl.scene);
+  impl.throwIfError("refit");
 }
 
 Accelerator::~Accelerator() = default;

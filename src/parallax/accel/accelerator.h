@@ -67,6 +67,10 @@ struct AcceleratorOptions {
   // With Auto: the rays the caller expects to trace (0: unknown, which builds High). High is
   // chosen from kHighQualityRaysPerTriangle rays per triangle up.
   double expectedRays = 0.0;
+  // A sequence whose vertices move (scene/motion.h): the BVH is built so that refit() can
+  // update it in place (Embree's RTC_BUILD_QUALITY_REFIT, a dynamic scene) instead of building
+  // it again every frame.
+  bool dynamic = false;
 };
 
 // Auto's threshold: below it the medium build's saved time exceeds what the high build saves in
@@ -144,6 +148,13 @@ class Accelerator {
   // The widest packet the device's kernels run natively: 16 (AVX-512), 8 (AVX, AVX2) or 4.
   int nativePacketWidth() const;
   BuildQuality buildQuality() const;
+
+  // Takes the moved vertices and sphere centres of `scene`, which must have the meshes and
+  // spheres the accelerator was built from (the same counts, vertex counts and indices:
+  // poseScene's output), and updates the BVH: refitted when built with
+  // AcceleratorOptions::dynamic, else rebuilt. Throws std::invalid_argument when the
+  // topology differs.
+  void refit(const Scene& scene);
 
   // Throws std::out_of_range for an ID that is not in the scene (including kNoHit).
   SurfaceRef surface(uint32_t geometry) const;

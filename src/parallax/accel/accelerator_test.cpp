@@ -788,3 +788,64 @@ TEST(AcceleratorThreads, ConcurrentQueriesMatchSerialOnes) {
 
 }  // namespace
 }  // namespace parallax
+
+namespace parallax {
+namespace {
+
+// A refitted BVH answers like one built from scratch on the moved geometry (a second code
+// path): every vertex of a random soup and a sphere's centre move, then rays are compared.
+class AcceleratorRefit : public ::testing::TestWithParam<bool> {};
+
+TEST_P(AcceleratorRefit, AnswersLikeAFreshBuildOfTheMovedScene) {
+  const bool dynamic = GetParam();
+  Rng rng(21);
+  std::vector<SoupTriangle> soup;
+  Scene scene = randomSoup(rng, 1500, soup);
+  scene.spheres.push_back({"ball", 0, Vec3f(0.2f, -0.1f, 0.3f), 0.35f});
+  AcceleratorOptions options;
+  options.dynamic = dynamic;
+  Accelerator refitted(scene, options);
+  for (int frame = 0; frame < 3; ++frame) {
+    for (TriangleMesh& mesh : scene.meshes)
+      for (Vec3f& p : mesh.positions) p = p + uniformBox(rng, -0.3f, 0.3f);
+    scene.spheres[0].center = uniformBox(rng, -0.8f, 0.8f);
+    refitted.refit(scene);
+    const Accelerator fresh(scene);
+    int hits = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const Ray ray = randomSoupRay(rng);
+      const Hit a = refitted.intersect(ray), b = fresh.intersect(ray);
+      ASSERT_EQ(a.valid(), b.valid()) << "frame " << frame << " ray " << i;
+      ASSERT_EQ(refitted.occluded(ray), fresh.occluded(ray)) << "frame " << frame << " ray " << i;
+      if (!a.valid()) continue;
+      ++hits;
+      EXPECT_NEAR(a.t, b.t, 1e-5f * (1.0f + b.t)) << "frame " << frame << " ray " << i;
+      if (a.t != b.t) continue;  // two surfaces at one distance: either may be reported
+      EXPECT_EQ(a.geometry, b.geometry);
+      EXPECT_EQ(a.primitive, b.primitive);
+    }
+    EXPECT_GT(hits, 1000);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BothBuilds, AcceleratorRefit, ::testing::Bool(),
+                         [](const auto& param) { return param.param ? "Dynamic" : "Static"; });
+
+TEST(AcceleratorRefitErrors, RefusesAnotherTopology) {
+  Rng rng(3);
+  std::vector<SoupTriangle> soup;
+  Scene scene = randomSoup(rng, 30, soup);
+  AcceleratorOptions options;
+  options.dynamic = true;
+  Accelerator accel(scene, options);
+  Scene fewer = scene;
+  fewer.meshes[0].positions.pop_back();
+  EXPECT_THROW(accel.refit(fewer), std::invalid_argument);
+  Scene more = scene;
+  more.spheres.push_back({"ball", 0, Vec3f(0.0f), 1.0f});
+  EXPECT_THROW(accel.refit(more), std::invalid_argument);
+  EXPECT_NO_THROW(accel.refit(scene));
+}
+
+}  // namespace
+}  // namespace parallax

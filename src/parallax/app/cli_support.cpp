@@ -239,6 +239,10 @@ RenderSettings SamplingOptions::settings() const {
   s.jitter = parseJitter(jitter);
   s.adaptive = adaptive;
   s.adaptiveThreshold = adaptiveThreshold / 255.0;
+  if (bounces < 0 || bounces > RenderSettings::kMaxBounces)
+    throw InputError("command line", "--bounces",
+                     "must be from 0 to " + std::to_string(RenderSettings::kMaxBounces));
+  s.bounces = bounces;
   return s;
 }
 
@@ -266,6 +270,11 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
                  "which a pixel stops")
       ->capture_default_str()
       ->check(realIn(0.0, 255.0));
+  cmd.add_option("--bounces", options.bounces,
+                 "Diffuse bounces of path tracing with next-event estimation (0: direct light "
+                 "only; docs/path-tracing.md)")
+      ->capture_default_str()
+      ->check(integerIn(0, RenderSettings::kMaxBounces));
 }
 
 void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f) {

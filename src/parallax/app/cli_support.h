@@ -83,6 +83,7 @@ struct SamplingOptions {
   uint64_t seed = 0;
   std::string jitter = "auto";
   bool adaptive = false;
+  int bounces = 0;  // --bounces: diffuse path-tracing bounces (RenderSettings::bounces)
   double adaptiveThreshold = RenderSettings{}.adaptiveThreshold * 255.0;  // in 8-bit steps
   // The render settings; throws InputError naming --spp (below 1) or --jitter (not auto,
   // pixel or packet).

@@ -5,13 +5,16 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/app/layer_output.h"
+#include "parallax/app/sequence.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
@@ -44,7 +47,8 @@ struct RenderOptions {
   int rank = 1, iterations = 0;  // 0: the method's default
   double brightness = 0;         // 0: the method's default
   int trainEyesPerView = 2;
-  std::string layerError;  // "": the method's default (srgb for optimized-image, linear for nmf)
+  std::string layerError;    // "": the method's default (srgb for optimized-image, linear for nmf)
+  SequenceOptions sequence;  // --frames, --turntable, --duration, --fps (docs/animation.md)
 };
 
 // The layer methods and their defaults.
@@ -135,9 +139,19 @@ namespace {
 // DIR/quilt_qs{C}x{R}a{aspect}.png (docs/quilts.md), each view rendered straight into its tile.
 // Tiles: --size, else a lenticular device's quilt divided by the layout, else the barrier's image
 // layer.
+// With a sequence, `accelerator` is the sequence's and `frame` is recorded; otherwise the quilt
+// builds its own.
+struct QuiltFrame {
+  const Accelerator* accelerator = nullptr;
+  const SequencePlan* plan = nullptr;
+  int frame = 0;
+  std::string output;
+};
+
 void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayModel& display,
                     const Scene& scene, const RenderSettings& settings, const Framing* framing,
-                    const std::string& displayText, const std::string& displayName) {
+                    const std::string& displayText, const std::string& displayName,
+                    const QuiltFrame& sequenceFrame = {}) {
   const LenticularDesign* lenticular = display.lenticularDesign();
   if (layout.columns == 0) {  // auto: the device's quilt, or one row of the barrier's views
     if (lenticular) {
@@ -169,10 +183,14 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
                  "stretched to fill them, as Looking Glass quilts are\n",
                  width, height, layout.aspect, windowAspect);
 
-  if (framing) reportFraming(*framing);
-  const Accelerator accelerator(
-      scene, acceleratorForCameraRays(double(layout.columns) * layout.rows * width * height *
-                                      settings.samplesPerPixel));
+  if (framing && !sequenceFrame.plan) reportFraming(*framing);
+  std::optional<Accelerator> ownAccelerator;
+  if (!sequenceFrame.accelerator)
+    ownAccelerator.emplace(
+        scene, acceleratorForCameraRays(double(layout.columns) * layout.rows * width * height *
+                                        settings.samplesPerPixel));
+  const Accelerator& accelerator =
+      sequenceFrame.accelerator ? *sequenceFrame.accelerator : *ownAccelerator;
   RenderStats stats;
   // The quilt is kept as the PNG's 8-bit codes, a quarter of a float quilt's memory; a float
   // quilt only when --linear asks for one.
@@ -207,6 +225,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   record.set("/display_kind", displayKindName(display.kind()));
   record.set("/scene", scene.source);
   record.set("/spp", o.sampling.spp);
+  record.set("/bounces", settings.bounces);
   record.set("/seed", o.sampling.seed);
   record.set("/jitter", o.sampling.jitter);
   record.set("/threads", o.sampling.threads);
@@ -229,8 +248,9 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   if (lenticular) writeLenticularDesignJson(record, "/design", *lenticular);
   const std::string linearName = quiltFileName("quilt", layout, ".pfm");
   if (o.linear) record.set("/outputs/quilt_linear", linearName);
+  if (sequenceFrame.plan) recordSequence(record, *sequenceFrame.plan, sequenceFrame.frame);
 
-  OutputSet set(o.output);
+  OutputSet set(sequenceFrame.plan ? sequenceFrame.output : o.output);
   const std::string dir = set.dir();
   if (o.linear) {
     writeImage(set.path(name), quilt);
@@ -247,6 +267,32 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
               formatRate(raysPerSecond).c_str());
 }
 
+// DIR/frame-NNNN, and whether it holds a finished frame (its record is written last, and the
+// folder appears whole: OutputSet).
+std::string frameFolder(const std::string& output, int frame) {
+  return (std::filesystem::path(output.empty() ? "." : output) / frameName(frame)).string();
+}
+bool frameFinished(const std::string& output, int frame) {
+  return std::filesystem::is_regular_file(std::filesystem::path(frameFolder(output, frame)) /
+                                          "render.json");
+}
+
+// render --quilt with a sequence: one quilt per frame in DIR/frame-NNNN.
+void runQuiltSequence(const RenderOptions& o, const SequencePlan& plan, const QuiltLayout& layout,
+                      const DisplayModel& display, const Scene& scene,
+                      const RenderSettings& settings, const Framing* framing,
+                      const std::string& displayText, const std::string& displayName) {
+  FrameJob job;
+  job.accelerator = acceleratorForCameraRays(double(layout.views()) * display.film().panelWidth *
+                                             display.film().panelHeight * settings.samplesPerPixel);
+  job.finished = [&](int frame) { return frameFinished(o.output, frame); };
+  job.render = [&](const Scene& posed, const Accelerator& accelerator, int frame) {
+    runQuiltRender(o, layout, display, posed, settings, framing, displayText, displayName,
+                   {&accelerator, &plan, frame, frameFolder(o.output, frame)});
+  };
+  runSequence(plan, scene, job);
+}
+
 // `render --display visual.json|lkg:NAME`: the lenticular panel's picture, or its quilt.
 void runLenticular(const RenderOptions& o, const LenticularCalibration& calibration,
                    const QuiltLayout& layout, RenderSettings settings) {
@@ -261,14 +307,23 @@ void runLenticular(const RenderOptions& o, const LenticularCalibration& calibrat
   if (o.framing.given())
     throw InputError("command line", "--fit/--focus/--depth-budget",
                      "apply to barrier displays (their depth budget is the virtual gap)");
-  if (o.quilt.empty())
+  if (o.quilt.empty()) {
+    if (o.sequence.given())
+      throw InputError("command line", "--frames/--turntable",
+                       "a lenticular panel's sequence is a sequence of quilts: add --quilt auto");
     return runLenticularRender({calibration, o.scene, o.output, o.sampling, o.filter, 0.0});
+  }
   const LenticularDesign design = designLenticular(calibration);
   const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(design);
-  const Scene scene = loadSceneReportingWarnings(o.scene);
+  Scene scene = loadSceneReportingWarnings(o.scene);
   settings.samplesPerPixel = o.sampling.spp;
-  runQuiltRender(o, layout, *display, scene, settings, nullptr,
-                 lenticularCalibrationText(calibration), "visual.json");
+  if (!o.sequence.given())
+    return runQuiltRender(o, layout, *display, scene, settings, nullptr,
+                          lenticularCalibrationText(calibration), "visual.json");
+  const SequencePlan plan = planSequence(o.sequence, scene);
+  prepareFraming(scene, plan);
+  runQuiltSequence(o, plan, layout, *display, scene, settings, nullptr,
+                   lenticularCalibrationText(calibration), "visual.json");
 }
 
 // --layers optimized-image | nmf: the training views, then the solver, from the slit layers.
@@ -337,6 +392,64 @@ std::vector<LayerFrame> solveLayers(const RenderOptions& o, const Scene& scene,
   return frames;
 }
 
+// The display's layers of one (posed) scene into `output`: the render, the optional solver,
+// the record. `plan` and `frame` are the sequence's, if any.
+void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator& accelerator,
+                  const DisplayDesign& design, const Framing& framing,
+                  const RenderSettings& settings, const ViewFilter& filter,
+                  const TrainingOptions& training, const std::string& output,
+                  const SequencePlan* plan, int frame) {
+  DisplayLayers layers;
+  {
+    ProgressBar bar("render");
+    const auto onProgress = [&bar](int done, int total) { bar.update(done, total); };
+    layers = o.directMapping
+                 ? renderDirectMapping(scene, accelerator, design, settings, onProgress)
+                 : renderDisplay(scene, accelerator, design, settings, onProgress, filter);
+  }
+  const double raysPerSecond = double(layers.stats.totalRays()) / layers.stats.seconds;
+
+  JsonWriter record;
+  startRenderRecord(record, o.directMapping ? "direct-mapping" : "barrier-camera", o.display);
+  record.set("/layers/method", o.layers);
+  std::vector<LayerFrame> frames{{layers.image, layers.mask}};
+  if (o.layers != "slits")
+    frames = solveLayers(o, scene, accelerator, design, training, layers, record);
+  record.set("/scene", scene.source);
+  record.set("/spp", settings.samplesPerPixel);
+  record.set("/bounces", settings.bounces);
+  record.set("/seed", o.sampling.seed);
+  record.set("/jitter", o.sampling.jitter);
+  record.set("/threads", o.sampling.threads);
+  record.set("/adaptive", settings.adaptive);
+  if (settings.adaptive) {
+    record.set("/adaptive_threshold_8bit", settings.adaptiveThreshold * 255.0);
+    record.set("/camera_rays", layers.stats.cameraRays);
+    record.set("/mean_spp", double(layers.stats.cameraRays) /
+                                (double(layers.image.width()) * layers.image.height() *
+                                 (design.spec.subpixelRays ? 3.0 : 1.0)));
+  }
+  if (!o.directMapping) {
+    record.set("/filter/kind", viewFilterName(filter.kind));
+    record.set("/filter/width_views", filter.widthViews);
+  }
+  record.set("/seconds", layers.stats.seconds);
+  record.set("/rays", layers.stats.totalRays());
+  record.set("/rays_per_second", raysPerSecond);
+  record.set("/scene_display/center", scene.display.center);
+  record.set("/scene_display/normal", scene.display.normal);
+  record.set("/scene_display/up", scene.display.up);
+  record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
+  recordFraming(record, framing);
+  if (plan) recordSequence(record, *plan, frame);
+  if (frames.size() == 1)
+    writeDisplayLayers(output, frames[0].image, frames[0].mask, design, o.linear, record);
+  else
+    writeLayerFrames(output, frames, design, record);
+  std::printf("%d spp in %.2f s, %s\n", settings.samplesPerPixel, layers.stats.seconds,
+              formatRate(raysPerSecond).c_str());
+}
+
 void runRender(const RenderOptions& o) {
   RenderSettings settings = o.sampling.settings();
   const ViewFilter filter = o.filter.filter();
@@ -377,64 +490,43 @@ void runRender(const RenderOptions& o) {
                         "use fewer --train-eyes or a smaller display");
   }
   Scene scene = loadSceneReportingWarnings(o.scene);
+  const SequencePlan plan = planSequence(o.sequence, scene);
+  if (o.sequence.given()) prepareFraming(scene, plan);
+  noteAnimation(o.sequence, scene);
+
   const Framing framing = frameForRender(o, scene, design);
-  if (!o.quilt.empty())
-    return runQuiltRender(o, layout, *makeBarrierDisplay(design), scene, settings, &framing,
-                          displayFileText(design.spec), "display.json");
+  if (!o.quilt.empty()) {
+    const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(design);
+    if (!o.sequence.given())
+      return runQuiltRender(o, layout, *display, scene, settings, &framing,
+                            displayFileText(design.spec), "display.json");
+    reportFraming(framing);
+    return runQuiltSequence(o, plan, layout, *display, scene, settings, &framing,
+                            displayFileText(design.spec), "display.json");
+  }
   reportFraming(framing);
   const double filmColumns =
       design.spec.imagePanel.width * (design.spec.subpixelRays ? 3.0 : 1.0) *
       (o.directMapping ? std::max(1.0, std::round(design.screenPeriodPx)) : 1.0);
-  const Accelerator accelerator(
-      scene, acceleratorForCameraRays(filmColumns * design.spec.imagePanel.height *
-                                      settings.samplesPerPixel));
-  DisplayLayers layers;
-  {
-    ProgressBar bar("render");
-    const auto onProgress = [&bar](int done, int total) { bar.update(done, total); };
-    layers = o.directMapping
-                 ? renderDirectMapping(scene, accelerator, design, settings, onProgress)
-                 : renderDisplay(scene, accelerator, design, settings, onProgress, filter);
+  const AcceleratorOptions acceleratorOptions = acceleratorForCameraRays(
+      filmColumns * design.spec.imagePanel.height * settings.samplesPerPixel);
+  const auto renderFrame = [&](const Scene& posed, const Accelerator& accelerator,
+                               const std::string& output, int frame) {
+    renderLayers(o, posed, accelerator, design, framing, settings, filter, training, output,
+                 frame ? &plan : nullptr, frame);
+  };
+  if (!o.sequence.given()) {
+    const Accelerator accelerator(scene, acceleratorOptions);
+    renderFrame(scene, accelerator, o.output, 0);
+    return;
   }
-  const double raysPerSecond = double(layers.stats.totalRays()) / layers.stats.seconds;
-
-  JsonWriter record;
-  startRenderRecord(record, o.directMapping ? "direct-mapping" : "barrier-camera", o.display);
-  record.set("/layers/method", o.layers);
-  std::vector<LayerFrame> frames{{layers.image, layers.mask}};
-  if (o.layers != "slits")
-    frames = solveLayers(o, scene, accelerator, design, training, layers, record);
-  record.set("/scene", scene.source);
-  record.set("/spp", settings.samplesPerPixel);
-  record.set("/seed", o.sampling.seed);
-  record.set("/jitter", o.sampling.jitter);
-  record.set("/threads", o.sampling.threads);
-  record.set("/adaptive", settings.adaptive);
-  if (settings.adaptive) {
-    record.set("/adaptive_threshold_8bit", settings.adaptiveThreshold * 255.0);
-    record.set("/camera_rays", layers.stats.cameraRays);
-    record.set("/mean_spp", double(layers.stats.cameraRays) /
-                                (double(layers.image.width()) * layers.image.height() *
-                                 (design.spec.subpixelRays ? 3.0 : 1.0)));
-  }
-  if (!o.directMapping) {
-    record.set("/filter/kind", viewFilterName(filter.kind));
-    record.set("/filter/width_views", filter.widthViews);
-  }
-  record.set("/seconds", layers.stats.seconds);
-  record.set("/rays", layers.stats.totalRays());
-  record.set("/rays_per_second", raysPerSecond);
-  record.set("/scene_display/center", scene.display.center);
-  record.set("/scene_display/normal", scene.display.normal);
-  record.set("/scene_display/up", scene.display.up);
-  record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
-  recordFraming(record, framing);
-  if (frames.size() == 1)
-    writeDisplayLayers(o.output, frames[0].image, frames[0].mask, design, o.linear, record);
-  else
-    writeLayerFrames(o.output, frames, design, record);
-  std::printf("%d spp in %.2f s, %s\n", settings.samplesPerPixel, layers.stats.seconds,
-              formatRate(raysPerSecond).c_str());
+  FrameJob job;
+  job.accelerator = acceleratorOptions;
+  job.finished = [&](int frame) { return frameFinished(o.output, frame); };
+  job.render = [&](const Scene& posed, const Accelerator& accelerator, int frame) {
+    renderFrame(posed, accelerator, frameFolder(o.output, frame), frame);
+  };
+  runSequence(plan, scene, job);
 }
 
 }  // namespace
@@ -487,6 +579,7 @@ void registerRenderCommand(CLI::App& cli) {
                   "With --quilt: the size of one view (default: the device quilt's tile, or the "
                   "image layer's resolution)")
       ->type_name("WxH");
+  addSequenceOptions(*cmd, options->sequence);
   cmd->callback([options] { runRender(*options); });
 }
 

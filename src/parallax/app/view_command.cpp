@@ -2,12 +2,14 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/sequence.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
@@ -27,6 +29,7 @@ struct ViewOptions {
   std::optional<float> fov;
   SamplingOptions sampling;
   std::string output = "out/view.png";
+  SequenceOptions sequence;  // numbered pictures, OUTPUT-NNNN.png (docs/animation.md)
 };
 
 // The camera of `view`: an ordinary pinhole camera, or with --display-eye the ideal window
@@ -79,9 +82,18 @@ std::unique_ptr<Camera> makeCamera(const ViewOptions& o, const Scene& scene) {
                                          height);
 }
 
+// OUTPUT with the frame's number before the extension: out/view.png -> out/view-0007.png.
+std::string numberedPath(const std::string& output, int frame) {
+  const std::filesystem::path path(output);
+  std::string name = frameName(frame);
+  name = path.stem().string() + name.substr(name.find('-')) + path.extension().string();
+  return (path.parent_path() / name).string();
+}
+
 void runView(const ViewOptions& o) {
   const RenderSettings settings = o.sampling.settings();
   Scene scene = loadSceneReportingWarnings(o.scene);
+  noteAnimation(o.sequence, scene);
   const std::unique_ptr<Camera> camera = makeCamera(o, scene);
   // Before anything is allocated: the film and the writer's 8-bit copy, and the time.
   const std::string size = std::to_string(camera->width()) + "x" + std::to_string(camera->height());
@@ -91,19 +103,38 @@ void runView(const ViewOptions& o) {
                       "use a smaller size");
   checkPixelCount(double(camera->width()) * camera->height(), "--size " + size);
   o.sampling.checkWork(camera->width(), camera->height());
-  const Accelerator accelerator(
-      scene, acceleratorForCameraRays(double(camera->width()) * camera->height() * o.sampling.spp));
-  RenderStats stats;
-  Image image;
-  {
-    ProgressBar bar("view");
-    image = render(scene, accelerator, *camera, settings, &stats,
-                   [&bar](int done, int total) { bar.update(done, total); });
+  const AcceleratorOptions acceleratorOptions =
+      acceleratorForCameraRays(double(camera->width()) * camera->height() * o.sampling.spp);
+  const auto renderPicture = [&](const Scene& posed, const Accelerator& accelerator,
+                                 const Camera& frameCamera, const std::string& output) {
+    RenderStats stats;
+    Image image;
+    {
+      ProgressBar bar("view");
+      image = render(posed, accelerator, frameCamera, settings, &stats,
+                     [&bar](int done, int total) { bar.update(done, total); });
+    }
+    writeImage(output, image);
+    std::printf("wrote %s (%dx%d, %d spp) in %.2f s, %s\n", output.c_str(), frameCamera.width(),
+                frameCamera.height(), o.sampling.spp, stats.seconds,
+                formatRate(double(stats.totalRays()) / stats.seconds).c_str());
+  };
+  if (!o.sequence.given()) {
+    const Accelerator accelerator(scene, acceleratorOptions);
+    renderPicture(scene, accelerator, *camera, o.output);
+    return;
   }
-  writeImage(o.output, image);
-  std::printf("wrote %s (%dx%d, %d spp) in %.2f s, %s\n", o.output.c_str(), camera->width(),
-              camera->height(), o.sampling.spp, stats.seconds,
-              formatRate(double(stats.totalRays()) / stats.seconds).c_str());
+  const SequencePlan plan = planSequence(o.sequence, scene);
+  prepareFraming(scene, plan);
+  FrameJob job;
+  job.accelerator = acceleratorOptions;
+  job.finished = [&](int frame) {
+    return std::filesystem::is_regular_file(numberedPath(o.output, frame));
+  };
+  job.render = [&](const Scene& posed, const Accelerator& accelerator, int frame) {
+    renderPicture(posed, accelerator, *makeCamera(o, posed), numberedPath(o.output, frame));
+  };
+  runSequence(plan, scene, job);
 }
 
 }  // namespace
@@ -130,6 +161,7 @@ void registerViewCommand(CLI::App& cli) {
   addSamplingOptions(*cmd, options->sampling, "Samples per pixel (n*n is stratified)");
   cmd->add_option("-o,--output", options->output, "Output image (.png, or .pfm linear float)")
       ->capture_default_str();
+  addSequenceOptions(*cmd, options->sequence);
   cmd->callback([options] { runView(*options); });
 }
 

@@ -389,7 +389,7 @@ class SceneAppender {
         continue;
       }
       if (flip) std::swap(corner[1], corner[2]);
-      if (!mesh) mesh = &meshFor(part);
+      if (!mesh) mesh = &meshFor(part, worldFromPart);
       for (uint32_t v : corner) {
         if (remap[v] == kUnused) {
           remap[v] = uint32_t(mesh->positions.size());
@@ -424,13 +424,21 @@ class SceneAppender {
   }
 
   void finish() {
-    for (auto& [material, mesh] : meshes_) {
+    const int firstNode = int(scene_.nodeAnimation.nodes.size());
+    for (auto& [key, mesh] : meshes_) {
       // Parts with and without normals (or UVs) may share a material; the mesh then keeps
       // only what every vertex has.
       if (mesh.normals.size() != mesh.positions.size()) mesh.normals.clear();
       if (mesh.uvs.size() != mesh.positions.size()) mesh.uvs.clear();
+      if (key.second >= 0) {  // hangs from an animated node: remember how to move it
+        AnimatedMesh animated = animatedMeshes_.at(key.second);
+        animated.mesh = uint32_t(scene_.meshes.size());
+        animated.node = firstNode + key.second;
+        scene_.nodeAnimation.meshes.push_back(animated);
+      }
       scene_.meshes.push_back(std::move(mesh));
     }
+    if (!animatedMeshes_.empty()) appendNodes(contents_.nodeAnimation);
     const size_t dropped = dropped_ + contents_.droppedDegenerate;
     if (dropped > 0)
       scene_.warnings.push_back(path_ + ": dropped " + std::to_string(dropped) +
@@ -455,9 +463,28 @@ class SceneAppender {
     }
   }
 
-  TriangleMesh& meshFor(const FilePart& part) {
+  // The file's node tree after the scene's nodes (another animated file's), parents shifted.
+  void appendNodes(const NodeAnimation& file) {
+    const int firstNode = int(scene_.nodeAnimation.nodes.size());
+    for (AnimatedNode node : file.nodes) {
+      if (node.parent >= 0) node.parent += firstNode;
+      scene_.nodeAnimation.nodes.push_back(std::move(node));
+    }
+    scene_.nodeAnimation.seconds = std::max(scene_.nodeAnimation.seconds, file.seconds);
+  }
+
+  // Parts of one material share a mesh, except that a part hanging from an animated node gets
+  // a mesh of its own node (it moves alone).
+  TriangleMesh& meshFor(const FilePart& part, const Transform& worldFromPart) {
     const uint32_t material = sceneMaterial(part.material);
-    auto [it, inserted] = meshes_.try_emplace(material);
+    auto [it, inserted] = meshes_.try_emplace({material, part.node});
+    if (inserted && part.node >= 0) {
+      // The part's vertices are stored posed at rest: worldFromPart undoes to the node's space.
+      AnimatedMesh animated;
+      animated.worldFromFile = worldFromPart.matrix() * part.fileFromPart.inverseMatrix();
+      animated.restMeshFromWorld = worldFromPart.inverseMatrix();
+      animatedMeshes_[part.node] = animated;
+    }
     if (inserted) {
       it->second.material = material;
       const bool named = !options_.materialOverride && part.material >= 0;
@@ -503,9 +530,11 @@ class SceneAppender {
   FileContents& contents_;
   Scene& scene_;
   std::string prefix_;
-  std::map<uint32_t, TriangleMesh> meshes_;  // by scene material, in a stable order
-  std::map<int, uint32_t> materials_;        // file material -> scene material
-  std::map<int, int> textures_;              // file image -> scene texture
+  // By scene material and animated node (-1: none), in a stable order.
+  std::map<std::pair<uint32_t, int>, TriangleMesh> meshes_;
+  std::map<int, AnimatedMesh> animatedMeshes_;  // by file node
+  std::map<int, uint32_t> materials_;           // file material -> scene material
+  std::map<int, int> textures_;                 // file image -> scene texture
   size_t dropped_ = 0;
   size_t triangles_ = 0;
   bool fileNormals_ = false, generatedNormals_ = false, faceted_ = false;

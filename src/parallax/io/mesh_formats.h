@@ -26,6 +26,9 @@ struct FilePart {
   std::vector<Vec3f> normals;     // empty or one per position
   std::vector<Vec2f> uvs;         // empty or one per position; v = 0 is the image's bottom row
   std::vector<uint32_t> indices;  // three per triangle, not yet range-checked
+  // glTF: the node the part hangs from when it or an ancestor is animated, an index into
+  // FileContents::nodeAnimation.nodes; -1 otherwise.
+  int node = -1;
 };
 
 struct FileMaterial {
@@ -39,6 +42,7 @@ struct FileContents {
   std::vector<Image> images;          // linear RGB
   std::vector<std::string> warnings;  // without the file name; loadMeshFile adds it
   size_t droppedDegenerate = 0;       // faces a reader dropped itself (fewer than 3 corners)
+  NodeAnimation nodeAnimation;        // glTF: the node tree and its channels (no meshes yet)
   // The up axis the file itself declares (FBX's UpAxis metadata); Auto if it says nothing.
   UpAxis declaredUp = UpAxis::Auto;
 };

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "parallax/io/image_file.h"
@@ -131,6 +132,7 @@ class GltfReader {
     readMaterials();
     onPath_.assign(model_.nodes.size(), false);
     for (int root : rootNodes()) visitTree(root);
+    readAnimations();
     if (skippedPrimitives_ > 0)
       contents_.warnings.push_back("skipped " + std::to_string(skippedPrimitives_) +
                                    " point or line primitives");
@@ -186,7 +188,7 @@ class GltfReader {
       onPath_[size_t(nodeIndex)] = true;
       const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
       const Mat4 fileFromNode = fileFromParent * nodeMatrix(node);
-      if (node.mesh >= 0) addMesh(node.mesh, fileFromNode);
+      if (node.mesh >= 0) addMesh(node.mesh, fileFromNode, nodeIndex);
       stack.push_back({nodeIndex, fileFromNode, 0});
     };
     enter(root, Mat4::identity());
@@ -204,7 +206,7 @@ class GltfReader {
     }
   }
 
-  void addMesh(int meshIndex, const Mat4& fileFromNode) {
+  void addMesh(int meshIndex, const Mat4& fileFromNode, int nodeIndex) {
     if (size_t(meshIndex) >= model_.meshes.size())
       fail(path_, "mesh index " + std::to_string(meshIndex) + " does not exist");
     const tinygltf::Mesh& mesh = model_.meshes[size_t(meshIndex)];
@@ -221,8 +223,118 @@ class GltfReader {
         contents_.droppedDegenerate += part.indices.size() / 3;
         continue;
       }
+      part.node = nodeIndex;  // kept only if the node moves (readAnimations)
       contents_.parts.push_back(std::move(part));
     }
+  }
+
+  // glTF node animation (specification, "Animations"): every animation's translation,
+  // rotation and scale channels play together (an exporter writes one animation per object
+  // or action; where two drive one node's property the first wins). Morph-target weights are
+  // noted and ignored; CUBICSPLINE keys are played as LINEAR through their values.
+  void readAnimations() {
+    const auto dropNodes = [this] {
+      for (FilePart& part : contents_.parts) part.node = -1;
+    };
+    if (model_.animations.empty()) return dropNodes();
+    NodeAnimation& out = contents_.nodeAnimation;
+    out.nodes.resize(model_.nodes.size());
+    std::vector<int> parents(model_.nodes.size(), 0);
+    for (size_t n = 0; n < model_.nodes.size(); ++n) {
+      const tinygltf::Node& node = model_.nodes[n];
+      AnimatedNode& a = out.nodes[n];
+      if (node.matrix.size() == 16) a.matrix = nodeMatrix(node);
+      if (node.translation.size() == 3)
+        a.translation = Vec3f(float(node.translation[0]), float(node.translation[1]),
+                              float(node.translation[2]));
+      if (node.scale.size() == 3)
+        a.scale = Vec3f(float(node.scale[0]), float(node.scale[1]), float(node.scale[2]));
+      if (node.rotation.size() == 4)
+        for (size_t c = 0; c < 4; ++c) a.rotation[c] = float(node.rotation[c]);
+      for (int child : node.children)
+        if (child >= 0 && size_t(child) < model_.nodes.size()) {
+          out.nodes[size_t(child)].parent = int(n);
+          ++parents[size_t(child)];
+        }
+    }
+    std::set<std::pair<int, std::string>> driven;
+    size_t weights = 0, cubic = 0;
+    for (size_t k = 0; k < model_.animations.size(); ++k) {
+      const tinygltf::Animation& animation = model_.animations[k];
+      for (size_t c = 0; c < animation.channels.size(); ++c) {
+        const tinygltf::AnimationChannel& channel = animation.channels[c];
+        const std::string what = "animation " + std::to_string(k) + " channel " + std::to_string(c);
+        if (channel.target_path == "weights") {
+          ++weights;
+          continue;
+        }
+        NodeChannel out1;
+        if (channel.target_path == "translation")
+          out1.path = NodeChannel::Path::Translation;
+        else if (channel.target_path == "rotation")
+          out1.path = NodeChannel::Path::Rotation;
+        else if (channel.target_path == "scale")
+          out1.path = NodeChannel::Path::Scale;
+        else
+          fail(path_, what + ": unknown target path '" + channel.target_path + "'");
+        if (channel.target_node < 0 || size_t(channel.target_node) >= model_.nodes.size())
+          fail(path_,
+               what + ": target node " + std::to_string(channel.target_node) + " does not exist");
+        if (!driven.insert({channel.target_node, channel.target_path}).second) continue;
+        if (channel.sampler < 0 || size_t(channel.sampler) >= animation.samplers.size())
+          fail(path_, what + ": sampler " + std::to_string(channel.sampler) + " does not exist");
+        const tinygltf::AnimationSampler& sampler = animation.samplers[size_t(channel.sampler)];
+        const bool spline = sampler.interpolation == "CUBICSPLINE";
+        cubic += spline;
+        out1.step = sampler.interpolation == "STEP";
+        const AccessorView input = view(sampler.input, TINYGLTF_TYPE_SCALAR, what + " input");
+        const int type =
+            out1.path == NodeChannel::Path::Rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
+        const AccessorView output = view(sampler.output, type, what + " output");
+        if (input.count == 0) fail(path_, what + ": no keys");
+        if (output.count != input.count * (spline ? 3 : 1))
+          fail(path_, what + ": " + std::to_string(output.count) + " values for " +
+                          std::to_string(input.count) + " key times");
+        for (size_t i = 0; i < input.count; ++i) {
+          const double t = value(input, i, 0);
+          if (!std::isfinite(t) || t < 0 || (i > 0 && !(float(t) > out1.times.back())))
+            fail(path_, what + ": key times must be finite, from 0 and increasing");
+          out1.times.push_back(float(t));
+          std::array<float, 4> v{0, 0, 0, 0};
+          // A spline key is (in-tangent, value, out-tangent): take the value.
+          const size_t element = spline ? 3 * i + 1 : i;
+          for (int j = 0; j < output.components; ++j) {
+            v[size_t(j)] = float(value(output, element, j));
+            if (!std::isfinite(v[size_t(j)])) fail(path_, what + ": a key value is not finite");
+          }
+          out1.values.push_back(v);
+        }
+        out.seconds = std::max(out.seconds, double(out1.times.back()));
+        out.nodes[size_t(channel.target_node)].channels.push_back(std::move(out1));
+      }
+    }
+    if (weights)
+      contents_.warnings.push_back("morph-target weight animation ignored (" +
+                                   std::to_string(weights) + " channel" + (weights > 1 ? "s" : "") +
+                                   ")");
+    if (cubic)
+      contents_.warnings.push_back("cubic-spline keys played as linear between their values");
+    // A part moves if its node or an ancestor is driven; a node reached through two parents
+    // (a shared child) is not animated: its instances would need a tree each.
+    bool shared = false;
+    for (FilePart& part : contents_.parts) {
+      bool moves = false, ambiguous = false;
+      for (int n = part.node, depth = 0; n >= 0 && depth < int(kMaxNodeDepth);
+           n = out.nodes[size_t(n)].parent, ++depth) {
+        moves = moves || !out.nodes[size_t(n)].channels.empty();
+        ambiguous = ambiguous || parents[size_t(n)] > 1;
+      }
+      shared = shared || (moves && ambiguous);
+      if (!moves || ambiguous) part.node = -1;
+    }
+    if (shared)
+      contents_.warnings.push_back(
+          "animated nodes reached through shared children are shown at rest");
   }
 
   FilePart readPrimitive(const tinygltf::Primitive& primitive, const std::string& context) {

@@ -254,7 +254,7 @@ class SceneFileLoader {
     const JsonDocument document = JsonDocument::parseFile(path_);
     const JsonReader root = document.root();
     root.expectObject({"version", "objects", "materials", "textures", "lights", "ambient",
-                       "background", "max_depth", "camera", "display"});
+                       "background", "max_depth", "camera", "display", "animation"});
     if (const auto version = root.find("version"))
       if (version->integer(0, INT_MAX) != kFormatVersion)
         version->fail("unsupported version " + version->dump() + " (this build reads version " +
@@ -288,6 +288,7 @@ class SceneFileLoader {
       scene_.camera = readCamera(*camera);
     else
       scene_.camera = frameScene(scene_);
+    if (const auto animation = root.find("animation")) readAnimation(*animation);
     return std::move(scene_);
   }
 
@@ -663,8 +664,54 @@ class SceneFileLoader {
     return mm;
   }
 
-  CameraSpec readCamera(const JsonReader& value) const {
-    value.expectObject({"eye", "look_at", "up", "fov"});
+  // "animation": {"camera": [keys], "display": [keys]} (docs/animation.md). A key's "time" is
+  // in seconds, from 0, strictly increasing along the list.
+  void readAnimation(const JsonReader& value) {
+    value.expectObject({"camera", "display"});
+    if (const auto keys = value.find("camera"))
+      for (const JsonReader& key : keyList(*keys)) {
+        CameraKey k;
+        k.seconds = keyTime(key, scene_.cameraKeys);
+        k.camera = readCamera(key, {"time"});
+        scene_.cameraKeys.push_back(k);
+      }
+    if (const auto keys = value.find("display"))
+      for (const JsonReader& key : keyList(*keys)) {
+        key.expectObject({"time", "center", "normal", "up"});
+        DisplayKey k;
+        k.seconds = keyTime(key, scene_.displayKeys);
+        k.center = point(key, "center", scene_.display.center);
+        k.normal = key.direction("normal", scene_.display.normal);
+        const auto upKey = key.find("up");
+        const std::optional<Vec3f> up =
+            perpendicularUp(upKey ? upKey->direction() : scene_.display.up, k.normal);
+        if (!up) (upKey ? *upKey : key).fail("'up' is parallel to the display normal");
+        k.up = *up;
+        scene_.displayKeys.push_back(k);
+      }
+  }
+
+  static std::vector<JsonReader> keyList(const JsonReader& keys) {
+    std::vector<JsonReader> list = keys.elements();
+    if (list.empty()) keys.fail("expected at least one key");
+    return list;
+  }
+
+  template <class Key>
+  static double keyTime(const JsonReader& key, const std::vector<Key>& before) {
+    const JsonReader time = key["time"];
+    const double seconds = time.number(0, 1e6);
+    if (!before.empty() && !(seconds > before.back().seconds))
+      time.fail("key times must increase: " + time.dump() + " follows " +
+                std::to_string(before.back().seconds));
+    return seconds;
+  }
+
+  CameraSpec readCamera(const JsonReader& value,
+                        std::initializer_list<std::string_view> extraKeys = {}) const {
+    std::vector<std::string> keys{"eye", "look_at", "up", "fov"};
+    for (std::string_view k : extraKeys) keys.emplace_back(k);
+    value.expectObject(keys);
     CameraSpec camera;
     camera.eye = point(value["eye"]);
     camera.lookAt = point(value["look_at"]);

@@ -119,7 +119,7 @@ struct TileRenderer::Impl {
       : camera(theCamera),
         settings(theSettings),
         lights(scene),
-        tracer(scene, accelerator, lights),
+        tracer(scene, accelerator, lights, theSettings.bounces),
         grid(theCamera),
         walk(theSettings.samplesPerPixel, theSettings.seed, theSettings.jitter, theCamera,
              theSettings.adaptive) {}

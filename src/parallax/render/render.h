@@ -30,12 +30,19 @@ struct RenderSettings {
   bool adaptive = false;
   double adaptiveThreshold = 2.0 / 255.0;
   static constexpr double kNeighbourOverThreshold = 2.0;
+  // Diffuse bounces of path tracing with next-event estimation (docs/path-tracing.md): 0 is
+  // direct light only (light reflected once, plus mirror chains and the ambient term); N
+  // follows each path through up to N cosine-weighted diffuse bounces, so light reflected up
+  // to N + 1 times reaches the camera.
+  int bounces = 0;
+  static constexpr int kMaxBounces = 64;
 };
 
 struct RenderStats {
   uint64_t cameraRays = 0;  // primary rays
   uint64_t shadowRays = 0;
-  uint64_t secondaryRays = 0;  // mirror bounces
+  uint64_t secondaryRays = 0;  // mirror and diffuse bounces (closest-hit rays after the camera's)
+  uint64_t bounceRays = 0;     // of which diffuse bounces (RenderSettings::bounces)
   uint64_t cameraMisses = 0;   // primary rays that met nothing (the background)
   double seconds = 0.0;
 
@@ -45,6 +52,7 @@ struct RenderStats {
     cameraRays += other.cameraRays;
     shadowRays += other.shadowRays;
     secondaryRays += other.secondaryRays;
+    bounceRays += other.bounceRays;
     cameraMisses += other.cameraMisses;
     seconds += other.seconds;
     return *this;

@@ -2,12 +2,14 @@
 // Loaders (io) fill it; the accelerator (accel) and shading (render) read it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "parallax/core/math.h"
+#include "parallax/core/transform.h"
 #include "parallax/image/image.h"
 
 namespace parallax {
@@ -104,6 +106,50 @@ struct CameraSpec {
   float fovDegrees = 40.0f;  // vertical field of view
 };
 
+// Keys of a scene file's animation (docs/animation.md): at `seconds`, the view camera or the
+// display placement; between keys both are interpolated (scene/motion.h).
+struct CameraKey {
+  double seconds = 0;
+  CameraSpec camera;
+};
+struct DisplayKey {
+  double seconds = 0;
+  Vec3f center{0.0f};
+  Vec3f normal{0, 0, 1};
+  Vec3f up{0, 1, 0};
+};
+
+// A glTF file's node animation (docs/animation.md): its node tree with keyed translation,
+// rotation and scale channels, and the scene meshes that hang from animated nodes. Each such
+// mesh is stored posed at rest (the nodes' own TRS); scene/motion.h moves it.
+struct NodeChannel {
+  enum class Path { Translation, Rotation, Scale };
+  Path path = Path::Translation;
+  bool step = false;                         // STEP: hold each key; otherwise LINEAR
+  std::vector<float> times;                  // seconds, increasing
+  std::vector<std::array<float, 4>> values;  // xyz (w unused), or a quaternion xyzw
+};
+struct AnimatedNode {
+  int parent = -1;
+  Vec3f translation{0.0f};
+  std::array<float, 4> rotation{0, 0, 0, 1};  // unit quaternion xyzw
+  Vec3f scale{1.0f};
+  std::optional<Mat4> matrix;  // a node given by its matrix (not animatable in glTF)
+  std::vector<NodeChannel> channels;
+};
+struct AnimatedMesh {
+  uint32_t mesh = 0;       // index into Scene::meshes
+  int node = -1;           // index into NodeAnimation::nodes
+  Mat4 worldFromFile;      // the load's transform on top of the file's nodes
+  Mat4 restMeshFromWorld;  // undoes the rest pose: (worldFromFile * fileFromNode(rest))^-1
+};
+struct NodeAnimation {
+  std::vector<AnimatedNode> nodes;
+  std::vector<AnimatedMesh> meshes;
+  double seconds = 0;  // the last key's time
+  bool empty() const { return meshes.empty(); }
+};
+
 struct Scene {
   std::string source;  // file it came from, or "<built-in>"
   std::vector<TriangleMesh> meshes;
@@ -117,6 +163,9 @@ struct Scene {
   int maxDepth = 4;        // mirror bounces
   DisplayPlacement display;
   std::optional<CameraSpec> camera;
+  std::vector<CameraKey> cameraKeys;    // sorted by time; empty: the camera does not move
+  std::vector<DisplayKey> displayKeys;  // sorted by time; empty: the display does not move
+  NodeAnimation nodeAnimation;          // glTF node animation; empty: nothing animated
   std::vector<std::string> warnings;
   // What loading each mesh file did (io/mesh_file.h, docs/import.md); written to render.json.
   struct ImportRecord {

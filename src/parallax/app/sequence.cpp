@@ -1,0 +1,214 @@
+#include "parallax/app/sequence.h"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "parallax/app/cli_support.h"
+#include "parallax/core/error.h"
+#include "parallax/io/json_writer.h"
+
+namespace parallax::app {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+constexpr int kMaxFrames = 1000000;
+constexpr double kDefaultTurntableSeconds = 4.0;
+
+// "A:B" -> [A, B] within [1, total]; "A" alone is one frame.
+void parseFrameRange(const std::string& text, int total, int& first, int& last) {
+  const auto fail = [&](const std::string& why) {
+    throw InputError("command line", "--frames", why + ", got '" + text + "'");
+  };
+  const size_t colon = text.find(':');
+  const std::string a = text.substr(0, colon);
+  const std::string b = colon == std::string::npos ? a : text.substr(colon + 1);
+  const auto number = [&](const std::string& s) {
+    if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos)
+      fail("expected FIRST:LAST frame numbers from 1");
+    return std::stoi(s);
+  };
+  first = number(a);
+  last = number(b);
+  if (first < 1 || last < first) fail("expected 1 <= FIRST <= LAST");
+  if (last > total)
+    fail("the animation has " + std::to_string(total) + " frame" + (total == 1 ? "" : "s"));
+}
+
+}  // namespace
+
+void addSequenceOptions(CLI::App& cmd, SequenceOptions& options) {
+  cmd.add_option("--frames", options.frames,
+                 "Render frames FIRST:LAST of the animation (1-based) into DIR/frame-NNNN; "
+                 "finished frames are skipped, so a killed sequence resumes (docs/animation.md)")
+      ->type_name("FIRST:LAST");
+  cmd.add_option("--turntable", options.turntable,
+                 "Turn the content DEGREES about the display's up axis over the animation "
+                 "(360: a loop)")
+      ->type_name("DEGREES")
+      ->check(realIn(-36000, 36000));
+  cmd.add_option("--duration", options.duration,
+                 "The animation's length in seconds (default: the scene's last key, else 4 s "
+                 "for a turntable)")
+      ->type_name("SECONDS")
+      ->check(realIn(0, 1e5, Bound::Open));
+  cmd.add_option("--fps", options.fps, "Frames per second of the animation (and of --video)")
+      ->capture_default_str()
+      ->check(realIn(0, 240, Bound::Open));
+}
+
+SequencePlan planSequence(const SequenceOptions& options, const Scene& scene) {
+  SequencePlan plan;
+  plan.motion = sceneMotion(scene);
+  plan.fps = options.fps;
+  const double keyed = plan.motion.keyedSeconds();
+  plan.seconds = options.duration > 0     ? options.duration
+                 : keyed > 0              ? keyed
+                 : options.turntable != 0 ? kDefaultTurntableSeconds
+                                          : 0.0;
+  if (options.turntable != 0)
+    plan.motion.turntable = contentTurntable(scene, options.turntable / plan.seconds);
+  // A turntable's frames cover [0, seconds): the last frame's turn plus one step is the whole
+  // turn, so a 360-degree sequence loops. Keys' frames include the last key.
+  const double frames = options.turntable != 0 ? plan.seconds * plan.fps
+                                               : std::floor(plan.seconds * plan.fps + 1e-9) + 1;
+  if (!(frames <= kMaxFrames))
+    throw InputError("command line", options.duration > 0 ? "--duration" : "--fps",
+                     "the animation would have " + std::to_string(std::lround(frames)) +
+                         " frames; at most " + std::to_string(kMaxFrames));
+  plan.total = std::max(1, int(std::lround(frames)));
+  plan.first = 1;
+  plan.last = plan.total;
+  if (!options.frames.empty()) parseFrameRange(options.frames, plan.total, plan.first, plan.last);
+  return plan;
+}
+
+std::vector<double> SequencePlan::times() const {
+  std::vector<double> t(static_cast<size_t>(total));
+  for (int k = 1; k <= total; ++k) t[size_t(k - 1)] = timeOf(k);
+  return t;
+}
+
+void noteAnimation(const SequenceOptions& options, const Scene& scene) {
+  if (options.given()) return;
+  const SceneMotion motion = sceneMotion(scene);
+  if (motion.empty()) return;
+  const SequencePlan plan = planSequence(options, scene);
+  std::fprintf(stderr,
+               "note: the scene is animated (%g s, %d frames at %g fps); this is its rest pose: "
+               "--frames 1:%d renders the frames (docs/animation.md)\n",
+               plan.seconds, plan.total, plan.fps, plan.total);
+}
+
+std::string frameName(int frame) {
+  char text[32];
+  std::snprintf(text, sizeof text, "frame-%04d", frame);
+  return text;
+}
+
+void prepareFraming(Scene& scene, const SequencePlan& plan) {
+  DisplayPlacement& d = scene.display;
+  if (!plan.motion.displayKeys.empty()) {
+    const DisplayKey first = displayAt(plan.motion.displayKeys, 0.0);
+    d.center = first.center, d.normal = first.normal, d.up = first.up;
+  }
+  if (!plan.motion.movesGeometry()) return;
+  const std::vector<double> times = plan.times();
+  if (d.fit) d.fit = movedBounds(scene, plan.motion, *d.fit, times);
+  d.content = movedBounds(scene, plan.motion, d.content ? *d.content : scene.bounds(), times);
+}
+
+void recordSequence(JsonWriter& record, const SequencePlan& plan, int frame) {
+  record.set("/sequence/frame", frame);
+  record.set("/sequence/seconds", plan.timeOf(frame));
+  record.set("/sequence/first", plan.first);
+  record.set("/sequence/last", plan.last);
+  record.set("/sequence/frames", plan.total);
+  record.set("/sequence/fps", plan.fps);
+  record.set("/sequence/duration", plan.seconds);
+  if (plan.motion.turntable) {
+    const Turntable& t = *plan.motion.turntable;
+    record.set("/sequence/turntable/degrees_per_second", t.degreesPerSecond);
+    record.set("/sequence/turntable/pivot", t.pivot);
+    record.set("/sequence/turntable/axis", t.axis);
+  }
+  record.set("/sequence/camera_keys", int(plan.motion.cameraKeys.size()));
+  record.set("/sequence/display_keys", int(plan.motion.displayKeys.size()));
+}
+
+namespace {
+
+// The placement's axes: right, up, toward the viewer.
+void placementAxes(const DisplayPlacement& d, Vec3f axes[3]) {
+  axes[2] = normalize(d.normal);
+  axes[1] = normalize(d.up - axes[2] * dot(d.up, axes[2]));
+  axes[0] = cross(axes[1], axes[2]);
+}
+
+}  // namespace
+
+void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& job) {
+  std::vector<int> todo;
+  for (int frame = plan.first; frame <= plan.last; ++frame)
+    if (!job.finished(frame)) todo.push_back(frame);
+  const int done = plan.count() - int(todo.size());
+  std::printf("sequence: frames %d to %d of %d at %g fps, %d to render%s\n", plan.first, plan.last,
+              plan.total, plan.fps, int(todo.size()),
+              done ? (", " + std::to_string(done) + " finished before").c_str() : "");
+  if (todo.empty()) return;
+  // The framing's centre in the first key's axes, carried to each frame's axes.
+  Vec3f framingOffset{0.0f};
+  if (!plan.motion.displayKeys.empty()) {
+    const DisplayKey first = displayAt(plan.motion.displayKeys, 0.0);
+    Vec3f axes[3];
+    placementAxes(framed.display, axes);
+    const Vec3f shift = framed.display.center - first.center;
+    framingOffset = Vec3f(dot(shift, axes[0]), dot(shift, axes[1]), dot(shift, axes[2]));
+  }
+  Scene posed = framed;
+  const auto pose = [&](int frame) {
+    poseScene(framed, plan.motion, plan.timeOf(frame), posed);
+    if (plan.motion.displayKeys.empty()) return;
+    Vec3f axes[3];
+    placementAxes(posed.display, axes);
+    posed.display.center = posed.display.center + axes[0] * framingOffset.x +
+                           axes[1] * framingOffset.y + axes[2] * framingOffset.z;
+  };
+  pose(todo.front());
+  AcceleratorOptions options = job.accelerator;
+  options.dynamic = plan.motion.movesGeometry();
+  const auto buildStart = std::chrono::steady_clock::now();
+  Accelerator accelerator(posed, options);
+  const double buildSeconds = secondsSince(buildStart);
+  double refitSeconds = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < todo.size(); ++i) {
+    const int frame = todo[i];
+    if (i > 0) {
+      pose(frame);
+      if (plan.motion.movesGeometry()) {
+        const auto refitStart = std::chrono::steady_clock::now();
+        accelerator.refit(posed);
+        refitSeconds += secondsSince(refitStart);
+      }
+    }
+    std::printf("frame %d (%zu of %zu, t = %.3f s)\n", frame, i + 1, todo.size(),
+                plan.timeOf(frame));
+    std::fflush(stdout);
+    job.render(posed, accelerator, frame);
+  }
+  const double seconds = secondsSince(start);
+  std::printf(
+      "sequence: %zu frames in %.2f s (%.2f s a frame; BVH built once in %.3f s, "
+      "refitted in %.4f s a frame)\n",
+      todo.size(), seconds, seconds / double(todo.size()), buildSeconds,
+      todo.size() > 1 ? refitSeconds / double(todo.size() - 1) : 0.0);
+}
+
+}  // namespace parallax::app

@@ -1,0 +1,85 @@
+// Frame sequences for `render` (layers and quilts) and `view` (docs/animation.md): --frames,
+// --turntable, --duration and --fps, the plan they make, and the folder of finished frames.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "parallax/accel/accelerator.h"
+
+#include "parallax/scene/motion.h"
+#include "parallax/scene/scene.h"
+
+namespace CLI {
+class App;
+}
+
+namespace parallax {
+class JsonWriter;
+}
+
+namespace parallax::app {
+
+struct SequenceOptions {
+  std::string frames;    // "A:B", 1-based and inclusive; "" = every frame of the animation
+  double turntable = 0;  // degrees the content turns over the whole animation; 0 = none
+  double duration = 0;   // seconds of the animation; 0 = the keys' last time, else 4 s
+  double fps = 30;
+  // A sequence was asked for (else the command renders one picture, at time 0).
+  bool given() const { return !frames.empty() || turntable != 0; }
+};
+
+// Adds the four options to `cmd`.
+void addSequenceOptions(CLI::App& cmd, SequenceOptions& options);
+
+// The animation's frames: frame k (1-based) shows time (k - 1) / fps. A 360-degree turntable
+// over N frames thus loops: frame N + 1 would be frame 1 again.
+struct SequencePlan {
+  SceneMotion motion;
+  double fps = 30;
+  double seconds = 0;  // the animation's length
+  int total = 1;       // frames of the whole animation
+  int first = 1, last = 1;
+  // Every frame's time, of the whole animation (not only first..last): what the framing
+  // measures, so that a range rendered apart frames the content exactly as the whole does.
+  std::vector<double> times() const;
+  double timeOf(int frame) const { return (frame - 1) / fps; }
+  int count() const { return last - first + 1; }
+};
+
+// The plan for `scene` (its keys) and the options; throws InputError naming --frames,
+// --turntable, --duration or --fps. A turntable lasts `duration` (default 4 s) and turns the
+// content (contentTurntable) by `turntable` degrees over it; keys last until their last time.
+SequencePlan planSequence(const SequenceOptions& options, const Scene& scene);
+
+// Without a sequence asked for, one line on stderr when the scene moves (keys or a glTF
+// animation): how to render its frames.
+void noteAnimation(const SequenceOptions& options, const Scene& scene);
+
+// "frame-0007": the folder (or, with a suffix, the file stem) of one frame, 4 digits at least.
+std::string frameName(int frame);
+
+// Before the framing: the display placed at its first key, and the framing's bounds
+// (DisplayPlacement::fit and ::content) replaced by their envelope over the whole animation
+// (movedBounds), so that one framing holds for every frame and the content does not pump.
+void prepareFraming(Scene& scene, const SequencePlan& plan);
+
+// One sequence's work: whether a frame is finished already (its output exists), and how to
+// render one posed frame with the accelerator of the whole sequence.
+struct FrameJob {
+  std::function<bool(int frame)> finished;
+  std::function<void(const Scene& posed, const Accelerator& accelerator, int frame)> render;
+  AcceleratorOptions accelerator;  // `dynamic` is set when the geometry moves
+};
+
+// Renders the plan's unfinished frames in order: the scene (framed once, after prepareFraming)
+// is posed per frame into one copy and the accelerator, built once, is refitted to it. Display
+// keys move the framed placement: the framing's offset of the centre (its zero-parallax plane)
+// and its width ride along. Prints one line per frame and a summary.
+void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& job);
+
+// The sequence's keys in a record: /sequence/{frames, first, last, fps, seconds, turntable...}.
+void recordSequence(JsonWriter& record, const SequencePlan& plan, int frame);
+
+}  // namespace parallax::app

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Frame sequences from the command line (docs/animation.md): a turntable rendered once and in
+# parts (the same frames, byte for byte), a killed sequence resumed, framing fixed over the
+# sequence, quilts and views per frame, camera keys from a scene file, and refusals.
+# Usage: cli_sequence_test.sh PARALLAX_BINARY SOURCE_DIR
+set -u
+source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
+
+cp "$src/tests/fixtures/displays/small-9-views.json" "$tmp/small.json"
+frames() { ls -d "$1"/frame-* 2>/dev/null | xargs -n1 basename | tr '\n' ' '; }
+record() {  # record FILE KEY...: a value of render.json
+  python3 -c '
+import json, sys
+v = json.load(open(sys.argv[1]))
+for k in sys.argv[2:]: v = v[k]
+print(v)' "$@"
+}
+
+# A quarter turn over 4 frames (0.2 s at 20 fps): 0, 22.5, 45 and 67.5 degrees.
+turn=(render --display "$tmp/small.json" --spp 4 --turntable 90 --duration 0.2 --fps 20)
+check "render a turntable" run 0 "${turn[@]}" -o "$tmp/all"
+check "four frame folders" test "$(frames "$tmp/all")" = "frame-0001 frame-0002 frame-0003 frame-0004 "
+for k in 1 2 3 4; do
+  check "frame $k has both layers" bash -c "test -s '$tmp/all/frame-000$k/image.png' && test -s '$tmp/all/frame-000$k/mask.png'"
+done
+check "frames differ as the content turns" bash -c "! cmp -s '$tmp/all/frame-0001/image.png' '$tmp/all/frame-0002/image.png'"
+check "the sequence is recorded" test "$(record "$tmp/all/frame-0003/render.json" sequence frame)" = 3
+check "frame 3 is at 0.1 s" python3 -c "import sys; assert abs(float(sys.argv[1]) - 0.1) < 1e-9" \
+  "$(record "$tmp/all/frame-0003/render.json" sequence seconds)"
+check "the BVH is refitted" grep -q "refitted" "$tmp/out"
+# One framing for the whole sequence: the content keeps its size (no pumping).
+w1=$(record "$tmp/all/frame-0001/render.json" scene_display width)
+w4=$(record "$tmp/all/frame-0004/render.json" scene_display width)
+check "the framing is the same in every frame ($w1, $w4)" test "$w1" = "$w4"
+g1=$(record "$tmp/all/frame-0001/render.json" framing virtual_gap_mm)
+g4=$(record "$tmp/all/frame-0004/render.json" framing virtual_gap_mm)
+check "the depth framing is the same in every frame ($g1, $g4)" test "$g1" = "$g4"
+
+# Frames 3 and 4 alone (a fresh BVH at frame 3, not a refitted one) are the same pictures.
+check "render frames 3:4 apart" run 0 "${turn[@]}" --frames 3:4 -o "$tmp/part"
+check "only frames 3 and 4" test "$(frames "$tmp/part")" = "frame-0003 frame-0004 "
+for k in 3 4; do
+  check "frame $k alone equals frame $k of the whole" cmp "$tmp/all/frame-000$k/image.png" "$tmp/part/frame-000$k/image.png"
+done
+
+# A killed sequence resumes: finished frames are skipped, the rest rendered.
+rm -rf "$tmp/all/frame-0002"
+mkdir -p "$tmp/all/.frame-0004.tmp-999999"  # the temporary folder of a killed run
+touch -d '2001-01-01' "$tmp/all/frame-0001/image.png"
+check "resume" run 0 "${turn[@]}" -o "$tmp/all"
+check "resume renders only the missing frame" grep -q "1 to render, 3 finished before" "$tmp/out"
+check "frame 2 is back" test -s "$tmp/all/frame-0002/image.png"
+check "finished frames are left alone" test "$(stat -c %Y "$tmp/all/frame-0001/image.png")" = "$(date -d 2001-01-01 +%s)"
+check "frame 2 again is the same picture" cmp "$tmp/all/frame-0002/image.png" "$tmp/part/../all/frame-0002/image.png"
+
+# A full turn loops: frame N + 1 would be frame 1; with 360 degrees over 4 frames, frame 3 is
+# the half turn.
+check "quilt sequence" run 0 render --display "$tmp/small.json" --spp 1 --quilt 3x1 --size 48x12 \
+  --turntable 360 --duration 0.2 --fps 20 --frames 1:2 -o "$tmp/quilts"
+check "one quilt per frame" bash -c "ls '$tmp/quilts/frame-0001/'quilt_qs3x1*.png && ls '$tmp/quilts/frame-0002/'quilt_qs3x1*.png" 
+
+# view: numbered pictures.
+check "view sequence" run 0 view --size 64x36 --spp 1 --turntable 180 --duration 0.1 --fps 20 -o "$tmp/v/view.png"
+check "numbered views" bash -c "test -s '$tmp/v/view-0001.png' && test -s '$tmp/v/view-0002.png' && ! test -e '$tmp/v/view-0003.png'"
+
+# Camera keys in a scene file: the camera moves between them.
+cat >"$tmp/keys.json" <<'JSON'
+{
+  "materials": {"grey": {"diffuse": [0.7, 0.7, 0.7]}},
+  "objects": [{"shape": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": "grey"}],
+  "lights": [{"type": "point", "position": [3, 4, 5], "intensity": [40, 40, 40]}],
+  "animation": {"camera": [
+    {"time": 0, "eye": [0, 0, 6], "look_at": [0, 0, 0]},
+    {"time": 1, "eye": [6, 0, 0], "look_at": [0, 0, 0]}
+  ]}
+}
+JSON
+check "camera keys" run 0 view "$tmp/keys.json" --size 64x36 --spp 1 --fps 2 -o "$tmp/k/view.png" --frames 1:3
+check "three frames from 1 s at 2 fps" bash -c "test -s '$tmp/k/view-0003.png' && ! test -e '$tmp/k/view-0004.png'"
+check "the camera moved" bash -c "! cmp -s '$tmp/k/view-0001.png' '$tmp/k/view-0003.png'"
+
+# Refusals: one line naming the option, exit 2, nothing written.
+check "frames beyond the animation" run 2 "${turn[@]}" --frames 3:9 -o "$tmp/bad"
+check "names --frames and the count" one_line_naming "the animation has 4 frames"
+check "frames reversed" run 2 "${turn[@]}" --frames 3:2 -o "$tmp/bad"
+check "names --frames" one_line_naming "--frames"
+check "frame zero" run 2 "${turn[@]}" --frames 0:2 -o "$tmp/bad"
+check "bad fps" run 2 "${turn[@]}" --fps 0 -o "$tmp/bad"
+check "names --fps" one_line_naming "--fps"
+check "keys out of order" bash -c "sed 's/\"time\": 1/\"time\": 0/' '$tmp/keys.json' > '$tmp/bad-keys.json'"
+check "key times must increase" run 2 view "$tmp/bad-keys.json" --frames 1:2 -o "$tmp/bad/v.png"
+check "names the key" one_line_naming "time"
+check "nothing written" test ! -e "$tmp/bad"
+cli_summary
