@@ -14,6 +14,7 @@
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/app/layer_output.h"
+#include "parallax/app/rgbd_options.h"
 #include "parallax/app/sequence.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
@@ -49,7 +50,13 @@ struct RenderOptions {
   int trainEyesPerView = 2;
   std::string layerError;    // "": the method's default (srgb for optimized-image, linear for nmf)
   SequenceOptions sequence;  // --frames, --turntable, --duration, --fps (docs/animation.md)
+  RgbdCliOptions rgbd;       // --rgbd COLOUR DEPTH instead of a scene (docs/rgbd.md)
 };
+
+// The scene file, or the RGB-D photo's scene.
+Scene loadRenderScene(const RenderOptions& o) {
+  return o.rgbd.given() ? loadRgbdFromOptions(o.rgbd) : loadSceneReportingWarnings(o.scene);
+}
 
 // The layer methods and their defaults.
 // Measured (docs/content-adaptive.md): the image layer settles within 8 iterations.
@@ -224,6 +231,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   startRenderRecord(record, "quilt", o.display);
   record.set("/display_kind", displayKindName(display.kind()));
   record.set("/scene", scene.source);
+  if (o.rgbd.given()) recordRgbd(record, o.rgbd, scene);
   record.set("/spp", o.sampling.spp);
   record.set("/bounces", settings.bounces);
   record.set("/seed", o.sampling.seed);
@@ -291,6 +299,15 @@ void runQuiltSequence(const RenderOptions& o, const SequencePlan& plan, const Qu
                    {&accelerator, &plan, frame, frameFolder(o.output, frame)});
   };
   runSequence(plan, scene, job);
+  writeSequenceVideo(o.sequence, plan, [&](int frame) {
+    // The quilt's name carries its layout and aspect: the frame's one quilt PNG.
+    for (const auto& entry : std::filesystem::directory_iterator(frameFolder(o.output, frame))) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("quilt_qs", 0) == 0 && entry.path().extension() == ".png")
+        return entry.path().string();
+    }
+    return frameFolder(o.output, frame) + "/quilt.png";  // not there: writeVideo names it
+  });
 }
 
 // `render --display visual.json|lkg:NAME`: the lenticular panel's picture, or its quilt.
@@ -315,7 +332,7 @@ void runLenticular(const RenderOptions& o, const LenticularCalibration& calibrat
   }
   const LenticularDesign design = designLenticular(calibration);
   const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(design);
-  Scene scene = loadSceneReportingWarnings(o.scene);
+  Scene scene = loadRenderScene(o);
   settings.samplesPerPixel = o.sampling.spp;
   if (!o.sequence.given())
     return runQuiltRender(o, layout, *display, scene, settings, nullptr,
@@ -416,6 +433,7 @@ void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator&
   if (o.layers != "slits")
     frames = solveLayers(o, scene, accelerator, design, training, layers, record);
   record.set("/scene", scene.source);
+  if (o.rgbd.given()) recordRgbd(record, o.rgbd, scene);
   record.set("/spp", settings.samplesPerPixel);
   record.set("/bounces", settings.bounces);
   record.set("/seed", o.sampling.seed);
@@ -466,6 +484,10 @@ void runRender(const RenderOptions& o) {
                      "expected COLUMNSxROWS or auto, got '" + o.quilt + "'");
   const DisplayDescription description = loadDisplayOrDefault(o.display);
   checkLayerOptions(o, description.kind == DisplayKind::Lenticular);
+  o.sequence.videoOptions();  // refuses bad --video options before any work
+  if (o.sequence.video.wanted() && o.rank > 1)
+    throw InputError("command line", "--video",
+                     "time-multiplexed frames (--rank) have several image layers a frame");
   if (description.kind == DisplayKind::Lenticular)
     return runLenticular(o, description.lenticular, layout, settings);
   DisplayDesign design = designDisplay(description.barrier);
@@ -480,6 +502,7 @@ void runRender(const RenderOptions& o) {
   training.eyesPerView = o.trainEyesPerView;
   training.srgbWeights = layerError(o) == "srgb";
   training.threads = settings.threads;
+  training.bounces = settings.bounces;
   if (o.layers != "slits") {
     // The training targets and, per frame, two layers and their gradients.
     const double layerBytes = double(design.spec.imagePanel.width) * design.spec.imagePanel.height *
@@ -489,7 +512,7 @@ void runRender(const RenderOptions& o) {
                         "the training views of --layers " + o.layers,
                         "use fewer --train-eyes or a smaller display");
   }
-  Scene scene = loadSceneReportingWarnings(o.scene);
+  Scene scene = loadRenderScene(o);
   const SequencePlan plan = planSequence(o.sequence, scene);
   if (o.sequence.given()) prepareFraming(scene, plan);
   noteAnimation(o.sequence, scene);
@@ -527,6 +550,9 @@ void runRender(const RenderOptions& o) {
     renderFrame(posed, accelerator, frameFolder(o.output, frame), frame);
   };
   runSequence(plan, scene, job);
+  writeSequenceVideo(o.sequence, plan, [&](int frame) {
+    return (std::filesystem::path(frameFolder(o.output, frame)) / "image.png").string();
+  });
 }
 
 }  // namespace
@@ -535,7 +561,9 @@ void registerRenderCommand(CLI::App& cli) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* cmd =
       cli.add_subcommand("render", "Render the image and mask layers of a parallax display");
-  cmd->add_option("scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
+  CLI::Option* sceneOption =
+      cmd->add_option("scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
+  addRgbdOptions(*cmd, options->rgbd)->excludes(sceneOption);
   cmd->add_option("--display", options->display,
                   "Display: a barrier display file, a lenticular calibration (visual.json), or a "
                   "Looking Glass preset lkg:NAME (built-in barrier display if omitted)");
@@ -579,7 +607,8 @@ void registerRenderCommand(CLI::App& cli) {
                   "With --quilt: the size of one view (default: the device quilt's tile, or the "
                   "image layer's resolution)")
       ->type_name("WxH");
-  addSequenceOptions(*cmd, options->sequence);
+  addSequenceOptions(*cmd, options->sequence,
+                     "the frames' image layers (with --quilt: their quilts)");
   cmd->callback([options] { runRender(*options); });
 }
 

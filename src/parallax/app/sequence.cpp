@@ -43,7 +43,7 @@ void parseFrameRange(const std::string& text, int total, int& first, int& last) 
 
 }  // namespace
 
-void addSequenceOptions(CLI::App& cmd, SequenceOptions& options) {
+void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames) {
   cmd.add_option("--frames", options.frames,
                  "Render frames FIRST:LAST of the animation (1-based) into DIR/frame-NNNN; "
                  "finished frames are skipped, so a killed sequence resumes (docs/animation.md)")
@@ -61,6 +61,26 @@ void addSequenceOptions(CLI::App& cmd, SequenceOptions& options) {
   cmd.add_option("--fps", options.fps, "Frames per second of the animation (and of --video)")
       ->capture_default_str()
       ->check(realIn(0, 240, Bound::Open));
+  addVideoOptions(cmd, options.video, frames, false);
+}
+
+VideoCliOptions SequenceOptions::videoOptions() const {
+  VideoCliOptions o = video;
+  o.fps = fps;
+  if (o.wanted() && !given())
+    throw InputError("command line", "--video",
+                     "makes a video of a sequence: add --frames FIRST:LAST or --turntable DEGREES");
+  checkVideoCliOptions(o);
+  return o;
+}
+
+void writeSequenceVideo(const SequenceOptions& options, const SequencePlan& plan,
+                        const std::function<std::string(int frame)>& picture) {
+  const VideoCliOptions video = options.videoOptions();
+  if (!video.wanted()) return;
+  std::vector<std::string> pictures;
+  for (int frame = plan.first; frame <= plan.last; ++frame) pictures.push_back(picture(frame));
+  writeVideo(pictures, video);
 }
 
 SequencePlan planSequence(const SequenceOptions& options, const Scene& scene) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
+#include "parallax/app/video_output.h"
 
 #include "parallax/scene/motion.h"
 #include "parallax/scene/scene.h"
@@ -22,16 +23,20 @@ class JsonWriter;
 namespace parallax::app {
 
 struct SequenceOptions {
-  std::string frames;    // "A:B", 1-based and inclusive; "" = every frame of the animation
-  double turntable = 0;  // degrees the content turns over the whole animation; 0 = none
-  double duration = 0;   // seconds of the animation; 0 = the keys' last time, else 4 s
+  VideoCliOptions video;  // --video FILE: the frames as one video, at --fps
+  std::string frames;     // "A:B", 1-based and inclusive; "" = every frame of the animation
+  double turntable = 0;   // degrees the content turns over the whole animation; 0 = none
+  double duration = 0;    // seconds of the animation; 0 = the keys' last time, else 4 s
   double fps = 30;
   // A sequence was asked for (else the command renders one picture, at time 0).
   bool given() const { return !frames.empty() || turntable != 0; }
+  // --video's options at the sequence's --fps; refuses a video without a sequence.
+  VideoCliOptions videoOptions() const;
 };
 
-// Adds the four options to `cmd`.
-void addSequenceOptions(CLI::App& cmd, SequenceOptions& options);
+// Adds the four options, and --video with its codec and quality, to `cmd`; `frames` says what a
+// video's frames are.
+void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames);
 
 // The animation's frames: frame k (1-based) shows time (k - 1) / fps. A 360-degree turntable
 // over N frames thus loops: frame N + 1 would be frame 1 again.
@@ -56,6 +61,11 @@ SequencePlan planSequence(const SequenceOptions& options, const Scene& scene);
 // Without a sequence asked for, one line on stderr when the scene moves (keys or a glTF
 // animation): how to render its frames.
 void noteAnimation(const SequenceOptions& options, const Scene& scene);
+
+// After a sequence: the plan's frames (finished now, whether in this run or before) as the
+// video --video asks for; `picture(frame)` is the path of a frame's picture.
+void writeSequenceVideo(const SequenceOptions& options, const SequencePlan& plan,
+                        const std::function<std::string(int frame)>& picture);
 
 // "frame-0007": the folder (or, with a suffix, the file stem) of one frame, 4 digits at least.
 std::string frameName(int frame);

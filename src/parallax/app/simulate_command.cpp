@@ -14,6 +14,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/video_output.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
@@ -62,6 +63,7 @@ struct SimulateOptions {
   bool json = false;
   int threads = 0;
   bool rawPixels = false;
+  VideoCliOptions video;
 };
 
 // The inputs: a `render` output folder, or its pictures with a display file, of any kind.
@@ -452,6 +454,12 @@ Quality qualityAt(const SimulateOptions& o, const Inputs& in, const SimulationOp
 }
 
 void runSimulate(const SimulateOptions& o) {
+  if (o.video.wanted()) {
+    if (o.sweep == 0)
+      throw InputError("command line", "--video",
+                       "needs --sweep N: the video's frames are the sweep's pictures");
+    checkVideoCliOptions(o.video);
+  }
   const Inputs in = loadInputs(o);
   const DisplayModel& display = *in.display;
   checkKindOptions(o, display);
@@ -484,6 +492,11 @@ void runSimulate(const SimulateOptions& o) {
   std::vector<std::string> written, labels, pngs;
   std::vector<Image> thumbnails;
   std::vector<Quality> quality;
+  // --video: each sweep picture is encoded as it is made (the file is moved into place at the
+  // end, with the sweep's other files).
+  std::optional<VideoOutput> video;
+  if (o.video.wanted()) video.emplace(o.video);
+  std::string videoLine;
   for (size_t i = 0; i < eyes.size(); ++i) {
     const Image view = simulator->view(eyes[i]);
     // Pictures as perceived: a viewer at the design distance does not resolve single pixels
@@ -498,6 +511,7 @@ void runSimulate(const SimulateOptions& o) {
       pngs.push_back(pngBytes(picture, false));
       // The contact sheet's thumbnail now, so the picture need not be kept.
       thumbnails.push_back(contactThumbnail(picture, std::min(480, picture.width())));
+      if (video) video->add(picture);
     } else {
       writeImage(numbered(path, i, eyes.size()), picture);
       written.push_back(numbered(path, i, eyes.size()));
@@ -511,6 +525,10 @@ void runSimulate(const SimulateOptions& o) {
     writeFileAtomically(prefix + ".html",
                         sliderPage("parallax: eye sweep across " + display.source(), pngs, labels));
     written = {prefix + "-sheet.png", prefix + "-anim.png", prefix + ".html"};
+    if (video) {
+      videoLine = video->finish();
+      written.push_back(o.video.file);
+    }
   }
 
   if (o.json) {
@@ -519,6 +537,14 @@ void runSimulate(const SimulateOptions& o) {
     json.set("/display_kind", displayKindName(display.kind()));
     for (size_t i = 0; i < written.size(); ++i)
       json.set("/outputs/" + std::to_string(i), written[i]);
+    if (video) {
+      const VideoWriter& v = video->writer();
+      json.set("/video/file", v.path());
+      json.set("/video/frames", v.frames());
+      json.set("/video/codec", v.codec());
+      json.set("/video/coded_width", v.codedWidth());
+      json.set("/video/coded_height", v.codedHeight());
+    }
     Quality mean;
     for (size_t i = 0; i < eyes.size(); ++i) {
       const std::string at = "/eyes/" + std::to_string(i);
@@ -544,7 +570,9 @@ void runSimulate(const SimulateOptions& o) {
     std::printf("%s\n", json.dump().c_str());
     return;
   }
-  for (const std::string& file : written) std::printf("wrote %s\n", file.c_str());
+  for (const std::string& file : written)
+    if (!video || file != o.video.file) std::printf("wrote %s\n", file.c_str());
+  if (video) std::printf("%s\n", videoLine.c_str());
   if (quality.empty()) return;
   std::printf("%-24s %8s %7s %10s %9s %4s\n", "eye (mm)", "PSNR dB", "SSIM", "brightness",
               "crosstalk", "view");
@@ -631,6 +659,9 @@ void registerSimulateCommand(CLI::App& cli) {
                   "of the design distance D")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(threadCount());
+  // As many frames a second as the sweep's APNG (250 ms a frame).
+  o->video.fps = 4;
+  addVideoOptions(*cmd, o->video, "the sweep's pictures (with --sweep)");
   addLimitOptions(*cmd);
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o] { runSimulate(*o); });

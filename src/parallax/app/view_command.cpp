@@ -9,6 +9,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/rgbd_options.h"
 #include "parallax/app/sequence.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
@@ -30,6 +31,7 @@ struct ViewOptions {
   SamplingOptions sampling;
   std::string output = "out/view.png";
   SequenceOptions sequence;  // numbered pictures, OUTPUT-NNNN.png (docs/animation.md)
+  RgbdCliOptions rgbd;       // --rgbd COLOUR DEPTH instead of a scene (docs/rgbd.md)
 };
 
 // The camera of `view`: an ordinary pinhole camera, or with --display-eye the ideal window
@@ -92,7 +94,8 @@ std::string numberedPath(const std::string& output, int frame) {
 
 void runView(const ViewOptions& o) {
   const RenderSettings settings = o.sampling.settings();
-  Scene scene = loadSceneReportingWarnings(o.scene);
+  o.sequence.videoOptions();  // refuses bad --video options before any work
+  Scene scene = o.rgbd.given() ? loadRgbdFromOptions(o.rgbd) : loadSceneReportingWarnings(o.scene);
   noteAnimation(o.sequence, scene);
   const std::unique_ptr<Camera> camera = makeCamera(o, scene);
   // Before anything is allocated: the film and the writer's 8-bit copy, and the time.
@@ -135,6 +138,7 @@ void runView(const ViewOptions& o) {
     renderPicture(posed, accelerator, *makeCamera(o, posed), numberedPath(o.output, frame));
   };
   runSequence(plan, scene, job);
+  writeSequenceVideo(o.sequence, plan, [&](int frame) { return numberedPath(o.output, frame); });
 }
 
 }  // namespace
@@ -142,9 +146,10 @@ void runView(const ViewOptions& o) {
 void registerViewCommand(CLI::App& cli) {
   auto options = std::make_shared<ViewOptions>();
   CLI::App* cmd = cli.add_subcommand("view", "Render an ordinary pinhole-camera picture");
-  cmd->add_option("scene", options->scene,
-                  "Scene file (.json) or mesh (.obj .ply .stl .gltf .glb); built-in scene if "
-                  "omitted");
+  CLI::Option* sceneOption = cmd->add_option(
+      "scene", options->scene,
+      "Scene file (.json) or mesh (.obj .ply .stl .gltf .glb); built-in scene if omitted");
+  addRgbdOptions(*cmd, options->rgbd)->excludes(sceneOption);
   cmd->add_option("--eye", options->eye, "Camera position X,Y,Z (scene units)");
   cmd->add_option("--look-at", options->lookAt, "Point the camera looks at, X,Y,Z");
   cmd->add_option("--up", options->up, "Up direction X,Y,Z");
@@ -161,7 +166,7 @@ void registerViewCommand(CLI::App& cli) {
   addSamplingOptions(*cmd, options->sampling, "Samples per pixel (n*n is stratified)");
   cmd->add_option("-o,--output", options->output, "Output image (.png, or .pfm linear float)")
       ->capture_default_str();
-  addSequenceOptions(*cmd, options->sequence);
+  addSequenceOptions(*cmd, options->sequence, "the numbered pictures");
   cmd->callback([options] { runView(*options); });
 }
 

@@ -19,6 +19,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
+#include <type_traits>
 
 #include "parallax/core/error.h"
 #include "parallax/core/parallel.h"
@@ -265,7 +266,11 @@ size_t pnmHeaderLength(std::string_view b) {
   return i + 1;  // the one whitespace byte after maxval
 }
 
-Image decodeWithStb(std::string_view bytes, const std::string& path) {
+// Decodes what stb_image reads, after checking the header, and hands the decoded samples to
+// `sink(codes, width, height, channels)` (codes: float for Radiance HDR, stbi_us for 16-bit
+// files, stbi_uc otherwise), returning what it makes.
+template <typename Sink>
+auto decodeWithStb(std::string_view bytes, const std::string& path, Sink sink) {
   if (bytes.size() > size_t(INT_MAX)) throw inputError(path, "", "image file too large");
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = int(bytes.size());
@@ -314,21 +319,53 @@ Image decodeWithStb(std::string_view bytes, const std::string& path) {
         stbi_loadf_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
     if (!pixels) throw fail();
     sameSize();
-    return imageFromCodes(pixels.get(), width, height, channels, [](float v) { return v; });
+    return sink(static_cast<const float*>(pixels.get()), width, height, channels);
   }
   if (wide) {
     std::unique_ptr<stbi_us, void (*)(void*)> pixels(
         stbi_load_16_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
     if (!pixels) throw fail();
     sameSize();
-    return imageFromCodes(pixels.get(), width, height, channels,
-                          [](stbi_us code) { return srgbToLinear(float(code) / 65535.0f); });
+    return sink(static_cast<const stbi_us*>(pixels.get()), width, height, channels);
   }
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
   if (!pixels) throw fail();
   sameSize();
-  return imageFromCodes(pixels.get(), width, height, channels, srgb8ToLinear);
+  return sink(static_cast<const stbi_uc*>(pixels.get()), width, height, channels);
+}
+
+// Linear RGB: 8- and 16-bit codes through the sRGB transfer function, HDR floats as they are.
+Image decodeWithStb(std::string_view bytes, const std::string& path) {
+  return decodeWithStb(bytes, path, [](const auto* codes, int width, int height, int channels) {
+    using Code = std::remove_cv_t<std::remove_pointer_t<decltype(codes)>>;
+    if constexpr (std::is_same_v<Code, float>)
+      return imageFromCodes(codes, width, height, channels, [](float v) { return v; });
+    else if constexpr (std::is_same_v<Code, stbi_us>)
+      return imageFromCodes(codes, width, height, channels,
+                            [](stbi_us code) { return srgbToLinear(float(code) / 65535.0f); });
+    else
+      return imageFromCodes(codes, width, height, channels, srgb8ToLinear);
+  });
+}
+
+// The samples as stored: each code over the largest code of its bit depth, floats as they are.
+ImageSamples samplesWithStb(std::string_view bytes, const std::string& path) {
+  return decodeWithStb(bytes, path, [](const auto* codes, int width, int height, int channels) {
+    using Code = std::remove_cv_t<std::remove_pointer_t<decltype(codes)>>;
+    ImageSamples out;
+    out.width = width;
+    out.height = height;
+    out.channels = channels;
+    out.bitsPerSample = std::is_same_v<Code, float> ? 32 : int(8 * sizeof(Code));
+    const double scale = std::is_same_v<Code, float>     ? 1.0
+                         : std::is_same_v<Code, stbi_us> ? 1.0 / 65535.0
+                                                         : 1.0 / 255.0;
+    out.samples.resize(size_t(width) * size_t(height) * size_t(channels));
+    for (size_t i = 0; i < out.samples.size(); ++i)
+      out.samples[i] = float(double(codes[i]) * scale);
+    return out;
+  });
 }
 
 }  // namespace
@@ -381,6 +418,21 @@ Image decodeImage(std::string_view bytes, const std::string& name) {
 
 Image readImage(const std::string& path) {
   return decodeImage(readInputFile(path), path);
+}
+
+ImageSamples readImageSamples(const std::string& path) {
+  const std::string bytes = readInputFile(path);
+  if (checkedFormat(bytes, path) != Format::Pfm) return samplesWithStb(bytes, path);
+  // PFM holds linear floats already: its RGB (grey is replicated) as stored.
+  const Image image = decodePfm(bytes, path);
+  ImageSamples out;
+  out.width = image.width();
+  out.height = image.height();
+  out.channels = 3;
+  out.bitsPerSample = 32;
+  out.samples.reserve(image.pixels().size() * 3);
+  for (const Vec3f& p : image.pixels()) out.samples.insert(out.samples.end(), {p.x, p.y, p.z});
+  return out;
 }
 
 void writeImage(const std::string& path, const Image& image) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "parallax/image/image.h"
 
@@ -21,6 +22,17 @@ inline constexpr int64_t kMaxImageDecodeBytes = int64_t(2) << 30;
 // an image, another format than its extension claims, too large (see above), or a PFM with
 // NaN or infinite pixels.
 Image readImage(const std::string& path);
+// The samples of an image file as stored, without the sRGB transfer function: what a depth map
+// holds. 8- and 16-bit codes are divided by 255 or 65535 (a 16-bit PNG keeps its 16 bits), PFM
+// and Radiance HDR floats are as stored (a grey PFM as three equal channels). The same checks
+// and InputErrors as readImage.
+struct ImageSamples {
+  int width = 0, height = 0;
+  int channels = 0;            // as in the file: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA
+  int bitsPerSample = 0;       // 8, 16, or 32 for floats
+  std::vector<float> samples;  // width x height x channels, row 0 at the top
+};
+ImageSamples readImageSamples(const std::string& path);
 // The same for bytes in memory (an image embedded in a glTF file); `name` names them in
 // errors, and its extension, if any, must agree with the contents.
 Image decodeImage(std::string_view bytes, const std::string& name);

@@ -103,14 +103,13 @@ Band compressBand(const uint8_t* codes, size_t rowBytes, int stride, int begin, 
   return band;
 }
 
-}  // namespace
-
-std::string encodePng(const uint8_t* codes, int width, int height, int channels,
-                      const PngSettings& settings) {
-  if (width <= 0 || height <= 0) throw std::invalid_argument("encodePng: empty picture");
-  if (channels != 1 && channels != 3)
-    throw std::invalid_argument("encodePng: 1 (grey) or 3 (RGB) channels");
-  const size_t rowBytes = size_t(width) * size_t(channels);
+// `codes`: height rows of width x channels samples of bitDepth / 8 bytes each (big-endian for
+// 16 bits, as PNG stores them). The filters work on whole pixels: their byte stride is the
+// pixel's bytes (PNG specification, section 9.2). `srgb` tags the samples as sRGB colours.
+std::string encodeSamples(const uint8_t* codes, int width, int height, int channels, int bitDepth,
+                          bool srgb, const PngSettings& settings) {
+  const int pixelBytes = channels * bitDepth / 8;
+  const size_t rowBytes = size_t(width) * size_t(pixelBytes);
   const int bandRows = int(std::clamp<size_t>(kBandBytes / rowBytes, 1, size_t(height)));
   const int bands = (height + bandRows - 1) / bandRows;
   std::vector<Band> compressed(static_cast<size_t>(bands));
@@ -119,7 +118,7 @@ std::string encodePng(const uint8_t* codes, int width, int height, int channels,
     for (int64_t b = first; b < end; ++b) {
       const int begin = int(b) * bandRows;
       compressed[size_t(b)] =
-          compressBand(codes, rowBytes, channels, begin, std::min(height, begin + bandRows),
+          compressBand(codes, rowBytes, pixelBytes, begin, std::min(height, begin + bandRows),
                        b + 1 == bands, level);
     }
   });
@@ -128,11 +127,11 @@ std::string encodePng(const uint8_t* codes, int width, int height, int channels,
   std::string header;
   appendBigEndian(header, uint32_t(width));
   appendBigEndian(header, uint32_t(height));
-  header += char(8);                      // bits per sample
+  header += char(bitDepth);               // bits per sample
   header += char(channels == 1 ? 0 : 2);  // colour type: grey, or RGB
   header.append(3, '\0');                 // deflate, adaptive filtering, no interlace
   appendChunk(png, "IHDR", header);
-  appendChunk(png, "sRGB", std::string(1, '\0'));  // perceptual rendering intent
+  if (srgb) appendChunk(png, "sRGB", std::string(1, '\0'));  // perceptual rendering intent
   // The zlib stream: its header (deflate, 32 KiB window, no dictionary; 0x7801 is a multiple of
   // 31), the bands' raw deflate data, one IDAT chunk each, and the Adler-32 of all the data.
   uLong adler = 1;
@@ -146,6 +145,28 @@ std::string encodePng(const uint8_t* codes, int width, int height, int channels,
   }
   appendChunk(png, "IEND", "");
   return png;
+}
+
+}  // namespace
+
+std::string encodePng(const uint8_t* codes, int width, int height, int channels,
+                      const PngSettings& settings) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("encodePng: empty picture");
+  if (channels != 1 && channels != 3)
+    throw std::invalid_argument("encodePng: 1 (grey) or 3 (RGB) channels");
+  return encodeSamples(codes, width, height, channels, 8, true, settings);
+}
+
+std::string encodePngGrey16(const uint16_t* values, int width, int height,
+                            const PngSettings& settings) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("encodePngGrey16: empty picture");
+  const size_t count = size_t(width) * size_t(height);
+  std::vector<uint8_t> bigEndian(2 * count);
+  for (size_t i = 0; i < count; ++i) {
+    bigEndian[2 * i] = uint8_t(values[i] >> 8);
+    bigEndian[2 * i + 1] = uint8_t(values[i] & 0xFF);
+  }
+  return encodeSamples(bigEndian.data(), width, height, 1, 16, false, settings);
 }
 
 }  // namespace parallax

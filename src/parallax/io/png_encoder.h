@@ -20,4 +20,9 @@ struct PngSettings {
 std::string encodePng(const uint8_t* codes, int width, int height, int channels,
                       const PngSettings& settings = {});
 
+// A 16-bit grey PNG of width x height values (row 0 at the top), untagged: data such as a depth
+// map, not a colour. Throws std::invalid_argument for an empty picture.
+std::string encodePngGrey16(const uint16_t* values, int width, int height,
+                            const PngSettings& settings = {});
+
 }  // namespace parallax

@@ -19,6 +19,7 @@ struct TrainingOptions {
   int eyesPerView = 2;
   std::vector<double> distances{0.8, 1.0, 1.25};
   int referenceSamplesPerPixel = 4;
+  int bounces = 0;  // of the ideal views: the render's --bounces
   // Targets are the ideal views times targetScale: the slit mask's mean transmittance for the
   // slits' own brightness, times a gain for brighter layers.
   double targetScale = 1.0;

@@ -62,23 +62,25 @@ std::vector<DenseEye> designEyes(const DisplayModel& display) {
 
 Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
                 const SimulatedDisplay& seen, const Vec3d& eye, int width, int height, int spp,
-                int threads) {
+                int threads, int bounces) {
   const WindowCamera camera(eye, display, scene.display, width, height,
                             display.horizontalParallaxOnly());
   RenderSettings settings;
   settings.samplesPerPixel = spp;
   settings.threads = threads;
+  settings.bounces = bounces;
   return seen.atDisplayResolution(render(scene, accelerator, camera, settings));
 }
 
 Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& d,
-                const Vec3d& eye, int width, int height, int spp, int threads) {
+                const Vec3d& eye, int width, int height, int spp, int threads, int bounces) {
   const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(d);
   const WindowCamera camera(eye, *display, scene.display, width, height,
                             display->horizontalParallaxOnly());
   RenderSettings settings;
   settings.samplesPerPixel = spp;
   settings.threads = threads;
+  settings.bounces = bounces;
   return atDisplayResolution(d, render(scene, accelerator, camera, settings));
 }
 
@@ -158,9 +160,9 @@ std::vector<ViewerQuality> measureViewerQuality(
     for (size_t s = 0; s < simulators.size(); ++s) {
       const Image simulated = simulators[s]->atDisplayResolution(simulators[s]->view(eye.position));
       if (ideal.empty())
-        ideal =
-            idealView(scene, accelerator, display, *simulators[s], eye.position, simulated.width(),
-                      simulated.height(), options.referenceSamplesPerPixel, options.threads);
+        ideal = idealView(scene, accelerator, display, *simulators[s], eye.position,
+                          simulated.width(), simulated.height(), options.referenceSamplesPerPixel,
+                          options.threads, options.bounces);
       EyeQuality q{eye, psnr(simulated, ideal), ssim(simulated, ideal),
                    std::numeric_limits<double>::quiet_NaN(), meanLuminance(simulated)};
       if (sameRow)

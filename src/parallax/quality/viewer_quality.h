@@ -42,12 +42,14 @@ std::vector<DenseEye> designEyes(const DisplayModel& display);
 
 // The ideal view from one eye through the display's window (one-axis perspective for
 // horizontal-parallax displays), at the display's spatial resolution (`seen`'s): the truth the
-// display is judged against.
+// display is judged against. `bounces`: as the render's (RenderSettings::bounces), so that a
+// path-traced render is judged against path-traced truth.
 Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
                 const SimulatedDisplay& seen, const Vec3d& eyeMm, int width, int height,
-                int samplesPerPixel, int threads);
+                int samplesPerPixel, int threads, int bounces = 0);
 Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& design,
-                const Vec3d& eyeMm, int width, int height, int samplesPerPixel, int threads);
+                const Vec3d& eyeMm, int width, int height, int samplesPerPixel, int threads,
+                int bounces = 0);
 
 struct EyeQuality {
   DenseEye eye;
@@ -80,6 +82,7 @@ struct ViewerQuality {
 struct ViewerQualityOptions {
   int referenceSamplesPerPixel = 16;
   int threads = 0;
+  int bounces = 0;  // of the ideal views: the render's --bounces
 };
 
 // Scores the simulated views of `simulator` at `eyes` against the ideal views of `scene`,

@@ -1,0 +1,122 @@
+// The RGB-D command-line glue: the options parse through CLI11, bad values are InputErrors
+// naming their option, the loader's errors name --rgbd and the file, and the record holds the
+// choices under /rgbd.
+#include "parallax/app/rgbd_options.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <vector>
+
+#include "parallax/core/error.h"
+#include "parallax/io/image_file.h"
+#include "parallax/io/png_encoder.h"
+
+namespace parallax::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The InputError's key, or "(none)" when `f` throws none.
+template <typename F>
+std::string keyOfError(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.path();
+  }
+  return "(none)";
+}
+
+TEST(RgbdOptions, ParseThroughCli11) {
+  CLI::App app;
+  RgbdCliOptions o;
+  addRgbdOptions(app, o);
+  app.parse(
+      "--rgbd photo.png depth.png --depth-convention inverse --depth-range 2:5.5 "
+      "--rgbd-edges layered --rgbd-fov 65",
+      false);
+  ASSERT_EQ(o.files, (std::vector<std::string>{"photo.png", "depth.png"}));
+  const RgbdOptions parsed = o.options();
+  EXPECT_EQ(parsed.convention, DepthConvention::Inverse);
+  EXPECT_FLOAT_EQ(parsed.nearDistance, 2.0f);
+  EXPECT_FLOAT_EQ(parsed.farDistance, 5.5f);
+  EXPECT_EQ(parsed.edges, RgbdEdges::Layered);
+  EXPECT_FLOAT_EQ(parsed.fovDegrees, 65.0f);
+  // One file is not enough.
+  CLI::App other;
+  RgbdCliOptions one;
+  addRgbdOptions(other, one);
+  EXPECT_THROW(other.parse("--rgbd photo.png", false), CLI::ParseError);
+}
+
+TEST(RgbdOptions, DefaultsAreTheLibrarys) {
+  const RgbdOptions parsed = RgbdCliOptions{}.options();
+  const RgbdOptions library;
+  EXPECT_EQ(parsed.convention, library.convention);
+  EXPECT_EQ(parsed.nearDistance, library.nearDistance);
+  EXPECT_EQ(parsed.farDistance, library.farDistance);
+  EXPECT_EQ(parsed.edges, library.edges);
+  EXPECT_EQ(parsed.fovDegrees, library.fovDegrees);
+}
+
+TEST(RgbdOptions, BadValuesNameTheirOption) {
+  const auto with = [](auto change) {
+    RgbdCliOptions o;
+    change(o);
+    return keyOfError([&] { o.options(); });
+  };
+  EXPECT_EQ(with([](RgbdCliOptions& o) { o.convention = "metric"; }), "--depth-convention");
+  for (const char* range : {"3", "3:1", "0:2", "1:x", "nan:2", "1:2:3", "-1:2", ""})
+    EXPECT_EQ(with([&](RgbdCliOptions& o) { o.range = range; }), "--depth-range") << range;
+  EXPECT_EQ(with([](RgbdCliOptions& o) { o.edges = "holes"; }), "--rgbd-edges");
+  EXPECT_EQ(with([](RgbdCliOptions& o) { o.fovDegrees = 180; }), "--rgbd-fov");
+  EXPECT_EQ(with([](RgbdCliOptions& o) { o.fovDegrees = 0.5; }), "--rgbd-fov");
+}
+
+TEST(RgbdOptions, LoadsNamingRgbdAndRecordsTheChoices) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("parallax_rgbd_options_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string colour = (dir / "c.png").string(), depth = (dir / "d.png").string();
+  writeImage(colour, Image(6, 4, Vec3f(0.3f)));
+  std::vector<uint16_t> codes(24);
+  for (size_t i = 0; i < codes.size(); ++i) codes[i] = uint16_t(1000 * i);
+  writeFileAtomically(depth, encodePngGrey16(codes.data(), 6, 4));
+
+  RgbdCliOptions o;
+  o.files = {colour, (dir / "missing.png").string()};
+  try {
+    loadRgbdFromOptions(o);
+    ADD_FAILURE() << "no error for a missing depth map";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.path(), "--rgbd");
+    EXPECT_EQ(e.file(), (dir / "missing.png").string());
+    // One line: "file: --rgbd: message", the file not repeated.
+    const std::string text = e.what();
+    EXPECT_EQ(text.find(e.file()), 0u) << text;
+    EXPECT_EQ(text.find(e.file(), 1), std::string::npos) << text;
+  }
+
+  o.files = {colour, depth};
+  o.edges = "layered";
+  o.range = "2:4";
+  const Scene scene = loadRgbdFromOptions(o);
+  EXPECT_EQ(scene.meshes.size(), 2u);
+  JsonWriter record;
+  recordRgbd(record, o, scene);
+  const std::string json = record.dump();
+  for (const char* expected :
+       {"\"convention\": \"disparity\"", "\"edges\": \"layered\"", "\"near\": 2.0", "\"far\": 4.0",
+        "\"fov_degrees\": 50.0", "\"width_px\": 6", "\"height_px\": 4", "\"edge_jump\"",
+        "\"background_radius_px\": 2"})
+    EXPECT_NE(json.find(expected), std::string::npos) << expected << " in " << json;
+  EXPECT_NE(json.find("\"triangles\": " + std::to_string(scene.triangleCount())), std::string::npos)
+      << json;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace parallax::app
