@@ -22,7 +22,7 @@ set(PARALLAX_USES_video core image)            # encodes Images as video (FFmpeg
 set(PARALLAX_USES_app core image display scene io accel camera render sim quality layers window video)
 
 # Third-party include prefixes and the one module that may use each (only in its .cpp files).
-set(PARALLAX_THIRD_PARTY embree3 tbb nlohmann tiny_obj_loader tiny_gltf stb zlib CLI SDL2
+set(PARALLAX_THIRD_PARTY embree3 tbb nlohmann tiny_obj_loader tiny_gltf stb zlib assimp CLI SDL2
   libavcodec libavformat libavutil libswscale)
 set(PARALLAX_OWNER_embree3 accel)
 set(PARALLAX_OWNER_tbb core)   # behind core/parallel.h
@@ -31,6 +31,7 @@ set(PARALLAX_OWNER_tiny_obj_loader io)
 set(PARALLAX_OWNER_tiny_gltf io)
 set(PARALLAX_OWNER_stb io)
 set(PARALLAX_OWNER_zlib io)    # the PNG encoder's deflate
+set(PARALLAX_OWNER_assimp io)  # the long tail of mesh formats (io/mesh_assimp.cpp)
 set(PARALLAX_OWNER_CLI app)
 set(PARALLAX_OWNER_SDL2 window)
 set(PARALLAX_OWNER_libavcodec video)  # FFmpeg: encoders and decoders

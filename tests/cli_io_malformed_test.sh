@@ -2,7 +2,7 @@
 # Malformed and nonsense input files, end to end: every case must exit 2 with exactly one line
 # on stderr that names the file (and the JSON key or element), and write no output file.
 # Usage: cli_io_malformed_test.sh PARALLAX_BINARY SOURCE_DIR
-# 170 cases (each `bad`, `bad_scene`, `bad_display` or `bad_mesh` call is one case: exit 2, one
+# 173 cases (each `bad`, `bad_scene`, `bad_display` or `bad_mesh` call is one case: exit 2, one
 # line on stderr naming the file and key, no output file); the script prints the count it ran.
 set -u
 source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
@@ -186,6 +186,14 @@ for spec in "pitch:1e300:-6:40:324" "pitch:1e-300:-6:40:324" "slope:47:1e-300:40
     --spp 1 -o "$tmp/lr"
 done
 
+# ---- Formats only assimp reads (docs/import.md): its message on one line after the file --------
+printf 'Kaydara FBX Binary  \000\032\000\350\034\000\000garbage' >"$tmp/cut.fbx"  # header, then garbage
+bad_mesh "fbx truncated" "cut.fbx: assimp cannot read it" "$tmp/cut.fbx"
+printf '<?xml version="1.0"?>\n<COLLADA version="1.4.1"><library_geometries><geometry id="g"><mesh>' >"$tmp/cut.dae"
+bad_mesh "dae truncated" "cut.dae: assimp cannot read it" "$tmp/cut.dae"
+printf 'no Blender file at all\n' >"$tmp/bad.blend"
+bad_mesh "blend without its magic" "bad.blend: assimp cannot read it" "$tmp/bad.blend"
+
 # ---- Meshes: truncated, lying about counts, NaN --------------------------------------------
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement vertex 2\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' >"$tmp/twov.ply"
 bad_mesh "ply second vertex element" "twov.ply: the header declares more than one 'vertex'" "$tmp/twov.ply"
@@ -331,5 +339,5 @@ bad "visual.json FIFO" "visual-fifo.json: not a regular file (a named pipe (FIFO
 bad "visual.json folder" "folder.json: is a folder, not a file" "$tmp/lr" lenticular render "$tmp/folder.json" -o "$tmp/lr"
 
 echo "$cases cases"
-check "all 170 cases ran" test "$cases" -eq 170
+check "all 173 cases ran" test "$cases" -eq 173
 cli_summary

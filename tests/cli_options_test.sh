@@ -3,8 +3,9 @@
 # refused with the memory estimate, the time estimate, --max-memory, CLI11's own errors as one
 # line, and output sets that are replaced whole or not at all.
 # Usage: cli_options_test.sh PARALLAX_BINARY SOURCE_DIR
-# CASES: 219 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
-# output written) and 16 further cases (help, limits that let work run, output sets).
+# CASES: 255 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
+# output written) and 20 further cases (help, limits that let work run, output sets, the
+# import record).
 set -u
 source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
 
@@ -55,6 +56,12 @@ for cmd in render view bench "lenticular render $tmp/small.json"; do
   for bad in -1 65 abc 2.5; do
     refuse "$cmd --bounces '$bad'" --bounces "$@" --bounces "$bad" -o "$o"
   done
+  # The import options come with the sampling options (docs/import.md).
+  for bad in -1 180.5 abc nan; do
+    refuse "$cmd --crease '$bad'" --crease "$@" --crease "$bad" -o "$o"
+  done
+  # (CLI11 names it --up where that is its first name, --mesh-up on view)
+  refuse "$cmd --mesh-up" "up: x not in" "$@" --mesh-up x -o "$o"
 done
 # The time estimate: a billion samples per pixel, and a small --max-time.
 refuse "view --spp 1e9" "--spp 1000000000" view --spp 1000000000 -o "$o"
@@ -234,6 +241,16 @@ check "the new render.json says seed 7" grep -q '"seed": 7' "$tmp/set/render.jso
 check "other files in the folder stay" grep -q keep "$tmp/set/notes.txt"
 check "temporaries of killed runs are gone" test ! -e "$tmp/.set.tmp-999999999" -a ! -e "$tmp/.set.old-999999999"
 check "no temporaries left anywhere" bash -c "! find '$tmp' -name '*.tmp*' | grep -q ."
+
+# ---- What the import did, in render.json (docs/import.md) -------------------------------------
+spider="$src/data/assimp/STL/Spider_binary.stl"
+if [ -f "$spider" ]; then
+  check "render an STL with --up y --crease 0" run 0 render "$spider" --spp 1 --up y --crease 0 -o "$tmp/stl"
+  check "render.json names the reader" grep -q '"reader": "parallax-stl"' "$tmp/stl/render.json"
+  check "render.json says up y and faceted" \
+    bash -c "grep -q '\"up\": \"y\"' '$tmp/stl/render.json' && grep -q '\"normals\": \"faceted\"' '$tmp/stl/render.json'"
+fi
+check "the built-in scene imports nothing" grep -q '"import": \[\]' "$tmp/set/render.json"
 
 echo "$refusals refusal cases"
 cli_summary

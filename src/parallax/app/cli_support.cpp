@@ -254,6 +254,7 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
       ->check(threadCount());
   cmd.add_option("--seed", options.seed, "Seed of the sample jitter")->check(seedValue());
   addLimitOptions(cmd);
+  addImportOptions(cmd);
   cmd.add_option("--jitter", options.jitter,
                  "Within-stratum jitter: auto (the camera's choice: shared by the 16 rays of a "
                  "packet for the barrier camera, which keeps them parallel), pixel (independent) "
@@ -293,6 +294,7 @@ void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f
 }
 
 void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string& scope) {
+  addImportOptions(cmd);
   cmd.add_option("--fit", options.fit,
                  scope +
                      "How the content is framed: window (the width only), depth (the width, the "
@@ -341,10 +343,49 @@ void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& 
       ->capture_default_str();
 }
 
+namespace {
+std::string gUpAxis = upAxisName(UpAxis::Auto);
+double gCreaseDegrees = kDefaultCreaseDegrees;
+std::vector<Scene::ImportRecord> gImportRecords;
+}  // namespace
+
+void addImportOptions(CLI::App& cmd) {
+  if (cmd.get_option_no_throw("--mesh-up")) return;  // added already
+  // view has --up already (the camera's up vector); --mesh-up works on every command.
+  const bool upFree = cmd.get_option_no_throw("--up") == nullptr;
+  cmd.add_option(upFree ? "--up,--mesh-up" : "--mesh-up", gUpAxis,
+                 "Which axis of the mesh files points up: auto (Z for STL, 3MF, AMF, Blender and "
+                 "FBX files that say so; Y otherwise), y, or z (turned Y-up); docs/import.md")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "y", "z"}));
+  cmd.add_option("--crease", gCreaseDegrees,
+                 "Meshes without normals get smooth ones, split where faces meet at more than "
+                 "this angle in degrees (0: faceted); docs/import.md")
+      ->capture_default_str()
+      ->type_name("DEGREES")
+      ->check(realIn(0.0, 180.0));
+}
+
+ImportOptions importOptions() {
+  ImportOptions options;
+  if (!parseUpAxis(gUpAxis, options.up))  // the option's check lets no other value through
+    throw InputError("command line", "--up", "expected auto, y or z, got '" + gUpAxis + "'");
+  options.creaseDegrees = float(gCreaseDegrees);
+  return options;
+}
+
+const std::vector<Scene::ImportRecord>& importRecords() {
+  return gImportRecords;
+}
+
 Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& options) {
   if (path.empty() && !options.camera.empty())
     throw InputError("command line", "--camera", "the built-in scene has no cameras");
-  return path.empty() ? defaultScene() : loadScene(path, options);
+  SceneLoadOptions load = options;
+  load.import = importOptions();
+  Scene scene = path.empty() ? defaultScene() : loadScene(path, load);
+  gImportRecords.insert(gImportRecords.end(), scene.imports.begin(), scene.imports.end());
+  return scene;
 }
 
 Scene loadSceneReportingWarnings(const std::string& path, const SceneLoadOptions& options) {

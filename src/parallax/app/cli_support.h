@@ -14,6 +14,7 @@
 #include "parallax/display/view_filter.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/io/mesh_file.h"
 #include "parallax/io/scene_file.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
@@ -125,6 +126,18 @@ struct FilterOptions {
 // `viewUnit` says what one view is for this display.
 void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& scope,
                       const std::string& viewUnit);
+
+// --up auto|y|z (also --mesh-up; only that on view, whose --up is the camera's) and --crease
+// DEGREES (docs/import.md): how the scene's mesh files are imported (a scene file's mesh
+// objects may say otherwise). addSamplingOptions and addFramingOptions add them, so every
+// command that loads a scene has them (render, view, bench, lenticular render, design; info
+// adds them itself); a second call on the same command does nothing.
+void addImportOptions(CLI::App& cmd);
+// What the command line chose (the defaults if the command has no such options).
+ImportOptions importOptions();
+// What loading this command's scenes imported (every loadSceneOrDefault so far), for the
+// /import array of render.json (startRenderRecord).
+const std::vector<Scene::ImportRecord>& importRecords();
 
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
 Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& options = {});

@@ -85,6 +85,15 @@ void printJson(const Scene& scene) {
   const Framing f = builtInFraming(scene);
   setFramingFigures(json, "/depth", f);
   json.set("/warnings", scene.warnings);
+  json.setEmptyArray("/import");  // what loading each mesh file did (docs/import.md)
+  for (size_t i = 0; i < scene.imports.size(); ++i) {
+    const std::string at = "/import/" + std::to_string(i);
+    json.set(at + "/file", scene.imports[i].file);
+    json.set(at + "/reader", scene.imports[i].reader);
+    json.set(at + "/up", scene.imports[i].up);
+    json.set(at + "/normals", scene.imports[i].normals);
+    json.set(at + "/triangles", uint64_t(scene.imports[i].triangles));
+  }
   std::printf("%s\n", json.dump().c_str());
 }
 
@@ -137,6 +146,7 @@ void registerInfoCommand(CLI::App& cli) {
   CLI::App* cmd = cli.add_subcommand("info", "Print what a scene holds");
   cmd->add_option("scene", options->scene, "Scene or mesh file; the built-in scene if omitted");
   cmd->add_flag("--json", options->json, "Print one JSON object");
+  addImportOptions(*cmd);
   cmd->callback([options] {
     const Scene scene = loadSceneOrDefault(options->scene);
     options->json ? printJson(scene) : printText(scene);

@@ -156,6 +156,21 @@ void startRenderRecord(JsonWriter& record, const std::string& method,
   record.set("/created", utcNow());
   record.set("/method", method);
   record.set("/display_file", displayFile.empty() ? std::string("<built-in>") : displayFile);
+  // docs/import.md, "What was done": the command's import options (which simulate's
+  // loadSceneAsRendered reuses) and one object per mesh file, in loading order.
+  const ImportOptions options = importOptions();
+  record.set("/import_options/up", upAxisName(options.up));
+  record.set("/import_options/crease", double(options.creaseDegrees));
+  record.setEmptyArray("/import");
+  const auto& imports = importRecords();
+  for (size_t i = 0; i < imports.size(); ++i) {
+    const std::string at = "/import/" + std::to_string(i);
+    record.set(at + "/file", imports[i].file);
+    record.set(at + "/reader", imports[i].reader);
+    record.set(at + "/up", imports[i].up);
+    record.set(at + "/normals", imports[i].normals);
+    record.set(at + "/triangles", uint64_t(imports[i].triangles));
+  }
 }
 
 void checkLayerMemory(const DisplayDesign& design, double filmColumns, double views,

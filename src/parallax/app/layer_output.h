@@ -40,7 +40,8 @@ class OutputSet {
   bool committed_ = false;
 };
 
-// Program, version, time, method and display file at the top of a render.json record.
+// Program, version, time, method and display file at the top of a render.json record, and
+// /import: what loading the command's scenes did with each mesh file (importRecords()).
 void startRenderRecord(JsonWriter& record, const std::string& method,
                        const std::string& displayFile);
 

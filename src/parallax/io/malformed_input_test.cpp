@@ -269,5 +269,33 @@ TEST(MalformedInput, GlbImageBufferViewPastItsBuffer) {
   expectInputError(path, "extends past the end of its buffer");
 }
 
+TEST(MalformedInput, AssimpFormatsGiveOneLineNamingTheFile) {
+  // Broken files in formats only assimp reads: its message, on one line, after the file name.
+  TempDir dir;
+  std::string fbx = readFile(dataDir() + "/assimp/FBX/box.fbx");
+  ASSERT_GT(fbx.size(), 2000u);
+  const std::pair<const char*, std::string> cases[] = {
+      {"truncated.fbx", fbx.substr(0, 2000)},
+      {"header.fbx", std::string("Kaydara FBX Binary  \0\x1a\0\xe8\x1c\0\0garbage", 35)},
+      {"cut.dae",
+       "<?xml version=\"1.0\"?>\n<COLLADA version=\"1.4.1\"><library_geometries><geometry "
+       "id=\"g\"><mesh><source id=\"s\"><float_array count=\"9\">0 0 0 1 0"},
+      {"bad.3ds", std::string("MM\x10\0\0\0\x3d\x3d\xff\xff\xff\x7f", 12)},
+      {"bad.x", "xof 0303txt 0032\nMesh { 3; 0;0;0;, 1;0;0;, 0;1"},
+      {"bad.blend", "no Blender file at all\n"},
+  };
+  for (const auto& [name, bytes] : cases) {
+    SCOPED_TRACE(name);
+    const std::string path = dir.file(name);
+    writeFile(path, bytes);
+    expectRefused(
+        [&] {
+          Scene scene;
+          loadMeshFile(path, {}, scene);
+        },
+        {path + ": ", "assimp cannot read it: "});
+  }
+}
+
 }  // namespace
 }  // namespace parallax

@@ -12,8 +12,10 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <sstream>
 
+#include "parallax/core/parallel.h"
 #include "parallax/io/input_file.h"
 #include "parallax/io/mesh_formats.h"
 
@@ -28,8 +30,18 @@ std::string readFileBytes(const std::string& path) {
   return readInputFile(path);
 }
 
+namespace {
+
+// std::isspace of the "C" locale, inline: the call into the C library was a quarter of the
+// time of reading an ASCII PLY (the dragon, docs/import.md).
+bool isSpace(char c) {
+  return c == ' ' || (c >= '\t' && c <= '\r');
+}
+
+}  // namespace
+
 void TextTokens::skipSpace() {
-  while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {
+  while (pos_ < text_.size() && isSpace(text_[pos_])) {
     if (text_[pos_] == '\n') ++line_;
     ++pos_;
   }
@@ -39,7 +51,7 @@ std::string_view TextTokens::next() {
   skipSpace();
   tokenLine_ = line_;
   const size_t begin = pos_;
-  while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+  while (pos_ < text_.size() && !isSpace(text_[pos_])) ++pos_;
   return text_.substr(begin, pos_ - begin);
 }
 
@@ -219,6 +231,134 @@ bool isDegenerate(const Vec3f& a, const Vec3f& b, const Vec3f& c) {
   return cross(b - a, c - a) == Vec3f(0.0f);
 }
 
+// Angle-weighted vertex normals with a crease angle, for a part whose file gave none: each
+// face adds its unit normal weighted by its angle at the vertex (Thürmer and Wüthrich 1998,
+// "Computing vertex normals from polygonal facets"; the weights do not depend on how a
+// surface is split into triangles). A corner only takes the faces around its vertex whose
+// normals are within the crease angle of its own face's, so faces meeting at a sharper edge
+// keep separate normals; vertices get split where their corners' normals differ. Corners
+// are matched by position (STL repeats every vertex per face), so seams in the file's vertex
+// list do not show. `part` is in world space; `flip` says that the appender will swap corners
+// 1 and 2 (a mirroring transform), so the front face is the other side.
+// A vertex shared by more faces than this keeps its faces' own normals: comparing every face
+// there with every other costs the square of their number (a hostile file could make one
+// vertex the corner of millions), and real meshes stay far below it (the centre of a
+// 4096-segment disc).
+constexpr uint32_t kMaxSmoothedValence = 4096;
+
+// Returns how many vertices were left faceted for exceeding kMaxSmoothedValence.
+size_t generateNormals(FilePart& part, bool flip, float creaseDegrees) {
+  const size_t triangles = part.indices.size() / 3;
+  // Same position, same vertex: sorting the vertices by position puts equal ones side by side
+  // (contiguous, unlike a node-based hash map, whose cache misses dominated on the dragon).
+  // The positions are finite (validated) and -0 == +0 compares equal, so both weld.
+  std::vector<uint32_t> order(part.positions.size());
+  for (size_t v = 0; v < order.size(); ++v) order[v] = uint32_t(v);
+  const auto& P = part.positions;
+  auto less = [&](uint32_t a, uint32_t b) {
+    if (P[a].x != P[b].x) return P[a].x < P[b].x;
+    if (P[a].y != P[b].y) return P[a].y < P[b].y;
+    return P[a].z < P[b].z;
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<uint32_t> weld(P.size());
+  uint32_t welded = 0;
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (i > 0 && P[order[i]] != P[order[i - 1]]) ++welded;
+    weld[order[i]] = welded;
+  }
+  const size_t weldCount = order.empty() ? 0 : welded + 1;
+
+  // Unit face normals and corner angles; degenerate faces get weight 0 (they are dropped).
+  std::vector<Vec3f> faceNormal(triangles, Vec3f(0.0f));
+  std::vector<float> angle(triangles * 3, 0.0f);
+  parallelFor(int64_t(triangles), 0, 1 << 14, [&](int64_t begin, int64_t end) {
+    for (auto t = size_t(begin); t < size_t(end); ++t) {
+      const Vec3f* p[3];
+      for (int k = 0; k < 3; ++k) p[k] = &part.positions[part.indices[3 * t + size_t(k)]];
+      const Vec3f n = cross(*p[1] - *p[0], *p[2] - *p[0]);
+      const float len = length(n);
+      if (!(len > 0.0f) || !std::isfinite(len)) continue;
+      faceNormal[t] = n / (flip ? -len : len);
+      for (int k = 0; k < 3; ++k) {
+        // The corner's angle; atan2 of |e1 x e2| and e1 . e2 stays accurate near 0 and 180.
+        const Vec3f e1 = *p[(k + 1) % 3] - *p[k], e2 = *p[(k + 2) % 3] - *p[k];
+        angle[3 * t + size_t(k)] = std::atan2(length(cross(e1, e2)), dot(e1, e2));
+      }
+    }
+  });
+
+  // The corners around each welded vertex (compressed rows).
+  std::vector<uint32_t> start(weldCount + 1, 0);
+  for (uint32_t index : part.indices) ++start[weld[index] + 1];
+  for (size_t w = 0; w < weldCount; ++w) start[w + 1] += start[w];
+  std::vector<uint32_t> corners(part.indices.size()), fill(start.begin(), start.end() - 1);
+  for (size_t c = 0; c < triangles * 3; ++c) corners[fill[weld[part.indices[c]]]++] = uint32_t(c);
+
+  // Each corner's normal, in parallel over the welded vertices: a vertex's faces are gathered
+  // once and every corner there sums them from that small copy (walking the corners in file
+  // order instead fetched the same scattered faces again per corner). A corner reads only
+  // its vertex's faces, so the result does not depend on the thread count.
+  const float cosCrease = std::cos(creaseDegrees * std::numbers::pi_v<float> / 180.0f);
+  std::vector<Vec3f> cornerNormal(triangles * 3);
+  parallelFor(int64_t(weldCount), 0, 1 << 12, [&](int64_t begin, int64_t end) {
+    std::vector<std::pair<Vec3f, float>> around;  // (face normal, angle) of each corner
+    for (auto w = size_t(begin); w < size_t(end); ++w) {
+      if (start[w + 1] - start[w] > kMaxSmoothedValence) {
+        for (uint32_t i = start[w]; i < start[w + 1]; ++i)
+          cornerNormal[corners[i]] = faceNormal[corners[i] / 3];
+        continue;
+      }
+      around.clear();
+      for (uint32_t i = start[w]; i < start[w + 1]; ++i)
+        around.emplace_back(faceNormal[corners[i] / 3], angle[corners[i]]);
+      for (uint32_t i = start[w]; i < start[w + 1]; ++i) {
+        const Vec3f& own = around[i - start[w]].first;
+        Vec3f sum(0.0f);
+        for (const auto& [normal, weight] : around)
+          if (dot(own, normal) >= cosCrease) sum += normal * weight;
+        const float len = length(sum);
+        cornerNormal[corners[i]] = len > 0.0f && std::isfinite(len) ? sum / len : own;
+      }
+    }
+  });
+
+  // One vertex per (file vertex, normal): corners of a smooth region sum the same faces in
+  // the same order, so their normals are equal bit for bit. The vertices made from one file
+  // vertex are chained (first[v], then next[]), in the order of their first corner.
+  constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> first(part.positions.size(), kNone), next;
+  std::vector<Vec3f> positions, normals;
+  std::vector<Vec2f> uvs;
+  positions.reserve(part.positions.size());
+  normals.reserve(part.positions.size());
+  next.reserve(part.positions.size());
+  std::vector<uint32_t> indices(part.indices.size());
+  for (size_t c = 0; c < triangles * 3; ++c) {
+    const uint32_t v = part.indices[c];
+    const Vec3f& n = cornerNormal[c];
+    uint32_t* link = &first[v];
+    while (*link != kNone && normals[*link] != n) link = &next[*link];
+    if (*link == kNone) {
+      *link = uint32_t(positions.size());  // before next grows: `link` may point into it
+      positions.push_back(part.positions[v]);
+      normals.push_back(n);
+      next.push_back(kNone);
+      if (!part.uvs.empty()) uvs.push_back(part.uvs[v]);
+      indices[c] = uint32_t(positions.size() - 1);
+    } else {
+      indices[c] = *link;
+    }
+  }
+  part.positions = std::move(positions);
+  part.normals = std::move(normals);
+  part.uvs = std::move(uvs);
+  part.indices = std::move(indices);
+  size_t crowded = 0;
+  for (size_t w = 0; w < weldCount; ++w) crowded += start[w + 1] - start[w] > kMaxSmoothedValence;
+  return crowded;
+}
+
 // Collects the world-space meshes of one file, one per scene material, and creates the
 // scene materials, textures and images the first time a kept triangle needs them.
 class SceneAppender {
@@ -229,16 +369,25 @@ class SceneAppender {
     prefix_ = options.name.empty() ? std::filesystem::path(path).stem().string() : options.name;
   }
 
-  // `part` must have passed validate().
-  void add(FilePart& part) {
-    const Transform worldFromPart = options_.worldFromFile * part.fileFromPart;
+  // `part` must have passed validate(). `fileFromReader` turns a Z-up file Y-up.
+  void add(FilePart& part, const Transform& fileFromReader) {
+    const Transform worldFromPart = options_.worldFromFile * fileFromReader * part.fileFromPart;
     for (Vec3f& p : part.positions) {
       p = worldFromPart.point(p);
       if (!isFinite(p))
         fail(path_, where(part) + "a vertex moved to world space overflows (transform too large)");
     }
+    const bool hadNormals = !part.normals.empty();
     transformNormals(worldFromPart, part);
     const bool flip = worldFromPart.swapsHandedness();
+    const bool generate = !hadNormals && options_.creaseDegrees > 0.0f;
+    if (generate)
+      if (const size_t crowded = generateNormals(part, flip, options_.creaseDegrees))
+        scene_.warnings.push_back(path_ + ": " + where(part) + std::to_string(crowded) +
+                                  (crowded == 1 ? " vertex" : " vertices") +
+                                  " shared by more than " + std::to_string(kMaxSmoothedValence) +
+                                  " triangles keep their faces' normals");
+    (hadNormals ? fileNormals_ : generate ? generatedNormals_ : faceted_) = true;
 
     TriangleMesh* mesh = nullptr;
     std::vector<uint32_t> remap(part.positions.size(), kUnused);
@@ -261,7 +410,28 @@ class SceneAppender {
         }
         mesh->indices.push_back(remap[v]);
       }
+      ++triangles_;
     }
+  }
+
+  // What was done, for Scene::imports.
+  void record(const std::string& reader, UpAxis up) {
+    Scene::ImportRecord r;
+    r.file = path_;
+    r.reader = reader;
+    r.up = up == UpAxis::Z ? "z" : "y";
+    std::vector<std::string> kinds;
+    if (fileNormals_) kinds.push_back("file");
+    if (generatedNormals_) {
+      std::ostringstream text;
+      text << "generated (crease " << options_.creaseDegrees << "°)";
+      kinds.push_back(text.str());
+    }
+    if (faceted_) kinds.push_back("faceted");
+    for (size_t i = 0; i < kinds.size(); ++i) r.normals += (i ? " + " : "") + kinds[i];
+    if (kinds.empty()) r.normals = "none (no triangles)";
+    r.triangles = triangles_;
+    scene_.imports.push_back(std::move(r));
   }
 
   void finish() {
@@ -386,6 +556,8 @@ class SceneAppender {
   std::map<int, uint32_t> materials_;           // file material -> scene material
   std::map<int, int> textures_;                 // file image -> scene texture
   size_t dropped_ = 0;
+  size_t triangles_ = 0;
+  bool fileNormals_ = false, generatedNormals_ = false, faceted_ = false;
 };
 
 }  // namespace
@@ -432,9 +604,35 @@ static void addCamerasAndLights(const std::string& path, const MeshLoadOptions& 
   }
 }
 
+const char* upAxisName(UpAxis up) {
+  switch (up) {
+    case UpAxis::Y:
+      return "y";
+    case UpAxis::Z:
+      return "z";
+    case UpAxis::Auto:
+      break;
+  }
+  return "auto";
+}
+
+bool parseUpAxis(const std::string& text, UpAxis& up) {
+  for (UpAxis candidate : {UpAxis::Auto, UpAxis::Y, UpAxis::Z})
+    if (text == upAxisName(candidate)) return up = candidate, true;
+  return false;
+}
+
+namespace {
+
+bool ourFormat(const std::string& ext) {
+  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
+}
+
+}  // namespace
+
 bool isMeshFile(const std::string& path) {
   const std::string ext = lowerExtension(path);
-  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
+  return ourFormat(ext) || meshio::assimpReads(ext);
 }
 
 void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene& scene) {
@@ -446,28 +644,58 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
                                 std::to_string(*options.materialOverride) +
                                 " is not a scene material");
 
+  if (!(options.creaseDegrees >= 0.0f && options.creaseDegrees <= 180.0f))
+    throw std::invalid_argument("loadMeshFile: crease angle " +
+                                std::to_string(options.creaseDegrees) + " is not in [0, 180]");
+
   const std::string ext = lowerExtension(path);
   FileContents contents;
-  if (ext == ".obj") {
+  std::string reader = "parallax-" + ext.substr(ext.empty() ? 0 : 1);
+  if (options.forceAssimp || !ourFormat(ext)) {
+    if (!meshio::assimpReads(ext))
+      fail(path, "unknown mesh format '" + ext +
+                     "' (docs/import.md lists the formats; assimp does not know this one)");
+    contents = meshio::readAssimp(path);
+    reader = "assimp";
+  } else if (ext == ".obj") {
     contents = meshio::readObj(path);
   } else if (ext == ".ply") {
     contents = meshio::readPly(path);
   } else if (ext == ".stl") {
     contents = meshio::readStl(path);
-  } else if (ext == ".gltf" || ext == ".glb") {
-    contents = meshio::readGltf(path);
   } else {
-    fail(path, "unknown mesh format '" + ext + "' (expected .obj, .ply, .stl, .gltf or .glb)");
+    contents = meshio::readGltf(path);
+    reader = "parallax-gltf";
   }
+
+  // The up axis (docs/import.md): what the file declares (FBX), else the format's convention.
+  // The 3-D printing formats (STL, 3MF and AMF, whose specifications put the build platform
+  // in the XY plane) and Blender are Z-up, and assimp leaves their axes alone; its Collada
+  // (<up_axis>) and 3DS importers turn Z-up files Y-up themselves; glTF is Y-up by its
+  // specification, and the scanned models in PLY and OBJ (Stanford's) are Y-up.
+  UpAxis up = options.up;
+  if (up == UpAxis::Auto) up = contents.declaredUp;
+  if (up == UpAxis::Auto)
+    up = ext == ".stl" || ext == ".3mf" || ext == ".amf" || ext == ".blend" ? UpAxis::Z : UpAxis::Y;
+  // -90 degrees about X: (x, y, z) -> (x, z, -y), so that +Z becomes +Y (a rotation: the
+  // handedness and the winding stay).
+  Mat4 zToY = Mat4::identity();  // exact, where rotate() would leave cos(90 deg) = 6e-17
+  zToY.m[1] = {0, 0, 1, 0};
+  zToY.m[2] = {0, -1, 0, 0};
+  const Transform fileFromReader = up == UpAxis::Z ? Transform(zToY) : Transform();
 
   // Validate everything before touching the scene, so a bad file leaves it unchanged.
   for (const FilePart& part : contents.parts) validate(path, part);
   SceneAppender appender(path, options, contents, scene);
   for (const std::string& warning : contents.warnings)
     scene.warnings.push_back(path + ": " + warning);
-  for (FilePart& part : contents.parts) appender.add(part);
+  for (FilePart& part : contents.parts) appender.add(part, fileFromReader);
   appender.finish();
-  addCamerasAndLights(path, options, contents, scene);
+  appender.record(reader, up);
+  // Cameras and lights turn with the file's up axis as its meshes do.
+  MeshLoadOptions placed = options;
+  placed.worldFromFile = options.worldFromFile * fileFromReader;
+  addCamerasAndLights(path, placed, contents, scene);
 }
 
 }  // namespace parallax

@@ -1,5 +1,7 @@
 // Triangle meshes from files: OBJ (+MTL), PLY (ASCII and binary), STL (ASCII and binary),
-// glTF 2.0 (.gltf + .bin + textures, and .glb). The format is chosen by the file extension.
+// glTF 2.0 (.gltf + .bin + textures, and .glb) by our own readers, and every other format
+// assimp knows (.fbx, .dae, .3ds, .blend, ...) through assimp. The format is chosen by the file
+// extension. docs/import.md lists the formats, the readers and what loadMeshFile adds.
 #pragma once
 
 #include <optional>
@@ -10,6 +12,22 @@
 
 namespace parallax {
 
+// Which file axis points up. Auto: the format's convention (docs/import.md, "Up axis"): Z for
+// STL, the FBX file's own UpAxis, Y otherwise (glTF is Y-up by its specification).
+enum class UpAxis { Auto, Y, Z };
+// "auto", "y", "z"; parseUpAxis returns false for anything else.
+const char* upAxisName(UpAxis up);
+bool parseUpAxis(const std::string& text, UpAxis& up);
+
+inline constexpr float kDefaultCreaseDegrees = 60.0f;
+
+// The import choices made once for every mesh of a scene (the command line's --up and
+// --crease); a scene file's mesh object may override them with its `up` and `crease` keys.
+struct ImportOptions {
+  UpAxis up = UpAxis::Auto;
+  float creaseDegrees = kDefaultCreaseDegrees;
+};
+
 struct MeshLoadOptions {
   // Applied on top of the file's own node transforms (glTF), object -> world.
   Transform worldFromFile;
@@ -17,14 +35,24 @@ struct MeshLoadOptions {
   std::optional<uint32_t> materialOverride;
   // Prefix for mesh names (the scene object's name); file names are used when empty.
   std::string name;
+  // A Z-up file is turned Y-up (-90 degrees about X) before worldFromFile.
+  UpAxis up = UpAxis::Auto;
+  // Parts without normals in the file get angle-weighted vertex normals, smooth across edges
+  // whose faces meet at up to this angle (degrees) and split across sharper ones, so a cube
+  // stays faceted. 0: no normals are generated (flat shading, as before). In [0, 180].
+  float creaseDegrees = kDefaultCreaseDegrees;
+  // Assimp reads every format, ours too; our own readers are the default where they exist
+  // (faster, docs/import.md). Forcing assimp works around a problem in one of ours.
+  bool forceAssimp = false;
 };
 
 // Appends the file's triangles to `scene` as world-space meshes (one per material), and its
-// materials, textures and images. Degenerate triangles are dropped with one warning per file
-// in scene.warnings that counts them. A glTF file's perspective cameras go to scene.cameras,
-// its KHR_lights_punctual lights to scene.lights (both moved by worldFromFile), and one line
-// saying what was taken and ignored to scene.notes (docs/gltf.md). Throws InputError naming the
-// file for a missing, empty, truncated or malformed file, NaN/inf vertices or indices out of range.
+// materials, textures and images, and one Scene::ImportRecord saying what was done. Degenerate
+// triangles are dropped with one warning per file in scene.warnings that counts them. A glTF
+// file's perspective cameras go to scene.cameras, its KHR_lights_punctual lights to
+// scene.lights (both moved by worldFromFile), and one line saying what was taken and ignored
+// to scene.notes (docs/gltf.md). Throws InputError naming the file for a missing, empty,
+// truncated or malformed file, NaN/inf vertices or indices out of range.
 void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene& scene);
 
 // True if the extension names a mesh format that loadMeshFile reads.

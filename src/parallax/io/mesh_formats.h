@@ -12,6 +12,7 @@
 #include "parallax/core/error.h"
 #include "parallax/core/transform.h"
 #include "parallax/image/image.h"
+#include "parallax/io/mesh_file.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax::meshio {
@@ -59,12 +60,17 @@ struct FileContents {
   std::vector<std::string> warnings;  // without the file name; loadMeshFile adds it
   size_t droppedDegenerate = 0;       // faces a reader dropped itself (fewer than 3 corners)
   NodeAnimation nodeAnimation;        // glTF: the node tree and its channels (no meshes yet)
+  // The up axis the file itself declares (FBX's UpAxis metadata); Auto if it says nothing.
+  UpAxis declaredUp = UpAxis::Auto;
 };
 
 FileContents readObj(const std::string& path);
 FileContents readPly(const std::string& path);
 FileContents readStl(const std::string& path);
 FileContents readGltf(const std::string& path);
+// Every format assimp reads (mesh_assimp.cpp); assimpReads says which extensions (".fbx").
+FileContents readAssimp(const std::string& path);
+bool assimpReads(const std::string& lowerExtension);
 
 // Splits the polygon `corners` (indices into `positions`, in order) into triangles appended
 // to `out`, keeping its winding: a convex polygon as a fan (a quad along its shorter

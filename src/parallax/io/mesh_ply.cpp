@@ -183,16 +183,17 @@ class ValueReader {
   double readText(Type type, const std::string& where) {
     const std::string_view token = tokens_.next();
     if (token.empty()) fail(path_, where + ": the file ends inside the data (truncated)");
-    const std::string at = "line " + std::to_string(tokens_.line()) + ": " + where + ": ";
+    // The message is built only on failure: this runs once per number of the file.
+    auto at = [&] { return "line " + std::to_string(tokens_.line()) + ": " + where + ": "; };
     if (isInteger(type)) {
       int64_t value = 0;
       if (!parseInteger(token, value))
-        fail(path_, at + "expected an integer, found '" + std::string(token) + "'");
+        fail(path_, at() + "expected an integer, found '" + std::string(token) + "'");
       return double(value);
     }
     double value = 0;
     if (!parseNumber(token, value))
-      fail(path_, at + "expected a number, found '" + std::string(token) + "'");
+      fail(path_, at() + "expected a number, found '" + std::string(token) + "'");
     return value;
   }
 

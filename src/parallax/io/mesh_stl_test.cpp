@@ -7,6 +7,14 @@ namespace {
 
 using namespace meshtest;
 
+// The file's own axes: STL is Z-up and loadMeshFile turns it Y-up by default
+// (mesh_import_test.cpp tests the turn); these tests check what the reader reads.
+MeshLoadOptions fileAxes() {
+  MeshLoadOptions options;
+  options.up = UpAxis::Y;
+  return options;
+}
+
 TEST(MeshFile, AsciiStl) {
   TempDir dir;
   const std::string path = dir.file("part.stl");
@@ -22,7 +30,7 @@ TEST(MeshFile, AsciiStl) {
             "      vertex 0 0 0\n      vertex 0 1 0\n      vertex 0 0 -1.5e1\n"
             "    endloop\n  endfacet\n"
             "endsolid my part\n");
-  const Scene scene = load(path);
+  const Scene scene = load(path, fileAxes());
   ASSERT_EQ(scene.meshes.size(), 1u);
   expectTriangles(scene.meshes[0], {{Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)},
                                     {Vec3f(0, 0, 0), Vec3f(0, 1, 0), Vec3f(0, 0, -15)}});
@@ -40,7 +48,7 @@ TEST(MeshFile, BinaryStlStartingWithSolid) {
       {Vec3f(5, 5, 5), Vec3f(5, 5, 5), Vec3f(6, 5, 5)},  // repeated corner
       {Vec3f(0, 0, 1), Vec3f(0, 2, 1), Vec3f(-3, 0, 1)}};
   writeFile(path, binaryStl("solid exported by a careless tool", tris, tris.size()));
-  const Scene scene = load(path);
+  const Scene scene = load(path, fileAxes());
   ASSERT_EQ(scene.meshes.size(), 1u);
   expectTriangles(scene.meshes[0], {tris[0], tris[2]});
   EXPECT_EQ(droppedCount(scene), 1u);
@@ -51,7 +59,7 @@ TEST(MeshFile, MirroringTransformKeepsFacesOutward) {
   const std::string path = dir.file("tri.stl");
   const std::array<Vec3f, 3> tri = {Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)};
   writeFile(path, binaryStl("", {tri}, 1));
-  MeshLoadOptions options;
+  MeshLoadOptions options = fileAxes();
   options.worldFromFile = Transform::scale({1, 1, -1});  // a mirror: swaps handedness
   const Scene scene = load(path, options);
   ASSERT_EQ(scene.triangleCount(), 1u);
@@ -62,8 +70,8 @@ TEST(MeshFile, MirroringTransformKeepsFacesOutward) {
 }
 
 TEST_F(RealModels, SpiderBinaryAndAsciiAgree) {
-  const Scene binary = load(model("assimp/STL/Spider_binary.stl"));
-  const Scene ascii = load(model("assimp/STL/Spider_ascii.stl"));
+  const Scene binary = load(model("assimp/STL/Spider_binary.stl"), fileAxes());
+  const Scene ascii = load(model("assimp/STL/Spider_ascii.stl"), fileAxes());
   for (const Scene* scene : {&binary, &ascii}) {
     EXPECT_EQ(scene->triangleCount(), 1312u);
     EXPECT_EQ(droppedCount(*scene), 56u);

@@ -248,8 +248,8 @@ Vec3f positiveSize(const JsonReader& value) {
 
 class SceneFileLoader {
  public:
-  explicit SceneFileLoader(const std::string& path)
-      : path_(path), folder_(fs::path(path).parent_path()) {}
+  SceneFileLoader(const std::string& path, const ImportOptions& import)
+      : path_(path), folder_(fs::path(path).parent_path()), import_(import) {}
 
   Scene load() {
     const JsonDocument document = JsonDocument::parseFile(path_);
@@ -406,7 +406,7 @@ class SceneFileLoader {
         {"box", {"min", "max", "size", "center"}},
         {"quad", {"corner", "edge_u", "edge_v"}},
         {"plane", {"center", "normal", "up", "size"}},
-        {"mesh", {"file"}}};
+        {"mesh", {"file", "up", "crease"}}};
     std::vector<std::string> allowed = common;
     if (!object.has("shape")) {  // a misspelt "shape" is better reported as unknown key
       for (const auto& [shape, keys] : shapeKeys)
@@ -463,7 +463,7 @@ class SceneFileLoader {
                                   "but do not light the scene (use a mesh or a quad light)");
       scene_.spheres.push_back(sphere);
     } else if (shape == "mesh") {
-      addMeshFile(object["file"], name, worldFromObject, material);
+      addMeshFile(object, name, worldFromObject, material);
     } else {
       addFlatShape(object, shape, name, *material);
       transformMesh(scene_.meshes.back(), worldFromObject);
@@ -528,8 +528,9 @@ class SceneFileLoader {
     }
   }
 
-  void addMeshFile(const JsonReader& fileKey, const std::string& name,
+  void addMeshFile(const JsonReader& object, const std::string& name,
                    const Transform& worldFromObject, std::optional<uint32_t> material) {
+    const JsonReader fileKey = object["file"];
     const std::string file = resolve(fileKey.string());
     if (!fs::exists(file)) fileKey.fail("mesh file not found: " + file);
     try {
@@ -538,8 +539,14 @@ class SceneFileLoader {
       fileKey.fail(e.what());
     }
     if (!isMeshFile(file))
-      fileKey.fail("not a mesh file this build reads (.obj, .ply, .stl, .gltf, .glb): " + file);
+      fileKey.fail("not a mesh file this build reads (docs/import.md lists the formats): " + file);
     MeshLoadOptions options;
+    options.up = import_.up;
+    if (const auto up = object.find("up"); up && !parseUpAxis(up->string(), options.up))
+      up->fail("expected \"auto\", \"y\" or \"z\", found \"" + up->string() + "\"");
+    options.creaseDegrees = import_.creaseDegrees;
+    if (const auto crease = object.find("crease"))
+      options.creaseDegrees = float(crease->number(0, 180));
     options.worldFromFile = worldFromObject;
     options.materialOverride = material;
     options.name = name;
@@ -726,6 +733,7 @@ class SceneFileLoader {
 
   std::string path_;
   fs::path folder_;
+  ImportOptions import_;
   Scene scene_;
   std::map<std::string, int> namedTextures_, namedMaterials_, images_;
   std::optional<uint32_t> defaultMaterial_;
@@ -809,11 +817,14 @@ void useFileCamera(Scene& scene, size_t index) {
     scene.notes.push_back(camera.source + ": " + used);
 }
 
-Scene sceneFromMesh(const std::string& path, const SceneLoadOptions& options) {
+Scene sceneFromMesh(const std::string& path, const SceneLoadOptions& load) {
   requireRegularFile(path);
   Scene scene;
   scene.source = path;
-  loadMeshFile(path, MeshLoadOptions{}, scene);
+  MeshLoadOptions meshOptions;
+  meshOptions.up = load.import.up;
+  meshOptions.creaseDegrees = load.import.creaseDegrees;
+  loadMeshFile(path, meshOptions, scene);
   if (scene.materials.empty()) {
     Material grey;
     grey.name = "default";
@@ -839,8 +850,8 @@ Scene sceneFromMesh(const std::string& path, const SceneLoadOptions& options) {
   scene.background = Vec3f(0.02f);
   scene.display = placeDisplay(bounds, {0, 0, 1}, {0, 1, 0});
   scene.camera = frameScene(scene);
-  if (!options.camera.empty())
-    useFileCamera(scene, findCamera(scene, options.camera));
+  if (!load.camera.empty())
+    useFileCamera(scene, findCamera(scene, load.camera));
   else if (!scene.cameras.empty())
     useFileCamera(scene, 0);
   return scene;
@@ -850,7 +861,7 @@ Scene loadScene(const std::string& path, const SceneLoadOptions& options) {
   requireRegularFile(path);
   Scene scene;
   if (lowerExtension(path) == ".json") {
-    scene = SceneFileLoader(path).load();
+    scene = SceneFileLoader(path, options.import).load();
     if (!options.camera.empty()) useFileCamera(scene, findCamera(scene, options.camera));
   } else if (isMeshFile(path)) {
     scene = sceneFromMesh(path, options);
@@ -872,10 +883,17 @@ Scene loadSceneAsRendered(const std::string& scenePath, const std::string& rende
     return scenePath.empty() ? defaultScene() : loadScene(scenePath);
   const JsonDocument document = JsonDocument::parseFile(record.string());
   const JsonReader root = document.root();
-  // The glTF camera the render used (--camera; docs/gltf.md) places the display again.
+  // The glTF camera (--camera; docs/gltf.md) and the import options (docs/import.md) the
+  // render used, so that the meshes and the display are the ones it drew; records written
+  // before they were recorded get the defaults, as then.
   SceneLoadOptions options;
   if (const auto camera = root.find("scene_camera"); camera && camera->isString())
     options.camera = camera->string();
+  if (const auto imported = root.find("import_options")) {
+    const JsonReader up = (*imported)["up"];
+    if (!parseUpAxis(up.string(), options.import.up)) up.fail("expected \"auto\", \"y\" or \"z\"");
+    options.import.creaseDegrees = float((*imported)["crease"].number(0, 180));
+  }
   Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, options);
   const auto framing = root.find("framing");
   if (!framing) return scene;

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "parallax/io/mesh_file.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax {
@@ -15,11 +16,15 @@ struct SceneLoadOptions {
   // so that the display is seen as the camera saw the scene (useFileCamera). Empty: the first
   // camera of a bare mesh file, none for a .json scene.
   std::string camera;
+  // --up, --crease: how mesh files are imported (io/mesh_file.h, docs/import.md).
+  ImportOptions import;
 };
 
 // Loads a .json scene or a bare mesh file (see isMeshFile). Throws InputError with the file
 // and the JSON pointer of the offending key: "scene.json: /objects/3/material/color: expected
-// 3 numbers". Unknown keys are errors. An unknown options.camera is an InputError naming
+// 3 numbers". Unknown keys are errors. options.import applies to every mesh file the scene
+// loads, unless its object says otherwise (`up`, `crease`). An unknown options.camera is an
+// InputError naming
 // --camera and listing the scene's cameras. Lights facing away from everything are warned
 // about (scene/light_checks.h).
 Scene loadScene(const std::string& path, const SceneLoadOptions& options = {});
@@ -40,8 +45,9 @@ void useFileCamera(Scene& scene, size_t index);
 
 // The scene `render` drew into `renderDir`: loadScene(scenePath) (the built-in scene when
 // empty) with the framing that DIR/render.json records (/framing/fit, /focus, /depth_budget),
-// so that frameForDisplay (camera/framing.h) frames it as the render did. Without a record the
-// scene's own framing is kept.
+// so that frameForDisplay (camera/framing.h) frames it as the render did, and its meshes imported
+// with the record's /import_options (up, crease; docs/import.md). Without a record the scene's
+// own framing and the default import options are kept.
 Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir);
 
 }  // namespace parallax

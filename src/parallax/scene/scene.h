@@ -190,6 +190,16 @@ struct Scene {
   std::vector<std::string> warnings;
   // What was taken from and ignored in each loaded file (one line per glTF file; docs/gltf.md).
   std::vector<std::string> notes;
+  // What loading each mesh file did (io/mesh_file.h, docs/import.md); written to render.json.
+  struct ImportRecord {
+    std::string file;
+    std::string
+        reader;      // "parallax-obj", "parallax-ply", "parallax-stl", "parallax-gltf", "assimp"
+    std::string up;  // the file's up axis as used: "y" or "z"
+    std::string normals;  // "file", "generated (crease 60°)", "faceted", or a mix joined by " + "
+    size_t triangles = 0;
+  };
+  std::vector<ImportRecord> imports;
 
   size_t triangleCount() const;
   Bounds3f bounds() const;
