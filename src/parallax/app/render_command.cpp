@@ -488,6 +488,10 @@ void runRender(const RenderOptions& o) {
   const DisplayDescription description = loadDisplayOrDefault(o.display);
   checkLayerOptions(o, description.kind == DisplayKind::Lenticular);
   o.sequence.videoOptions();  // refuses bad --video options before any work
+  {
+    DisplayPlacement probe;  // refuses bad --fit/--focus/--depth-budget before the scene loads
+    o.framing.apply(probe);
+  }
   if (o.sequence.video.wanted() && o.rank > 1)
     throw InputError("command line", "--video",
                      "time-multiplexed frames (--rank) have several image layers a frame");
