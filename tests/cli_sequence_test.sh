@@ -53,6 +53,18 @@ check "frame 2 is back" test -s "$tmp/all/frame-0002/image.png"
 check "finished frames are left alone" test "$(stat -c %Y "$tmp/all/frame-0001/image.png")" = "$(date -d 2001-01-01 +%s)"
 check "frame 2 again is the same picture" cmp "$tmp/all/frame-0002/image.png" "$tmp/part/../all/frame-0002/image.png"
 
+# What one eye sees in each frame, and as a video.
+check "simulate the frames" run 0 simulate "$tmp/all" --frames all --video "$tmp/seen.mp4" --fps 20 -o "$tmp/seen/eye.png"
+check "one picture per frame" bash -c "for k in 1 2 3 4; do test -s '$tmp/seen/eye-000'\$k.png || exit 1; done"
+check "the seen frames differ" bash -c "! cmp -s '$tmp/seen/eye-0001.png' '$tmp/seen/eye-0004.png'"
+check "a video of the seen frames" grep -q "4 frames" "$tmp/out"
+check "simulate frames 2:3" run 0 simulate "$tmp/all" --frames 2:3 --eye 30,0,600 -o "$tmp/seen2/eye.png"
+check "only frames 2 and 3" bash -c "test -s '$tmp/seen2/eye-0002.png' && test -s '$tmp/seen2/eye-0003.png' && ! test -e '$tmp/seen2/eye-0001.png'"
+check "simulate frames beyond the sequence" run 2 simulate "$tmp/all" --frames 2:9 -o "$tmp/bad/e.png"
+check "names --frames" one_line_naming "--frames"
+check "simulate --frames of a folder without frames" run 2 simulate "$tmp/all/frame-0001" --frames all -o "$tmp/bad/e.png"
+check "names the folder" one_line_naming "no rendered frames"
+
 # A full turn loops: frame N + 1 would be frame 1; with 360 degrees over 4 frames, frame 3 is
 # the half turn.
 check "quilt sequence" run 0 render --display "$tmp/small.json" --spp 1 --quilt 3x1 --size 48x12 \

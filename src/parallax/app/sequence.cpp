@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "parallax/app/cli_support.h"
 #include "parallax/core/error.h"
@@ -21,7 +22,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 constexpr int kMaxFrames = 1000000;
 constexpr double kDefaultTurntableSeconds = 4.0;
 
-// "A:B" -> [A, B] within [1, total]; "A" alone is one frame.
+}  // namespace
+
 void parseFrameRange(const std::string& text, int total, int& first, int& last) {
   const auto fail = [&](const std::string& why) {
     throw InputError("command line", "--frames", why + ", got '" + text + "'");
@@ -41,7 +43,13 @@ void parseFrameRange(const std::string& text, int total, int& first, int& last) 
     fail("the animation has " + std::to_string(total) + " frame" + (total == 1 ? "" : "s"));
 }
 
-}  // namespace
+std::string numberedPicture(const std::string& path, int frame) {
+  const std::filesystem::path p(path);
+  const std::string name = frameName(frame);  // "frame-0007": the number after the dash
+  return (p.parent_path() /
+          (p.stem().string() + name.substr(name.find('-')) + p.extension().string()))
+      .string();
+}
 
 void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames) {
   cmd.add_option("--frames", options.frames,

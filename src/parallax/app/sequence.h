@@ -67,6 +67,13 @@ void noteAnimation(const SequenceOptions& options, const Scene& scene);
 void writeSequenceVideo(const SequenceOptions& options, const SequencePlan& plan,
                         const std::function<std::string(int frame)>& picture);
 
+// "A:B" (or "A") -> [A, B] within [1, total]; throws InputError naming --frames.
+void parseFrameRange(const std::string& text, int total, int& first, int& last);
+
+// A picture's path with the frame's number before the extension: out/view.png ->
+// out/view-0007.png.
+std::string numberedPicture(const std::string& path, int frame);
+
 // "frame-0007": the folder (or, with a suffix, the file stem) of one frame, 4 digits at least.
 std::string frameName(int frame);
 

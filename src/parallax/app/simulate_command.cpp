@@ -14,6 +14,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/sequence.h"
 #include "parallax/app/video_output.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
@@ -42,6 +43,7 @@ namespace fs = std::filesystem;
 
 struct SimulateOptions {
   std::string dir = "out";
+  std::string frames;  // --frames FIRST:LAST|all: DIR is a sequence (docs/animation.md)
   std::string image, mask, display, scene;
   std::vector<std::string> eyes;
   std::string output;
@@ -453,11 +455,59 @@ Quality qualityAt(const SimulateOptions& o, const Inputs& in, const SimulationOp
   return q;
 }
 
+void runSimulate(const SimulateOptions& o);
+
+// simulate DIR --frames A:B|all: what one eye sees in each frame of a sequence that `render`
+// wrote (DIR/frame-NNNN), as OUTPUT-NNNN.png, and with --video as one video.
+void runSimulateFrames(const SimulateOptions& o) {
+  if (o.sweep > 0)
+    throw InputError("command line", "--frames",
+                     "simulates one eye per frame: give --eye (or none: the zone's centre), not "
+                     "--sweep");
+  if (o.eyes.size() > 1)
+    throw InputError("command line", "--frames", "simulates one eye per frame: one --eye");
+  if (o.reference && o.eyes.empty())
+    throw InputError("command line", "--frames",
+                     "with --reference, give the eye (--eye): the dense measure is per frame");
+  // The frames there are: frame-NNNN folders holding a finished render.
+  int lastFound = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(o.dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("frame-", 0) != 0 || name.size() > 15) continue;
+    const std::string digits = name.substr(6);
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    if (fs::is_regular_file(it->path() / "render.json"))
+      lastFound = std::max(lastFound, std::stoi(digits));
+  }
+  if (lastFound == 0)
+    throw InputError(o.dir, "", "holds no rendered frames (frame-NNNN folders of render --frames)");
+  int first = 1, last = lastFound;
+  if (o.frames != "all") parseFrameRange(o.frames, lastFound, first, last);
+  if (o.video.wanted()) checkVideoCliOptions(o.video);
+  const std::string output = o.output.empty() ? "out/simulated.png" : o.output;
+  std::vector<std::string> pictures;
+  for (int frame = first; frame <= last; ++frame) {
+    SimulateOptions one = o;
+    one.frames.clear();
+    one.video = {};
+    one.dir = (fs::path(o.dir) / frameName(frame)).string();
+    one.output = numberedPicture(output, frame);
+    if (!fs::is_regular_file(fs::path(one.dir) / "render.json"))
+      throw InputError(one.dir, "", "is missing: the sequence is not finished (render it again)");
+    runSimulate(one);
+    pictures.push_back(one.output);
+  }
+  if (o.video.wanted()) writeVideo(pictures, o.video);
+}
+
 void runSimulate(const SimulateOptions& o) {
+  if (!o.frames.empty()) return runSimulateFrames(o);
   if (o.video.wanted()) {
     if (o.sweep == 0)
       throw InputError("command line", "--video",
-                       "needs --sweep N: the video's frames are the sweep's pictures");
+                       "needs --sweep N or --frames: the video's frames are the sweep's pictures "
+                       "or the sequence's");
     checkVideoCliOptions(o.video);
   }
   const Inputs in = loadInputs(o);
@@ -600,6 +650,10 @@ void registerSimulateCommand(CLI::App& cli) {
   cmd->add_option("--display", o->display,
                   "Display file of any kind, or lkg:NAME (instead of DIR/display.json or "
                   "DIR/visual.json)");
+  cmd->add_option("--frames", o->frames,
+                  "DIR is a sequence of render --frames: what the eye sees in frames FIRST:LAST "
+                  "(or all), as OUTPUT-NNNN.png (and --video)")
+      ->type_name("FIRST:LAST|all");
   cmd->add_option("--eye", o->eyes,
                   "Eye position X,Y,Z in display mm (origin: front layer centre, z toward the "
                   "viewer); repeatable. Default: the view-zone centre");

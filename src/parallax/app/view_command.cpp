@@ -85,14 +85,6 @@ std::unique_ptr<Camera> makeCamera(const ViewOptions& o, const Scene& scene) {
                                          height);
 }
 
-// OUTPUT with the frame's number before the extension: out/view.png -> out/view-0007.png.
-std::string numberedPath(const std::string& output, int frame) {
-  const std::filesystem::path path(output);
-  std::string name = frameName(frame);
-  name = path.stem().string() + name.substr(name.find('-')) + path.extension().string();
-  return (path.parent_path() / name).string();
-}
-
 void runView(const ViewOptions& o) {
   const RenderSettings settings = o.sampling.settings();
   o.sequence.videoOptions();  // refuses bad --video options before any work
@@ -134,13 +126,13 @@ void runView(const ViewOptions& o) {
   FrameJob job;
   job.accelerator = acceleratorOptions;
   job.finished = [&](int frame) {
-    return std::filesystem::is_regular_file(numberedPath(o.output, frame));
+    return std::filesystem::is_regular_file(numberedPicture(o.output, frame));
   };
   job.render = [&](const Scene& posed, const Accelerator& accelerator, int frame) {
-    renderPicture(posed, accelerator, *makeCamera(o, posed), numberedPath(o.output, frame));
+    renderPicture(posed, accelerator, *makeCamera(o, posed), numberedPicture(o.output, frame));
   };
   runSequence(plan, scene, job);
-  writeSequenceVideo(o.sequence, plan, [&](int frame) { return numberedPath(o.output, frame); });
+  writeSequenceVideo(o.sequence, plan, [&](int frame) { return numberedPicture(o.output, frame); });
 }
 
 }  // namespace
