@@ -147,6 +147,7 @@ void prepareFraming(Scene& scene, const SequencePlan& plan) {
     d.center = first.center, d.normal = first.normal, d.up = first.up;
   }
   if (!plan.motion.movesGeometry()) return;
+  d.contentHull.clear();  // it does not move with the content: the moved box is measured
   const std::vector<double> times = plan.times();
   if (d.fit) d.fit = movedBounds(scene, plan.motion, *d.fit, times);
   d.content = movedBounds(scene, plan.motion, d.content ? *d.content : scene.bounds(), times);

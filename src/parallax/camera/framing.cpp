@@ -111,6 +111,16 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
   std::vector<Vec3d> corners;
   if (f.hasContent) {
     corners = contentCorners(bounds, given);
+    if (!given.contentHull.empty()) {
+      const Vec3f normal = normalize(given.normal);
+      const Vec3f right = normalize(cross(given.up, normal));
+      const Vec3f up = cross(normal, right);
+      corners.clear();
+      for (const Vec3f& p : given.contentHull) {
+        const Vec3f d = p - given.center;
+        corners.push_back({dot(d, right), dot(d, up), dot(d, normal)});
+      }
+    }
     double lo = corners[0].z, hi = corners[0].z;
     for (const Vec3d& c : corners) lo = std::min(lo, c.z), hi = std::max(hi, c.z);
     const double eyeZ = window.eyeMm.z;

@@ -246,6 +246,12 @@ Scene makeRgbdScene(const Image& colour, const DepthMap& depth, const RgbdOption
   scene.display.fit = bounds;
   scene.display.content = bounds;
   scene.display.fitMode = DisplayFit::Auto;
+  // The mesh lies inside the frustum of the field of view between its nearest and farthest z.
+  for (float zEnd : {-bounds.hi.z, -bounds.lo.z})
+    for (int corner = 0; corner < 4; ++corner)
+      scene.display.contentHull.push_back(unprojectFilm((corner & 1) ? float(width) : 0.0f,
+                                                        (corner & 2) ? float(height) : 0.0f, zEnd,
+                                                        width, height, options.fovDegrees));
   // `parallax view` sees it from the photo's own viewpoint, with the photo's field of view.
   CameraSpec camera;
   camera.eye = {0, 0, 0};

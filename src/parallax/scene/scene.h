@@ -105,6 +105,10 @@ struct DisplayPlacement {
   // The objects' bounds (what the framing measures), whether or not a width is given; unset:
   // the whole scene's bounds.
   std::optional<Bounds3f> content;
+  // Points whose hull holds the content, when its box is a poor fit (an RGB-D photo is a
+  // frustum: its box's near corners are as wide as its far end). The Depth and Window fits
+  // (with a focus) then fit these instead of the box's corners; the depth range stays the box's.
+  std::vector<Vec3f> contentHull;
 };
 
 // An ordinary pinhole camera for `parallax view`.
