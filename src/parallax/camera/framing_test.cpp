@@ -72,6 +72,32 @@ TEST(Framing, DepthFitPutsTheFocusAtTheHarmonicMeanAndTheDepthIntoTheBudget) {
   EXPECT_NEAR(g.placement.width, f.placement.width, 1e-5);
 }
 
+// A frustum (an RGB-D photo's mesh) is fitted by its corners, not by its box: the box's near
+// corners, as wide as the far end, would limit the scale.
+TEST(Framing, AContentHullIsFittedInsteadOfTheBoxCorners) {
+  const DisplayDesign d = designDisplay(defaultDisplaySpec());
+  Scene scene = boxScene({1, 1, 1});
+  const Framing byBox = frameForDisplay(scene, d);
+  // The frustum inside the cube: its far face (z = -1) is the cube's, its near face (z = 1) a
+  // third as wide.
+  for (float z : {-1.0f, 1.0f})
+    for (float x : {-1.0f, 1.0f})
+      for (float y : {-1.0f, 1.0f}) {
+        const float s = z < 0 ? 1.0f : 1.0f / 3.0f;
+        scene.display.contentHull.push_back({x * s, y * s, z});
+      }
+  const Framing byHull = frameForDisplay(scene, d);
+  // Larger on the display (more mm per scene unit), the depth range still the box's.
+  EXPECT_GT(byHull.scaleMmPerUnit, 1.1 * byBox.scaleMmPerUnit);
+  EXPECT_NEAR((byHull.nearMm - byHull.farMm) / byHull.scaleMmPerUnit, 2.0, 1e-6);
+  // The hull's widest corner seen from the eye still sits inside the window's margin.
+  const double D = d.viewDistanceMm;
+  const double halfWindow = 0.45 * std::min(d.frontWidthMm(), d.frontHeightMm());
+  const double farCorner = byHull.scaleMmPerUnit * D / (D - byHull.farMm);
+  const double nearCorner = byHull.scaleMmPerUnit / 3.0 * D / (D - byHull.nearMm);
+  EXPECT_LE(std::max(farCorner, nearCorner), halfWindow * (1 + 1e-6));
+}
+
 TEST(Framing, AGivenBudgetAndFocusAreHonoured) {
   const DisplayDesign d = designDisplay(defaultDisplaySpec());
   Scene scene = boxScene({1, 1, 1});
