@@ -141,16 +141,7 @@ std::string frameName(int frame) {
 }
 
 void prepareFraming(Scene& scene, const SequencePlan& plan) {
-  DisplayPlacement& d = scene.display;
-  if (!plan.motion.displayKeys.empty()) {
-    const DisplayKey first = displayAt(plan.motion.displayKeys, 0.0);
-    d.center = first.center, d.normal = first.normal, d.up = first.up;
-  }
-  if (!plan.motion.movesGeometry()) return;
-  d.contentHull.clear();  // it does not move with the content: the moved box is measured
-  const std::vector<double> times = plan.times();
-  if (d.fit) d.fit = movedBounds(scene, plan.motion, *d.fit, times);
-  d.content = movedBounds(scene, plan.motion, d.content ? *d.content : scene.bounds(), times);
+  encloseMotion(scene, plan.motion, plan.times());
 }
 
 void recordSequence(JsonWriter& record, const SequencePlan& plan, int frame) {

@@ -15,6 +15,7 @@
 #include "parallax/io/json_reader.h"
 #include "parallax/io/mesh_file.h"
 #include "parallax/scene/light_checks.h"
+#include "parallax/scene/motion.h"
 
 namespace parallax {
 namespace {
@@ -877,6 +878,30 @@ Scene loadScene(const std::string& path, const SceneLoadOptions& options) {
 
 namespace parallax {
 
+namespace {
+
+// A frame of a sequence (render --frames, docs/animation.md): the scene framed over the whole
+// animation as the render framed it, then posed at the frame's time, from /sequence.
+void poseAsRecorded(const JsonReader& sequence, Scene& scene) {
+  SceneMotion motion = sceneMotion(scene);
+  if (const auto turntable = sequence.find("turntable")) {
+    Turntable t;
+    t.pivot = (*turntable)["pivot"].vec3();
+    t.axis = (*turntable)["axis"].direction();
+    t.degreesPerSecond = (*turntable)["degrees_per_second"].number();
+    motion.turntable = t;
+  }
+  const int frames = sequence["frames"].integer(1, 1000000);
+  const double fps = sequence["fps"].number(1e-9, 240);
+  std::vector<double> times(static_cast<size_t>(frames));
+  for (int k = 0; k < frames; ++k) times[size_t(k)] = k / fps;
+  encloseMotion(scene, motion, times);
+  const Scene rest = scene;
+  poseScene(rest, motion, sequence["seconds"].number(0, 1e6), scene);
+}
+
+}  // namespace
+
 Scene loadSceneAsRendered(const std::string& scenePath, const std::string& renderDir) {
   const fs::path record = fs::path(renderDir) / "render.json";
   if (renderDir.empty() || !fs::is_regular_file(record))
@@ -895,6 +920,7 @@ Scene loadSceneAsRendered(const std::string& scenePath, const std::string& rende
     options.import.creaseDegrees = float((*imported)["crease"].number(0, 180));
   }
   Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, options);
+  if (const auto sequence = root.find("sequence")) poseAsRecorded(*sequence, scene);
   const auto framing = root.find("framing");
   if (!framing) return scene;
   DisplayPlacement& p = scene.display;

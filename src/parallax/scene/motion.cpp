@@ -270,4 +270,16 @@ Bounds3f movedBounds(const Scene& rest, const SceneMotion& motion, const Bounds3
   return moved.lo.x <= moved.hi.x ? moved : restBox;
 }
 
+void encloseMotion(Scene& scene, const SceneMotion& motion, const std::vector<double>& times) {
+  DisplayPlacement& d = scene.display;
+  if (!motion.displayKeys.empty()) {
+    const DisplayKey first = displayAt(motion.displayKeys, 0.0);
+    d.center = first.center, d.normal = first.normal, d.up = first.up;
+  }
+  if (!motion.movesGeometry()) return;
+  d.contentHull.clear();
+  if (d.fit) d.fit = movedBounds(scene, motion, *d.fit, times);
+  d.content = movedBounds(scene, motion, d.content ? *d.content : scene.bounds(), times);
+}
+
 }  // namespace parallax

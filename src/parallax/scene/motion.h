@@ -66,4 +66,10 @@ DisplayKey displayAt(const std::vector<DisplayKey>& keys, double seconds);
 Bounds3f movedBounds(const Scene& rest, const SceneMotion& motion, const Bounds3f& restBox,
                      const std::vector<double>& times);
 
+// Before a sequence's one framing: the display placed at its first key, and the framing's
+// bounds (DisplayPlacement::fit and ::content) replaced by their envelope over `times` (every
+// frame of the whole animation), so that one framing holds for every frame and the content
+// does not pump. A content hull is dropped when the geometry moves (it would not move along).
+void encloseMotion(Scene& scene, const SceneMotion& motion, const std::vector<double>& times);
+
 }  // namespace parallax
