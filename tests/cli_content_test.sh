@@ -70,6 +70,9 @@ check "layered is recorded" test "$(record "$tmp/rgbd2/render.json" rgbd edges)"
 check "layered differs from stretch" bash -c "! cmp -s '$tmp/rgbd/image.png' '$tmp/rgbd2/image.png'"
 check "view --rgbd" run 0 view --rgbd "$tmp/photo.png" "$tmp/depth.png" --size 64x48 --spp 1 -o "$tmp/rgbd-view.png"
 check "view --rgbd wrote a PNG" is_png "$tmp/rgbd-view.png"
+check "render --rgbd for a Looking Glass panel" run 0 render --rgbd "$tmp/photo.png" "$tmp/depth.png" \
+  --display lkg:go --spp 1 --filter none -o "$tmp/rgbd-lkg"
+check "the panel's record names the photo" test "$(record "$tmp/rgbd-lkg/render.json" rgbd edges)" = stretch
 write_png "$tmp/depth-small.png" 32 48 depth16
 check "sizes must match" run 2 render --rgbd "$tmp/photo.png" "$tmp/depth-small.png" -o "$tmp/bad"
 check "names the depth map and --rgbd" one_line_naming "--rgbd"

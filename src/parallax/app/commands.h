@@ -5,6 +5,7 @@
 #include <string>
 
 #include "parallax/app/cli_support.h"
+#include "parallax/app/rgbd_options.h"
 #include "parallax/display/lenticular.h"
 
 namespace CLI {
@@ -22,6 +23,7 @@ struct LenticularRenderJob {
   FilterOptions filter;
   double distance = 0;    // the design viewer's distance in mm; 0: the default
   SceneLoadOptions load;  // --camera
+  RgbdCliOptions rgbd;    // --rgbd COLOUR DEPTH instead of the scene (docs/rgbd.md)
 };
 void runLenticularRender(const LenticularRenderJob& job);
 

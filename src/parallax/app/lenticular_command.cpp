@@ -42,7 +42,7 @@ struct LenticularSimulateOptions {
 
 void runRender(const LenticularRenderOptions& o) {
   runLenticularRender({loadDisplayOrDefault(o.calibration).lenticular, o.scene, o.output,
-                       o.sampling, o.filter, o.distance, o.load});
+                       o.sampling, o.filter, o.distance, o.load, RgbdCliOptions{}});
 }
 
 void runSimulate(const LenticularSimulateOptions& o) {
@@ -91,7 +91,8 @@ void runLenticularRender(const LenticularRenderJob& o) {
   checkMemoryEstimate(imageBytes(3 * w, h) + imageBytes(w, h) + imageBytes(w, h, kRgba8PixelBytes),
                       o.calibration.source, "the panel image", "use a smaller panel");
   o.sampling.checkWork(3 * w, h);
-  const Scene scene = loadSceneReportingWarnings(o.scene, o.load);
+  const Scene scene =
+      o.rgbd.given() ? loadRgbdFromOptions(o.rgbd) : loadSceneReportingWarnings(o.scene, o.load);
   const Accelerator accelerator(scene,
                                 acceleratorForCameraRays(3 * w * h * settings.samplesPerPixel));
   DisplayLayers out;
@@ -101,12 +102,12 @@ void runLenticularRender(const LenticularRenderJob& o) {
                         [&bar](int done, int total) { bar.update(done, total); });
   }
   JsonWriter record;
-  record.set("/program", "parallax");
-  record.set("/version", PARALLAX_VERSION);
-  record.set("/method", "lenticular: rays per subpixel around its view");
+  startRenderRecord(record, "lenticular: rays per subpixel around its view", o.calibration.source);
   record.set("/scene", scene.source);
+  if (o.rgbd.given()) recordRgbd(record, o.rgbd, scene);
   if (!o.load.camera.empty()) record.set("/scene_camera", o.load.camera);  // docs/gltf.md
   record.set("/spp", settings.samplesPerPixel);
+  record.set("/bounces", settings.bounces);
   record.set("/filter/kind", viewFilterName(filter.kind));
   record.set("/filter/width_views", filter.widthViews);
   record.set("/seed", o.sampling.seed);

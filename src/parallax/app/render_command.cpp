@@ -330,7 +330,8 @@ void runLenticular(const RenderOptions& o, const LenticularCalibration& calibrat
     if (o.sequence.given())
       throw InputError("command line", "--frames/--turntable",
                        "a lenticular panel's sequence is a sequence of quilts: add --quilt auto");
-    return runLenticularRender({calibration, o.scene, o.output, o.sampling, o.filter, 0.0, o.load});
+    return runLenticularRender(
+        {calibration, o.scene, o.output, o.sampling, o.filter, 0.0, o.load, o.rgbd});
   }
   const LenticularDesign design = designLenticular(calibration);
   const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(design);
