@@ -39,7 +39,9 @@ test-asan: data deps
 	cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DPARALLAX_SANITIZE=ON -DPARALLAX_NATIVE=OFF $(CMAKE_FLAGS)
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
-	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan-suppressions.txt \
+	  ctest --output-on-failure -j $(JOBS)
 
 # Every fuzz target of fuzz/ for FUZZ_SECONDS seconds (clang, libFuzzer, ASan + UBSan; fuzz/README.md).
 test-fuzz: data deps

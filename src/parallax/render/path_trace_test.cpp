@@ -515,8 +515,10 @@ TEST(PathTrace, CornellBoxGetsALitCeilingAndColourBleeding) {
   const auto nearRed = pixelsOn(accel, camera, box.floorMesh, 0.0f, 0.12f);
   const auto nearGreen = pixelsOn(accel, camera, box.floorMesh, 0.88f, 1.0f);
   ASSERT_GT(ceiling.size(), 50u);
-  ASSERT_GT(nearRed.size(), 10u);
-  ASSERT_GT(nearGreen.size(), 10u);
+  // Enough floor pixels for a mean (about a dozen at this size; which pixels pass the edge test
+  // varies a little between builds, e.g. with and without -march=native).
+  ASSERT_GE(nearRed.size(), 5u);
+  ASSERT_GE(nearGreen.size(), 5u);
   EXPECT_EQ(maxComponent(meanOver(direct, ceiling)), 0.0f);
   EXPECT_GT(luminance(meanOver(bounced, ceiling)), 0.01f);
   // The lamp's own colour tints everything alike; the walls' tint shows as the red/green
