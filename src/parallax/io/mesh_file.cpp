@@ -330,6 +330,7 @@ size_t generateNormals(FilePart& part, bool flip, float creaseDegrees) {
   std::vector<uint32_t> first(part.positions.size(), kNone), next;
   std::vector<Vec3f> positions, normals;
   std::vector<Vec2f> uvs;
+  std::vector<Vec3f> colors;
   positions.reserve(part.positions.size());
   normals.reserve(part.positions.size());
   next.reserve(part.positions.size());
@@ -345,6 +346,7 @@ size_t generateNormals(FilePart& part, bool flip, float creaseDegrees) {
       normals.push_back(n);
       next.push_back(kNone);
       if (!part.uvs.empty()) uvs.push_back(part.uvs[v]);
+      if (!part.colors.empty()) colors.push_back(part.colors[v]);
       indices[c] = uint32_t(positions.size() - 1);
     } else {
       indices[c] = *link;
@@ -353,6 +355,7 @@ size_t generateNormals(FilePart& part, bool flip, float creaseDegrees) {
   part.positions = std::move(positions);
   part.normals = std::move(normals);
   part.uvs = std::move(uvs);
+  part.colors = std::move(colors);
   part.indices = std::move(indices);
   size_t crowded = 0;
   for (size_t w = 0; w < weldCount; ++w) crowded += start[w + 1] - start[w] > kMaxSmoothedValence;

@@ -360,7 +360,8 @@ class PlyParser {
     if (type == Type::UInt32 || type == Type::Int32) scale = 4294967295.0;
     if (!std::isfinite(value)) return float(value);  // loadMeshFile reports it
     const double encoded = std::clamp(value / scale, 0.0, 1.0);
-    if (type == Type::UInt8) return srgb8ToLinear(uint8_t(value));
+    // A code outside 0..255 (an ASCII file may write one) is clamped like the others.
+    if (type == Type::UInt8 && value >= 0 && value <= 255) return srgb8ToLinear(uint8_t(value));
     return srgbToLinear(float(encoded));
   }
 
