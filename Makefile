@@ -6,25 +6,38 @@ FUZZ_SECONDS ?= 7
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps data build run test test-release test-asan test-fuzz bench format clean
+.PHONY: all deps deps-run data configure configure-run build build-cli run test test-release test-asan test-fuzz bench format clean
 
 all: build
 
+# What rendering needs (make run) and what the suite needs on top (make test): tools/install-deps.
+deps-run:
+	@tools/install-deps run
+
 deps:
-	@tools/install-deps
+	@tools/install-deps test
 
 data: deps
 	@tools/fetch-data data
 
-$(BUILD)/build.ninja: CMakeLists.txt | deps
+# Configured every time (cheap): a tree first configured by `make run` without GoogleTest gets
+# its tests once `make test` has installed it.
+configure-run: deps-run
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 
-build: deps $(BUILD)/build.ninja
+configure: deps
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON $(CMAKE_FLAGS)
+
+# Only the command-line program: no test targets, no test packages.
+build-cli: configure-run
+	cmake --build $(BUILD) -j $(JOBS) --target parallax
+
+build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 # Renders the built-in scene with the built-in display into out/: the two layer images
 # (image.png, mask.png, render.json) and an ordinary picture of the scene (view.png).
-run: build
+run: build-cli
 	./$(BUILD)/parallax render -o out
 	./$(BUILD)/parallax view -o out/view.png
 

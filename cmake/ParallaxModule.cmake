@@ -30,7 +30,7 @@ function(parallax_module name)
   target_link_libraries(parallax_${name} PUBLIC ${dep_targets} PRIVATE ${PM_PRIVATE_LIBS})
   target_compile_definitions(parallax_${name} PRIVATE
     PARALLAX_VERSION="${PROJECT_VERSION}")
-  if(tests)
+  if(tests AND BUILD_TESTING)
     add_executable(parallax_${name}_test ${tests})
     target_link_libraries(parallax_${name}_test PRIVATE parallax_${name} ${PM_PRIVATE_LIBS}
       ${PM_TEST_LIBS} GTest::gtest GTest::gtest_main)
