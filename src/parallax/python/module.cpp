@@ -1,0 +1,99 @@
+// The `parallax._parallax` extension: parallax.Error for bad input, the array conversions, and
+// the three areas' bindings (scene_display.cpp, render.cpp, simulate.cpp). The package's
+// __init__.py wraps it in the documented API (docs/python.md).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "parallax/core/error.h"
+#include "parallax/python/bindings_internal.h"
+
+namespace parallax::python {
+
+py::array_t<float> imageToArray(const Image& image) {
+  py::array_t<float> array(
+      {py::ssize_t(image.height()), py::ssize_t(image.width()), py::ssize_t(3)});
+  if (!image.empty())
+    std::memcpy(array.mutable_data(), image.pixels().data(), image.pixels().size() * sizeof(Vec3f));
+  return array;
+}
+
+Image arrayToImage(const py::array& array, const std::string& name) {
+  const auto shapeText = [&array] {
+    std::string text = "(";
+    for (py::ssize_t d = 0; d < array.ndim(); ++d)
+      text += (d ? ", " : "") + std::to_string(array.shape(d));
+    return text + (array.ndim() == 1 ? ",)" : ")");
+  };
+  const bool grey = array.ndim() == 2;
+  if (!(grey || (array.ndim() == 3 && array.shape(2) == 3)) || array.size() == 0)
+    throw py::value_error(name + ": expected an H x W x 3 (or H x W grey) array, got shape " +
+                          shapeText());
+  const py::dtype dtype = array.dtype();
+  const bool codes = dtype.is(py::dtype::of<uint8_t>());
+  if (!codes && !dtype.is(py::dtype::of<float>()) && !dtype.is(py::dtype::of<double>()))
+    throw py::value_error(name + ": expected float32 (linear) or uint8 (sRGB) values, got " +
+                          py::cast<std::string>(py::str(static_cast<const py::handle&>(dtype))));
+  const int height = int(array.shape(0)), width = int(array.shape(1));
+  Image image(width, height);
+  constexpr auto style = py::array::c_style | py::array::forcecast;
+  const auto fill = [&](const auto& typed, auto decode) {
+    const auto* values = typed.data();
+    const size_t channels = grey ? 1 : 3;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t at = (size_t(y) * size_t(width) + size_t(x)) * channels;
+        Vec3f& p = image.at(x, y);
+        for (int c = 0; c < 3; ++c) p[c] = decode(values[at + (grey ? 0 : size_t(c))]);
+      }
+  };
+  if (codes)
+    fill(py::array_t<uint8_t, style>(array), [](uint8_t v) { return srgb8ToLinear(v); });
+  else
+    fill(py::array_t<float, style>(array), [](float v) { return v; });
+  return image;
+}
+
+Vec3d eyeInFront(const std::array<double, 3>& eye, const std::string& name) {
+  if (!(eye[2] > 0)) throw InputError("command line", name, "the eye must be in front (z > 0 mm)");
+  return {eye[0], eye[1], eye[2]};
+}
+
+}  // namespace parallax::python
+
+PYBIND11_MODULE(_parallax, module) {
+  namespace py = pybind11;
+  module.doc() = "parallax: ray tracing for glasses-free 3-D displays (docs/python.md)";
+  // Bad input, with the CLI's one-line message ("FILE: /key: message", "--spp: message").
+  static py::exception<parallax::InputError> error(module, "Error", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const parallax::InputError& e) {
+      // As the CLI prints it: an option's error reads "--spp: ...", not "command line: --spp".
+      const std::string prefix = "command line: ";
+      std::string text = e.what();
+      if (e.file() == "command line" && !e.path().empty() && text.rfind(prefix, 0) == 0)
+        text = text.substr(prefix.size());
+      error(text.c_str());
+    }
+  });
+  module.def(
+      "_to_srgb8",
+      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& linear) {
+        py::array_t<uint8_t> codes(
+            std::vector<py::ssize_t>(linear.shape(), linear.shape() + linear.ndim()));
+        {
+          py::gil_scoped_release released;
+          parallax::linearToSrgb8(linear.data(), size_t(linear.size()), codes.mutable_data());
+        }
+        return codes;
+      },
+      py::arg("linear"));
+  parallax::python::bindSceneAndDisplay(module);
+  parallax::python::bindRender(module);
+  parallax::python::bindSimulate(module);
+}

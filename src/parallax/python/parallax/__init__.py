@@ -1,0 +1,166 @@
+"""parallax: ray tracing for glasses-free 3-D displays, from Python (docs/python.md).
+
+Pictures are numpy arrays of shape (H, W, 3): float32 linear RGB out of every function
+(row 0 at the top); in, float32/float64 linear RGB or uint8 sRGB codes (as in the PNG files).
+Bad input raises parallax.Error (a ValueError) with the command line's one-line message.
+The GIL is released while rays are traced and eyes simulated.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from typing import Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import _parallax
+from ._parallax import Display, Error, Scene, load_display, load_scene
+
+__all__ = [
+    "Display", "Error", "Scene", "RenderResult", "QuiltResult", "load_scene", "load_display",
+    "design", "render", "view", "ideal_view", "quilt", "simulate", "sweep_eyes", "sweep",
+    "quality", "to_srgb8",
+]
+
+Eye = Tuple[float, float, float]
+
+
+def _display(display: Optional[Display]) -> Display:
+    return load_display() if display is None else display
+
+
+def _framing(fit: Optional[str], focus, depth_budget) -> dict:
+    # The CLI's --fit/--focus/--depth-budget texts: "" is the scene's own choice.
+    text = lambda value: "" if value is None else str(value)
+    return {"fit": text(fit), "focus": text(focus), "depth_budget": text(depth_budget)}
+
+
+def to_srgb8(linear: np.ndarray) -> np.ndarray:
+    """Linear float RGB -> uint8 sRGB codes, exactly as the PNG writer converts them."""
+    return _parallax._to_srgb8(np.ascontiguousarray(linear, dtype=np.float32))
+
+
+def design(display: Optional[Display] = None, *, depth: float = 0.0,
+           scene: Optional[Scene] = None, fit: Optional[str] = None, focus=None,
+           depth_budget=None) -> dict:
+    """The derived design, as `parallax design --json [--depth MM] [--scene S]` prints it."""
+    return json.loads(_parallax._design_json(_display(display), depth=depth, scene=scene,
+                                             **_framing(fit, focus, depth_budget)))
+
+
+@dataclass
+class RenderResult:
+    """The display's two layers (float32 linear, H x W x 3) and render.json's figures."""
+    image: np.ndarray
+    mask: np.ndarray
+    record: dict = field(repr=False)
+
+    @property
+    def image_srgb8(self) -> np.ndarray:
+        return to_srgb8(self.image)
+
+    @property
+    def mask_srgb8(self) -> np.ndarray:
+        return to_srgb8(self.mask)
+
+
+@dataclass
+class QuiltResult:
+    """The quilt (float32 linear, tiles from the bottom-left) and its record (/quilt)."""
+    quilt: np.ndarray
+    record: dict = field(repr=False)
+
+
+def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
+           spp: int = 16, seed: int = 0, threads: int = 0, jitter: str = "auto",
+           bounces: int = 0, adaptive: bool = False, filter: str = "view",
+           filter_width: Optional[float] = None, subpixels: bool = False,
+           fit: Optional[str] = None, focus=None, depth_budget=None) -> RenderResult:
+    """`parallax render`: the image and mask layers of a barrier display."""
+    options = {} if filter_width is None else {"filter_width": filter_width}
+    image, mask, record = _parallax._render(
+        scene if scene is not None else load_scene(), _display(display), spp=spp, seed=seed,
+        threads=threads, jitter=jitter, bounces=bounces, adaptive=adaptive, filter=filter,
+        subpixels=subpixels, **options, **_framing(fit, focus, depth_budget))
+    return RenderResult(image, mask, json.loads(record))
+
+
+def view(scene: Optional[Scene] = None, *, eye: Optional[Sequence[float]] = None,
+         look_at: Optional[Sequence[float]] = None, up: Optional[Sequence[float]] = None,
+         fov: Optional[float] = None, size: Tuple[int, int] = (960, 540), spp: int = 16,
+         seed: int = 0, threads: int = 0, jitter: str = "auto", bounces: int = 0,
+         adaptive: bool = False) -> np.ndarray:
+    """`parallax view`: an ordinary pinhole picture (scene units), float32 linear."""
+    return _parallax._view(scene if scene is not None else load_scene(), eye=eye,
+                           look_at=look_at, up=up, fov=fov, size=size, spp=spp, seed=seed,
+                           threads=threads, jitter=jitter, bounces=bounces, adaptive=adaptive)
+
+
+def ideal_view(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
+               eye: Sequence[float], size: Optional[Tuple[int, int]] = None, spp: int = 16,
+               seed: int = 0, threads: int = 0, jitter: str = "auto", bounces: int = 0,
+               adaptive: bool = False, fit: Optional[str] = None, focus=None,
+               depth_budget=None) -> np.ndarray:
+    """`parallax view --display-eye X,Y,Z`: the ideal picture through the display's window."""
+    return _parallax._ideal_view(
+        scene if scene is not None else load_scene(), _display(display), eye=eye, size=size,
+        spp=spp, seed=seed, threads=threads, jitter=jitter, bounces=bounces, adaptive=adaptive,
+        **_framing(fit, focus, depth_budget))
+
+
+def quilt(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
+          layout: Optional[Tuple[int, int]] = None, size: Optional[Tuple[int, int]] = None,
+          spp: int = 16, seed: int = 0, threads: int = 0, jitter: str = "auto",
+          bounces: int = 0, adaptive: bool = False, fit: Optional[str] = None, focus=None,
+          depth_budget=None) -> QuiltResult:
+    """`parallax render --quilt CxR|auto [--size WxH]`: layout None is auto."""
+    array, record = _parallax._quilt(
+        scene if scene is not None else load_scene(), _display(display), layout=layout,
+        size=size, spp=spp, seed=seed, threads=threads, jitter=jitter, bounces=bounces,
+        adaptive=adaptive, **_framing(fit, focus, depth_budget))
+    return QuiltResult(array, json.loads(record))
+
+
+def simulate(image: np.ndarray, mask: Optional[np.ndarray] = None,
+             display: Optional[Display] = None, *, eye: Optional[Sequence[float]] = None,
+             eyes: Optional[Sequence[Sequence[float]]] = None, **options) -> np.ndarray:
+    """`parallax simulate --eye X,Y,Z`: what one eye (or each of `eyes`) sees, float32 linear.
+
+    One eye gives an (H, W, 3) array, `eyes` an (N, H, W, 3) stack. Options: size, spp,
+    pupil, pupil_samples, diffuser, color_filters, raw, raw_pixels, threads.
+    """
+    if (eye is None) == (eyes is None):
+        raise ValueError("simulate: give either eye=(x, y, z) or eyes=[...]")
+    display = _display(display)
+    if display.kind == "barrier" and mask is None:
+        raise ValueError("mask: a barrier display needs the mask layer's array")
+    pictures = _parallax._simulate(image, mask, display, eyes=[tuple(eye)] if eye is not None else [tuple(e) for e in eyes],
+                                   **options)
+    return pictures[0] if eye is not None else np.stack(pictures)
+
+
+def sweep_eyes(display: Optional[Display] = None, count: int = 9, *, sweep_range: float = 1.0,
+               distance: float = 0.0) -> list:
+    """The eyes of `simulate --sweep N [--sweep-range F] [--sweep-distance MM]`, left first."""
+    return [tuple(e) for e in _parallax._sweep_eyes(_display(display), count=count,
+                                                   sweep_range=sweep_range, distance=distance)]
+
+
+def sweep(image: np.ndarray, mask: Optional[np.ndarray] = None,
+          display: Optional[Display] = None, count: int = 9, *, sweep_range: float = 1.0,
+          distance: float = 0.0, **options) -> Tuple[list, np.ndarray]:
+    """The eye moved across the view zone: (eyes, an (N, H, W, 3) stack of what each sees)."""
+    eyes = sweep_eyes(display, count, sweep_range=sweep_range, distance=distance)
+    return eyes, simulate(image, mask, display, eyes=eyes, **options)
+
+
+def quality(scene: Optional[Scene], display: Optional[Display], image: np.ndarray,
+            mask: Optional[np.ndarray] = None, *, eyes: Sequence[Sequence[float]],
+            reference_spp: int = 16, fit: Optional[str] = None, focus=None,
+            depth_budget=None, **options) -> dict:
+    """`parallax simulate --reference --eye ... --json`: PSNR, SSIM, brightness, cross-talk."""
+    return json.loads(_parallax._quality(
+        scene if scene is not None else load_scene(), _display(display), image, mask,
+        eyes=[tuple(e) for e in eyes], reference_spp=reference_spp,
+        **_framing(fit, focus, depth_budget), **options))

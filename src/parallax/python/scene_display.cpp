@@ -1,0 +1,120 @@
+// Scenes and displays: loading them as the CLI does, and a display's derived design as
+// `parallax design --json` prints it.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "parallax/app/cli_support.h"
+#include "parallax/camera/framing.h"
+#include "parallax/core/error.h"
+#include "parallax/display/lenticular.h"
+#include "parallax/io/display_file.h"
+#include "parallax/io/json_writer.h"
+#include "parallax/io/lenticular_file.h"
+#include "parallax/python/bindings_internal.h"
+
+namespace parallax::python {
+
+namespace {
+
+// `design --json [--depth MM] [--scene S --fit ...]`: the same figures, as JSON text.
+std::string designJson(const DisplayDescription& description, double depthMm,
+                       const std::optional<Scene>& scene, const std::string& fit,
+                       const std::string& focus, const std::string& depthBudget) {
+  app::FramingOptions framingOptions;
+  framingOptions.fit = fit, framingOptions.focus = focus, framingOptions.depthBudget = depthBudget;
+  JsonWriter json;
+  if (description.kind == DisplayKind::Lenticular) {
+    if (scene || framingOptions.given())
+      throw InputError("command line", "--scene",
+                       "frames a scene for a barrier display's depth of field");
+    json.set("/kind", "lenticular");
+    writeLenticularDesignJson(json, "", designLenticular(description.lenticular));
+    return json.dump();
+  }
+  const DisplayDesign design = designDisplay(description.barrier);
+  std::optional<Framing> framing;
+  if (scene) {
+    Scene placed = *scene;
+    framingOptions.apply(placed.display);
+    framing = frameForDisplay(placed, design);
+  } else if (framingOptions.given()) {
+    throw InputError("command line", "--fit", "--fit, --focus and --depth-budget need --scene");
+  }
+  const double depth = depthMm != 0.0 ? depthMm : design.depthOfFieldMm;
+  if (!(std::abs(depth) < design.viewDistanceMm))
+    throw InputError("command line", "--depth", "must lie between the viewer and -D");
+  writeDesignJson(json, "", design);
+  json.set("/disparity_depth_mm", depth);
+  json.set("/disparity_mm", design.adjacentViewDisparityMm(depth));
+  if (framing) {
+    json.set("/scene/source", scene->source);
+    app::setFramingFigures(json, "/scene", *framing);
+  }
+  return json.dump();
+}
+
+}  // namespace
+
+void bindSceneAndDisplay(py::module_& module) {
+  py::class_<Scene>(module, "Scene", "A loaded scene (parallax.load_scene)")
+      .def_property_readonly("source", [](const Scene& s) { return s.source; })
+      .def_property_readonly("bounds",
+                             [](const Scene& s) {
+                               const Bounds3f b = s.bounds();
+                               return py::make_tuple(py::make_tuple(b.lo.x, b.lo.y, b.lo.z),
+                                                     py::make_tuple(b.hi.x, b.hi.y, b.hi.z));
+                             })
+      .def("__repr__", [](const Scene& s) { return "<parallax.Scene " + s.source + ">"; });
+
+  module.def(
+      "load_scene",
+      [](const std::optional<std::string>& path, const std::string& camera) {
+        SceneLoadOptions options;
+        options.camera = camera;
+        return app::loadSceneReportingWarnings(path.value_or(""), options);
+      },
+      py::arg("path") = py::none(), py::kw_only(), py::arg("camera") = "",
+      "The scene or mesh file (None: the built-in scene), as `parallax render SCENE` loads it");
+
+  py::class_<DisplayDescription>(module, "Display",
+                                 "A display of either kind (parallax.load_display)")
+      .def_property_readonly("source", [](const DisplayDescription& d) { return d.source(); })
+      .def_property_readonly("kind",
+                             [](const DisplayDescription& d) {
+                               return d.kind == DisplayKind::Lenticular ? "lenticular" : "barrier";
+                             })
+      .def("__repr__", [](const DisplayDescription& d) {
+        return std::string("<parallax.Display ") +
+               (d.kind == DisplayKind::Lenticular ? "lenticular " : "barrier ") + d.source() + ">";
+      });
+
+  module.def(
+      "load_display",
+      [](const std::optional<std::string>& pathOrName) {
+        DisplayDescription description = app::loadDisplayOrDefault(pathOrName.value_or(""));
+        // Checked now, as every command checks it (G1-G4), not at the first render.
+        if (description.kind == DisplayKind::Lenticular)
+          designLenticular(description.lenticular);
+        else
+          designDisplay(description.barrier);
+        return description;
+      },
+      py::arg("path_or_name") = py::none(),
+      "A barrier display file, a Looking Glass visual.json or lkg:NAME (None: the built-in "
+      "display)");
+
+  module.def(
+      "_design_json",
+      [](const DisplayDescription& display, double depth, const std::optional<Scene>& scene,
+         const std::string& fit, const std::string& focus, const std::string& depthBudget) {
+        return designJson(display, depth, scene, fit, focus, depthBudget);
+      },
+      py::arg("display"), py::kw_only(), py::arg("depth"), py::arg("scene"), py::arg("fit"),
+      py::arg("focus"), py::arg("depth_budget"));
+}
+
+}  // namespace parallax::python

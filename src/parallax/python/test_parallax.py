@@ -1,0 +1,293 @@
+"""The parallax Python module against an independent second path: the `parallax` command line
+(PARALLAX_CLI, set by CTest), whose PNG files are decoded here by a small PNG reader of our own
+(zlib + the five row filters), not by parallax's reader."""
+
+import json
+import os
+import re
+import struct
+import subprocess
+import threading
+import time
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import parallax
+
+CLI = os.environ.get("PARALLAX_CLI", "")
+SOURCE = Path(os.environ.get("PARALLAX_SOURCE_DIR", Path(__file__).resolve().parents[3]))
+SMALL = str(SOURCE / "displays" / "small.json")  # 320x180 px: fast under the sanitizers too
+EYE = (10.0, 0.0, 600.0)
+
+
+def cli(*args, cwd=None):
+    assert CLI, "PARALLAX_CLI must name the parallax binary (CTest sets it)"
+    return subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, cwd=cwd)
+
+
+def read_png(path):
+    """8-bit grey, RGB or RGBA PNG -> (H, W, channels) uint8."""
+    data = Path(path).read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    at, idat, header = 8, b"", None
+    while at < len(data):
+        length, kind = struct.unpack(">I4s", data[at:at + 8])
+        body = data[at + 8:at + 8 + length]
+        if kind == b"IHDR":
+            header = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            idat += body
+        elif kind == b"IEND":
+            break
+        at += 12 + length
+    width, height, depth, colour, _, _, interlace = header
+    assert depth == 8 and interlace == 0
+    channels = {0: 1, 2: 3, 6: 4}[colour]
+    raw = zlib.decompress(idat)
+    stride = width * channels
+    out = np.zeros((height, stride), dtype=np.int32)
+    previous = np.zeros(stride, dtype=np.int32)
+    for y in range(height):
+        kind = raw[y * (stride + 1)]
+        row = np.frombuffer(raw, np.uint8, stride, y * (stride + 1) + 1).astype(np.int32)
+        if kind == 0:
+            line = row
+        elif kind == 2:
+            line = (row + previous) & 255
+        else:  # sub, average, paeth depend on the left neighbour: one byte at a time
+            line = np.zeros(stride, dtype=np.int32)
+            for x in range(stride):
+                left = line[x - channels] if x >= channels else 0
+                up = previous[x]
+                upleft = previous[x - channels] if x >= channels else 0
+                if kind == 1:
+                    predictor = left
+                elif kind == 3:
+                    predictor = (left + up) // 2
+                else:
+                    p = left + up - upleft
+                    pa, pb, pc = abs(p - left), abs(p - up), abs(p - upleft)
+                    predictor = left if pa <= pb and pa <= pc else (up if pb <= pc else upleft)
+                line[x] = (row[x] + predictor) & 255
+        out[y] = line
+        previous = line
+    return out.astype(np.uint8).reshape(height, width, channels)
+
+
+def rgb(codes):
+    return np.repeat(codes, 3, axis=2) if codes.shape[2] == 1 else codes[:, :, :3]
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return parallax.load_scene()
+
+
+@pytest.fixture(scope="module")
+def small():
+    return parallax.load_display(SMALL)
+
+
+@pytest.fixture(scope="module")
+def cli_render(tmp_path_factory):
+    out = tmp_path_factory.mktemp("render")
+    result = cli("render", "--display", SMALL, "--spp", 4, "-o", out)
+    assert result.returncode == 0, result.stderr
+    return out
+
+
+@pytest.fixture(scope="module")
+def layers(scene, small):
+    return parallax.render(scene, small, spp=4)
+
+
+def test_design_is_the_cli_design_json(small):
+    expected = json.loads(cli("design", SMALL, "--json", "--depth", 5).stdout)
+    assert parallax.design(small, depth=5) == expected
+    spheres = SOURCE / "scenes" / "spheres.json"
+    framed = json.loads(cli("design", SMALL, "--json", "--scene", spheres, "--fit", "window").stdout)
+    got = parallax.design(small, scene=parallax.load_scene(str(spheres)), fit="window")
+    assert got == framed
+    assert "scene" in got
+
+
+def test_render_layers_are_the_cli_pngs(layers, cli_render):
+    assert layers.image.shape == (180, 320, 3) and layers.image.dtype == np.float32
+    assert layers.mask.shape == (180, 320, 3) and layers.mask.dtype == np.float32
+    image_png = read_png(cli_render / "image.png")
+    mask_png = read_png(cli_render / "mask.png")
+    assert np.array_equal(layers.image_srgb8, rgb(image_png))
+    assert np.array_equal(layers.mask_srgb8, rgb(mask_png))
+    # Not a trivial picture: the scene's colours and the slits' open and closed pixels.
+    assert len(np.unique(layers.image_srgb8)) > 50
+    assert layers.mask_srgb8.min() == 0 and layers.mask_srgb8.max() == 255
+    record = json.loads((cli_render / "render.json").read_text())
+    for key in ("spp", "seed", "jitter", "bounces"):
+        assert layers.record[key] == record[key]
+    assert layers.record["filter"] == record["filter"]
+    assert layers.record["framing"]["near_mm"] == pytest.approx(record["framing"]["near_mm"])
+    assert layers.record["design"] == record["design"]
+
+
+def test_to_srgb8_is_the_srgb_curve():
+    linear = np.linspace(0, 1, 1001, dtype=np.float32).reshape(1, -1, 1).repeat(3, axis=2)
+    encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
+    codes = parallax.to_srgb8(linear)
+    assert codes.dtype == np.uint8
+    assert np.abs(codes.astype(int) - np.round(encoded * 255)).max() <= 1
+
+
+def test_simulate_is_the_cli_simulate(small, cli_render, tmp_path):
+    out = tmp_path / "seen.png"
+    result = cli("simulate", cli_render, "--display", SMALL, "--eye", "10,0,600", "-o", out)
+    assert result.returncode == 0, result.stderr
+    image = rgb(read_png(cli_render / "image.png"))
+    mask = read_png(cli_render / "mask.png")[:, :, 0]  # grey: an H x W array
+    seen = parallax.simulate(image, mask, small, eye=EYE)
+    assert seen.shape == (180, 320, 3) and seen.dtype == np.float32
+    assert np.array_equal(parallax.to_srgb8(seen), rgb(read_png(out)))
+
+
+def test_quality_is_the_cli_reference_json(scene, small, cli_render):
+    result = cli("simulate", cli_render, "--display", SMALL, "--reference", "--json",
+                 "--eye", "10,0,600", "--eye", "-20,5,700", "-o", cli_render.parent / "q.png")
+    assert result.returncode == 0, result.stderr
+    expected = json.loads(result.stdout)
+    image = rgb(read_png(cli_render / "image.png"))
+    mask = rgb(read_png(cli_render / "mask.png"))
+    got = parallax.quality(scene, small, image, mask, eyes=[EYE, (-20, 5, 700)])
+    assert len(got["eyes"]) == 2
+    for mine, theirs in zip(got["eyes"] + [got["mean"]], expected["eyes"] + [expected["mean"]]):
+        for key in ("psnr", "ssim", "brightness", "crosstalk"):
+            assert mine[key] == pytest.approx(theirs[key], rel=1e-12), key
+    assert [e["own_view"] for e in got["eyes"]] == [e["own_view"] for e in expected["eyes"]]
+    assert 20 < got["mean"]["psnr"] < 60
+
+
+def test_sweep_spans_the_view_zone(layers, small):
+    figures = parallax.design(small)
+    eyes, pictures = parallax.sweep(layers.image, layers.mask, small, 5)
+    assert pictures.shape == (5, 180, 320, 3)
+    xs = [e[0] for e in eyes]
+    assert xs == sorted(xs)
+    assert xs[-1] - xs[0] == pytest.approx(figures["view_zone_width_mm"], rel=1e-6)
+    assert all(e[2] == pytest.approx(figures["view_distance_mm"]) for e in eyes)
+    # Different eyes, different views; each the same as one eye simulated alone.
+    assert not np.array_equal(pictures[0], pictures[-1])
+    assert np.array_equal(pictures[2], parallax.simulate(layers.image, layers.mask, small,
+                                                         eye=eyes[2]))
+
+
+def test_view_and_ideal_view_are_the_cli_pictures(scene, small, tmp_path):
+    assert cli("view", "--size", "160x90", "--spp", 4, "-o", tmp_path / "v.png").returncode == 0
+    picture = parallax.view(scene, size=(160, 90), spp=4)
+    assert picture.shape == (90, 160, 3)
+    assert np.array_equal(parallax.to_srgb8(picture), rgb(read_png(tmp_path / "v.png")))
+    assert cli("view", "--eye", "0,3,9", "--look-at", "0,0,-5", "--fov", 30, "--size", "64x48",
+               "-o", tmp_path / "w.png").returncode == 0
+    picture = parallax.view(scene, eye=(0, 3, 9), look_at=(0, 0, -5), fov=30, size=(64, 48))
+    assert np.array_equal(parallax.to_srgb8(picture), rgb(read_png(tmp_path / "w.png")))
+    result = cli("view", "--display-eye", "20,0,600", "--display", SMALL, "--spp", 4,
+                 "-o", tmp_path / "ideal.png")
+    assert result.returncode == 0, result.stderr
+    ideal = parallax.ideal_view(scene, small, eye=(20, 0, 600), spp=4)
+    assert ideal.shape == (180, 320, 3)
+    assert np.array_equal(parallax.to_srgb8(ideal), rgb(read_png(tmp_path / "ideal.png")))
+
+
+def test_quilt_is_the_cli_quilt(scene, small, tmp_path):
+    result = cli("render", "--quilt", "3x2", "--size", "64x36", "--spp", 4, "--display", SMALL,
+                 "-o", tmp_path)
+    assert result.returncode == 0, result.stderr
+    made = parallax.quilt(scene, small, layout=(3, 2), size=(64, 36), spp=4)
+    assert made.quilt.shape == (72, 192, 3)
+    png = tmp_path / made.record["quilt"]["file_name"]
+    assert np.array_equal(parallax.to_srgb8(made.quilt), rgb(read_png(png)))
+    record = json.loads((tmp_path / "render.json").read_text())
+    assert made.record["quilt"]["eyes_mm"] == record["quilt"]["eyes_mm"]
+    auto = parallax.quilt(scene, small, size=(32, 18), spp=1)
+    assert auto.record["quilt"]["columns"] == 9 and auto.record["quilt"]["rows"] == 1
+
+
+def cli_error(*args):
+    result = cli(*args)
+    assert result.returncode == 2 and result.stderr.startswith("error: ")
+    return result.stderr.strip()[len("error: "):]
+
+
+def test_errors_carry_the_cli_lines(scene, small, tmp_path):
+    missing = str(tmp_path / "missing.json")
+    with pytest.raises(parallax.Error) as caught:
+        parallax.load_display(missing)
+    assert str(caught.value) == cli_error("design", missing)
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"image_layer": {"resolution": [320, 180], "pixel_pitch_mm": 0.27}, '
+                   '"gap_mm": 0, "view_distance_mm": 600, "views": 9}')
+    with pytest.raises(parallax.Error) as caught:
+        parallax.load_display(str(bad))
+    assert str(caught.value) == cli_error("design", bad)
+    assert "gap_mm" in str(caught.value)
+    with pytest.raises(parallax.Error) as caught:
+        parallax.load_scene(str(tmp_path / "missing.obj"))
+    assert str(caught.value) == cli_error("view", tmp_path / "missing.obj")
+    with pytest.raises(parallax.Error) as caught:
+        parallax.render(scene, small, jitter="sideways")
+    assert str(caught.value) == cli_error("render", "--display", SMALL, "--jitter", "sideways")
+    assert isinstance(caught.value, ValueError)
+
+
+def test_bad_arrays_and_keywords_are_refused(layers, small):
+    with pytest.raises(ValueError, match=r"^image: expected an H x W x 3 .* got shape \(180, 320, 4\)$"):
+        parallax.simulate(np.zeros((180, 320, 4), np.float32), layers.mask, small, eye=EYE)
+    with pytest.raises(ValueError, match=r"^mask: expected float32 \(linear\) or uint8 \(sRGB\)"):
+        parallax.simulate(layers.image, layers.mask.astype(np.int64), small, eye=EYE)
+    with pytest.raises(ValueError, match="^mask: a barrier display needs"):
+        parallax.simulate(layers.image, None, small, eye=EYE)
+    with pytest.raises(parallax.Error, match="in front"):
+        parallax.simulate(layers.image, layers.mask, small, eye=(0, 0, -5))
+    with pytest.raises(TypeError):
+        parallax.render(spp=1, sample_count=4)
+    with pytest.raises(TypeError):
+        parallax.simulate(layers.image, layers.mask, small, eye=EYE, pupill=3)
+
+
+def test_other_threads_run_while_rendering(scene):
+    ticks = []
+    stop = threading.Event()
+
+    def count():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    try:
+        time.sleep(0.05)
+        start = time.perf_counter()
+        parallax.view(scene, size=(480, 270), spp=64)
+        end = time.perf_counter()
+    finally:
+        stop.set()
+        counter.join()
+    during = sum(1 for t in ticks if start < t < end)
+    # Long enough that a render holding the GIL would have shut the counter out for a while.
+    assert end - start > 0.1
+    # With the GIL held the counter could not run at all inside the call.
+    assert during > 1000, f"{during} ticks in {end - start:.2f} s"
+
+
+def test_the_docs_example_runs(tmp_path, monkeypatch):
+    text = (SOURCE / "docs" / "python.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert len(blocks) >= 5
+    monkeypatch.chdir(SOURCE)
+    namespace = {"__name__": "docs_example"}
+    for block in blocks:
+        if "matplotlib" in block:  # plotting is optional (not a dependency)
+            continue
+        exec(compile(block, "docs/python.md", "exec"), namespace)
+    assert namespace["layers"].image.shape == (180, 320, 3)
+    assert len(namespace["figures"]["eyes"]) == 3
