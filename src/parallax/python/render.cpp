@@ -65,6 +65,22 @@ Framing frameForRender(Scene& scene, DisplayDesign& design, const app::FramingOp
   return result;
 }
 
+// The framing as render.json records it: what was asked, and what followed.
+void recordFraming(JsonWriter& record, const Framing& f) {
+  record.set("/framing/fit", displayFitName(f.fit));
+  if (f.focusAuto)
+    record.set("/framing/focus", "auto");
+  else
+    record.set("/framing/focus", f.focusMm);
+  if (f.budgetAuto)
+    record.set("/framing/depth_budget", "auto");
+  else
+    record.set("/framing/depth_budget", f.budgetMm);
+  app::setFramingFigures(record, "/framing", f);
+  record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
+  record.set("/framing/scale_mm_per_unit", f.scaleMmPerUnit);
+}
+
 void setSampling(JsonWriter& record, const Sampling& s, const RenderSettings& settings,
                  const RenderStats& stats) {
   record.set("/spp", settings.samplesPerPixel);
@@ -123,7 +139,7 @@ std::tuple<py::array_t<float>, py::array_t<float>, std::string> renderLayers(
   record.set("/scene_display/center", scene.display.center);
   record.set("/scene_display/normal", scene.display.normal);
   record.set("/scene_display/up", scene.display.up);
-  app::setFramingFigures(record, "/framing", framed);
+  recordFraming(record, framed);
   writeDesignJson(record, "/design", design);
   return {imageToArray(layers.image), imageToArray(layers.mask), record.dump()};
 }
@@ -283,7 +299,7 @@ std::tuple<py::array_t<float>, std::string> quilt(
     record.set("/quilt/eyes_mm/" + std::to_string(k),
                Vec3f(float(eye.x), float(eye.y), float(eye.z)));
   }
-  if (framed) app::setFramingFigures(record, "/framing", *framed);
+  if (framed) recordFraming(record, *framed);
   if (const DisplayDesign* barrier = display->barrierDesign())
     writeDesignJson(record, "/design", *barrier);
   if (lenticular) writeLenticularDesignJson(record, "/design", *lenticular);
