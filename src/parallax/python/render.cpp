@@ -94,8 +94,48 @@ void setSampling(JsonWriter& record, const Sampling& s, const RenderSettings& se
   record.set("/rays_per_second", double(stats.totalRays()) / stats.seconds);
 }
 
+// `render --display lkg:NAME|visual.json` (`lenticular render`): the panel's one picture, each
+// subpixel's rays around its view; no mask (None).
+std::tuple<py::array_t<float>, py::object, std::string> renderLenticular(
+    const Scene& scene, const DisplayDescription& description, const Sampling& sampling,
+    const RenderSettings& settings, const ViewFilter& filter, bool subpixels,
+    const app::FramingOptions& framing) {
+  if (subpixels)
+    throw InputError("command line", "--subpixels",
+                     "applies to barrier displays; a lenticular render always traces one ray per "
+                     "subpixel");
+  if (framing.given())
+    throw InputError("command line", "--fit/--focus/--depth-budget",
+                     "apply to barrier displays (their depth budget is the virtual gap)");
+  const LenticularDesign design = designLenticular(description.lenticular);
+  const double w = design.calibration.screenW, h = design.calibration.screenH;
+  app::checkMemoryEstimate(
+      imageBytes(3 * w, h) + imageBytes(w, h) + imageBytes(w, h, kRgba8PixelBytes),
+      description.source(), "the panel image", "use a smaller panel");
+  sampling.options().checkWork(3 * w, h);
+  DisplayLayers out;
+  {
+    py::gil_scoped_release released;
+    const Accelerator accelerator(scene,
+                                  acceleratorForCameraRays(3 * w * h * settings.samplesPerPixel));
+    out = renderDisplay(scene, accelerator, *makeLenticularDisplay(design, filter), settings);
+  }
+  JsonWriter record;
+  record.set("/method", "lenticular: rays per subpixel around its view");
+  record.set("/display", description.source());
+  record.set("/scene", scene.source);
+  setSampling(record, sampling, settings, out.stats);
+  record.set("/filter/kind", viewFilterName(filter.kind));
+  record.set("/filter/width_views", filter.widthViews);
+  record.set("/scene_display/center", scene.display.center);
+  record.set("/scene_display/normal", scene.display.normal);
+  record.set("/scene_display/up", scene.display.up);
+  writeLenticularDesignJson(record, "/design", design);
+  return {imageToArray(out.image), py::none(), record.dump()};
+}
+
 // `render` (slits): image and mask layers (linear) and the record as JSON text.
-std::tuple<py::array_t<float>, py::array_t<float>, std::string> renderLayers(
+std::tuple<py::array_t<float>, py::object, std::string> renderLayers(
     const Scene& loaded, const DisplayDescription& description, const Sampling& sampling,
     const std::string& filterKind, double filterWidth, bool subpixels, const std::string& fit,
     const std::string& focus, const std::string& depthBudget) {
@@ -106,9 +146,7 @@ std::tuple<py::array_t<float>, py::array_t<float>, std::string> renderLayers(
   if (filter.kind == ViewFilterKind::None) settings.samplesPerPixel = 1;  // one central ray
   const app::FramingOptions framing = framingOptions(fit, focus, depthBudget);
   if (description.kind == DisplayKind::Lenticular)
-    throw InputError("command line", "display",
-                     "a lenticular panel's layers: use parallax.quilt (its views) or the CLI's "
-                     "`parallax render --display` for the interlaced panel");
+    return renderLenticular(loaded, description, sampling, settings, filter, subpixels, framing);
   DisplayDesign design = designDisplay(description.barrier);
   if (subpixels) {
     DisplaySpec spec = design.spec;
@@ -141,7 +179,7 @@ std::tuple<py::array_t<float>, py::array_t<float>, std::string> renderLayers(
   record.set("/scene_display/up", scene.display.up);
   recordFraming(record, framed);
   writeDesignJson(record, "/design", design);
-  return {imageToArray(layers.image), imageToArray(layers.mask), record.dump()};
+  return {imageToArray(layers.image), py::object(imageToArray(layers.mask)), record.dump()};
 }
 
 // Renders `camera`'s picture after the CLI's memory, pixel and time checks.

@@ -212,6 +212,28 @@ def test_quilt_is_the_cli_quilt(scene, small, tmp_path):
     assert auto.record["quilt"]["columns"] == 9 and auto.record["quilt"]["rows"] == 1
 
 
+def test_lenticular_render_is_the_cli_render(scene, tmp_path):
+    # A Looking Glass calibration on a quarter-size panel (fast), read by both paths.
+    calibration = json.loads((SOURCE / "displays" / "lenticular" / "portrait-like.json").read_text())
+    calibration["screenW"]["value"] /= 4
+    calibration["screenH"]["value"] /= 4
+    path = tmp_path / "visual.json"
+    path.write_text(json.dumps(calibration))
+    display = parallax.load_display(str(path))
+    assert display.kind == "lenticular"
+    result = cli("render", "--display", path, "--spp", 1, "-o", tmp_path / "out")
+    assert result.returncode == 0, result.stderr
+    made = parallax.render(scene, display, spp=1)
+    assert made.mask is None and made.mask_srgb8 is None
+    assert made.image.shape == (512, 384, 3)
+    assert np.array_equal(made.image_srgb8, rgb(read_png(tmp_path / "out" / "image.png")))
+    assert made.record["design"] == json.loads((tmp_path / "out" / "render.json").read_text())["design"]
+    seen = parallax.simulate(made.image_srgb8, None, display, eye=(0, 0, 600))
+    assert seen.shape == (512, 384, 3)
+    with pytest.raises(parallax.Error, match="^--pupil: applies to the two-layer"):
+        parallax.simulate(made.image, None, display, eye=(0, 0, 600), pupil=3)
+
+
 def cli_error(*args):
     result = cli(*args)
     assert result.returncode == 2 and result.stderr.startswith("error: ")

@@ -51,9 +51,12 @@ def design(display: Optional[Display] = None, *, depth: float = 0.0,
 
 @dataclass
 class RenderResult:
-    """The display's two layers (float32 linear, H x W x 3) and render.json's figures."""
+    """The display's layers (float32 linear, H x W x 3) and render.json's figures.
+
+    A lenticular panel has one layer: its interlaced picture is `image`, `mask` is None.
+    """
     image: np.ndarray
-    mask: np.ndarray
+    mask: Optional[np.ndarray]
     record: dict = field(repr=False)
 
     @property
@@ -61,8 +64,8 @@ class RenderResult:
         return to_srgb8(self.image)
 
     @property
-    def mask_srgb8(self) -> np.ndarray:
-        return to_srgb8(self.mask)
+    def mask_srgb8(self) -> Optional[np.ndarray]:
+        return None if self.mask is None else to_srgb8(self.mask)
 
 
 @dataclass
@@ -77,7 +80,8 @@ def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
            bounces: int = 0, adaptive: bool = False, filter: str = "view",
            filter_width: Optional[float] = None, subpixels: bool = False,
            fit: Optional[str] = None, focus=None, depth_budget=None) -> RenderResult:
-    """`parallax render`: the image and mask layers of a barrier display."""
+    """`parallax render`: the image and mask layers of a barrier display (slits), or a
+    lenticular panel's interlaced picture (`lenticular render`)."""
     options = {} if filter_width is None else {"filter_width": filter_width}
     image, mask, record = _parallax._render(
         scene if scene is not None else load_scene(), _display(display), spp=spp, seed=seed,
