@@ -67,18 +67,24 @@ Vec3d eyeInFront(const std::array<double, 3>& eye, const std::string& name) {
 PYBIND11_MODULE(_parallax, module) {
   namespace py = pybind11;
   module.doc() = "parallax: ray tracing for glasses-free 3-D displays (docs/python.md)";
-  // Bad input, with the CLI's one-line message ("FILE: /key: message", "--spp: message").
-  static py::exception<parallax::InputError> error(module, "Error", PyExc_ValueError);
+  // Bad input, with the CLI's one-line message ("FILE: /key: message", "--spp: message"). The
+  // exception type lives as long as the process: a static py::object would be released after
+  // the interpreter is gone.
+  static const auto* const error =
+      new py::exception<parallax::InputError>(module, "Error", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const parallax::InputError& e) {
-      // As the CLI prints it: an option's error reads "--spp: ...", not "command line: --spp".
+      // As the CLI prints it: an option's error reads "--spp: ...", not "command line: --spp",
+      // and on one line.
       const std::string prefix = "command line: ";
       std::string text = e.what();
       if (e.file() == "command line" && !e.path().empty() && text.rfind(prefix, 0) == 0)
         text = text.substr(prefix.size());
-      error(text.c_str());
+      for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at))
+        text.replace(at, 1, "; ");
+      PyErr_SetString(error->ptr(), text.c_str());
     }
   });
   module.def(

@@ -306,6 +306,24 @@ def test_other_threads_run_while_rendering(scene):
     assert longest < 0.5 * (end - start), f"paused {longest:.3f} s of {end - start:.3f} s"
 
 
+def test_two_threads_render_at_once_as_one_alone(scene, small):
+    alone = [parallax.view(scene, size=(200, 100), spp=16), parallax.render(scene, small, spp=4).image]
+    together = [None, None]
+
+    def first():
+        together[0] = parallax.view(scene, size=(200, 100), spp=16)
+
+    def second():
+        together[1] = parallax.render(scene, small, spp=4).image
+
+    threads = [threading.Thread(target=first), threading.Thread(target=second)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert all(np.array_equal(a, b) for a, b in zip(alone, together))
+
+
 def test_the_docs_example_runs(tmp_path, monkeypatch):
     text = (SOURCE / "docs" / "python.md").read_text()
     blocks = re.findall(r"```python\n(.*?)```", text, re.S)
