@@ -4,8 +4,11 @@
 # picture compared byte for byte with the installed CLI's `parallax view` of the same camera (the
 # library and the CLI are one code, two paths to it). Also: the headers compile on their own, the
 # installed docs and examples are there, and nothing of the build tree is needed (moved prefix).
-#   install_test.sh BUILD_DIR SOURCE_DIR
+#   install_test.sh BUILD_DIR SOURCE_DIR [CONSUMER_FLAGS]
+# CONSUMER_FLAGS: compile and link flags of the consumers, e.g. the sanitizers of a sanitized
+# build (a program loading an ASan library must itself be built with ASan).
 set -euo pipefail
+consumer_flags=${3:-}
 build=$(cd "$1" && pwd)
 source=$(cd "$2" && pwd)
 work=$(mktemp -d)
@@ -31,12 +34,15 @@ fi
 
 # Every installed header compiles alone against the installed tree (no third-party header, no
 # header of the source tree needed).
-for header in "$prefix"/include/parallax/*/*.h; do
-  relative=${header#"$prefix/include/"}
-  echo "#include \"$relative\"" > "$work/one_header.cpp"
-  c++ -std=c++20 -fsyntax-only -I"$prefix/include" "$work/one_header.cpp" 2>"$work/header.log" ||
-    { cat "$work/header.log" >&2; fail "$relative does not compile on its own when installed"; }
-done
+check_header() {
+  local relative=${1#"$2/include/"}
+  printf '#include "%s"\n' "$relative" | c++ -std=c++20 -fsyntax-only -I"$2/include" -x c++ - ||
+    { echo "FAIL: $relative does not compile on its own when installed" >&2; return 1; }
+}
+export -f check_header
+printf '%s\n' "$prefix"/include/parallax/*/*.h |
+  xargs -P "$(nproc)" -I{} bash -c 'check_header "$1" "$2"' _ {} "$prefix" ||
+  fail "installed headers do not compile on their own"
 
 # The CLI's picture, the truth both consumers must give byte for byte.
 camera=(48 27 0 0.4 3.2 0 0.3 0 40)
@@ -46,6 +52,7 @@ camera=(48 27 0 0.4 3.2 0 0.3 0 40)
 # 1. CMake: find_package(parallax) -> parallax::parallax.
 cp -r "$prefix/share/doc/parallax/examples/library" "$work/consumer"
 cmake -S "$work/consumer" -B "$work/consumer-build" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" \
+  -DCMAKE_CXX_FLAGS="$consumer_flags" -DCMAKE_EXE_LINKER_FLAGS="$consumer_flags" \
   >"$work/cmake.log" 2>&1 || { cat "$work/cmake.log" >&2; fail "find_package(parallax) failed"; }
 cmake --build "$work/consumer-build" >"$work/build.log" 2>&1 ||
   { cat "$work/build.log" >&2; fail "the consumer did not build against parallax::parallax"; }
@@ -57,7 +64,7 @@ cmp "$work/cli.pfm" "$work/cmake.pfm" || fail "the CMake consumer's picture diff
 export PKG_CONFIG_PATH="$prefix/$libdir/pkgconfig"
 [ "$(pkg-config --modversion parallax)" = "$(grep -oP 'project\(parallax VERSION \K[0-9.]+' "$source/CMakeLists.txt")" ] ||
   fail "pkg-config version is not the project's"
-c++ "$work/consumer/main.cpp" $(pkg-config --cflags --libs parallax) -o "$work/view-pc" ||
+c++ $consumer_flags "$work/consumer/main.cpp" $(pkg-config --cflags --libs parallax) -o "$work/view-pc" ||
   fail "the consumer did not build with pkg-config"
 "$work/view-pc" "$work/pc.pfm" "${camera[@]}" >/dev/null
 cmp "$work/cli.pfm" "$work/pc.pfm" || fail "the pkg-config consumer's picture differs from the CLI's"
