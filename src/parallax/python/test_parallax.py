@@ -7,6 +7,7 @@ import os
 import re
 import struct
 import subprocess
+import sys
 import threading
 import time
 import zlib
@@ -322,6 +323,27 @@ def test_two_threads_render_at_once_as_one_alone(scene, small):
     for t in threads:
         t.join()
     assert all(np.array_equal(a, b) for a, b in zip(alone, together))
+
+
+def test_the_installed_package_imports(tmp_path):
+    # `cmake --install BUILD --component python` into a fresh prefix, imported from elsewhere
+    # with nothing of the build tree on the path.
+    build, cmake = os.environ.get("PARALLAX_BUILD_DIR"), os.environ.get("PARALLAX_CMAKE")
+    assert build and cmake, "CTest sets PARALLAX_BUILD_DIR and PARALLAX_CMAKE"
+    prefix = tmp_path / "prefix"
+    installed = subprocess.run([cmake, "--install", build, "--prefix", prefix, "--component",
+                                "python"], capture_output=True, text=True)
+    assert installed.returncode == 0, installed.stderr
+    site = prefix / os.environ["PARALLAX_PYTHON_INSTALL_DIR"]
+    assert (site / "parallax" / "__init__.py").is_file()
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["PYTHONPATH"] = str(site)
+    code = "import parallax; print(parallax.__file__); print(parallax.design()['views'])"
+    ran = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                         cwd=tmp_path)
+    assert ran.returncode == 0, ran.stderr
+    where, views = ran.stdout.split()
+    assert Path(where).is_relative_to(site) and float(views) == 9
 
 
 def test_the_docs_example_runs(tmp_path, monkeypatch):
