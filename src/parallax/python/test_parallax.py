@@ -26,7 +26,14 @@ EYE = (10.0, 0.0, 600.0)
 
 def cli(*args, cwd=None):
     assert CLI, "PARALLAX_CLI must name the parallax binary (CTest sets it)"
-    return subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, cwd=cwd)
+    env = dict(os.environ)
+    # Under the sanitizers the interpreter needs the runtimes preloaded and leak checks off
+    # (CPython's own); the CLI, instrumented itself, keeps its leak checks.
+    if "PARALLAX_CLI_ASAN_OPTIONS" in env:
+        env["ASAN_OPTIONS"] = env["PARALLAX_CLI_ASAN_OPTIONS"]
+        env.pop("LD_PRELOAD", None)
+    return subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, cwd=cwd,
+                          env=env)
 
 
 def read_png(path):
