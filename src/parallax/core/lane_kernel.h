@@ -17,3 +17,12 @@
 #else
 #define PARALLAX_LANE_KERNEL
 #endif
+
+namespace parallax {
+
+// Which version of the lane kernels this process runs: "x86-64-v4" (AVX-512), "x86-64-v3"
+// (AVX2, FMA) or "x86-64" (the baseline) when they were cloned; "native" when the build was
+// compiled for its machine (or a compiler without clones). Reported by `bench`.
+const char* laneKernelIsa();
+
+}  // namespace parallax
