@@ -2,6 +2,8 @@
 // the raw-rate benchmark loop. This is the only file in parallax that includes Embree.
 #include "parallax/accel/accelerator.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -180,7 +182,7 @@ void disableLane(RTCRay16& ray, int lane) {
 
 // Makes `ray` safe for rtcIntersect16 / rtcOccluded16 under any ISA: clears `valid` for lanes
 // Embree cannot trace and disarms every lane `valid` leaves out. Returns the active count.
-int guardPacket(RTCRay16& ray, int valid[16]) {
+PARALLAX_LANE_KERNEL int guardPacket(RTCRay16& ray, int valid[16]) {
   // The test lane by lane without branches (it vectorises), then the rare disarming.
   int count = 0;
   for (int lane = 0; lane < 16; ++lane) {
@@ -196,7 +198,7 @@ int guardPacket(RTCRay16& ray, int valid[16]) {
   return count;
 }
 
-void fillRays(const RayPacket16& rays, RTCRay16& out) {
+PARALLAX_LANE_KERNEL void fillRays(const RayPacket16& rays, RTCRay16& out) {
   for (int lane = 0; lane < 16; ++lane) {
     out.org_x[lane] = rays.ox[lane], out.org_y[lane] = rays.oy[lane];
     out.org_z[lane] = rays.oz[lane];
@@ -475,7 +477,8 @@ ScopedPacketLog::~ScopedPacketLog() {
   openPacketLog = outer_;
 }
 
-void Accelerator::intersect16(const RayPacket16& rays, HitPacket16& hits) const {
+PARALLAX_LANE_KERNEL void Accelerator::intersect16(const RayPacket16& rays,
+                                                   HitPacket16& hits) const {
   if (openPacketLog) openPacketLog->closest.push_back(rays);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -505,7 +508,8 @@ void Accelerator::intersect16(const RayPacket16& rays, HitPacket16& hits) const 
   }
 }
 
-void Accelerator::occluded16(const RayPacket16& rays, bool occludedOut[16]) const {
+PARALLAX_LANE_KERNEL void Accelerator::occluded16(const RayPacket16& rays,
+                                                  bool occludedOut[16]) const {
   if (openPacketLog) openPacketLog->shadow.push_back(rays);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -547,9 +551,10 @@ namespace {
 
 // The limit's shading stand-in: one shadow ray from every hit of `primary` toward the light.
 // Returns the number of shadow rays traced.
-uint32_t traceRawShadows(int width, RTCScene scene, RTCIntersectContext& context,
-                         RTCRayHit16& primary, const int primaryValid[16],
-                         const Vec3f& lightPosition) {
+PARALLAX_LANE_KERNEL uint32_t traceRawShadows(int width, RTCScene scene,
+                                              RTCIntersectContext& context, RTCRayHit16& primary,
+                                              const int primaryValid[16],
+                                              const Vec3f& lightPosition) {
   alignas(64) RTCRay16 shadow;
   alignas(64) int shadowValid[16];
   uint32_t shadowCount = 0;
@@ -585,7 +590,8 @@ uint32_t traceRawShadows(int width, RTCScene scene, RTCIntersectContext& context
 }
 
 // The primary rays of a traced packet and how many of them missed.
-void countPrimaries(const RTCRayHit16& primary, const int valid[16], RawTraceCount& count) {
+PARALLAX_LANE_KERNEL void countPrimaries(const RTCRayHit16& primary, const int valid[16],
+                                         RawTraceCount& count) {
   for (int lane = 0; lane < 16; ++lane) {
     count.primaryRays += valid[lane] != 0;
     count.primaryMisses += valid[lane] != 0 && primary.hit.geomID[lane] == RTC_INVALID_GEOMETRY_ID;
@@ -594,8 +600,9 @@ void countPrimaries(const RTCRayHit16& primary, const int valid[16], RawTraceCou
 
 }  // namespace
 
-RawTraceCount Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, int rowEnd,
-                                         const Vec3f& lightPosition) const {
+PARALLAX_LANE_KERNEL RawTraceCount Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin,
+                                                              int rowEnd,
+                                                              const Vec3f& lightPosition) const {
   rowBegin = std::max(rowBegin, 0);
   rowEnd = std::min(rowEnd, grid.height);
   if (rowBegin >= rowEnd || grid.width <= 0) return {};
@@ -641,8 +648,8 @@ RawTraceCount Accelerator::traceRawLimit(const PinholeGrid& grid, int rowBegin, 
   return count;
 }
 
-RawTraceCount Accelerator::traceRawPacket(const RayPacket16& rays,
-                                          const Vec3f& lightPosition) const {
+PARALLAX_LANE_KERNEL RawTraceCount Accelerator::traceRawPacket(const RayPacket16& rays,
+                                                               const Vec3f& lightPosition) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;

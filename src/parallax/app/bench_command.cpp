@@ -11,6 +11,7 @@
 #include "parallax/app/layer_output.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
+#include "parallax/core/lane_kernel.h"
 #include "parallax/core/memory.h"
 #include "parallax/core/parallel.h"
 #include "parallax/io/image_file.h"
@@ -247,6 +248,7 @@ void runBench(const BenchOptions& o) {
     json.set("/workers", r.workers);
     json.set("/packet_width", r.packetWidth);
     json.set("/native_packet_width", r.nativePacketWidth);
+    json.set("/lane_kernels", laneKernelIsa());
     json.set("/bvh_quality", quality);
     const auto rate = [&json](const std::string& key, const RayRate& rays) {
       json.set(key + "rays", rays.rays);
@@ -281,6 +283,7 @@ void runBench(const BenchOptions& o) {
               o.sampling.spp, r.workers);
   std::printf("embree       %d-ray packets (the ISA's native width: %d), %s-quality BVH\n",
               r.packetWidth, r.nativePacketWidth, quality);
+  std::printf("our kernels  %s (core/lane_kernel.h)\n", laneKernelIsa());
   const auto line = [](const char* name, const RayRate& rays, const char* what) {
     std::printf("%-12s %12llu rays in %.3f s  %s, %2.0f %% of primaries miss (%s)\n", name,
                 (unsigned long long)rays.rays, rays.seconds, formatRate(rays.perSecond()).c_str(),

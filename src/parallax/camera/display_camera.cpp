@@ -1,5 +1,7 @@
 #include "parallax/camera/display_camera.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -96,13 +98,13 @@ DisplayCamera::DisplayCamera(std::unique_ptr<DisplayModel> display,
   owned_ = std::move(display);
 }
 
-void DisplayCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
-  alignas(64) double origin[3][16], direction[3][16];
-  display_->rays16(s.x, s.y, s.apertureU, s.apertureV, origin, direction);
-  // A local copy of the matrix: the packet cannot alias it, so the loop vectorises.
-  float m[3][4];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) m[r][c] = affine_[r][c];
+namespace {
+
+// generateRays16's lane loop: display rays (double, display mm) into the world (float) by the
+// affine map m. Outside the class: GCC cannot make ISA clones of a virtual function
+// (core/lane_kernel.h).
+PARALLAX_LANE_KERNEL void worldRays16(const float m[3][4], const double origin[3][16],
+                                      const double direction[3][16], RayPacket16& out) {
   for (int i = 0; i < 16; ++i) {
     const float x = float(origin[0][i]), y = float(origin[1][i]), z = float(origin[2][i]);
     const float dx = float(direction[0][i]), dy = float(direction[1][i]);
@@ -116,6 +118,18 @@ void DisplayCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) con
     out.tMin[i] = 0.0f;
     out.tMax[i] = std::numeric_limits<float>::infinity();
   }
+}
+
+}  // namespace
+
+void DisplayCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
+  alignas(64) double origin[3][16], direction[3][16];
+  display_->rays16(s.x, s.y, s.apertureU, s.apertureV, origin, direction);
+  // A local copy of the matrix: the packet cannot alias it, so the loop vectorises.
+  float m[3][4];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) m[r][c] = affine_[r][c];
+  worldRays16(m, origin, direction, out);
 }
 
 Ray DisplayCamera::generateRay(const FilmSample& s) const {

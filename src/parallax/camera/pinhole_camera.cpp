@@ -1,6 +1,8 @@
 #include <cmath>
+
 #include <limits>
 #include <stdexcept>
+#include "parallax/core/lane_kernel.h"
 
 #include "parallax/camera/camera.h"
 
@@ -23,15 +25,27 @@ PinholeCamera::PinholeCamera(const Vec3f& eye, const Vec3f& lookAt, const Vec3f&
   pixel00_ = forward - right * halfWidth + trueUp * halfHeight;
 }
 
-void PinholeCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
+namespace {
+
+// The lane loop of generateRays16, outside the class: GCC cannot make ISA clones of a virtual
+// function (core/lane_kernel.h).
+PARALLAX_LANE_KERNEL void pinholeRays16(const Vec3f& eye, const Vec3f& pixel00,
+                                        const Vec3f& pixelDx, const Vec3f& pixelDy,
+                                        const FilmSamples16& s, RayPacket16& out) {
   for (int i = 0; i < 16; ++i) {
-    out.ox[i] = eye_.x, out.oy[i] = eye_.y, out.oz[i] = eye_.z;
-    out.dx[i] = pixel00_.x + pixelDx_.x * s.x[i] + pixelDy_.x * s.y[i];
-    out.dy[i] = pixel00_.y + pixelDx_.y * s.x[i] + pixelDy_.y * s.y[i];
-    out.dz[i] = pixel00_.z + pixelDx_.z * s.x[i] + pixelDy_.z * s.y[i];
+    out.ox[i] = eye.x, out.oy[i] = eye.y, out.oz[i] = eye.z;
+    out.dx[i] = pixel00.x + pixelDx.x * s.x[i] + pixelDy.x * s.y[i];
+    out.dy[i] = pixel00.y + pixelDx.y * s.x[i] + pixelDy.y * s.y[i];
+    out.dz[i] = pixel00.z + pixelDx.z * s.x[i] + pixelDy.z * s.y[i];
     out.tMin[i] = 0.0f;
     out.tMax[i] = std::numeric_limits<float>::infinity();
   }
+}
+
+}  // namespace
+
+void PinholeCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
+  pinholeRays16(eye_, pixel00_, pixelDx_, pixelDy_, s, out);
 }
 
 PinholeGrid PinholeCamera::grid(int samplesPerPixel) const {

@@ -1,5 +1,7 @@
 #include "parallax/display/barrier_rays.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -69,9 +71,10 @@ Vec3d BarrierRayGenerator::viewPosition(int view) const {
   return {eyeX_ + offset * (zMask_ - distance_) / (zMask_ - zImage_), eyeY_, distance_};
 }
 
-void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16], const float u[16],
-                                 const float v[16], double origin[3][16],
-                                 double direction[3][16]) const {
+PARALLAX_LANE_KERNEL void BarrierRayGenerator::rays16(const float filmX[16], const float filmY[16],
+                                                      const float u[16], const float v[16],
+                                                      double origin[3][16],
+                                                      double direction[3][16]) const {
   if (design_.spec.mask.kind != MaskKind::Slits || std::isinf(virtualDistance_) ||
       filter_.kind == ViewFilterKind::None) {
     for (int i = 0; i < 16; ++i) {

@@ -1,5 +1,7 @@
 #include "parallax/display/view_filter.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -87,7 +89,7 @@ ViewFilterWarp::ViewFilterWarp(const ViewFilter& filter) : kind_(filter.kind) {
   }
 }
 
-double ViewFilterWarp::operator()(double u) const {
+PARALLAX_LANE_KERNEL double ViewFilterWarp::operator()(double u) const {
   u = std::clamp(u, 0.0, 1.0);
   // Closed forms where there are (the box's and the triangle's inverse CDFs), the table else.
   if (kind_ == ViewFilterKind::View) return (u - 0.5) * 2 * halfSupport_;

@@ -1,5 +1,7 @@
 #include "parallax/image/image.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include "parallax/core/error.h"
 
 #include <algorithm>
@@ -125,7 +127,7 @@ uint8_t linearToSrgb8(float l) {
   return encodeWith(srgbEncodeTable(), l);
 }
 
-void linearToSrgb8(const float* linear, size_t count, uint8_t* codes) {
+PARALLAX_LANE_KERNEL void linearToSrgb8(const float* linear, size_t count, uint8_t* codes) {
   const SrgbEncodeTable& table = srgbEncodeTable();
   for (size_t i = 0; i < count; ++i) codes[i] = encodeWith(table, linear[i]);
 }

@@ -1,5 +1,7 @@
 #include "parallax/image/metrics.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -121,7 +123,8 @@ double ssim(const Image& a, const Image& b) {
   return sum / double(mx.v.size());
 }
 
-Image boxFilterX(const Image& image, double widthPx) {
+// A lane kernel: std::floor is a libm call on the x86-64 baseline (no SSE4.1 round).
+PARALLAX_LANE_KERNEL Image boxFilterX(const Image& image, double widthPx) {
   if (!(widthPx > 0)) throw InputError("", "", "the box filter's width must be positive");
   const int w = image.width();
   Image out(w, image.height());

@@ -1,5 +1,7 @@
 #include "parallax/render/light_sampler.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -164,8 +166,9 @@ struct LightLanes16 {
 
 }  // namespace
 
-void LightSampler::sample16(size_t index, const SurfacePacket16& sp, const float u1[16],
-                            const float u2[16], const float u3[16], LightPacket16& out) const {
+PARALLAX_LANE_KERNEL void LightSampler::sample16(size_t index, const SurfacePacket16& sp,
+                                                 const float u1[16], const float u2[16],
+                                                 const float u3[16], LightPacket16& out) const {
   const Entry& e = lights_[index];
   const Light& light = e.light;
   if (light.kind == Light::Kind::Quad) {

@@ -1,5 +1,7 @@
 #include "parallax/render/packet_tracer.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -59,9 +61,10 @@ void PacketTracer::trace(const RayPacket16& rays, const Color16& weight, std::ar
   tracePath(rays, weight, rngs, radiance, PathState{depth, 0, false}, stats);
 }
 
-void PacketTracer::tracePath(const RayPacket16& rays, const Color16& weight,
-                             std::array<Rng, 16>& rngs, Color16& radiance, const PathState& state,
-                             RenderStats& stats) const {
+PARALLAX_LANE_KERNEL void PacketTracer::tracePath(const RayPacket16& rays, const Color16& weight,
+                                                  std::array<Rng, 16>& rngs, Color16& radiance,
+                                                  const PathState& state,
+                                                  RenderStats& stats) const {
   const bool cameraRays = state.mirrorDepth == 0 && state.diffuseDepth == 0;
   HitPacket16 hits;
   accelerator_.intersect16(rays, hits);
@@ -165,10 +168,12 @@ void PacketTracer::tracePath(const RayPacket16& rays, const Color16& weight,
 // chosen with probability proportional to the largest channel of each reflectance and
 // weighted by the inverse of that probability, so that the work per camera ray stays linear in
 // the number of bounces. Mirror and diffuse continuations go out as two packets.
-void PacketTracer::continuePaths(const RayPacket16& rays, const SurfacePacket16& sp,
-                                 const Color16& weight, std::array<Rng, 16>& rngs,
-                                 Color16& radiance, const PathState& state,
-                                 RenderStats& stats) const {
+PARALLAX_LANE_KERNEL void PacketTracer::continuePaths(const RayPacket16& rays,
+                                                      const SurfacePacket16& sp,
+                                                      const Color16& weight,
+                                                      std::array<Rng, 16>& rngs, Color16& radiance,
+                                                      const PathState& state,
+                                                      RenderStats& stats) const {
   const bool mirrorAllowed = state.mirrorDepth < scene_.maxDepth;
   const bool diffuseAllowed = state.diffuseDepth < bounces_;
   if (!mirrorAllowed && !diffuseAllowed) return;
@@ -267,9 +272,10 @@ void PacketTracer::continuePaths(const RayPacket16& rays, const SurfacePacket16&
 }
 
 // Direct light: one packet of shadow rays per light sample; Lambertian BRDF albedo / pi.
-void PacketTracer::addDirectLight(const SurfacePacket16& sp, const Color16& weight,
-                                  std::array<Rng, 16>& rngs, Color16& radiance,
-                                  RenderStats& stats) const {
+PARALLAX_LANE_KERNEL void PacketTracer::addDirectLight(const SurfacePacket16& sp,
+                                                       const Color16& weight,
+                                                       std::array<Rng, 16>& rngs, Color16& radiance,
+                                                       RenderStats& stats) const {
   int shading = 0;
   for (int i = 0; i < 16; ++i) shading += sp.shade[i];
   if (shading == 0) return;

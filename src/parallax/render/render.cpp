@@ -1,5 +1,7 @@
 #include "parallax/render/render.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -19,9 +21,10 @@ namespace {
 // A packet's pixels come through all their samples in a row (tile_packets.h), so each lane
 // adds its samples' radiance up in the packet itself, and the pixel is written once, after the
 // last sample.
-void renderTile(int tile, const TileGrid& grid, const Camera& camera, const PacketTracer& tracer,
-                const PacketWalk& walk, const RenderSettings& settings, Image& image,
-                RenderStats& stats) {
+PARALLAX_LANE_KERNEL void renderTile(int tile, const TileGrid& grid, const Camera& camera,
+                                     const PacketTracer& tracer, const PacketWalk& walk,
+                                     const RenderSettings& settings, Image& image,
+                                     RenderStats& stats) {
   Color16 sum, weight;
   sum.fill(0.0f);
   weight.fill(1.0f);

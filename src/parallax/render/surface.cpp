@@ -1,5 +1,7 @@
 #include "parallax/render/surface.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <bit>
 #include <cmath>
 
@@ -99,8 +101,9 @@ SurfacePoint SurfaceShader::evaluate(const Ray& ray, const Hit& hit) const {
 // The same as evaluate() for a whole packet, reading the SoA packets directly. The arithmetic
 // runs as SIMD loops over the lanes; the scalar loop only looks up each hit's object and
 // material, and does the rarer work (spheres, smooth normals, image textures) lane by lane.
-void SurfaceShader::evaluate16(const RayPacket16& rays, const HitPacket16& hits,
-                               SurfacePacket16& out, Color16& emitted) const {
+PARALLAX_LANE_KERNEL void SurfaceShader::evaluate16(const RayPacket16& rays,
+                                                    const HitPacket16& hits, SurfacePacket16& out,
+                                                    Color16& emitted) const {
   // Local arrays tell the compiler that nothing aliases, so the lane loops vectorise; the
   // conditions use & and | (no short-circuit branches) for the same reason.
   alignas(64) int32_t hit[16];

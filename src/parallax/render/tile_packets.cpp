@@ -1,5 +1,7 @@
 #include "parallax/render/tile_packets.h"
 
+#include "parallax/core/lane_kernel.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -41,7 +43,7 @@ PacketWalk::PacketWalk(int spp, uint64_t renderSeed, JitterSharing jitter, const
     for (int x = 0; x < n; ++x) order.push_back(((x + shift) % n) * n + x);
 }
 
-void samplePacket(const PacketWalk& walk, int strata, FilmPacket& packet) {
+PARALLAX_LANE_KERNEL void samplePacket(const PacketWalk& walk, int strata, FilmPacket& packet) {
   // Plain local arrays and simple lane loops: they vectorise (64-bit multiplies included), which
   // matters because a packet draws 80 random numbers for 16 rays that Embree traces in a few
   // nanoseconds each.

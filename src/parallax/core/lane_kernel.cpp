@@ -1,0 +1,18 @@
+#include "parallax/core/lane_kernel.h"
+
+namespace parallax {
+
+// The same test GCC's ifunc resolvers make for target_clones("arch=x86-64-v4", "arch=x86-64-v3",
+// "default"): the widest ISA level whose every feature the CPU has.
+const char* laneKernelIsa() {
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__AVX512F__)
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("x86-64-v4")) return "x86-64-v4";
+  if (__builtin_cpu_supports("x86-64-v3")) return "x86-64-v3";
+  return "x86-64";
+#else
+  return "native";
+#endif
+}
+
+}  // namespace parallax
