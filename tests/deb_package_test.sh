@@ -27,6 +27,11 @@ for entry in $(tr ',' '\n' <<<"$depends" | sed 's/(.*)//; s/ //g'); do
 done
 
 contents=$(dpkg-deb -c "$deb" | awk '{print $6}')
+# With the Python module inside, numpy (which it imports) is recommended.
+if grep -q "/dist-packages/parallax/__init__.py$" <<<"$contents"; then
+  dpkg-deb -f "$deb" Recommends | grep -q python3-numpy ||
+    fail "the package holds the Python module but does not recommend python3-numpy"
+fi
 for file in ./usr/bin/parallax ./usr/lib/libparallax.so.0 ./usr/include/parallax/render/render.h \
             ./usr/lib/cmake/parallax/parallaxConfig.cmake ./usr/lib/pkgconfig/parallax.pc \
             ./usr/share/doc/parallax/README.md ./usr/share/doc/parallax/examples/library/main.cpp; do
