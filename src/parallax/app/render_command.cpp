@@ -13,6 +13,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/distributed.h"
 #include "parallax/app/layer_output.h"
 #include "parallax/app/rgbd_options.h"
 #include "parallax/app/sequence.h"
@@ -200,6 +201,9 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   const Accelerator& accelerator =
       sequenceFrame.accelerator ? *sequenceFrame.accelerator : *ownAccelerator;
   RenderStats stats;
+  // One quilt alone is split across mpirun's ranks by bands of every view's rows; a sequence's
+  // quilts are whole frames of one rank (docs/distributed.md).
+  const RenderSettings share = sequenceFrame.plan ? settings : frameShare(settings);
   // The quilt is kept as the PNG's 8-bit codes, a quarter of a float quilt's memory; a float
   // quilt only when --linear asks for one.
   Image quilt;
@@ -209,7 +213,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
     ProgressBar bar("render");
     const auto onProgress = [&bar](int done, int total) { bar.update(done, total); };
     if (o.linear) {
-      quilt = renderQuilt(scene, accelerator, display, settings, layout, width, height, &stats,
+      quilt = renderQuilt(scene, accelerator, display, share, layout, width, height, &stats,
                           onProgress);
     } else {
       codes.resize(size_t(quiltWidth) * size_t(quiltHeight) * 3);
@@ -221,9 +225,14 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
           }
         });
       };
-      renderQuiltTiles(scene, accelerator, display, settings, layout, width, height, keepCodes,
-                       &stats, onProgress);
+      renderQuiltTiles(scene, accelerator, display, share, layout, width, height, keepCodes, &stats,
+                       onProgress);
     }
+  }
+  if (!sequenceFrame.plan) {
+    const bool writer =
+        o.linear ? mergeFrameShares({&quilt}, stats) : mergeFrameShares(codes, stats);
+    if (!writer) return;
   }
   const double raysPerSecond = double(stats.totalRays()) / stats.seconds;
 
@@ -419,14 +428,19 @@ void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator&
                   const RenderSettings& settings, const ViewFilter& filter,
                   const TrainingOptions& training, const std::string& output,
                   const SequencePlan* plan, int frame) {
+  // One frame under mpirun: each rank renders its bands, rank 0 writes (docs/distributed.md).
+  // The layer solvers need the whole slit layers and fit them globally: rank 0 alone runs them.
+  const bool split = !plan && o.layers == "slits";
+  if (!plan && !split && !writesJobOutputs()) return;
   DisplayLayers layers;
   {
     ProgressBar bar("render");
     const auto onProgress = [&bar](int done, int total) { bar.update(done, total); };
-    layers = o.directMapping
-                 ? renderDirectMapping(scene, accelerator, design, settings, onProgress)
-                 : renderDisplay(scene, accelerator, design, settings, onProgress, filter);
+    const RenderSettings share = split ? frameShare(settings) : settings;
+    layers = o.directMapping ? renderDirectMapping(scene, accelerator, design, share, onProgress)
+                             : renderDisplay(scene, accelerator, design, share, onProgress, filter);
   }
+  if (split && !mergeFrameShares({&layers.image}, layers.stats)) return;
   const double raysPerSecond = double(layers.stats.totalRays()) / layers.stats.seconds;
 
   JsonWriter record;

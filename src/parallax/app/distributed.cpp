@@ -1,0 +1,56 @@
+#include "parallax/app/distributed.h"
+
+#include <span>
+
+#include "parallax/cluster/process_group.h"
+
+namespace parallax::app {
+
+RenderSettings frameShare(RenderSettings settings) {
+  const cluster::ProcessGroup& group = cluster::world();
+  settings.bandParts = group.size();
+  settings.bandPart = group.rank();
+  return settings;
+}
+
+namespace {
+
+void mergeStats(cluster::ProcessGroup& group, RenderStats& stats) {
+  uint64_t counts[] = {stats.cameraRays, stats.shadowRays, stats.secondaryRays, stats.bounceRays,
+                       stats.cameraMisses};
+  group.sumOnAll(counts);
+  stats.cameraRays = counts[0];
+  stats.shadowRays = counts[1];
+  stats.secondaryRays = counts[2];
+  stats.bounceRays = counts[3];
+  stats.cameraMisses = counts[4];
+  stats.seconds = group.maxOnAll(stats.seconds);
+}
+
+}  // namespace
+
+bool mergeFrameShares(std::initializer_list<Image*> images, RenderStats& stats) {
+  cluster::ProcessGroup& group = cluster::world();
+  if (group.size() == 1) return true;
+  for (Image* image : images) {
+    std::vector<Vec3f>& pixels = image->pixels();
+    group.mergeToRoot(
+        std::span(reinterpret_cast<uint8_t*>(pixels.data()), pixels.size() * sizeof(Vec3f)));
+  }
+  mergeStats(group, stats);
+  return group.isRoot();
+}
+
+bool mergeFrameShares(std::vector<uint8_t>& codes, RenderStats& stats) {
+  cluster::ProcessGroup& group = cluster::world();
+  if (group.size() == 1) return true;
+  group.mergeToRoot(codes);
+  mergeStats(group, stats);
+  return group.isRoot();
+}
+
+bool writesJobOutputs() {
+  return cluster::world().isRoot();
+}
+
+}  // namespace parallax::app
