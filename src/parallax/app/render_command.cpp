@@ -134,6 +134,7 @@ Framing frameForRender(const RenderOptions& o, Scene& scene, DisplayDesign& desi
 // Once every check has passed: the depth summary, and a warning if the content reaches beyond
 // the budget.
 void reportFraming(const Framing& framing) {
+  if (!writesJobOutputs()) return;  // under mpirun: once, from rank 0
   std::printf("%s\n", depthSummary(framing).c_str());
   const std::string warning = depthWarning(framing);
   if (!warning.empty()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
@@ -186,7 +187,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   layout.aspect = double(width) / height;
   const DisplayWindow window = display.window();
   const double windowAspect = window.widthMm / window.heightMm;
-  if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01)
+  if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01 && writesJobOutputs())
     std::fprintf(stderr,
                  "note: tiles of %dx%d have aspect %.4f, the display's window %.4f: the views are "
                  "stretched to fill them, as Looking Glass quilts are\n",

@@ -44,6 +44,26 @@ void parseFrameRange(const std::string& text, int total, int& first, int& last) 
     fail("the animation has " + std::to_string(total) + " frame" + (total == 1 ? "" : "s"));
 }
 
+void narrowToChunk(const std::string& text, int& first, int& last) {
+  const size_t slash = text.find('/');
+  const auto number = [&](const std::string& digits) {
+    if (digits.empty() || digits.size() > 6 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError("command line", "--chunk",
+                       "expected K/N, the K-th of N parts (1 <= K <= N), got '" + text + "'");
+    return std::stoi(digits);
+  };
+  const int k = number(text.substr(0, slash));
+  const int n = slash == std::string::npos ? 0 : number(text.substr(slash + 1));
+  if (n < 1 || k < 1 || k > n)
+    throw InputError("command line", "--chunk",
+                     "expected K/N with 1 <= K <= N, got '" + text + "'");
+  const int64_t count = last - first + 1;
+  const int start = first;
+  first = start + int(count * (k - 1) / n);
+  last = start + int(count * k / n) - 1;
+}
+
 std::string numberedPicture(const std::string& path, int frame) {
   const std::filesystem::path p(path);
   const std::string name = frameName(frame);  // "frame-0007": the number after the dash
@@ -57,6 +77,10 @@ void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::stri
                  "Render frames FIRST:LAST of the animation (1-based) into DIR/frame-NNNN; "
                  "finished frames are skipped, so a killed sequence resumes (docs/animation.md)")
       ->type_name("FIRST:LAST");
+  cmd.add_option("--chunk", options.chunk,
+                 "Only the K-th of N contiguous parts of the frames (of --frames, else all): one "
+                 "task of a render farm (docs/distributed.md)")
+      ->type_name("K/N");
   cmd.add_option("--turntable", options.turntable,
                  "Turn the content DEGREES about the display's up axis over the animation "
                  "(360: a loop)")
@@ -76,6 +100,10 @@ void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::stri
 VideoCliOptions SequenceOptions::videoOptions() const {
   VideoCliOptions o = video;
   o.fps = fps;
+  if (o.wanted() && !chunk.empty())
+    throw InputError("command line", "--video",
+                     "--chunk renders one part of the frames: make the video in a final step, the "
+                     "same command without --chunk (docs/distributed.md)");
   if (o.wanted() && !given())
     throw InputError("command line", "--video",
                      "makes a video of a sequence: add --frames FIRST:LAST or --turntable DEGREES");
@@ -115,6 +143,7 @@ SequencePlan planSequence(const SequenceOptions& options, const Scene& scene) {
   plan.first = 1;
   plan.last = plan.total;
   if (!options.frames.empty()) parseFrameRange(options.frames, plan.total, plan.first, plan.last);
+  if (!options.chunk.empty()) narrowToChunk(options.chunk, plan.first, plan.last);
   return plan;
 }
 
