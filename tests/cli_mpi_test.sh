@@ -57,6 +57,21 @@ check "the video is written" test -s "$tmp/seqv.mp4"
 check "frames resumed by ranks: nothing left to render" mpi 0 2 "${turn[@]}" -o "$tmp/seqv"
 check "nothing rendered again" grep -q "0 to render" "$tmp/out"
 
+# Farms without MPI: --chunk K/N takes the K-th of N contiguous parts (docs/distributed.md).
+for k in 3 1 2; do check "chunk $k/3" run 0 "${turn[@]}" --chunk "$k/3" -o "$tmp/chunks"; done
+check "the chunks make one process's frames" same_files "$tmp/seq" "$tmp/chunks" "${frames[@]}"
+check "a chunk with no frame (7 parts of 5 frames) does nothing" run 0 "${turn[@]}" --chunk 1/7 -o "$tmp/empty"
+check "no frame in an empty chunk" test -z "$(ls "$tmp/empty" 2>/dev/null)"
+check "chunks of --frames" run 0 "${turn[@]}" --frames 2:5 --chunk 2/2 -o "$tmp/part"
+check "the second half of 2:5 is frames 4 and 5" test "$(ls "$tmp/part" | tr '\n' ' ')" = "frame-0004 frame-0005 "
+for bad in 0/3 4/3 3 1/0 x/2; do
+  check "--chunk $bad refused" run 2 "${turn[@]}" --chunk "$bad" -o "$tmp/bad"
+  check "--chunk $bad: one line naming it" one_line_naming "--chunk"
+done
+check "no video of a chunk" run 2 "${turn[@]}" --chunk 1/2 --video "$tmp/chunk.mp4" -o "$tmp/bad"
+check "--video with --chunk: one line" one_line_naming "--video"
+check "no output of refused chunks" test ! -e "$tmp/bad"
+
 # (b) One frame of the built-in display, split by bands of rows (with --adaptive too: a pixel
 # stops on its own packet's samples, all in its band).
 for variant in "--spp 4" "--spp 9 --adaptive" "--spp 4 --subpixels"; do
