@@ -14,6 +14,7 @@ source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_hwloc_base_binding_policy=none
+export OMPI_MCA_mpi_yield_when_idle=1  # ranks that wait yield the (shared) cores
 # mpi EXPECTED_CODE NP ARGS...: parallax under mpirun -np NP, output in $tmp/out and $tmp/err.
 mpi() {
   local expected=$1 np=$2
