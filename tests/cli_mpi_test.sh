@@ -94,6 +94,15 @@ r = json.load(open(sys.argv[1]))
 assert r["rays"] >= 3 * 1920 * 1080 * 4, r["rays"]
 PY
 
+# The usual practice (N views interleaved) splits too; the layer solvers run on rank 0 alone.
+check "direct mapping" run 0 render --display "$tmp/small.json" --direct-mapping --spp 4 -o "$tmp/dm"
+check "direct mapping on 3 ranks" mpi 0 3 render --display "$tmp/small.json" --direct-mapping --spp 4 -o "$tmp/dm3"
+check "the same interleaved layer" same_files "$tmp/dm" "$tmp/dm3" image.png mask.png
+check "optimised layers" run 0 render --display "$tmp/small.json" --layers optimized-image --spp 4 --iterations 2 -o "$tmp/opt"
+check "optimised layers on 2 ranks" mpi 0 2 render --display "$tmp/small.json" --layers optimized-image --spp 4 --iterations 2 -o "$tmp/opt2"
+check "the same optimised layers" same_files "$tmp/opt" "$tmp/opt2" image.png mask.png
+check "a note that rank 0 solves alone" grep -q "not split across ranks" "$tmp/err"
+
 # (c) A lenticular panel's picture and a Looking Glass quilt, split.
 check "a lenticular picture" run 0 render --display lkg:go --spp 1 -o "$tmp/lent"
 check "a quilt" run 0 render --display lkg:go --quilt auto --spp 1 -o "$tmp/quilt"

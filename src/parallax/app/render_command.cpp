@@ -19,6 +19,7 @@
 #include "parallax/app/sequence.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
+#include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/core/parallel.h"
 #include "parallax/io/display_file.h"
@@ -433,6 +434,9 @@ void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator&
   // The layer solvers need the whole slit layers and fit them globally: rank 0 alone runs them.
   const bool split = !plan && o.layers == "slits";
   if (!plan && !split && !writesJobOutputs()) return;
+  if (!plan && !split && cluster::world().size() > 1)
+    std::fprintf(stderr, "note: --layers %s is not split across ranks: rank 0 renders it alone\n",
+                 o.layers.c_str());
   DisplayLayers layers;
   {
     ProgressBar bar("render");

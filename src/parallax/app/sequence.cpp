@@ -154,7 +154,7 @@ std::vector<double> SequencePlan::times() const {
 }
 
 void noteAnimation(const SequenceOptions& options, const Scene& scene) {
-  if (options.given()) return;
+  if (options.given() || !cluster::world().isRoot()) return;
   const SceneMotion motion = sceneMotion(scene);
   if (motion.empty()) return;
   const SequencePlan plan = planSequence(options, scene);
