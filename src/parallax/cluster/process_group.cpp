@@ -50,8 +50,7 @@ class MpiWorld final : public ProcessGroup {
     int lowest = INT_MAX;
     // Ranks arrive here at different times (one frame's bands, or frames, cost unequally). A
     // blocking MPI call spins on a core while it waits, taking it from ranks still rendering
-    // on the same machine (measured: a 2-rank 8K quilt on 2 cores slowed from 12 s to 30 s), so
-    // the wait is a test every millisecond that sleeps in between.
+    // on the same machine, so the wait is a test every millisecond that sleeps in between.
     MPI_Request request;
     MPI_Iallreduce(&myFailure, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &request);
     for (int done = 0;;) {
