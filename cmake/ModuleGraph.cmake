@@ -4,7 +4,7 @@
 # docs/architecture.md says the same. Every edge is there for a reason, given beside it.
 
 # Modules in dependency order: each may use only modules listed before it.
-set(PARALLAX_MODULES core image display scene io accel camera render sim quality layers window video app python)
+set(PARALLAX_MODULES core image display scene io accel camera render sim quality layers window video cluster app python)
 
 set(PARALLAX_USES_core "")
 set(PARALLAX_USES_image core)
@@ -19,13 +19,14 @@ set(PARALLAX_USES_quality core image display scene accel camera render sim)  # i
 set(PARALLAX_USES_layers core image display scene accel camera render sim quality)  # fits layers to ideal views
 set(PARALLAX_USES_window core image)           # shows Images on monitors
 set(PARALLAX_USES_video core image)            # encodes Images as video (FFmpeg)
-set(PARALLAX_USES_app core image display scene io accel camera render sim quality layers window video)
+set(PARALLAX_USES_cluster core)               # the processes of one job (MPI)
+set(PARALLAX_USES_app core image display scene io accel camera render sim quality layers window video cluster)
 # app: the CLI's loaders, option checks and estimates, so Python refuses what the CLI refuses
 set(PARALLAX_USES_python core image display scene io accel camera render sim quality app)
 
 # Third-party include prefixes and the one module that may use each (only in its .cpp files).
 set(PARALLAX_THIRD_PARTY embree3 tbb nlohmann tiny_obj_loader tiny_gltf stb zlib assimp CLI SDL2
-  libavcodec libavformat libavutil libswscale pybind11)
+  libavcodec libavformat libavutil libswscale pybind11 mpi)
 set(PARALLAX_OWNER_embree3 accel)
 set(PARALLAX_OWNER_tbb core)   # behind core/parallel.h
 set(PARALLAX_OWNER_nlohmann io)
@@ -41,3 +42,4 @@ set(PARALLAX_OWNER_libavformat video) # containers (MP4, WebM, Matroska)
 set(PARALLAX_OWNER_libavutil video)
 set(PARALLAX_OWNER_libswscale video)  # RGB <-> YUV 4:2:0
 set(PARALLAX_OWNER_pybind11 python)  # the Python module (docs/python.md)
+set(PARALLAX_OWNER_mpi cluster)       # Open MPI, only when launched by mpirun

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/display_file.h"
@@ -389,7 +390,10 @@ Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& option
 }
 
 Scene loadSceneReportingWarnings(const std::string& path, const SceneLoadOptions& options) {
+  cluster::failIfAskedForTest(cluster::world());
   Scene scene = loadSceneOrDefault(path, options);
+  // Under mpirun every rank loads the scene: its notes once.
+  if (!cluster::world().isRoot()) return scene;
   for (const auto& n : scene.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
   for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return scene;

@@ -10,6 +10,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/distributed.h"
 #include "parallax/app/layer_output.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
@@ -98,9 +99,12 @@ void runLenticularRender(const LenticularRenderJob& o) {
   DisplayLayers out;
   {
     ProgressBar bar("lenticular render");
-    out = renderDisplay(scene, accelerator, *makeLenticularDisplay(design, filter), settings,
+    // Under mpirun each rank renders its bands of rows; rank 0 writes (docs/distributed.md).
+    out = renderDisplay(scene, accelerator, *makeLenticularDisplay(design, filter),
+                        frameShare(settings),
                         [&bar](int done, int total) { bar.update(done, total); });
   }
+  if (!mergeFrameShares({&out.image}, out.stats)) return;
   JsonWriter record;
   startRenderRecord(record, "lenticular: rays per subpixel around its view", o.calibration.source);
   record.set("/scene", scene.source);

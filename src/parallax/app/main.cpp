@@ -8,11 +8,13 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 
 namespace {
@@ -37,6 +39,9 @@ std::string inputErrorText(const parallax::InputError& e) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Under mpirun, the job's ranks (docs/distributed.md); otherwise this process alone.
+  parallax::cluster::Session session(argc, argv);
+  parallax::cluster::ProcessGroup& group = session.group();
   CLI::App cli{"parallax: ray tracing for two-layer parallax-barrier 3-D displays"};
   cli.set_version_flag("--version", std::string("parallax ") + PARALLAX_VERSION_STRING);
   cli.require_subcommand(1);
@@ -52,30 +57,41 @@ int main(int argc, char** argv) {
   parallax::app::registerShowCommand(cli);
   parallax::app::registerInfoCommand(cli);
   parallax::app::registerBenchCommand(cli);
+  std::optional<parallax::cluster::Failure> failure;
+  const auto fail = [&](int exitCode, const std::string& message) {
+    failure = parallax::cluster::Failure{group.rank(), exitCode, message};
+  };
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // --help and --version are "errors" with exit code 0: CLI11 prints them.
-    if (e.get_exit_code() == 0) return cli.exit(e);
-    std::string message = e.what();
-    // "parallax frobnicate": CLI11 only says a subcommand is required; name the word.
-    const std::vector<std::string> rest = cli.remaining();
-    if (e.get_name() == "RequiredError" && !rest.empty())
-      message = rest.front() + ": not a command (" + message + ")";
-    printError(message);
-    return parallax::app::kExitInputError;
+    // --help and --version are "errors" with exit code 0: CLI11 prints them (rank 0 only).
+    if (e.get_exit_code() == 0) {
+      if (group.isRoot()) cli.exit(e);
+    } else {
+      std::string message = e.what();
+      // "parallax frobnicate": CLI11 only says a subcommand is required; name the word.
+      const std::vector<std::string> rest = cli.remaining();
+      if (e.get_name() == "RequiredError" && !rest.empty())
+        message = rest.front() + ": not a command (" + message + ")";
+      fail(parallax::app::kExitInputError, message);
+    }
+  } catch (const parallax::cluster::PeerFailed& e) {
+    // Another rank failed and said so at a checkpoint: it prints its message; stop quietly.
+    return e.failure().exitCode;
   } catch (const parallax::InputError& e) {
-    printError(inputErrorText(e));
-    return parallax::app::kExitInputError;
+    fail(parallax::app::kExitInputError, inputErrorText(e));
   } catch (const std::bad_alloc&) {
     // The estimates missed an allocation: still the input's size, not a bug.
-    printError(
-        "out of memory: the input needs more memory than the estimates foresaw; use smaller "
-        "sizes, fewer views or fewer eyes");
-    return parallax::app::kExitInputError;
+    fail(parallax::app::kExitInputError,
+         "out of memory: the input needs more memory than the estimates foresaw; use smaller "
+         "sizes, fewer views or fewer eyes");
   } catch (const std::exception& e) {
-    printError(e.what());
-    return 1;
+    fail(1, e.what());
   }
-  return 0;
+  // Every rank meets here, or a failed one meets the others at their next checkpoint; the
+  // lowest failing rank's message is printed once, and every rank exits with its code.
+  const std::optional<parallax::cluster::Failure> agreed = group.agree(failure);
+  if (!agreed) return 0;
+  if (agreed->rank == group.rank()) printError(agreed->message);
+  return agreed->exitCode;
 }

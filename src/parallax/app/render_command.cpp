@@ -13,11 +13,13 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/distributed.h"
 #include "parallax/app/layer_output.h"
 #include "parallax/app/rgbd_options.h"
 #include "parallax/app/sequence.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
+#include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/core/parallel.h"
 #include "parallax/io/display_file.h"
@@ -133,6 +135,7 @@ Framing frameForRender(const RenderOptions& o, Scene& scene, DisplayDesign& desi
 // Once every check has passed: the depth summary, and a warning if the content reaches beyond
 // the budget.
 void reportFraming(const Framing& framing) {
+  if (!writesJobOutputs()) return;  // under mpirun: once, from rank 0
   std::printf("%s\n", depthSummary(framing).c_str());
   const std::string warning = depthWarning(framing);
   if (!warning.empty()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
@@ -185,7 +188,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   layout.aspect = double(width) / height;
   const DisplayWindow window = display.window();
   const double windowAspect = window.widthMm / window.heightMm;
-  if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01)
+  if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01 && writesJobOutputs())
     std::fprintf(stderr,
                  "note: tiles of %dx%d have aspect %.4f, the display's window %.4f: the views are "
                  "stretched to fill them, as Looking Glass quilts are\n",
@@ -200,6 +203,9 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
   const Accelerator& accelerator =
       sequenceFrame.accelerator ? *sequenceFrame.accelerator : *ownAccelerator;
   RenderStats stats;
+  // One quilt alone is split across mpirun's ranks by bands of every view's rows; a sequence's
+  // quilts are whole frames of one rank (docs/distributed.md).
+  const RenderSettings share = sequenceFrame.plan ? settings : frameShare(settings);
   // The quilt is kept as the PNG's 8-bit codes, a quarter of a float quilt's memory; a float
   // quilt only when --linear asks for one.
   Image quilt;
@@ -209,7 +215,7 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
     ProgressBar bar("render");
     const auto onProgress = [&bar](int done, int total) { bar.update(done, total); };
     if (o.linear) {
-      quilt = renderQuilt(scene, accelerator, display, settings, layout, width, height, &stats,
+      quilt = renderQuilt(scene, accelerator, display, share, layout, width, height, &stats,
                           onProgress);
     } else {
       codes.resize(size_t(quiltWidth) * size_t(quiltHeight) * 3);
@@ -221,9 +227,14 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
           }
         });
       };
-      renderQuiltTiles(scene, accelerator, display, settings, layout, width, height, keepCodes,
-                       &stats, onProgress);
+      renderQuiltTiles(scene, accelerator, display, share, layout, width, height, keepCodes, &stats,
+                       onProgress);
     }
+  }
+  if (!sequenceFrame.plan) {
+    const bool writer =
+        o.linear ? mergeFrameShares({&quilt}, stats) : mergeFrameShares(codes, stats);
+    if (!writer) return;
   }
   const double raysPerSecond = double(stats.totalRays()) / stats.seconds;
 
@@ -419,14 +430,22 @@ void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator&
                   const RenderSettings& settings, const ViewFilter& filter,
                   const TrainingOptions& training, const std::string& output,
                   const SequencePlan* plan, int frame) {
+  // One frame under mpirun: each rank renders its bands, rank 0 writes (docs/distributed.md).
+  // The layer solvers need the whole slit layers and fit them globally: rank 0 alone runs them.
+  const bool split = !plan && o.layers == "slits";
+  if (!plan && !split && !writesJobOutputs()) return;
+  if (!plan && !split && cluster::world().size() > 1)
+    std::fprintf(stderr, "note: --layers %s is not split across ranks: rank 0 renders it alone\n",
+                 o.layers.c_str());
   DisplayLayers layers;
   {
     ProgressBar bar("render");
     const auto onProgress = [&bar](int done, int total) { bar.update(done, total); };
-    layers = o.directMapping
-                 ? renderDirectMapping(scene, accelerator, design, settings, onProgress)
-                 : renderDisplay(scene, accelerator, design, settings, onProgress, filter);
+    const RenderSettings share = split ? frameShare(settings) : settings;
+    layers = o.directMapping ? renderDirectMapping(scene, accelerator, design, share, onProgress)
+                             : renderDisplay(scene, accelerator, design, share, onProgress, filter);
   }
+  if (split && !mergeFrameShares({&layers.image}, layers.stats)) return;
   const double raysPerSecond = double(layers.stats.totalRays()) / layers.stats.seconds;
 
   JsonWriter record;

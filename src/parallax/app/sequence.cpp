@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "parallax/app/cli_support.h"
+#include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/io/json_writer.h"
 
@@ -43,6 +44,26 @@ void parseFrameRange(const std::string& text, int total, int& first, int& last) 
     fail("the animation has " + std::to_string(total) + " frame" + (total == 1 ? "" : "s"));
 }
 
+void narrowToChunk(const std::string& text, int& first, int& last) {
+  const size_t slash = text.find('/');
+  const auto number = [&](const std::string& digits) {
+    if (digits.empty() || digits.size() > 6 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError("command line", "--chunk",
+                       "expected K/N, the K-th of N parts (1 <= K <= N), got '" + text + "'");
+    return std::stoi(digits);
+  };
+  const int k = number(text.substr(0, slash));
+  const int n = slash == std::string::npos ? 0 : number(text.substr(slash + 1));
+  if (n < 1 || k < 1 || k > n)
+    throw InputError("command line", "--chunk",
+                     "expected K/N with 1 <= K <= N, got '" + text + "'");
+  const int64_t count = last - first + 1;
+  const int start = first;
+  first = start + int(count * (k - 1) / n);
+  last = start + int(count * k / n) - 1;
+}
+
 std::string numberedPicture(const std::string& path, int frame) {
   const std::filesystem::path p(path);
   const std::string name = frameName(frame);  // "frame-0007": the number after the dash
@@ -56,6 +77,10 @@ void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::stri
                  "Render frames FIRST:LAST of the animation (1-based) into DIR/frame-NNNN; "
                  "finished frames are skipped, so a killed sequence resumes (docs/animation.md)")
       ->type_name("FIRST:LAST");
+  cmd.add_option("--chunk", options.chunk,
+                 "Only the K-th of N contiguous parts of the frames (of --frames, else all): one "
+                 "task of a render farm (docs/distributed.md)")
+      ->type_name("K/N");
   cmd.add_option("--turntable", options.turntable,
                  "Turn the content DEGREES about the display's up axis over the animation "
                  "(360: a loop)")
@@ -75,6 +100,10 @@ void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::stri
 VideoCliOptions SequenceOptions::videoOptions() const {
   VideoCliOptions o = video;
   o.fps = fps;
+  if (o.wanted() && !chunk.empty())
+    throw InputError("command line", "--video",
+                     "--chunk renders one part of the frames: make the video in a final step, the "
+                     "same command without --chunk (docs/distributed.md)");
   if (o.wanted() && !given())
     throw InputError("command line", "--video",
                      "makes a video of a sequence: add --frames FIRST:LAST or --turntable DEGREES");
@@ -85,7 +114,7 @@ VideoCliOptions SequenceOptions::videoOptions() const {
 void writeSequenceVideo(const SequenceOptions& options, const SequencePlan& plan,
                         const std::function<std::string(int frame)>& picture) {
   const VideoCliOptions video = options.videoOptions();
-  if (!video.wanted()) return;
+  if (!video.wanted() || !cluster::world().isRoot()) return;  // after runSequence's last checkpoint
   std::vector<std::string> pictures;
   for (int frame = plan.first; frame <= plan.last; ++frame) pictures.push_back(picture(frame));
   writeVideo(pictures, video);
@@ -114,6 +143,7 @@ SequencePlan planSequence(const SequenceOptions& options, const Scene& scene) {
   plan.first = 1;
   plan.last = plan.total;
   if (!options.frames.empty()) parseFrameRange(options.frames, plan.total, plan.first, plan.last);
+  if (!options.chunk.empty()) narrowToChunk(options.chunk, plan.first, plan.last);
   return plan;
 }
 
@@ -124,7 +154,7 @@ std::vector<double> SequencePlan::times() const {
 }
 
 void noteAnimation(const SequenceOptions& options, const Scene& scene) {
-  if (options.given()) return;
+  if (options.given() || !cluster::world().isRoot()) return;
   const SceneMotion motion = sceneMotion(scene);
   if (motion.empty()) return;
   const SequencePlan plan = planSequence(options, scene);
@@ -174,14 +204,27 @@ void placementAxes(const DisplayPlacement& d, Vec3f axes[3]) {
 }  // namespace
 
 void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& job) {
+  // Under mpirun each rank takes every size-th unfinished frame (round robin: neighbouring
+  // frames cost about the same, so the ranks' shares do too), loads and builds once, and all
+  // meet before the first frame is written and after the last (docs/distributed.md).
+  cluster::ProcessGroup& group = cluster::world();
   std::vector<int> todo;
   for (int frame = plan.first; frame <= plan.last; ++frame)
     if (!job.finished(frame)) todo.push_back(frame);
   const int done = plan.count() - int(todo.size());
-  std::printf("sequence: frames %d to %d of %d at %g fps, %d to render%s\n", plan.first, plan.last,
-              plan.total, plan.fps, int(todo.size()),
-              done ? (", " + std::to_string(done) + " finished before").c_str() : "");
-  if (todo.empty()) return;
+  if (group.isRoot())
+    std::printf("sequence: frames %d to %d of %d at %g fps, %d to render%s%s\n", plan.first,
+                plan.last, plan.total, plan.fps, int(todo.size()),
+                done ? (", " + std::to_string(done) + " finished before").c_str() : "",
+                group.size() > 1 ? (" by " + std::to_string(group.size()) + " ranks").c_str() : "");
+  std::vector<int> mine;
+  for (size_t i = 0; i < todo.size(); ++i)
+    if (int(i % size_t(group.size())) == group.rank()) mine.push_back(todo[i]);
+  if (mine.empty()) {
+    group.checkpoint();  // every rank has seen which frames were finished before
+    group.checkpoint();  // every frame is written
+    return;
+  }
   // The framing's centre in the first key's axes, carried to each frame's axes.
   Vec3f framingOffset{0.0f};
   if (!plan.motion.displayKeys.empty()) {
@@ -200,16 +243,17 @@ void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& 
     posed.display.center = posed.display.center + axes[0] * framingOffset.x +
                            axes[1] * framingOffset.y + axes[2] * framingOffset.z;
   };
-  pose(todo.front());
+  pose(mine.front());
   AcceleratorOptions options = job.accelerator;
   options.dynamic = plan.motion.movesGeometry();
   const auto buildStart = std::chrono::steady_clock::now();
   Accelerator accelerator(posed, options);
   const double buildSeconds = secondsSince(buildStart);
+  group.checkpoint();  // every rank has loaded, built, and seen which frames were finished
   double refitSeconds = 0;
   const auto start = std::chrono::steady_clock::now();
-  for (size_t i = 0; i < todo.size(); ++i) {
-    const int frame = todo[i];
+  for (size_t i = 0; i < mine.size(); ++i) {
+    const int frame = mine[i];
     if (i > 0) {
       pose(frame);
       if (plan.motion.movesGeometry()) {
@@ -218,8 +262,12 @@ void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& 
         refitSeconds += secondsSince(refitStart);
       }
     }
-    std::printf("frame %d (%zu of %zu, t = %.3f s)\n", frame, i + 1, todo.size(),
-                plan.timeOf(frame));
+    if (group.size() > 1)
+      std::printf("frame %d (rank %d: %zu of %zu, t = %.3f s)\n", frame, group.rank(), i + 1,
+                  mine.size(), plan.timeOf(frame));
+    else
+      std::printf("frame %d (%zu of %zu, t = %.3f s)\n", frame, i + 1, mine.size(),
+                  plan.timeOf(frame));
     std::fflush(stdout);
     job.render(posed, accelerator, frame);
   }
@@ -227,8 +275,10 @@ void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& 
   std::printf(
       "sequence: %zu frames in %.2f s (%.2f s a frame; BVH built once in %.3f s, "
       "refitted in %.4f s a frame)\n",
-      todo.size(), seconds, seconds / double(todo.size()), buildSeconds,
-      todo.size() > 1 ? refitSeconds / double(todo.size() - 1) : 0.0);
+      mine.size(), seconds, seconds / double(mine.size()), buildSeconds,
+      mine.size() > 1 ? refitSeconds / double(mine.size() - 1) : 0.0);
+  std::fflush(stdout);
+  group.checkpoint();  // every frame is written
 }
 
 }  // namespace parallax::app

@@ -25,11 +25,12 @@ namespace parallax::app {
 struct SequenceOptions {
   VideoCliOptions video;  // --video FILE: the frames as one video, at --fps
   std::string frames;     // "A:B", 1-based and inclusive; "" = every frame of the animation
+  std::string chunk;      // "K/N": only the K-th of N contiguous parts of the frames (a farm task)
   double turntable = 0;   // degrees the content turns over the whole animation; 0 = none
   double duration = 0;    // seconds of the animation; 0 = the keys' last time, else 4 s
   double fps = 30;
   // A sequence was asked for (else the command renders one picture, at time 0).
-  bool given() const { return !frames.empty() || turntable != 0; }
+  bool given() const { return !frames.empty() || !chunk.empty() || turntable != 0; }
   // --video's options at the sequence's --fps; refuses a video without a sequence.
   VideoCliOptions videoOptions() const;
 };
@@ -69,6 +70,11 @@ void writeSequenceVideo(const SequenceOptions& options, const SequencePlan& plan
 
 // "A:B" (or "A") -> [A, B] within [1, total]; throws InputError naming --frames.
 void parseFrameRange(const std::string& text, int total, int& first, int& last);
+
+// "K/N" -> [first, last] narrowed to the K-th of N contiguous parts, as equal as can be (the
+// first parts one frame shorter); a part may be empty (last = first - 1) when N exceeds the
+// frames. Throws InputError naming --chunk.
+void narrowToChunk(const std::string& text, int& first, int& last);
 
 // A picture's path with the frame's number before the extension: out/view.png ->
 // out/view-0007.png.

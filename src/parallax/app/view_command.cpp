@@ -9,6 +9,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
+#include "parallax/app/distributed.h"
 #include "parallax/app/rgbd_options.h"
 #include "parallax/app/sequence.h"
 #include "parallax/camera/display_camera.h"
@@ -102,15 +103,18 @@ void runView(const ViewOptions& o) {
   o.sampling.checkWork(camera->width(), camera->height());
   const AcceleratorOptions acceleratorOptions =
       acceleratorForCameraRays(double(camera->width()) * camera->height() * o.sampling.spp);
+  // One picture under mpirun: each rank renders its bands, rank 0 writes (docs/distributed.md);
+  // a sequence's pictures are whole frames of one rank.
   const auto renderPicture = [&](const Scene& posed, const Accelerator& accelerator,
-                                 const Camera& frameCamera, const std::string& output) {
+                                 const Camera& frameCamera, const std::string& output, bool split) {
     RenderStats stats;
     Image image;
     {
       ProgressBar bar("view");
-      image = render(posed, accelerator, frameCamera, settings, &stats,
-                     [&bar](int done, int total) { bar.update(done, total); });
+      image = render(posed, accelerator, frameCamera, split ? frameShare(settings) : settings,
+                     &stats, [&bar](int done, int total) { bar.update(done, total); });
     }
+    if (split && !mergeFrameShares({&image}, stats)) return;
     writeImage(output, image);
     std::printf("wrote %s (%dx%d, %d spp) in %.2f s, %s\n", output.c_str(), frameCamera.width(),
                 frameCamera.height(), o.sampling.spp, stats.seconds,
@@ -118,7 +122,7 @@ void runView(const ViewOptions& o) {
   };
   if (!o.sequence.given()) {
     const Accelerator accelerator(scene, acceleratorOptions);
-    renderPicture(scene, accelerator, *camera, o.output);
+    renderPicture(scene, accelerator, *camera, o.output, true);
     return;
   }
   const SequencePlan plan = planSequence(o.sequence, scene);
@@ -129,7 +133,8 @@ void runView(const ViewOptions& o) {
     return std::filesystem::is_regular_file(numberedPicture(o.output, frame));
   };
   job.render = [&](const Scene& posed, const Accelerator& accelerator, int frame) {
-    renderPicture(posed, accelerator, *makeCamera(o, posed), numberedPicture(o.output, frame));
+    renderPicture(posed, accelerator, *makeCamera(o, posed), numberedPicture(o.output, frame),
+                  false);
   };
   runSequence(plan, scene, job);
   writeSequenceVideo(o.sequence, plan, [&](int frame) { return numberedPicture(o.output, frame); });

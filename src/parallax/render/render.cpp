@@ -144,6 +144,10 @@ int TileRenderer::tileCount() const {
   return impl_->grid.count();
 }
 
+int TileRenderer::tileBand(int tile) const {
+  return impl_->grid.y0(tile) / TileGrid::kRows;
+}
+
 void TileRenderer::renderTile(int tile, Image& image, RenderStats& stats) const {
   const Impl& i = *impl_;
   parallax::renderTile(tile, i.grid, i.camera, i.tracer, i.walk, i.settings, image, stats);
@@ -154,14 +158,18 @@ Image render(const Scene& scene, const Accelerator& accelerator, const Camera& c
   const auto start = std::chrono::steady_clock::now();
   Image image(camera.width(), camera.height());
   const TileRenderer renderer(scene, accelerator, camera, settings);
-  const int tiles = renderer.tileCount();
+  // This process's tiles: all of them, or its bands' (RenderSettings::bandParts).
+  std::vector<int> mine;
+  for (int tile = 0; tile < renderer.tileCount(); ++tile)
+    if (settings.rendersBand(renderer.tileBand(tile))) mine.push_back(tile);
+  const int tiles = int(mine.size());
   std::mutex statsMutex;
   RenderStats total;
   std::atomic<int> done{0};
   parallelFor(tiles, settings.threads, 1, [&](int64_t begin, int64_t end) {
     RenderStats local;
-    for (int64_t tile = begin; tile != end; ++tile) {
-      renderer.renderTile(int(tile), image, local);
+    for (int64_t k = begin; k != end; ++k) {
+      renderer.renderTile(mine[size_t(k)], image, local);
       const int finished = ++done;
       if (progress) progress(finished, tiles);
     }

@@ -36,6 +36,13 @@ struct RenderSettings {
   // to N + 1 times reaches the camera.
   int bounces = 0;
   static constexpr int kMaxBounces = 64;
+  // One part of a frame split across processes (docs/distributed.md): only the bands of
+  // TileGrid::kRows film rows b with b % bandParts == bandPart are rendered; the other pixels
+  // stay zero (all bits), so the parts of all processes merge by a bitwise OR. A pixel depends
+  // only on its own packet (16 rows of one band), so the merged film equals one process's.
+  // Interleaved bands balance the work: a frame's cost varies smoothly from top to bottom.
+  int bandParts = 1, bandPart = 0;
+  bool rendersBand(int band) const { return band % bandParts == bandPart; }
 };
 
 struct RenderStats {
@@ -91,6 +98,8 @@ class TileRenderer {
   TileRenderer& operator=(const TileRenderer&) = delete;
 
   int tileCount() const;
+  // The band (TileGrid::kRows film rows) a tile lies in.
+  int tileBand(int tile) const;
   void renderTile(int tile, Image& image, RenderStats& stats) const;
 
  private:
