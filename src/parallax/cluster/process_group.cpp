@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
 
 namespace parallax::cluster {
 
@@ -118,6 +119,13 @@ Session::Session(int& argc, char**& argv) {
   if (launchedByMpirun()) {
     MPI_Init(&argc, &argv);
     group_ = std::make_unique<MpiWorld>();
+    // Ranks on one machine share its cores (docs/distributed.md, "Threads").
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    int ranksOnThisNode = 1;
+    MPI_Comm_size(node, &ranksOnThisNode);
+    MPI_Comm_free(&node);
+    shareCoresAmong(ranksOnThisNode);
   } else {
     group_ = makeSingleProcessGroup();
   }

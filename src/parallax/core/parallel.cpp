@@ -1,18 +1,36 @@
 #include "parallax/core/parallel.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <memory>
+#include <thread>
 
 namespace parallax {
+
+namespace {
+// The cores this process may use, when shareCoresAmong set them (0: all of them).
+int sharedCores = 0;
+}  // namespace
+
+void shareCoresAmong(int processes) {
+  if (processes <= 1) return;
+  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+  sharedCores = std::max(1, cores / processes);
+  // oneTBB's own limit: no arena of this process runs more workers than its share.
+  static std::unique_ptr<tbb::global_control> limit;
+  limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                size_t(sharedCores));
+}
 
 // More workers than cores only queue (oneTBB warns and ignores the excess): asking for more is
 // asking for every core.
 int workerCount(int threads) {
-  const int cores = tbb::this_task_arena::max_concurrency();
+  const int cores = sharedCores > 0 ? sharedCores : tbb::this_task_arena::max_concurrency();
   return threads > 0 ? std::min(threads, cores) : cores;
 }
 

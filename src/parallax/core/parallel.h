@@ -21,4 +21,9 @@ void parallelInvoke(int threads, const std::function<void()>& first,
 // The workers a call with `threads` (0: every core) runs on: never more than the cores.
 int workerCount(int threads);
 
+// For the life of the process, "every core" means this process's share of the machine's cores
+// when `processes` processes run on it at once (ranks of one mpirun on one node): at least one
+// worker each, so that N ranks on a node do not run N times as many threads as it has cores.
+void shareCoresAmong(int processes);
+
 }  // namespace parallax

@@ -4,6 +4,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -65,6 +67,26 @@ TEST(Parallel, WorkerCount) {
   EXPECT_GE(cores, 1);
   EXPECT_EQ(workerCount(1), 1);
   EXPECT_EQ(workerCount(cores + 5), cores);
+}
+
+// Last in the file: it limits the whole process (CTest runs every test in a process of its own).
+TEST(Parallel, RanksOnOneMachineShareItsCores) {
+  const int cores = int(std::thread::hardware_concurrency());
+  if (cores < 2) GTEST_SKIP() << "one core";
+  shareCoresAmong(1);  // one process: nothing changes
+  EXPECT_EQ(workerCount(0), cores);
+  shareCoresAmong(cores);  // as many ranks as cores: one worker each, even for "every core"
+  EXPECT_EQ(workerCount(0), 1);
+  EXPECT_EQ(workerCount(2), 1);
+  // Every chunk on the one thread: many short chunks would otherwise spread over the workers.
+  std::mutex mutex;
+  std::set<std::thread::id> threads;
+  parallelFor(256, 0, 1, [&](int64_t, int64_t) {
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    const std::lock_guard<std::mutex> lock(mutex);
+    threads.insert(std::this_thread::get_id());
+  });
+  EXPECT_EQ(threads.size(), 1u);
 }
 
 }  // namespace
