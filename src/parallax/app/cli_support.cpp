@@ -294,6 +294,21 @@ void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f
   json.set(at + "/within_budget", f.withinBudget());
 }
 
+void recordFraming(JsonWriter& record, const Framing& f) {
+  record.set("/framing/fit", displayFitName(f.fit));
+  if (f.focusAuto)
+    record.set("/framing/focus", "auto");
+  else
+    record.set("/framing/focus", f.focusMm);
+  if (f.budgetAuto)
+    record.set("/framing/depth_budget", "auto");
+  else
+    record.set("/framing/depth_budget", f.budgetMm);
+  setFramingFigures(record, "/framing", f);
+  record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
+  record.set("/framing/scale_mm_per_unit", f.scaleMmPerUnit);
+}
+
 void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string& scope) {
   addImportOptions(cmd);
   cmd.add_option("--fit", options.fit,

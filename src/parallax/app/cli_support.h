@@ -100,6 +100,11 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
 // and info write the same keys.
 void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& framing);
 
+// The framing in render.json, under "/framing": what was asked (fit, focus, depth_budget:
+// simulate --reference frames the scene again from these) and what followed. The CLI's render
+// and the Python module's write the same.
+void recordFraming(JsonWriter& record, const Framing& framing);
+
 // --fit, --focus and --depth-budget (render, and design --scene, view --display-eye): how the
 // content is framed for the display (camera/framing.h). Empty: the scene's own choice.
 struct FramingOptions {

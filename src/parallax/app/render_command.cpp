@@ -106,23 +106,6 @@ void checkLayerOptions(const RenderOptions& o, bool lenticular) {
                      "--direct-mapping or --quilt");
 }
 
-// The framing in the record: what was asked (fit, focus, depth_budget: simulate --reference
-// frames the scene again from these) and what followed.
-void recordFraming(JsonWriter& record, const Framing& f) {
-  record.set("/framing/fit", displayFitName(f.fit));
-  if (f.focusAuto)
-    record.set("/framing/focus", "auto");
-  else
-    record.set("/framing/focus", f.focusMm);
-  if (f.budgetAuto)
-    record.set("/framing/depth_budget", "auto");
-  else
-    record.set("/framing/depth_budget", f.budgetMm);
-  setFramingFigures(record, "/framing", f);
-  record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
-  record.set("/framing/scale_mm_per_unit", f.scaleMmPerUnit);
-}
-
 // Frames the scene for the design (camera/framing.h) and returns the framing.
 Framing frameForRender(const RenderOptions& o, Scene& scene, DisplayDesign& design) {
   o.framing.apply(scene.display);

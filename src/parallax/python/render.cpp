@@ -65,22 +65,6 @@ Framing frameForRender(Scene& scene, DisplayDesign& design, const app::FramingOp
   return result;
 }
 
-// The framing as render.json records it: what was asked, and what followed.
-void recordFraming(JsonWriter& record, const Framing& f) {
-  record.set("/framing/fit", displayFitName(f.fit));
-  if (f.focusAuto)
-    record.set("/framing/focus", "auto");
-  else
-    record.set("/framing/focus", f.focusMm);
-  if (f.budgetAuto)
-    record.set("/framing/depth_budget", "auto");
-  else
-    record.set("/framing/depth_budget", f.budgetMm);
-  app::setFramingFigures(record, "/framing", f);
-  record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
-  record.set("/framing/scale_mm_per_unit", f.scaleMmPerUnit);
-}
-
 void setSampling(JsonWriter& record, const Sampling& s, const RenderSettings& settings,
                  const RenderStats& stats) {
   record.set("/spp", settings.samplesPerPixel);
@@ -177,7 +161,7 @@ std::tuple<py::array_t<float>, py::object, std::string> renderLayers(
   record.set("/scene_display/center", scene.display.center);
   record.set("/scene_display/normal", scene.display.normal);
   record.set("/scene_display/up", scene.display.up);
-  recordFraming(record, framed);
+  app::recordFraming(record, framed);
   writeDesignJson(record, "/design", design);
   return {imageToArray(layers.image), py::object(imageToArray(layers.mask)), record.dump()};
 }
@@ -337,7 +321,7 @@ std::tuple<py::array_t<float>, std::string> quilt(
     record.set("/quilt/eyes_mm/" + std::to_string(k),
                Vec3f(float(eye.x), float(eye.y), float(eye.z)));
   }
-  if (framed) recordFraming(record, *framed);
+  if (framed) app::recordFraming(record, *framed);
   if (const DisplayDesign* barrier = display->barrierDesign())
     writeDesignJson(record, "/design", *barrier);
   if (lenticular) writeLenticularDesignJson(record, "/design", *lenticular);
