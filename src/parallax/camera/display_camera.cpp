@@ -103,8 +103,13 @@ namespace {
 // generateRays16's lane loop: display rays (double, display mm) into the world (float) by the
 // affine map m. Outside the class: GCC cannot make ISA clones of a virtual function
 // (core/lane_kernel.h).
-PARALLAX_LANE_KERNEL void worldRays16(const float m[3][4], const double origin[3][16],
-                                      const double direction[3][16], RayPacket16& out) {
+PARALLAX_LANE_KERNEL void worldRays16(const float affine[3][4], const double origin[3][16],
+                                      const double direction[3][16], RayPacket16& __restrict out) {
+  // A local copy of the matrix and a restricted packet: no store to the packet can change what
+  // the loop reads, so it vectorises.
+  float m[3][4];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) m[r][c] = affine[r][c];
   for (int i = 0; i < 16; ++i) {
     const float x = float(origin[0][i]), y = float(origin[1][i]), z = float(origin[2][i]);
     const float dx = float(direction[0][i]), dy = float(direction[1][i]);
@@ -125,11 +130,7 @@ PARALLAX_LANE_KERNEL void worldRays16(const float m[3][4], const double origin[3
 void DisplayCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
   alignas(64) double origin[3][16], direction[3][16];
   display_->rays16(s.x, s.y, s.apertureU, s.apertureV, origin, direction);
-  // A local copy of the matrix: the packet cannot alias it, so the loop vectorises.
-  float m[3][4];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) m[r][c] = affine_[r][c];
-  worldRays16(m, origin, direction, out);
+  worldRays16(affine_, origin, direction, out);
 }
 
 Ray DisplayCamera::generateRay(const FilmSample& s) const {

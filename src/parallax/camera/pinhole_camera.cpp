@@ -29,9 +29,11 @@ namespace {
 
 // The lane loop of generateRays16, outside the class: GCC cannot make ISA clones of a virtual
 // function (core/lane_kernel.h).
-PARALLAX_LANE_KERNEL void pinholeRays16(const Vec3f& eye, const Vec3f& pixel00,
-                                        const Vec3f& pixelDx, const Vec3f& pixelDy,
-                                        const FilmSamples16& s, RayPacket16& out) {
+// The camera's vectors by value and a restricted packet: no store to the packet can change
+// what the loop reads, so it vectorises.
+PARALLAX_LANE_KERNEL void pinholeRays16(const Vec3f eye, const Vec3f pixel00, const Vec3f pixelDx,
+                                        const Vec3f pixelDy, const FilmSamples16& s,
+                                        RayPacket16& __restrict out) {
   for (int i = 0; i < 16; ++i) {
     out.ox[i] = eye.x, out.oy[i] = eye.y, out.oz[i] = eye.z;
     out.dx[i] = pixel00.x + pixelDx.x * s.x[i] + pixelDy.x * s.y[i];
