@@ -25,9 +25,10 @@ set(PARALLAX_USES_app core image display scene io accel camera render sim qualit
 set(PARALLAX_USES_python core image display scene io accel camera render sim quality app)
 
 # Third-party include prefixes and the one module that may use each (only in its .cpp files).
-set(PARALLAX_THIRD_PARTY embree3 tbb nlohmann tiny_obj_loader tiny_gltf stb zlib assimp CLI SDL2
+set(PARALLAX_THIRD_PARTY embree3 embree4 tbb nlohmann tiny_obj_loader tiny_gltf stb zlib assimp CLI SDL2
   libavcodec libavformat libavutil libswscale pybind11 mpi)
-set(PARALLAX_OWNER_embree3 accel)
+set(PARALLAX_OWNER_embree3 accel)  # Embree 3 (Debian 12) or
+set(PARALLAX_OWNER_embree4 accel)  # Embree 4 (Debian 13), whichever is installed
 set(PARALLAX_OWNER_tbb core)   # behind core/parallel.h
 set(PARALLAX_OWNER_nlohmann io)
 set(PARALLAX_OWNER_tiny_obj_loader io)

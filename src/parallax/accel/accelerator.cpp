@@ -1,10 +1,19 @@
-// The Embree 3 back end of Accelerator: scene construction, single-ray and 16-ray queries, and
-// the raw-rate benchmark loop. This is the only file in parallax that includes Embree.
+// The Embree back end of Accelerator: scene construction, single-ray and 16-ray queries, and
+// the raw-rate benchmark loop. This is the only file in parallax that includes Embree; it
+// builds against Embree 3 (Debian 12) and Embree 4 (Debian 13 and later), whichever CMake
+// found (PARALLAX_EMBREE_MAJOR), and the two differ only in how a query is handed its flags
+// (EmbreeQuery below) and in the ISA names a device configuration may use.
 #include "parallax/accel/accelerator.h"
 
 #include "parallax/core/lane_kernel.h"
 
+#if PARALLAX_EMBREE_MAJOR == 4
+#include <embree4/rtcore.h>
+#elif PARALLAX_EMBREE_MAJOR == 3
 #include <embree3/rtcore.h>
+#else
+#error "PARALLAX_EMBREE_MAJOR must be 3 or 4 (src/parallax/accel/CMakeLists.txt)"
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +23,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -49,12 +59,27 @@ const char* errorName(RTCError code) {
 // "isa=sse4.2"), so that tests and benchmarks can run the kernels a narrower CPU would.
 constexpr const char* kEmbreeConfigVariable = "PARALLAX_EMBREE_CONFIG";
 
-// Embree 3 quietly falls back to its best ISA for a name it does not know ("isa=avx-2"), so a
+// Embree quietly falls back to its best ISA for a name it does not know ("isa=avx-2"), so a
 // test meant for narrower kernels would pass on the wrong ones; the names it knows are checked
-// here (Embree 3's State::parseString).
+// here (State::parseString of Embree 3 and of Embree 4, which dropped the Xeon Phi "avx512knl"
+// and renamed "avx512skx" to "avx512", still accepting the old name).
 void checkIsaName(const std::string& config, const char* source) {
-  static const char* const known[] = {"sse", "sse2", "sse3", "ssse3",  "sse4.1",    "sse4.2",
-                                      "avx", "avxi", "avx2", "avx512", "avx512knl", "avx512skx"};
+  static const char* const known[] = {
+    "sse",
+    "sse2",
+    "sse3",
+    "ssse3",
+    "sse4.1",
+    "sse4.2",
+    "avx",
+    "avxi",
+    "avx2",
+    "avx512",
+#if PARALLAX_EMBREE_MAJOR == 3
+    "avx512knl",
+#endif
+    "avx512skx"
+  };
   for (size_t at = config.find("isa"); at != std::string::npos; at = config.find("isa", at + 1)) {
     if (at > 0 && config[at - 1] != ',' && config[at - 1] != ' ') continue;  // e.g. max_isa
     size_t value = config.find_first_not_of(" =", at + 3);
@@ -66,6 +91,67 @@ void checkIsaName(const std::string& config, const char* source) {
                        "unknown Embree ISA '" + name + "'; use sse2, sse4.2, avx, avx2 or avx512");
   }
 }
+
+// Every ray query goes through one of these: the only place where Embree 3 and Embree 4 trace
+// differently. Embree 3 hands every query an RTCIntersectContext whose flags say whether the
+// rays are coherent; Embree 4 dropped the context from the call and takes
+// RTCIntersectArguments (closest hits) and RTCOccludedArguments (any hit) instead, with the
+// same flag as RTC_RAY_QUERY_FLAG_COHERENT. Neither has filter functions here. The geometry
+// mask default also differs (Embree 3: all bits; Embree 4: 1), which changes nothing: every
+// ray carries mask 0xffffffff, which meets either.
+class EmbreeQuery {
+ public:
+  enum class Rays { Incoherent, Coherent };
+  explicit EmbreeQuery(Rays rays) {
+#if PARALLAX_EMBREE_MAJOR == 4
+    rtcInitIntersectArguments(&intersectArguments_);
+    rtcInitOccludedArguments(&occludedArguments_);
+    if (rays == Rays::Coherent)
+      intersectArguments_.flags = occludedArguments_.flags = RTC_RAY_QUERY_FLAG_COHERENT;
+#else
+    rtcInitIntersectContext(&context_);
+    if (rays == Rays::Coherent) context_.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+#endif
+  }
+
+#if PARALLAX_EMBREE_MAJOR == 4
+  void intersect(RTCScene scene, RTCRayHit& rayHit) {
+    rtcIntersect1(scene, &rayHit, &intersectArguments_);
+  }
+  void occluded(RTCScene scene, RTCRay& ray) {
+    rtcOccluded1(scene, &ray, &occludedArguments_);
+  }
+  // A packet query, `query` being rtcIntersect4/8/16 or rtcOccluded4/8/16.
+  template <class Packet, class Arguments>
+  void packet(void (*query)(const int*, RTCScene, Packet*, Arguments*), const int* valid,
+              RTCScene scene, Packet& rays) {
+    if constexpr (std::is_same_v<Arguments, RTCIntersectArguments>)
+      query(valid, scene, &rays, &intersectArguments_);
+    else
+      query(valid, scene, &rays, &occludedArguments_);
+  }
+#else
+  void intersect(RTCScene scene, RTCRayHit& rayHit) {
+    rtcIntersect1(scene, &context_, &rayHit);
+  }
+  void occluded(RTCScene scene, RTCRay& ray) {
+    rtcOccluded1(scene, &context_, &ray);
+  }
+  template <class Packet>
+  void packet(void (*query)(const int*, RTCScene, RTCIntersectContext*, Packet*), const int* valid,
+              RTCScene scene, Packet& rays) {
+    query(valid, scene, &context_, &rays);
+  }
+#endif
+
+ private:
+#if PARALLAX_EMBREE_MAJOR == 4
+  RTCIntersectArguments intersectArguments_;
+  RTCOccludedArguments occludedArguments_;
+#else
+  RTCIntersectContext context_;
+#endif
+};
 
 struct Accelerator::Impl {
   RTCDevice device = nullptr;
@@ -268,29 +354,31 @@ void occludedInParts(const int valid[16], RTCRay16& ray, const Occluded& occlude
 }
 
 // rtcIntersect16 at the accelerator's packet width.
-void intersectPacket(int width, const int valid[16], RTCScene scene, RTCIntersectContext& context,
+void intersectPacket(int width, const int valid[16], RTCScene scene, EmbreeQuery& query,
                      RTCRayHit16& rayHit) {
   if (width == 8)
     return intersectInParts<8, RTCRayHit8>(valid, rayHit, [&](const int* v, RTCRayHit8& part) {
-      rtcIntersect8(v, scene, &context, &part);
+      query.packet(rtcIntersect8, v, scene, part);
     });
   if (width == 4)
     return intersectInParts<4, RTCRayHit4>(valid, rayHit, [&](const int* v, RTCRayHit4& part) {
-      rtcIntersect4(v, scene, &context, &part);
+      query.packet(rtcIntersect4, v, scene, part);
     });
-  rtcIntersect16(valid, scene, &context, &rayHit);
+  query.packet(rtcIntersect16, valid, scene, rayHit);
 }
 
 // rtcOccluded16 at the accelerator's packet width.
-void occludedPacket(int width, const int valid[16], RTCScene scene, RTCIntersectContext& context,
+void occludedPacket(int width, const int valid[16], RTCScene scene, EmbreeQuery& query,
                     RTCRay16& ray) {
   if (width == 8)
-    return occludedInParts<8, RTCRay8>(
-        valid, ray, [&](const int* v, RTCRay8& part) { rtcOccluded8(v, scene, &context, &part); });
+    return occludedInParts<8, RTCRay8>(valid, ray, [&](const int* v, RTCRay8& part) {
+      query.packet(rtcOccluded8, v, scene, part);
+    });
   if (width == 4)
-    return occludedInParts<4, RTCRay4>(
-        valid, ray, [&](const int* v, RTCRay4& part) { rtcOccluded4(v, scene, &context, &part); });
-  rtcOccluded16(valid, scene, &context, &ray);
+    return occludedInParts<4, RTCRay4>(valid, ray, [&](const int* v, RTCRay4& part) {
+      query.packet(rtcOccluded4, v, scene, part);
+    });
+  query.packet(rtcOccluded16, valid, scene, ray);
 }
 
 // The widest packet the device's kernels run natively.
@@ -301,6 +389,27 @@ int widestNativePacket(RTCDevice device) {
 }
 
 }  // namespace
+
+std::string EmbreeLibrary::name() const {
+  return "Embree " + std::to_string(major) + "." + std::to_string(minor) + "." +
+         std::to_string(patch);
+}
+
+const EmbreeLibrary& embreeLibrary() {
+  static const EmbreeLibrary library = [] {
+    RTCDevice device = rtcNewDevice("threads=1");
+    if (!device)
+      throw std::runtime_error(std::string("Embree: cannot create device: ") +
+                               errorName(rtcGetDeviceError(nullptr)));
+    EmbreeLibrary found;
+    found.major = int(rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_VERSION_MAJOR));
+    found.minor = int(rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_VERSION_MINOR));
+    found.patch = int(rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_VERSION_PATCH));
+    rtcReleaseDevice(device);
+    return found;
+  }();
+  return library;
+}
 
 Accelerator::Impl::~Impl() {
   if (scene) rtcReleaseScene(scene);
@@ -439,13 +548,11 @@ BuildQuality Accelerator::buildQuality() const {
 
 Hit Accelerator::intersect(const Ray& ray) const {
   if (!traceable(ray)) return Hit{};
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRayHit rayHit;
   fillRay(ray, rayHit.ray);
   rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &context, &rayHit);
+  EmbreeQuery(EmbreeQuery::Rays::Incoherent).intersect(impl_->scene, rayHit);
   if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Hit{};
   const RTCHit& h = rayHit.hit;
   return {rayHit.ray.tfar, h.geomID, h.primID, h.u, h.v, {h.Ng_x, h.Ng_y, h.Ng_z}};
@@ -453,11 +560,9 @@ Hit Accelerator::intersect(const Ray& ray) const {
 
 bool Accelerator::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRay shadow;
   fillRay(ray, shadow);
-  rtcOccluded1(impl_->scene, &context, &shadow);
+  EmbreeQuery(EmbreeQuery::Rays::Incoherent).occluded(impl_->scene, shadow);
   // Embree marks an occluded ray by setting tfar to -infinity.
   return shadow.tfar == -std::numeric_limits<float>::infinity();
 }
@@ -480,9 +585,7 @@ ScopedPacketLog::~ScopedPacketLog() {
 PARALLAX_LANE_KERNEL void Accelerator::intersect16(const RayPacket16& rays,
                                                    HitPacket16& hits) const {
   if (openPacketLog) openPacketLog->closest.push_back(rays);
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  EmbreeQuery query(EmbreeQuery::Rays::Coherent);
   alignas(64) RTCRayHit16 rayHit;
   fillRays(rays, rayHit.ray);
   for (int lane = 0; lane < 16; ++lane) {
@@ -492,7 +595,7 @@ PARALLAX_LANE_KERNEL void Accelerator::intersect16(const RayPacket16& rays,
   alignas(64) int valid[16];
   std::memcpy(valid, rays.active, sizeof(valid));
   if (guardPacket(rayHit.ray, valid) > 0)
-    intersectPacket(impl_->packetWidth, valid, impl_->scene, context, rayHit);
+    intersectPacket(impl_->packetWidth, valid, impl_->scene, query, rayHit);
   const RTCHit16& h = rayHit.hit;
   for (int lane = 0; lane < 16; ++lane) {
     const bool hit = valid[lane] != 0 && h.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
@@ -511,15 +614,13 @@ PARALLAX_LANE_KERNEL void Accelerator::intersect16(const RayPacket16& rays,
 PARALLAX_LANE_KERNEL void Accelerator::occluded16(const RayPacket16& rays,
                                                   bool occludedOut[16]) const {
   if (openPacketLog) openPacketLog->shadow.push_back(rays);
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  EmbreeQuery query(EmbreeQuery::Rays::Coherent);
   alignas(64) RTCRay16 shadow;
   fillRays(rays, shadow);
   alignas(64) int valid[16];
   std::memcpy(valid, rays.active, sizeof(valid));
   if (guardPacket(shadow, valid) > 0)
-    occludedPacket(impl_->packetWidth, valid, impl_->scene, context, shadow);
+    occludedPacket(impl_->packetWidth, valid, impl_->scene, query, shadow);
   for (int lane = 0; lane < 16; ++lane)
     occludedOut[lane] =
         valid[lane] != 0 && shadow.tfar[lane] == -std::numeric_limits<float>::infinity();
@@ -551,9 +652,8 @@ namespace {
 
 // The limit's shading stand-in: one shadow ray from every hit of `primary` toward the light.
 // Returns the number of shadow rays traced.
-PARALLAX_LANE_KERNEL uint32_t traceRawShadows(int width, RTCScene scene,
-                                              RTCIntersectContext& context, RTCRayHit16& primary,
-                                              const int primaryValid[16],
+PARALLAX_LANE_KERNEL uint32_t traceRawShadows(int width, RTCScene scene, EmbreeQuery& query,
+                                              RTCRayHit16& primary, const int primaryValid[16],
                                               const Vec3f& lightPosition) {
   alignas(64) RTCRay16 shadow;
   alignas(64) int shadowValid[16];
@@ -580,7 +680,7 @@ PARALLAX_LANE_KERNEL uint32_t traceRawShadows(int width, RTCScene scene,
   }
   shadowCount = uint32_t(guardPacket(shadow, shadowValid));
   if (shadowCount == 0) return 0;
-  occludedPacket(width, shadowValid, scene, context, shadow);
+  occludedPacket(width, shadowValid, scene, query, shadow);
   // The occlusion results are otherwise unused; a volatile store keeps them observable.
   uint32_t occluded = 0;
   for (int lane = 0; lane < 16; ++lane) occluded += shadowValid[lane] != 0 && shadow.tfar[lane] < 0;
@@ -608,9 +708,7 @@ PARALLAX_LANE_KERNEL RawTraceCount Accelerator::traceRawLimit(const PinholeGrid&
   if (rowBegin >= rowEnd || grid.width <= 0) return {};
   const int n = strataPerAxis(grid.samplesPerPixel);
 
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // a 4x4 pixel block shares one eye
+  EmbreeQuery query(EmbreeQuery::Rays::Coherent);  // a 4x4 pixel block shares one eye
   alignas(64) RTCRayHit16 primary;
   alignas(64) int primaryValid[16];
   RawTraceCount count;
@@ -640,9 +738,9 @@ PARALLAX_LANE_KERNEL RawTraceCount Accelerator::traceRawLimit(const PinholeGrid&
           primary.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
         }
         count.rays += uint64_t(guardPacket(primary.ray, primaryValid));
-        intersectPacket(impl_->packetWidth, primaryValid, impl_->scene, context, primary);
+        intersectPacket(impl_->packetWidth, primaryValid, impl_->scene, query, primary);
         countPrimaries(primary, primaryValid, count);
-        count.rays += traceRawShadows(impl_->packetWidth, impl_->scene, context, primary,
+        count.rays += traceRawShadows(impl_->packetWidth, impl_->scene, query, primary,
                                       primaryValid, lightPosition);
       }
   return count;
@@ -650,9 +748,7 @@ PARALLAX_LANE_KERNEL RawTraceCount Accelerator::traceRawLimit(const PinholeGrid&
 
 PARALLAX_LANE_KERNEL RawTraceCount Accelerator::traceRawPacket(const RayPacket16& rays,
                                                                const Vec3f& lightPosition) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  EmbreeQuery query(EmbreeQuery::Rays::Coherent);
   alignas(64) RTCRayHit16 primary;
   fillRays(rays, primary.ray);
   for (int lane = 0; lane < 16; ++lane) {
@@ -663,17 +759,15 @@ PARALLAX_LANE_KERNEL RawTraceCount Accelerator::traceRawPacket(const RayPacket16
   std::memcpy(valid, rays.active, sizeof(valid));
   RawTraceCount count;
   count.rays = uint64_t(guardPacket(primary.ray, valid));
-  intersectPacket(impl_->packetWidth, valid, impl_->scene, context, primary);
+  intersectPacket(impl_->packetWidth, valid, impl_->scene, query, primary);
   countPrimaries(primary, valid, count);
   count.rays +=
-      traceRawShadows(impl_->packetWidth, impl_->scene, context, primary, valid, lightPosition);
+      traceRawShadows(impl_->packetWidth, impl_->scene, query, primary, valid, lightPosition);
   return count;
 }
 
 RawTraceCount Accelerator::replay(const PacketLog& log) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  EmbreeQuery query(EmbreeQuery::Rays::Coherent);
   RawTraceCount count;
   alignas(64) int valid[16];
   for (const RayPacket16& rays : log.closest) {
@@ -686,7 +780,7 @@ RawTraceCount Accelerator::replay(const PacketLog& log) const {
     std::memcpy(valid, rays.active, sizeof(valid));
     for (int lane = 0; lane < 16; ++lane) count.rays += valid[lane] != 0;
     if (guardPacket(rayHit.ray, valid) > 0)
-      intersectPacket(impl_->packetWidth, valid, impl_->scene, context, rayHit);
+      intersectPacket(impl_->packetWidth, valid, impl_->scene, query, rayHit);
     countPrimaries(rayHit, valid, count);
   }
   for (const RayPacket16& rays : log.shadow) {
@@ -695,7 +789,7 @@ RawTraceCount Accelerator::replay(const PacketLog& log) const {
     std::memcpy(valid, rays.active, sizeof(valid));
     for (int lane = 0; lane < 16; ++lane) count.rays += valid[lane] != 0;
     if (guardPacket(shadow, valid) > 0)
-      occludedPacket(impl_->packetWidth, valid, impl_->scene, context, shadow);
+      occludedPacket(impl_->packetWidth, valid, impl_->scene, query, shadow);
   }
   return count;
 }

@@ -115,6 +115,16 @@ class ScopedPacketLog {
   PacketLog* outer_;
 };
 
+// The Embree library the program runs on, as the loaded library reports it (Embree 3 on
+// Debian 12, Embree 4 on Debian 13): for --version, bench and render.json.
+struct EmbreeLibrary {
+  int major = 0, minor = 0, patch = 0;
+  std::string name() const;  // "Embree 4.3.3"
+};
+// Asks a device once and remembers the answer. Throws std::runtime_error if Embree cannot make
+// a device at all.
+const EmbreeLibrary& embreeLibrary();
+
 class Accelerator {
  public:
   // Builds the Embree scene from every mesh and sphere: geometry IDs 0..M-1 are the meshes,

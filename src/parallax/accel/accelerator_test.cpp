@@ -15,6 +15,13 @@
 #include "parallax/core/error.h"
 #include "parallax/core/random.h"
 
+// The header this build compiled against: the truth the library's own report is checked with.
+#if PARALLAX_EMBREE_MAJOR == 4
+#include <embree4/rtcore_config.h>
+#else
+#include <embree3/rtcore_config.h>
+#endif
+
 namespace parallax {
 namespace {
 
@@ -525,6 +532,17 @@ TEST_P(AcceleratorIsa, UntraceableActiveLanesMiss) {
       EXPECT_NEAR(hits.t[lane], 4.0f, 1e-5f);
     }
   }
+}
+
+// The Embree that runs (its device's answer) is the one the build compiled against.
+TEST(AcceleratorLibrary, ReportsTheEmbreeTheBuildCompiledAgainst) {
+  const EmbreeLibrary& library = embreeLibrary();
+  EXPECT_EQ(library.major, PARALLAX_EMBREE_MAJOR);
+  EXPECT_EQ(library.major, RTC_VERSION_MAJOR);
+  EXPECT_EQ(library.minor, RTC_VERSION_MINOR);
+  EXPECT_EQ(library.patch, RTC_VERSION_PATCH);
+  EXPECT_EQ(library.name(), std::string("Embree ") + RTC_VERSION_STRING);
+  EXPECT_EQ(&embreeLibrary(), &library);  // asked once
 }
 
 TEST(AcceleratorConfig, RefusedConfigurationIsAnInputErrorNamingIt) {

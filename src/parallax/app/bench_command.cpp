@@ -249,6 +249,7 @@ void runBench(const BenchOptions& o) {
     json.set("/packet_width", r.packetWidth);
     json.set("/native_packet_width", r.nativePacketWidth);
     json.set("/lane_kernels", laneKernelIsa());
+    json.set("/embree", embreeLibrary().name());
     json.set("/bvh_quality", quality);
     const auto rate = [&json](const std::string& key, const RayRate& rays) {
       json.set(key + "rays", rays.rays);
@@ -281,8 +282,8 @@ void runBench(const BenchOptions& o) {
   std::printf("scene        %s (%zu triangles), %s camera, %dx%d, %d spp, %d workers\n",
               scene.source.c_str(), scene.triangleCount(), o.camera.c_str(), width, height,
               o.sampling.spp, r.workers);
-  std::printf("embree       %d-ray packets (the ISA's native width: %d), %s-quality BVH\n",
-              r.packetWidth, r.nativePacketWidth, quality);
+  std::printf("embree       %s, %d-ray packets (the ISA's native width: %d), %s-quality BVH\n",
+              embreeLibrary().name().c_str(), r.packetWidth, r.nativePacketWidth, quality);
   std::printf("our kernels  %s (core/lane_kernel.h)\n", laneKernelIsa());
   const auto line = [](const char* name, const RayRate& rays, const char* what) {
     std::printf("%-12s %12llu rays in %.3f s  %s, %2.0f %% of primaries miss (%s)\n", name,
