@@ -5,8 +5,11 @@ BUILD_FUZZ ?= build-fuzz
 FUZZ_SECONDS ?= 7
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
+OUT ?= out
+# The Debian release this machine does not run, for test-other-debian (docs/install.md).
+OTHER_DEBIAN ?= $(shell . /etc/os-release 2>/dev/null; [ "$$VERSION_CODENAME" = trixie ] && echo bookworm || echo trixie)
 
-.PHONY: all deps deps-run data configure configure-run build build-cli run test test-release test-asan test-fuzz bench format clean
+.PHONY: all deps deps-run data configure configure-run build build-cli run test test-release test-asan test-fuzz test-other-debian bench format clean
 
 all: build
 
@@ -38,8 +41,8 @@ build: configure
 # Renders the built-in scene with the built-in display into out/: the two layer images
 # (image.png, mask.png, render.json) and an ordinary picture of the scene (view.png).
 run: build-cli
-	./$(BUILD)/parallax render -o out
-	./$(BUILD)/parallax view -o out/view.png
+	./$(BUILD)/parallax render -o $(OUT)
+	./$(BUILD)/parallax view -o $(OUT)/view.png
 
 test: test-release test-asan
 	$(MAKE) test-fuzz
@@ -59,6 +62,13 @@ test-asan: data deps
 # Every fuzz target of fuzz/ for FUZZ_SECONDS seconds (clang, libFuzzer, ASan + UBSan; fuzz/README.md).
 test-fuzz: data deps
 	BUILD_FUZZ=$(BUILD_FUZZ) JOBS=$(JOBS) tools/fuzz --ci $(FUZZ_SECONDS)
+
+# The other Debian release in a debootstrap root (tools/in-debian; Debian 13 on a Debian 12
+# machine): `make run` and the Release suite there, then the built-in layers of both releases'
+# builds compared (tests/releases_agree.sh). Its builds go to build-RELEASE, beside ours.
+test-other-debian: build
+	tools/in-debian $(OTHER_DEBIAN) -- make run test-release
+	tests/releases_agree.sh $(OTHER_DEBIAN)
 
 bench: build
 	./$(BUILD)/parallax bench

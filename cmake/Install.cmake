@@ -74,8 +74,8 @@ install(DIRECTORY examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
         COMPONENT documentation USE_SOURCE_PERMISSIONS)
 
 # CPack: a Debian package whose dependencies dpkg-shlibdeps reads off the installed binaries,
-# so they are the Debian runtime packages (libembree3-3, libtbb12, libavcodec59, ...), not the
-# -dev ones the build needs.
+# so they are the release's own runtime packages (libembree3-3 or libembree4-4, libtbb12,
+# libavcodec59 or libavcodec61, ...), not the -dev ones the build needs.
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME parallax)
 set(CPACK_PACKAGE_VENDOR "parallax")

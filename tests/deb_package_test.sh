@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # CPack's Debian package: its dependencies are Debian runtime packages (read off the binaries by
-# dpkg-shlibdeps), each one a package this machine has installed, none of them a -dev package;
+# dpkg-shlibdeps), each one a package this machine has installed, none of them a -dev package,
+# and among them the very packages that hold the libraries the build linked (libembree3-3 or
+# libembree4-4, libavcodec59 or libavcodec61, ...: this release's own, asked of dpkg);
 # it holds the CLI, the library, the CMake and pkg-config files; and the CLI unpacked from it
 # runs and renders.
 #   deb_package_test.sh BUILD_DIR
@@ -17,8 +19,24 @@ deb=$(ls "$work"/out/parallax_*_amd64.deb 2>/dev/null | head -1)
 
 depends=$(dpkg-deb -f "$deb" Depends)
 [ -n "$depends" ] || fail "the package has no Depends"
-for needed in libembree3-3 libtbb12 libavcodec libassimp libc6 libstdc++6; do
-  grep -q "$needed" <<<"$depends" || fail "Depends lacks $needed: $depends"
+# The package that holds a shared library the build's libparallax.so loads (ldd), per dpkg.
+owner() {
+  local path
+  path=$(ldd "$build/lib/libparallax.so" | awk -v lib="$1" 'index($1, lib ".so") == 1 {print $3; exit}')
+  [ -n "$path" ] || fail "libparallax.so does not load $1"
+  # Merged /usr: dpkg knows a file by the path its package ships, /usr/lib/... or /lib/...
+  local real
+  real=$(readlink -f "$path")
+  { dpkg -S "$real" 2>/dev/null || dpkg -S "${real#/usr}" 2>/dev/null; } | head -1 | cut -d: -f1
+}
+for library in libembree3 libembree4 libtbb libavcodec libassimp libc libstdc++; do
+  case "$library" in  # one Embree or the other, whichever the build found
+    libembree*) ldd "$build/lib/libparallax.so" | grep -q "^\s*$library[.]so" || continue ;;
+  esac
+  package=$(owner "$library")
+  [ -n "$package" ] || fail "dpkg knows no package holding $library"
+  tr ',' '\n' <<<"$depends" | sed 's/(.*)//; s/ //g' | grep -qxF "$package" || fail "Depends lacks $package ($library): $depends"
+  echo "depends on $package for $library"
 done
 for entry in $(tr ',' '\n' <<<"$depends" | sed 's/(.*)//; s/ //g'); do
   case "$entry" in *-dev) fail "Depends names a development package: $entry" ;; esac

@@ -9,6 +9,7 @@
 #include <assimp/Importer.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <map>
 #include <utility>
@@ -53,7 +54,9 @@ class AssimpConverter {
     while (!stack.empty()) {
       const auto [node, parent] = stack.back();
       stack.pop_back();
-      const Mat4 fileFromNode = parent * toMat4(node->mTransformation);
+      const Mat4 fileFromNode = node == scene_.mRootNode && rootIsAssimpsAxisConversion()
+                                    ? parent
+                                    : parent * toMat4(node->mTransformation);
       for (unsigned i = 0; i < node->mNumMeshes; ++i)
         addMesh(*node, node->mMeshes[i], fileFromNode);
       for (unsigned i = node->mNumChildren; i-- > 0;)
@@ -198,6 +201,19 @@ class AssimpConverter {
                                    ", which is not supported; taking +Y as up");
       contents_.declaredUp = UpAxis::Y;
     }
+  }
+
+  // assimp 5.3 and later (Debian 13's 5.4) turn an FBX file's declared axes into the
+  // transform of the root node it makes for the file (Z-up becomes Y-up; with contradictory
+  // axes, a singular matrix), where 5.2 (Debian 12) leaves it at identity and reports the axes
+  // only as metadata. We apply the declared up axis ourselves, as the `up` option says
+  // (readUpAxis), so that root transform is left out and the file's own coordinates are the
+  // same with either assimp. Nothing the file says is lost: an FBX file has no transform of
+  // its own for that root (its objects hang below it with theirs).
+  bool rootIsAssimpsAxisConversion() const {
+    std::string extension = std::filesystem::path(path_).extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return extension == ".fbx";
   }
 
   const std::string& path_;

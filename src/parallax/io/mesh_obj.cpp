@@ -9,7 +9,9 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -22,9 +24,32 @@
 namespace parallax::meshio {
 namespace {
 
+// A face's relative (negative) or zero index, which must name one of the `defined` elements
+// above its line. tinyobjloader 2.0rc10 (Debian 12) reads one that does not as an index we
+// catch later, 2.0rc13 (Debian 13) refuses the file with its own message; checked here, the
+// message is ours and the same with either. Components that are not integers are left to it.
+void checkRelativeIndices(const std::string& path, size_t lineNumber, std::string_view corner,
+                          const size_t defined[3]) {
+  static const char* const names[3] = {"vertex", "texture coordinate", "normal"};
+  for (int component = 0; component < 3 && !corner.empty(); ++component) {
+    const size_t slash = std::min(corner.find('/'), corner.size());
+    const std::string_view digits = corner.substr(0, slash);
+    corner.remove_prefix(std::min(slash + 1, corner.size()));
+    long long index = 0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size()) continue;
+    if (index == 0 || (index < 0 && uint64_t(-index) > defined[component]))
+      fail(path, "line " + std::to_string(lineNumber) + ": " + names[component] + " index " +
+                     std::to_string(index) + " is out of range (" +
+                     std::to_string(defined[component]) + " defined before it)");
+  }
+}
+
 // Checks that the numbers of every v, vn and vt line parse and are finite, and that there
-// are enough of them, so that no bad value reaches tinyobjloader (which would read it as 0).
+// are enough of them, so that no bad value reaches tinyobjloader (which would read it as 0);
+// and that faces' relative indices name something above them.
 void checkNumbers(const std::string& path, const std::string& folder, const std::string& text) {
+  size_t defined[3] = {0, 0, 0};  // vertices, texture coordinates, normals so far
   size_t lineNumber = 0;
   for (size_t pos = 0; pos < text.size();) {
     const size_t end = std::min(text.find('\n', pos), text.size());
@@ -35,12 +60,16 @@ void checkNumbers(const std::string& path, const std::string& folder, const std:
     size_t needed = 0;
     std::string what;
     if (keyword == "v")
-      needed = 3, what = "vertex coordinate";
+      needed = 3, what = "vertex coordinate", ++defined[0];
     else if (keyword == "vn")
-      needed = 3, what = "normal";
+      needed = 3, what = "normal", ++defined[2];
     else if (keyword == "vt")
-      needed = 1, what = "texture coordinate";
-    else if (keyword == "mtllib") {
+      needed = 1, what = "texture coordinate", ++defined[1];
+    else if (keyword == "f") {
+      for (std::string_view corner = words.next(); !corner.empty(); corner = words.next())
+        checkRelativeIndices(path, lineNumber, corner, defined);
+      continue;
+    } else if (keyword == "mtllib") {
       // tinyobjloader opens these itself: a folder, a device or a FIFO must not reach it.
       for (std::string_view name = words.next(); !name.empty(); name = words.next()) {
         const std::string file = (std::filesystem::path(folder) / std::string(name)).string();
