@@ -228,8 +228,9 @@ void writeDisplayLayers(const std::string& output, const Image& image, const Ima
 
   // Both pictures encoded at once (each on every core as well: io/png_encoder.h).
   std::string imagePng, maskPng;
-  parallelInvoke(
-      0, [&] { imagePng = pngBytes(image); }, [&] { maskPng = pngBytes(mask); });
+  const auto encodeImage = [&] { imagePng = pngBytes(image); };
+  const auto encodeMask = [&] { maskPng = pngBytes(mask); };
+  parallelInvoke(0, encodeImage, encodeMask);
   OutputSet set(output);
   writeFileAtomically(set.path("image.png"), imagePng);
   writeFileAtomically(set.path("mask.png"), maskPng);

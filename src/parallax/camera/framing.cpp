@@ -130,8 +130,8 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
       today.fit = given.fit ? *given.fit : bounds;
       scale = window.widthMm / double(fitDisplayWidth(today, window));
     } else if (f.fit == DisplayFit::Window || (f.fit == DisplayFit::Depth && given.focusMm)) {
-      scale = largestScale(
-          corners, window, [&](double) { return shift; }, fallback);
+      const auto sameShift = [&](double) { return shift; };
+      scale = largestScale(corners, window, sameShift, fallback);
     } else if (f.fit == DisplayFit::Depth) {
       // The focus plane moves with the scale (a deeper picture puts it elsewhere) and the fit
       // depends on the focus (content nearer the eye looks larger): solve both at once, the

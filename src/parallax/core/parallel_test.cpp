@@ -57,9 +57,9 @@ TEST(Parallel, RethrowsAChunksException) {
                              if (begin == 57) throw std::runtime_error("chunk 57");
                            }),
                std::runtime_error);
-  EXPECT_THROW(parallelInvoke(
-                   2, [] {}, [] { throw std::runtime_error("second"); }),
-               std::runtime_error);
+  const auto nothing = [] {};
+  const auto throwSecond = [] { throw std::runtime_error("second"); };
+  EXPECT_THROW(parallelInvoke(2, nothing, throwSecond), std::runtime_error);
 }
 
 TEST(Parallel, WorkerCount) {

@@ -48,7 +48,7 @@ InputError inputError(const std::string& file, const std::string& pointer,
 }
 
 void requireRegularFile(const std::string& path, const std::string& pointer) {
-  struct stat info {};
+  struct stat info = {};
   if (::stat(path.c_str(), &info) != 0) {
     const int error = errno;
     if (error == ENOENT || error == ENOTDIR) throw inputError(path, pointer, "file not found");

@@ -256,39 +256,23 @@ TEST_F(VideoWriterTest, BadInputsNameTheirOption) {
   fs::create_directories(path("folder.mp4"));
   EXPECT_EQ(optionOf([&] { writer.open(path("folder.mp4"), 32, 32); }), "--video");
   EXPECT_EQ(optionOf([&] { writer.open(path("x.mp4"), 0, 32); }), "--video");
-  EXPECT_EQ(optionOf([&] {
-              writer.open(path("x.mp4"), 32, 32, {"vp9", 23, 30});
-            }),
-            "--video-codec");
-  EXPECT_EQ(optionOf([&] {
-              writer.open(path("x.webm"), 32, 32, {"h264", 23, 30});
-            }),
-            "--video-codec");
-  EXPECT_EQ(optionOf([&] {
-              writer.open(path("x.mp4"), 32, 32, {"mpeg2", 23, 30});
-            }),
-            "--video-codec");
-  EXPECT_EQ(optionOf([&] {
-              writer.open(path("x.mp4"), 32, 32, {"h264", 52, 30});
-            }),
-            "--video-quality");
-  EXPECT_EQ(optionOf([&] {
-              writer.open(path("x.mp4"), 32, 32, {"h264", -1, 30});
-            }),
-            "--video-quality");
-  EXPECT_EQ(optionOf([&] {
-              writer.open(path("x.webm"), 32, 32, {"vp9", 64, 30});
-            }),
-            "--video-quality");
+  // The option a 32x32 open of `file` with `options` blames.
+  const auto blamed = [&](const std::string& file, const VideoOptions& options,
+                          const VideoOptionNames& names = {}) {
+    return optionOf([&] { writer.open(path(file), 32, 32, options, names); });
+  };
+  EXPECT_EQ(blamed("x.mp4", {"vp9", 23, 30}), "--video-codec");
+  EXPECT_EQ(blamed("x.webm", {"h264", 23, 30}), "--video-codec");
+  EXPECT_EQ(blamed("x.mp4", {"mpeg2", 23, 30}), "--video-codec");
+  EXPECT_EQ(blamed("x.mp4", {"h264", 52, 30}), "--video-quality");
+  EXPECT_EQ(blamed("x.mp4", {"h264", -1, 30}), "--video-quality");
+  EXPECT_EQ(blamed("x.webm", {"vp9", 64, 30}), "--video-quality");
   EXPECT_NO_THROW(checkVideoOptions(path("x.webm"), {"vp9", 63, 30}));
-  EXPECT_EQ(optionOf([&] { writer.open(path("x.mp4"), 32, 32, {"h264", 23, 0}); }), "--fps");
-  EXPECT_EQ(optionOf([&] { writer.open(path("x.mp4"), 32, 32, {"h264", 23, NAN}); }), "--fps");
-  EXPECT_EQ(optionOf([&] { writer.open(path("x.mp4"), 32, 32, {"h264", 23, 241}); }), "--fps");
+  EXPECT_EQ(blamed("x.mp4", {"h264", 23, 0}), "--fps");
+  EXPECT_EQ(blamed("x.mp4", {"h264", 23, NAN}), "--fps");
+  EXPECT_EQ(blamed("x.mp4", {"h264", 23, 241}), "--fps");
   // The caller's names for its options.
-  EXPECT_EQ(optionOf([&] {
-              writer.open(path("x.avi"), 32, 32, {}, {"-o", "-c", "-q", "-r"});
-            }),
-            "-o");
+  EXPECT_EQ(blamed("x.avi", {}, {"-o", "-c", "-q", "-r"}), "-o");
   EXPECT_EQ(folderEntries(), std::vector<std::string>{"folder.mp4"});
 
   // A frame of another size; then finishing without frames.
