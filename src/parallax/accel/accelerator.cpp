@@ -1,8 +1,8 @@
 // The Embree back end of Accelerator: scene construction, single-ray and 16-ray queries, and
 // the raw-rate benchmark loop. This is the only file in parallax that includes Embree; it
 // builds against Embree 3 (Debian 12) and Embree 4 (Debian 13 and later), whichever CMake
-// found (PARALLAX_EMBREE_MAJOR), and the two differ only in how a query is handed its flags
-// (EmbreeQuery below) and in the ISA names a device configuration may use.
+// found (PARALLAX_EMBREE_MAJOR); the two differ only in how a query is handed its flags
+// (EmbreeQuery below).
 #include "parallax/accel/accelerator.h"
 
 #include "parallax/core/lane_kernel.h"
@@ -230,7 +230,8 @@ void fillRay(const Ray& ray, RTCRay& out) {
 // every lane whose tnear <= tfar. So every lane that is not to be traced gets a harmless ray
 // that no kernel traces (origin 0, direction +z, tnear 1 > tfar 0), and an active lane whose
 // ray Embree would reject (non-finite or huge numbers, an empty or negative interval) is
-// turned off and reads as a miss: it cannot hit anything meaningful.
+// turned off and reads as a miss: it cannot hit anything meaningful. The same guard serves
+// Embree 4, whose packet and untraceable-lane tests pass the same way on every ISA.
 constexpr float kLargestCoordinate = 1e18f;  // below Embree's FLT_LARGE (1.844e18)
 
 bool traceable(float ox, float oy, float oz, float dx, float dy, float dz, float tMin, float tMax) {
@@ -456,8 +457,8 @@ Accelerator::Accelerator(const Scene& scene, const AcceleratorOptions& options)
   impl.scene = rtcNewScene(impl.device);
   impl.throwIfError("scene creation");
   // Static scenes are built once and traced many times: the quality follows how many.
-  // A moving one is refitted per frame (Embree 3: RTC_SCENE_FLAG_DYNAMIC with geometries of
-  // RTC_BUILD_QUALITY_REFIT keep their BVH's topology and update its bounds).
+  // A moving one is refitted per frame (Embree 3 and 4: RTC_SCENE_FLAG_DYNAMIC with geometries
+  // of RTC_BUILD_QUALITY_REFIT keep their BVH's topology and update its bounds).
   impl.dynamic = options.dynamic;
   rtcSetSceneFlags(impl.scene, impl.dynamic ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE);
   rtcSetSceneBuildQuality(impl.scene, impl.dynamic ? RTC_BUILD_QUALITY_LOW : quality);
