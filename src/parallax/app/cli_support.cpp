@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "parallax/accel/accelerator.h"
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
@@ -19,6 +20,10 @@
 #include "parallax/io/scene_file.h"
 
 namespace parallax::app {
+
+std::string versionText() {
+  return std::string("parallax ") + PARALLAX_VERSION + " (" + embreeLibrary().name() + ")";
+}
 
 Vec3f parseVec3(const std::string& option, const std::string& text) {
   Vec3f v;

@@ -28,6 +28,10 @@ namespace parallax::app {
 
 inline constexpr int kExitInputError = 2;
 
+// "parallax 0.1.0 (Embree 4.3.3)": this build's version and the Embree it runs on (3 on
+// Debian 12, 4 on Debian 13), for `parallax --version` and Python's parallax.version().
+std::string versionText();
+
 // ---- Ranges of numeric options (docs/inputs.md) -----------------------------------------
 // Validators that read the option's text themselves, so that garbage, NaN and infinity get the
 // same one-line message naming the option ("--fov: must be a number above 0 and below 180, got

@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/cluster/process_group.h"
@@ -45,10 +44,7 @@ int main(int argc, char** argv) {
   parallax::cluster::ProcessGroup& group = session.group();
   CLI::App cli{"parallax: ray tracing for two-layer parallax-barrier 3-D displays"};
   // The ray tracing library too: Embree 3 or 4, whichever this build runs on.
-  cli.set_version_flag("--version", [] {
-    return std::string("parallax ") + PARALLAX_VERSION_STRING + " (" +
-           parallax::embreeLibrary().name() + ")";
-  });
+  cli.set_version_flag("--version", [] { return parallax::app::versionText(); });
   cli.require_subcommand(1);
   parallax::app::addLimitOptions(cli);
   parallax::app::registerDesignCommand(cli);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "parallax/app/cli_support.h"
 #include "parallax/core/error.h"
 #include "parallax/python/bindings_internal.h"
 
@@ -87,6 +88,9 @@ PYBIND11_MODULE(_parallax, module) {
       PyErr_SetString(error->ptr(), text.c_str());
     }
   });
+  // As `parallax --version`: this build and the Embree it runs on.
+  module.attr("__version__") = PARALLAX_VERSION;
+  module.def("version", &parallax::app::versionText);
   module.def(
       "_to_srgb8",
       [](const py::array_t<float, py::array::c_style | py::array::forcecast>& linear) {

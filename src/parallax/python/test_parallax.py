@@ -112,6 +112,13 @@ def layers(scene, small):
     return parallax.render(scene, small, spp=4)
 
 
+def test_version_is_the_cli_version():
+    run = cli("--version")
+    assert run.returncode == 0
+    assert parallax.version() == run.stdout.strip()
+    assert parallax.version().startswith(f"parallax {parallax.__version__} (Embree ")
+
+
 def test_design_is_the_cli_design_json(small):
     expected = json.loads(cli("design", SMALL, "--json", "--depth", 5).stdout)
     assert parallax.design(small, depth=5) == expected

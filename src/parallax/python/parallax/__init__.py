@@ -15,12 +15,12 @@ from typing import Optional, Sequence, Tuple
 import numpy as np
 
 from . import _parallax
-from ._parallax import Display, Error, Scene, load_display, load_scene
+from ._parallax import Display, Error, Scene, __version__, load_display, load_scene, version
 
 __all__ = [
     "Display", "Error", "Scene", "RenderResult", "QuiltResult", "load_scene", "load_display",
     "design", "render", "view", "ideal_view", "quilt", "simulate", "sweep_eyes", "sweep",
-    "quality", "to_srgb8",
+    "quality", "to_srgb8", "version", "__version__",
 ]
 
 Eye = Tuple[float, float, float]
