@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The same pictures on both Debian releases: the built-in render (`parallax render`, the
-# built-in scene and display, as `make run` makes it) by this machine's build (build/) and by
-# the other release's inside its root (build-RELEASE/, tools/in-debian), layer by layer.
+# built-in scene and display, as `make run` makes it) and an ordinary picture of the scene
+# (`parallax view`, shaded with soft shadows) by this machine's build (build/) and by the other
+# release's inside its root (build-RELEASE/, tools/in-debian), picture by picture.
 # Byte for byte equal layers pass at once; layers that differ are decoded and compared as
 # PSNR, which must reach MIN_PSNR dB (default 50: a few levels on a few pixels), and the
 # figures are printed either way. Then bad input, given to both builds, must get the same
@@ -22,14 +23,18 @@ work=build-$release/releases-agree
 rm -rf "$work"
 mkdir -p "$work"
 # (Their warnings, the same on both, are kept for a failure.)
-"$here" render -o "$work/this" >"$work/this.log" 2>&1 || { cat "$work/this.log" >&2; exit 1; }
-tools/in-debian "$release" -- "$there" render -o "$work/$release" >"$work/$release.log" 2>&1 ||
-  { cat "$work/$release.log" >&2; exit 1; }
+for side in this "$release"; do
+  program=$here run=()
+  [ "$side" = this ] || program=$there run=(tools/in-debian "$release" --)
+  { "${run[@]}" "$program" render -o "$work/$side" &&
+    "${run[@]}" "$program" view --size 480x270 -o "$work/$side/view.png"; } >"$work/$side.log" 2>&1 ||
+    { cat "$work/$side.log" >&2; exit 1; }
+done
 
 this_release=$( (. /etc/os-release && echo "$VERSION_CODENAME") )
 echo "built-in render: $this_release ($("$here" --version)) against $release ($(tools/in-debian "$release" -- "$there" --version))"
 status=0
-for layer in image.png mask.png; do
+for layer in image.png mask.png view.png; do
   if cmp -s "$work/this/$layer" "$work/$release/$layer"; then
     echo "  $layer: the same bytes"
     continue
