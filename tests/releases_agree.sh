@@ -78,6 +78,8 @@ for args in "${cases[@]}"; do
     same=$((same + 1))
   fi
 done
-[ -e "$bad/x.png" ] && { echo "  a refused command left $bad/x.png"; status=1; }
+for left in "$bad/x.png" "$bad/out"; do
+  [ ! -e "$left" ] || { echo "  a refused command left $left"; status=1; }
+done
 echo "  bad input: $same of ${#cases[@]} cases give the same message and exit code 2 on both"
 exit $status
