@@ -25,5 +25,7 @@ expect_usage_error "put -- before the command: tools/in-debian trixie -- make te
 expect_usage_error "usage: tools/in-debian RELEASE" trixie --
 expect_usage_error "unknown option '--fast'" trixie --fast -- true
 expect_usage_error "'13' is not a Debian release name" 13 -- true
+help=$("$tool" --help) || fail "in-debian --help failed"
+grep -qF "tools/in-debian RELEASE [--fresh] -- COMMAND" <<<"$help" || fail "--help lacks the usage: $help"
 [ ! -e "$PARALLAX_DEBIAN_ROOTS" ] || fail "a refused call made $PARALLAX_DEBIAN_ROOTS"
-echo "in-debian: 6 usage errors refused with exit code 2, nothing made"
+echo "in-debian: --help, and 6 usage errors refused with exit code 2, nothing made"
