@@ -4,7 +4,7 @@
 # docs/architecture.md says the same. Every edge is there for a reason, given beside it.
 
 # Modules in dependency order: each may use only modules listed before it.
-set(PARALLAX_MODULES core image display scene io accel camera render sim quality layers window video cluster app python)
+set(PARALLAX_MODULES core image display scene io accel camera render sim quality layers window video cluster jobs app python)
 
 set(PARALLAX_USES_core "")
 set(PARALLAX_USES_image core)
@@ -20,9 +20,12 @@ set(PARALLAX_USES_layers core image display scene accel camera render sim qualit
 set(PARALLAX_USES_window core image)           # shows Images on monitors
 set(PARALLAX_USES_video core image)            # encodes Images as video (FFmpeg)
 set(PARALLAX_USES_cluster core)               # the processes of one job (MPI)
-set(PARALLAX_USES_app core image display scene io accel camera render sim quality layers window video cluster)
+# jobs: the request layer under both front ends: typed requests, their checks and estimates, and
+# one runner per use case (docs/architecture.md, "Requests")
+set(PARALLAX_USES_jobs core image display scene io accel camera render sim quality layers video cluster)
+set(PARALLAX_USES_app core image display scene io accel camera render sim quality layers window video cluster jobs)
 # app: the CLI's loaders, option checks and estimates, so Python refuses what the CLI refuses
-set(PARALLAX_USES_python core image display scene io accel camera render sim quality app)
+set(PARALLAX_USES_python core image display scene io accel camera render sim quality jobs app)
 
 # Third-party include prefixes and the one module that may use each (only in its .cpp files).
 set(PARALLAX_THIRD_PARTY embree3 embree4 tbb nlohmann tiny_obj_loader tiny_gltf stb zlib assimp CLI SDL2

@@ -8,7 +8,6 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/app/layer_output.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
 #include "parallax/core/lane_kernel.h"
@@ -16,6 +15,7 @@
 #include "parallax/core/parallel.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/jobs/layer_output.h"
 #include "parallax/render/bench.h"
 #include "parallax/render/display_render.h"
 #include "parallax/sim/simulator.h"
@@ -167,7 +167,7 @@ void runBench(const BenchOptions& o) {
     checkLayerMemory(design, panel.width * (design.spec.subpixelRays ? 3.0 : 1.0), 1,
                      o.display.empty() ? "<built-in display>" : o.display);
     checkTimeEstimate(double(o.simulateViews) * panel.width * panel.height, o.sampling.threads,
-                      "--simulate " + std::to_string(o.simulateViews), "time fewer views");
+                      "simulate", std::to_string(o.simulateViews), "time fewer views");
     return benchSimulator(o.display, o.scene, o.simulateViews, o.json);
   }
   int width = 0, height = 0;

@@ -12,12 +12,12 @@
 
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/app/layer_output.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/jobs/layer_output.h"
 #include "parallax/sim/calibration.h"
 
 namespace parallax::app {
@@ -93,8 +93,8 @@ void runPatterns(const PatternsOptions& o) {
   checkMemoryEstimate(pixels * (kFloatRgbPixelBytes + kRgba8PixelBytes),
                       o.display.empty() ? "<built-in display>" : o.display, "one pattern",
                       "use a smaller display");
-  checkTimeEstimate(pixels * (double(o.settings.periodSteps) + 8), 0,
-                    "--steps " + std::to_string(o.settings.periodSteps), "use fewer steps");
+  checkTimeEstimate(pixels * (double(o.settings.periodSteps) + 8), 0, "steps",
+                    std::to_string(o.settings.periodSteps), "use fewer steps");
   // Everything is checked here, before the first file is written.
   const std::vector<PatternDescription> set =
       withOptionNames([&] { return calibrationPatternSet(display, o.settings); });
@@ -164,7 +164,7 @@ void runPredict(const PredictOptions& o) {
   // Each candidate period simulates every front pixel `samples` times.
   checkTimeEstimate(
       double(o.settings.samplesPerPixel) * spec.imagePanel.width * spec.imagePanel.height, 0,
-      "--samples " + std::to_string(o.settings.samplesPerPixel), "use fewer samples");
+      "samples", std::to_string(o.settings.samplesPerPixel), "use fewer samples");
   const CalibrationPrediction p =
       withOptionNames([&] { return predictCalibration(spec, design, eye, o.settings); });
   const double distance = p.distanceOverGap * design.gapMm;

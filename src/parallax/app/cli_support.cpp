@@ -18,12 +18,9 @@
 #include "parallax/core/memory.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/scene_file.h"
+#include "parallax/jobs/layer_output.h"
 
 namespace parallax::app {
-
-std::string versionText() {
-  return std::string("parallax ") + PARALLAX_VERSION + " (" + embreeLibrary().name() + ")";
-}
 
 Vec3f parseVec3(const std::string& option, const std::string& text) {
   Vec3f v;
@@ -159,40 +156,18 @@ CLI::Validator seedValue() {
       "UINT");
 }
 
-namespace {
-
-double gMaxMemoryGiB = 0;  // 0: the default share of physical memory
-double gMaxSeconds = 0;    // 0: kDefaultMaxSeconds
-
-}  // namespace
-
-double memoryLimitBytes() {
-  return gMaxMemoryGiB > 0 ? gMaxMemoryGiB * kGiB : defaultMemoryLimitBytes(physicalMemoryBytes());
-}
-
 void addMemoryLimitOption(CLI::App& cmd) {
   const uint64_t physical = physicalMemoryBytes();
   const double physicalGiB = physical > 0 ? double(physical) / kGiB : 1e6;
-  cmd.add_option("--max-memory", gMaxMemoryGiB,
+  cmd.add_option("--max-memory", jobs::limits().maxMemoryGiB,
                  "Memory limit in GiB for what the command allocates (default: 3/4 of the "
                  "physical memory); refused before allocating when the estimate exceeds it")
       ->check(realIn(0, physicalGiB, Bound::Open))
       ->type_name("GiB");
 }
 
-void checkPixelCount(double pixels, const std::string& subject) {
-  if (pixels > double(INT_MAX))
-    throw InputError(subject, "",
-                     "more than 2^31 pixels, the most the renderer can index; use a smaller size");
-}
-
-void checkMemoryEstimate(double bytes, const std::string& subject, const std::string& what,
-                         const std::string& advice) {
-  checkMemory(bytes, memoryLimitBytes(), subject, what, advice + ", or raise --max-memory");
-}
-
 void addTimeLimitOption(CLI::App& cmd) {
-  cmd.add_option("--max-time", gMaxSeconds,
+  cmd.add_option("--max-time", jobs::limits().maxSeconds,
                  "Time limit in seconds: work estimated (at an optimistic rate) to take longer is "
                  "refused before it starts (default: one day)")
       ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open))
@@ -202,54 +177,6 @@ void addTimeLimitOption(CLI::App& cmd) {
 void addLimitOptions(CLI::App& cmd) {
   addMemoryLimitOption(cmd);
   addTimeLimitOption(cmd);
-}
-
-void checkTimeEstimate(double samples, int threads, const std::string& subject,
-                       const std::string& advice) {
-  const double cores = std::max(1u, std::thread::hardware_concurrency());
-  const double used = threads > 0 ? std::min(double(threads), cores) : cores;
-  const double seconds = samples / (kSamplesPerSecondPerThread * used);
-  const double limit = gMaxSeconds > 0 ? gMaxSeconds : kDefaultMaxSeconds;
-  if (seconds <= limit) return;
-  char text[256];
-  std::snprintf(text, sizeof text,
-                "needs %.3g samples, at least %s at %.0f M samples/s on %.0f threads (limit %s); ",
-                samples, formatDuration(seconds).c_str(), kSamplesPerSecondPerThread / 1e6, used,
-                formatDuration(limit).c_str());
-  throw InputError(subject, "", text + advice + ", or raise --max-time");
-}
-
-namespace {
-
-JitterSharing parseJitter(const std::string& text) {
-  if (text == "auto") return JitterSharing::Auto;
-  if (text == "pixel") return JitterSharing::Pixel;
-  if (text == "packet") return JitterSharing::Packet;
-  throw InputError("command line", "--jitter",
-                   "expected auto, pixel or packet, got '" + text + "'");
-}
-
-}  // namespace
-
-void SamplingOptions::checkWork(double width, double height, double passes) const {
-  checkTimeEstimate(width * height * double(spp) * passes, threads, "--spp " + std::to_string(spp),
-                    "use fewer samples");
-}
-
-RenderSettings SamplingOptions::settings() const {
-  if (spp < 1) throw InputError("command line", "--spp", "must be at least 1");
-  RenderSettings s;
-  s.samplesPerPixel = spp;
-  s.threads = threads;
-  s.seed = seed;
-  s.jitter = parseJitter(jitter);
-  s.adaptive = adaptive;
-  s.adaptiveThreshold = adaptiveThreshold / 255.0;
-  if (bounces < 0 || bounces > RenderSettings::kMaxBounces)
-    throw InputError("command line", "--bounces",
-                     "must be from 0 to " + std::to_string(RenderSettings::kMaxBounces));
-  s.bounces = bounces;
-  return s;
 }
 
 void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::string& sppHelp) {
@@ -283,37 +210,6 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
       ->check(integerIn(0, RenderSettings::kMaxBounces));
 }
 
-void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f) {
-  json.set(at + "/fit", displayFitName(f.fit));
-  json.set(at + "/focus_mm", f.focusMm);
-  json.set(at + "/depth_budget_mm", f.budgetMm);
-  json.set(at + "/depth_of_field_mm", f.depthOfFieldMm);
-  json.set(at + "/gap_mm", f.gapMm);
-  json.set(at + "/virtual_gap_mm", f.virtualGapMm);
-  json.set(at + "/virtual_depth_of_field_mm", f.depthOfFieldMm * f.virtualGapMm / f.gapMm);
-  if (!f.hasContent) return;
-  json.set(at + "/content_near_mm", f.nearMm);
-  json.set(at + "/content_far_mm", f.farMm);
-  json.set(at + "/shown_near_mm", f.shownNearMm);
-  json.set(at + "/shown_far_mm", f.shownFarMm);
-  json.set(at + "/within_budget", f.withinBudget());
-}
-
-void recordFraming(JsonWriter& record, const Framing& f) {
-  record.set("/framing/fit", displayFitName(f.fit));
-  if (f.focusAuto)
-    record.set("/framing/focus", "auto");
-  else
-    record.set("/framing/focus", f.focusMm);
-  if (f.budgetAuto)
-    record.set("/framing/depth_budget", "auto");
-  else
-    record.set("/framing/depth_budget", f.budgetMm);
-  setFramingFigures(record, "/framing", f);
-  record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
-  record.set("/framing/scale_mm_per_unit", f.scaleMmPerUnit);
-}
-
 void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string& scope) {
   addImportOptions(cmd);
   cmd.add_option("--fit", options.fit,
@@ -334,19 +230,6 @@ void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string
                      "With --fit depth: half the displayed depth range in mm, or auto (the "
                      "display's depth of field, G4)")
       ->type_name("MM|auto");
-}
-
-ViewFilter FilterOptions::filter() const {
-  ViewFilter filter;
-  if (!parseViewFilterKind(kind, filter.kind))
-    throw InputError("command line", "--filter",
-                     "expected none, view, tent, gaussian or period, got '" + kind + "'");
-  if (!(widthViews >= 0.05 && widthViews <= 20))
-    throw InputError(
-        "command line", "--filter-width",
-        "expected a width in views between 0.05 and 20, got " + std::to_string(widthViews));
-  filter.widthViews = widthViews;
-  return filter;
 }
 
 void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& scope,
@@ -400,23 +283,35 @@ const std::vector<Scene::ImportRecord>& importRecords() {
 }
 
 Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& options) {
-  if (path.empty() && !options.camera.empty())
-    throw InputError("command line", "--camera", "the built-in scene has no cameras");
-  SceneLoadOptions load = options;
-  load.import = importOptions();
-  Scene scene = path.empty() ? defaultScene() : loadScene(path, load);
+  jobs::SceneRequest request;
+  request.path = path;
+  request.load = options;
+  request.load.import = importOptions();
+  Scene scene = jobs::loadSceneQuietly(request);
   gImportRecords.insert(gImportRecords.end(), scene.imports.begin(), scene.imports.end());
   return scene;
 }
 
 Scene loadSceneReportingWarnings(const std::string& path, const SceneLoadOptions& options) {
-  cluster::failIfAskedForTest(cluster::world());
-  Scene scene = loadSceneOrDefault(path, options);
-  // Under mpirun every rank loads the scene: its notes once.
-  if (!cluster::world().isRoot()) return scene;
-  for (const auto& n : scene.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
-  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  jobs::SceneRequest request;
+  request.path = path;
+  request.load = options;
+  request.load.import = importOptions();
+  Scene scene = jobs::loadScene(request, cliReporter());
+  gImportRecords.insert(gImportRecords.end(), scene.imports.begin(), scene.imports.end());
   return scene;
+}
+
+Scene loadRgbdFromOptions(const RgbdCliOptions& options) {
+  if (!options.given()) throw RequestError("rgbd", "expected two files: COLOUR DEPTH");
+  jobs::SceneRequest request;
+  request.rgbd = options;
+  return jobs::loadScene(request, cliReporter());
+}
+
+void startRenderRecord(JsonWriter& record, const std::string& method,
+                       const std::string& displayFile) {
+  jobs::startRenderRecord(record, method, displayFile, importOptions(), importRecords());
 }
 
 void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options) {
@@ -428,18 +323,11 @@ void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options) {
 }
 
 DisplayDesign loadDesignOrDefault(const std::string& path) {
-  const DisplayDescription description = loadDisplayOrDefault(path);
-  if (description.kind != DisplayKind::Barrier)
-    throw InputError(description.source(), "",
-                     "is a lenticular calibration; this command takes a barrier display");
-  return designDisplay(description.barrier);
+  return jobs::loadBarrierDesign(path, cliReporter());
 }
 
 DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset) {
-  DisplayDescription description = loadDisplayDescription(pathOrPreset);
-  for (const std::string& warning : description.lenticular.warnings)
-    std::fprintf(stderr, "warning: %s\n", warning.c_str());
-  return description;
+  return jobs::loadDisplay(pathOrPreset, cliReporter());
 }
 
 ProgressBar::ProgressBar(std::string label)
@@ -471,23 +359,137 @@ void ProgressBar::update(int done, int total) {
   std::fflush(stderr);
 }
 
-std::string formatDuration(double seconds) {
-  char text[64];
-  if (seconds < 120)
-    std::snprintf(text, sizeof text, "%.0f s", seconds);
-  else if (seconds < 7200)
-    std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
-  else if (seconds < 3 * 86400)
-    std::snprintf(text, sizeof text, "%.0f h", seconds / 3600);
-  else
-    std::snprintf(text, sizeof text, "%.3g days", seconds / 86400);
-  return text;
+void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames) {
+  cmd.add_option("--frames", options.frames,
+                 "Render frames FIRST:LAST of the animation (1-based) into DIR/frame-NNNN; "
+                 "finished frames are skipped, so a killed sequence resumes (docs/animation.md)")
+      ->type_name("FIRST:LAST");
+  cmd.add_option("--chunk", options.chunk,
+                 "Only the K-th of N contiguous parts of the frames (of --frames, else all): one "
+                 "task of a render farm (docs/distributed.md)")
+      ->type_name("K/N");
+  cmd.add_option("--turntable", options.turntable,
+                 "Turn the content DEGREES about the display's up axis over the animation "
+                 "(360: a loop)")
+      ->type_name("DEGREES")
+      ->check(realIn(-36000, 36000));
+  cmd.add_option("--duration", options.duration,
+                 "The animation's length in seconds (default: the scene's last key, else 4 s "
+                 "for a turntable)")
+      ->type_name("SECONDS")
+      ->check(realIn(0, 1e5, Bound::Open));
+  cmd.add_option("--fps", options.fps, "Frames per second of the animation (and of --video)")
+      ->capture_default_str()
+      ->check(realIn(0, 240, Bound::Open));
+  addVideoOptions(cmd, options.video, frames, false);
 }
 
-std::string formatRate(double raysPerSecond) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f M rays/s", raysPerSecond / 1e6);
-  return text;
+void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames, bool withFps) {
+  cmd.add_option("--video", o.file,
+                 "Also write " + frames +
+                     " as a video: .mp4 (H.264; H.265 above 4096 a side), .webm (VP9) or .mkv "
+                     "(docs/video.md)")
+      ->type_name("FILE");
+  cmd.add_option("--video-codec", o.codec, "Codec of --video: auto, h264, h265 or vp9")
+      ->capture_default_str();
+  cmd.add_option("--video-quality", o.quality,
+                 "Constant quality (CRF) of --video, lower is better: 0 to 51 for h264 and h265 "
+                 "(18: visually lossless), 0 to 63 for vp9")
+      ->capture_default_str()
+      ->check(integerIn(0, 63));
+  if (!withFps) return;
+  cmd.add_option("--fps", o.fps, "Frames per second of --video, above 0 and at most 240")
+      ->capture_default_str()
+      ->check(realIn(0, 240, Bound::Open));
+}
+
+CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdCliOptions& options) {
+  CLI::Option* rgbd =
+      cmd.add_option("--rgbd", options.files,
+                     "An RGB-D photo instead of a scene: a colour image and its greyscale depth "
+                     "map (8- or 16-bit PNG) of the same size (docs/rgbd.md)")
+          ->expected(2)
+          ->type_name("COLOUR DEPTH");
+  cmd.add_option("--depth-convention", options.convention,
+                 "With --rgbd: how the depth map's values give distance: disparity (bright = "
+                 "near, linear in 1/distance: MiDaS, Depth-Anything), depth (bright = far, "
+                 "linear), inverse (bright = near, linear)")
+      ->type_name("disparity|depth|inverse")
+      ->capture_default_str();
+  cmd.add_option("--depth-range", options.range,
+                 "With --rgbd: the distances of the nearest and farthest values, in scene units; "
+                 "only their ratio shapes the picture (the framing scales it to the display)")
+      ->type_name("NEAR:FAR")
+      ->capture_default_str();
+  cmd.add_option("--rgbd-edges", options.edges,
+                 "With --rgbd: at depth jumps, stretch (one sheet, rubber sheets across the "
+                 "jumps) or layered (cut at jumps, a background sheet extended from the far side "
+                 "fills them)")
+      ->type_name("stretch|layered")
+      ->capture_default_str();
+  cmd.add_option("--rgbd-fov", options.fovDegrees,
+                 "With --rgbd: the photo's horizontal field of view in degrees")
+      ->check(realIn(1.0, 170.0))
+      ->type_name("DEGREES")
+      ->capture_default_str();
+  return rgbd;
+}
+
+std::string optionName(const std::string& field) {
+  // Fields the command line spells otherwise than --field-name.
+  static const std::pair<const char*, const char*> kOwnSpelling[] = {
+      {"train_eyes_per_view", "--train-eyes"},
+      {"framing", "--fit/--focus/--depth-budget"},
+      {"sequence", "--frames/--turntable"},
+      {"max_memory", "--max-memory"},
+  };
+  for (const auto& [name, option] : kOwnSpelling)
+    if (field == name) return option;
+  std::string option = "--" + field;
+  for (char& c : option)
+    if (c == '_') c = '-';
+  return option;
+}
+
+std::string errorLine(const InputError& error) {
+  return errorText(error, optionName, [](const std::string& field, const std::string& value) {
+    return optionName(field) + " " + value;
+  });
+}
+
+namespace {
+
+class ProgressBarTask : public jobs::Progress {
+ public:
+  explicit ProgressBarTask(const std::string& label) : bar_(label) {}
+  void update(int done, int total) override { bar_.update(done, total); }
+
+ private:
+  ProgressBar bar_;
+};
+
+class CliReporter : public jobs::Reporter {
+ public:
+  void note(const std::string& text) override {
+    std::fprintf(stderr, "note: %s\n", spellFields(text, optionName).c_str());
+  }
+  void warning(const std::string& text) override {
+    std::fprintf(stderr, "warning: %s\n", spellFields(text, optionName).c_str());
+  }
+  void result(const std::string& line) override {
+    std::printf("%s\n", spellFields(line, optionName).c_str());
+    std::fflush(stdout);
+  }
+  std::unique_ptr<jobs::Progress> progress(const std::string& label) override {
+    return std::make_unique<ProgressBarTask>(label);
+  }
+};
+
+}  // namespace
+
+jobs::Reporter& cliReporter() {
+  static CliReporter reporter;
+  return reporter;
 }
 
 }  // namespace parallax::app

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "parallax/camera/framing.h"
+#include "parallax/core/error.h"
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
 #include "parallax/display/view_filter.h"
@@ -16,21 +17,27 @@
 #include "parallax/io/json_writer.h"
 #include "parallax/io/mesh_file.h"
 #include "parallax/io/scene_file.h"
+#include "parallax/jobs/limits.h"
+#include "parallax/jobs/reporter.h"
+#include "parallax/jobs/requests.h"
+#include "parallax/jobs/sequence.h"
+#include "parallax/jobs/video_output.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
 
 namespace CLI {
 class App;
+class Option;
 class Validator;
 }  // namespace CLI
 
 namespace parallax::app {
 
-inline constexpr int kExitInputError = 2;
+// The commands call the request layer directly.
+using namespace parallax::jobs;
 
-// "parallax 0.1.0 (Embree 4.3.3)": this build's version and the Embree it runs on (3 on
-// Debian 12, 4 on Debian 13), for `parallax --version` and Python's parallax.version().
-std::string versionText();
+inline constexpr int kExitInputError = 2;
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // ---- Ranges of numeric options (docs/inputs.md) -----------------------------------------
 // Validators that read the option's text themselves, so that garbage, NaN and infinity get the
@@ -45,35 +52,35 @@ CLI::Validator realIn(double lo, double hi, Bound lower = Bound::Closed,
 CLI::Validator integerIn(int64_t lo, int64_t hi);
 // A whole number n*n in [1, INT_MAX] (samples per pixel of an n x n grid), or 0 as well.
 CLI::Validator squareCount(bool zeroAllowed = false);
-inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // 0 (all cores) up to the machine's hardware threads.
 CLI::Validator threadCount();
 // --seed: any unsigned 64-bit number.
 CLI::Validator seedValue();
 
-// ---- Memory and time limits -------------------------------------------------------------
-// The memory limit in bytes: --max-memory GiB when given (globally or on the command), else
-// 3/4 of physical memory.
-double memoryLimitBytes();
-// Adds --max-memory GiB to `cmd`; the last one given wins.
+// ---- Memory and time limits (jobs/limits.h) ------------------------------------------------
+// Adds --max-memory GiB (jobs::limits().maxMemoryGiB) to `cmd`; the last one given wins.
 void addMemoryLimitOption(CLI::App& cmd);
-// Refuses pictures of more than 2^31 pixels (the renderer's pixel index is an int); call it
-// after the memory estimate, which refuses them first where memory is smaller.
-void checkPixelCount(double pixels, const std::string& subject);
-// Refuses (InputError naming `subject`) when `bytes` exceed memoryLimitBytes().
-void checkMemoryEstimate(double bytes, const std::string& subject, const std::string& what,
-                         const std::string& advice);
-// The time estimate: `samples` camera samples (pixel x sample, each at least one ray) on
-// `threads` threads (0: all) at kSamplesPerSecondPerThread, an optimistic rate (the fastest
-// bench figure on a simple scene, rounded up), so that only work certain to take longer than
-// the time limit (--max-time, default kDefaultMaxSeconds) is refused.
-inline constexpr double kSamplesPerSecondPerThread = 1e8;
-inline constexpr double kDefaultMaxSeconds = 24 * 3600.0;
+// Adds --max-time SECONDS (jobs::limits().maxSeconds).
 void addTimeLimitOption(CLI::App& cmd);
-void checkTimeEstimate(double samples, int threads, const std::string& subject,
-                       const std::string& advice);
 // Both limit options at once.
 void addLimitOptions(CLI::App& cmd);
+using jobs::checkMemoryEstimate;
+using jobs::checkPixelCount;
+using jobs::checkTimeEstimate;
+using jobs::formatDuration;
+using jobs::formatRate;
+using jobs::memoryLimitBytes;
+
+// ---- Requests' fields as options ----------------------------------------------------------
+// The option that spells a request's field: "--" and the field with '-' for '_' ("spp" ->
+// "--spp"), except where the command line says it otherwise.
+std::string optionName(const std::string& field);
+// The one line main prints for an InputError: fields spelled as options.
+std::string errorLine(const InputError& error);
+// Notes and warnings on stderr ("note: ...", "warning: ..."), results on stdout, a progress bar
+// on a terminal; fields spelled as options. Under mpirun, what each rank says (runners say
+// job-wide things on rank 0 only).
+jobs::Reporter& cliReporter();
 
 // "X,Y,Z" -> Vec3f; throws InputError naming the option.
 Vec3f parseVec3(const std::string& option, const std::string& text);
@@ -81,56 +88,23 @@ Vec3f parseVec3(const std::string& option, const std::string& text);
 // pixel count) are checked separately, with the estimate.
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);
 
-// --spp, --threads, --seed and --jitter: how every rendering command samples.
-struct SamplingOptions {
-  int spp = 16;
-  int threads = 0;
-  uint64_t seed = 0;
-  std::string jitter = "auto";
-  bool adaptive = false;
-  int bounces = 0;  // --bounces: diffuse path-tracing bounces (RenderSettings::bounces)
-  double adaptiveThreshold = RenderSettings{}.adaptiveThreshold * 255.0;  // in 8-bit steps
-  // The render settings; throws InputError naming --spp (below 1) or --jitter (not auto,
-  // pixel or packet).
-  RenderSettings settings() const;
-  // Refuses --spp when width x height x spp x `passes` samples exceed the time limit.
-  void checkWork(double width, double height, double passes = 1.0) const;
-};
+// --spp, --threads, --seed, --jitter, --adaptive, --bounces: how every rendering command samples.
+using SamplingOptions = jobs::SamplingRequest;
 // Adds the four options to `cmd`; what one sample is differs between commands: `sppHelp`.
 void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::string& sppHelp);
 
-// The framing's figures (camera/framing.h) under `at` ("/framing"): fit, focus, gaps, depth
-// of field and budget, and the content's near and far as given and as shown. render, design
-// and info write the same keys.
-void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& framing);
-
-// The framing in render.json, under "/framing": what was asked (fit, focus, depth_budget:
-// simulate --reference frames the scene again from these) and what followed. The CLI's render
-// and the Python module's write the same.
-void recordFraming(JsonWriter& record, const Framing& framing);
+using jobs::recordFraming;
+using jobs::setFramingFigures;
 
 // --fit, --focus and --depth-budget (render, and design --scene, view --display-eye): how the
 // content is framed for the display (camera/framing.h). Empty: the scene's own choice.
-struct FramingOptions {
-  std::string fit, focus, depthBudget;
-  bool given() const { return !fit.empty() || !focus.empty() || !depthBudget.empty(); }
-  // Sets them on the scene's placement; throws InputError naming the option.
-  void apply(DisplayPlacement& placement) const {
-    applyFramingOptions(placement, fit, focus, depthBudget);
-  }
-};
+using FramingOptions = jobs::FramingRequest;
 // Adds the three options to `cmd`; `scope` begins their help ("" or "With --scene: ").
 void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string& scope);
 
 // --filter and --filter-width (render, bench, lenticular render): how a display pixel's rays
 // spread in angle (display/view_filter.h).
-struct FilterOptions {
-  std::string kind = viewFilterName(ViewFilter{}.kind);
-  double widthViews = ViewFilter{}.widthViews;
-  // The ViewFilter; throws InputError naming the option for an unknown kind or a width
-  // outside [0.05, 20] views.
-  ViewFilter filter() const;
-};
+using FilterOptions = jobs::FilterRequest;
 // Adds the two options to `cmd`; `scope` begins their help ("" or "With --camera display: "),
 // `viewUnit` says what one view is for this display.
 void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& scope,
@@ -158,12 +132,32 @@ Scene loadSceneReportingWarnings(const std::string& path, const SceneLoadOptions
 void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options);
 
 // The built-in display when `path` is empty, otherwise the display file; checked (G1-G4).
-// A lenticular calibration is refused here, naming the command's barrier-only `what`.
+// A lenticular calibration is refused.
 DisplayDesign loadDesignOrDefault(const std::string& path);
-
-// A display of any kind (io/display_file.h: "", a file of either kind, or lkg:NAME), with the
-// reader's warnings (defaulted or unknown calibration keys) printed to stderr, one line each.
+// A display of any kind, with the reader's warnings printed (jobs::loadDisplay).
 DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset);
+
+// Program, version, time, method and display file at the top of a render.json record, and
+// /import: what loading the command's scenes did with each mesh file (importRecords()).
+void startRenderRecord(JsonWriter& record, const std::string& method,
+                       const std::string& displayFile);
+
+// --frames, --chunk, --turntable, --duration, --fps, and --video with its codec and quality;
+// `frames` says what a video's frames are.
+using SequenceOptions = jobs::SequenceRequest;
+void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames);
+// --video, --video-codec, --video-quality and (unless `withFps` is false: the sequence options
+// have it) --fps.
+using VideoCliOptions = jobs::VideoRequest;
+void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames,
+                     bool withFps = true);
+// --rgbd COLOUR DEPTH, --depth-convention, --depth-range, --rgbd-edges, --rgbd-fov. Returns the
+// --rgbd option, so that the caller can make it exclude its scene argument.
+using RgbdCliOptions = jobs::RgbdRequest;
+CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdCliOptions& options);
+// The RGB-D photo's scene, its warnings printed.
+Scene loadRgbdFromOptions(const RgbdCliOptions& options);
+using jobs::recordRgbd;
 
 // A progress bar on stderr, drawn only when stderr is a terminal; thread-safe and throttled.
 class ProgressBar {
@@ -179,9 +173,5 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_, lastDraw_;
   bool drawn_ = false;
 };
-
-std::string formatRate(double raysPerSecond);
-// "45 s", "12 min", "5 h", "58 days".
-std::string formatDuration(double seconds);
 
 }  // namespace parallax::app

@@ -11,7 +11,6 @@
 
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/app/layer_output.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/display/barrier_rays.h"
@@ -19,6 +18,7 @@
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
+#include "parallax/jobs/layer_output.h"
 #include "parallax/render/quilt.h"
 
 namespace parallax::app {
@@ -169,7 +169,8 @@ void runInterlace(const InterlaceOptions& o) {
     record.set(at + "/design_view", designView[k]);
     record.set(at + "/eye_mm", Vec3f(float(eye.x), float(eye.y), float(eye.z)));
   }
-  writeDisplayLayers(o.output, image, maskLayerImage(design), design, o.linear, record);
+  cliReporter().result(
+      writeDisplayLayers(o.output, image, maskLayerImage(design), design, o.linear, record));
 }
 
 }  // namespace

@@ -10,14 +10,14 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/app/distributed.h"
-#include "parallax/app/layer_output.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
+#include "parallax/jobs/distributed.h"
+#include "parallax/jobs/layer_output.h"
 #include "parallax/render/display_render.h"
 #include "parallax/sim/lenticular_sim.h"
 
@@ -104,7 +104,7 @@ void runLenticularRender(const LenticularRenderJob& o) {
                         frameShare(settings),
                         [&bar](int done, int total) { bar.update(done, total); });
   }
-  if (!mergeFrameShares({&out.image}, out.stats)) return;
+  if (!mergeFrameShares({&out.image}, out.stats, cliReporter())) return;
   JsonWriter record;
   startRenderRecord(record, "lenticular: rays per subpixel around its view", o.calibration.source);
   record.set("/scene", scene.source);

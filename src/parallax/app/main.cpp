@@ -28,12 +28,13 @@ void printError(std::string message) {
 }
 
 // InputError("command line", "--spp", message) reads "--spp: message": the option is the input.
+// A request's field (RequestError, and {field} in any text) is spelled as its option.
 std::string inputErrorText(const parallax::InputError& e) {
   const std::string prefix = "command line: ";
   const std::string text = e.what();
   if (e.file() == "command line" && !e.path().empty() && text.rfind(prefix, 0) == 0)
     return text.substr(prefix.size());
-  return text;
+  return parallax::app::errorLine(e);
 }
 
 }  // namespace

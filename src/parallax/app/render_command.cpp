@@ -13,10 +13,6 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/app/distributed.h"
-#include "parallax/app/layer_output.h"
-#include "parallax/app/rgbd_options.h"
-#include "parallax/app/sequence.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
 #include "parallax/cluster/process_group.h"
@@ -26,6 +22,9 @@
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
+#include "parallax/jobs/distributed.h"
+#include "parallax/jobs/layer_output.h"
+#include "parallax/jobs/sequence.h"
 #include "parallax/layers/layer_solver.h"
 #include "parallax/layers/training.h"
 #include "parallax/render/display_render.h"
@@ -215,8 +214,8 @@ void runQuiltRender(const RenderOptions& o, QuiltLayout layout, const DisplayMod
     }
   }
   if (!sequenceFrame.plan) {
-    const bool writer =
-        o.linear ? mergeFrameShares({&quilt}, stats) : mergeFrameShares(codes, stats);
+    const bool writer = o.linear ? mergeFrameShares({&quilt}, stats, cliReporter())
+                                 : mergeFrameShares(codes, stats, cliReporter());
     if (!writer) return;
   }
   const double raysPerSecond = double(stats.totalRays()) / stats.seconds;
@@ -287,6 +286,7 @@ void runQuiltSequence(const RenderOptions& o, const SequencePlan& plan, const Qu
                       const RenderSettings& settings, const Framing* framing,
                       const std::string& displayText, const std::string& displayName) {
   FrameJob job;
+  job.reporter = &cliReporter();
   job.accelerator = acceleratorForCameraRays(double(layout.views()) * display.film().panelWidth *
                                              display.film().panelHeight * settings.samplesPerPixel);
   job.finished = [&](int frame) { return frameFinished(o.output, frame); };
@@ -295,15 +295,19 @@ void runQuiltSequence(const RenderOptions& o, const SequencePlan& plan, const Qu
                    {&accelerator, &plan, frame, frameFolder(o.output, frame)});
   };
   runSequence(plan, scene, job);
-  writeSequenceVideo(o.sequence, plan, [&](int frame) {
-    // The quilt's name carries its layout and aspect: the frame's one quilt PNG.
-    for (const auto& entry : std::filesystem::directory_iterator(frameFolder(o.output, frame))) {
-      const std::string name = entry.path().filename().string();
-      if (name.rfind("quilt_qs", 0) == 0 && entry.path().extension() == ".png")
-        return entry.path().string();
-    }
-    return frameFolder(o.output, frame) + "/quilt.png";  // not there: writeVideo names it
-  });
+  writeSequenceVideo(
+      o.sequence, plan,
+      [&](int frame) {
+        // The quilt's name carries its layout and aspect: the frame's one quilt PNG.
+        for (const auto& entry :
+             std::filesystem::directory_iterator(frameFolder(o.output, frame))) {
+          const std::string name = entry.path().filename().string();
+          if (name.rfind("quilt_qs", 0) == 0 && entry.path().extension() == ".png")
+            return entry.path().string();
+        }
+        return frameFolder(o.output, frame) + "/quilt.png";  // not there: writeVideo names it
+      },
+      cliReporter());
 }
 
 // `render --display visual.json|lkg:NAME`: the lenticular panel's picture, or its quilt.
@@ -428,7 +432,7 @@ void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator&
     layers = o.directMapping ? renderDirectMapping(scene, accelerator, design, share, onProgress)
                              : renderDisplay(scene, accelerator, design, share, onProgress, filter);
   }
-  if (split && !mergeFrameShares({&layers.image}, layers.stats)) return;
+  if (split && !mergeFrameShares({&layers.image}, layers.stats, cliReporter())) return;
   const double raysPerSecond = double(layers.stats.totalRays()) / layers.stats.seconds;
 
   JsonWriter record;
@@ -467,9 +471,10 @@ void renderLayers(const RenderOptions& o, const Scene& scene, const Accelerator&
   recordFraming(record, framing);
   if (plan) recordSequence(record, *plan, frame);
   if (frames.size() == 1)
-    writeDisplayLayers(output, frames[0].image, frames[0].mask, design, o.linear, record);
+    cliReporter().result(
+        writeDisplayLayers(output, frames[0].image, frames[0].mask, design, o.linear, record));
   else
-    writeLayerFrames(output, frames, design, record);
+    cliReporter().result(writeLayerFrames(output, frames, design, record));
   std::printf("%d spp in %.2f s, %s\n", settings.samplesPerPixel, layers.stats.seconds,
               formatRate(raysPerSecond).c_str());
 }
@@ -525,7 +530,7 @@ void runRender(const RenderOptions& o) {
   Scene scene = loadRenderScene(o);
   const SequencePlan plan = planSequence(o.sequence, scene);
   if (o.sequence.given()) prepareFraming(scene, plan);
-  noteAnimation(o.sequence, scene);
+  noteAnimation(o.sequence, scene, cliReporter());
 
   const Framing framing = frameForRender(o, scene, design);
   if (!o.quilt.empty()) {
@@ -554,15 +559,19 @@ void runRender(const RenderOptions& o) {
     return;
   }
   FrameJob job;
+  job.reporter = &cliReporter();
   job.accelerator = acceleratorOptions;
   job.finished = [&](int frame) { return frameFinished(o.output, frame); };
   job.render = [&](const Scene& posed, const Accelerator& accelerator, int frame) {
     renderFrame(posed, accelerator, frameFolder(o.output, frame), frame);
   };
   runSequence(plan, scene, job);
-  writeSequenceVideo(o.sequence, plan, [&](int frame) {
-    return (std::filesystem::path(frameFolder(o.output, frame)) / "image.png").string();
-  });
+  writeSequenceVideo(
+      o.sequence, plan,
+      [&](int frame) {
+        return (std::filesystem::path(frameFolder(o.output, frame)) / "image.png").string();
+      },
+      cliReporter());
 }
 
 }  // namespace

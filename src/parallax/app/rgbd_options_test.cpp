@@ -1,7 +1,7 @@
 // The RGB-D command-line glue: the options parse through CLI11, bad values are InputErrors
 // naming their option, the loader's errors name --rgbd and the file, and the record holds the
 // choices under /rgbd.
-#include "parallax/app/rgbd_options.h"
+#include "parallax/app/cli_support.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -66,7 +66,7 @@ TEST(RgbdOptions, BadValuesNameTheirOption) {
   const auto with = [](auto change) {
     RgbdCliOptions o;
     change(o);
-    return keyOfError([&] { o.options(); });
+    return optionName(keyOfError([&] { o.options(); }));
   };
   EXPECT_EQ(with([](RgbdCliOptions& o) { o.convention = "metric"; }), "--depth-convention");
   for (const char* range : {"3", "3:1", "0:2", "1:x", "nan:2", "1:2:3", "-1:2", ""})
@@ -92,7 +92,8 @@ TEST(RgbdOptions, LoadsNamingRgbdAndRecordsTheChoices) {
     loadRgbdFromOptions(o);
     ADD_FAILURE() << "no error for a missing depth map";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.path(), "--rgbd");
+    EXPECT_EQ(e.path(), "{rgbd}");
+    EXPECT_EQ(errorLine(e).find(e.file() + ": --rgbd: "), 0u) << errorLine(e);
     EXPECT_EQ(e.file(), (dir / "missing.png").string());
     // One line: "file: --rgbd: message", the file not repeated.
     const std::string text = e.what();

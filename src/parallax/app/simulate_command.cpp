@@ -14,8 +14,6 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/app/sequence.h"
-#include "parallax/app/video_output.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
@@ -29,6 +27,8 @@
 #include "parallax/io/json_reader.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/scene_file.h"
+#include "parallax/jobs/sequence.h"
+#include "parallax/jobs/video_output.h"
 #include "parallax/quality/viewer_quality.h"
 #include "parallax/render/render.h"
 #include "parallax/sim/crosstalk.h"
@@ -400,11 +400,15 @@ void checkSimulationWork(const SimulateOptions& o, const DisplayModel& display,
   // layers' pixel edges: 2 to 3 along each axis).
   const double perPixel = o.spp > 0 ? o.spp : 9;
   const double samples = double(eyes) * w * h * perPixel * (o.pupil > 0 ? o.pupilSamples : 1);
-  checkTimeEstimate(samples, o.threads, o.sweep > 0 ? subject : "--spp " + std::to_string(o.spp),
-                    "use fewer samples or eyes");
+  if (o.sweep > 0)
+    checkTimeEstimate(samples, o.threads, "sweep", std::to_string(o.sweep),
+                      "use fewer samples or eyes");
+  else
+    checkTimeEstimate(samples, o.threads, "spp", std::to_string(o.spp),
+                      "use fewer samples or eyes");
   if (o.reference)
-    checkTimeEstimate(double(eyes) * w * h * o.referenceSpp, o.threads,
-                      "--reference-spp " + std::to_string(o.referenceSpp), "use fewer samples");
+    checkTimeEstimate(double(eyes) * w * h * o.referenceSpp, o.threads, "reference_spp",
+                      std::to_string(o.referenceSpp), "use fewer samples");
 }
 
 // Options that only the two-layer simulator has, refused for other kinds by name.
@@ -484,7 +488,7 @@ void runSimulateFrames(const SimulateOptions& o) {
     throw InputError(o.dir, "", "holds no rendered frames (frame-NNNN folders of render --frames)");
   int first = 1, last = lastFound;
   if (o.frames != "all") parseFrameRange(o.frames, lastFound, first, last);
-  if (o.video.wanted()) checkVideoCliOptions(o.video);
+  if (o.video.wanted()) checkVideoRequest(o.video);
   const std::string output = o.output.empty() ? "out/simulated.png" : o.output;
   std::vector<std::string> pictures;
   for (int frame = first; frame <= last; ++frame) {
@@ -498,7 +502,7 @@ void runSimulateFrames(const SimulateOptions& o) {
     runSimulate(one);
     pictures.push_back(one.output);
   }
-  if (o.video.wanted()) writeVideo(pictures, o.video);
+  if (o.video.wanted()) writeVideo(pictures, o.video, cliReporter());
 }
 
 void runSimulate(const SimulateOptions& o) {
@@ -508,7 +512,7 @@ void runSimulate(const SimulateOptions& o) {
       throw InputError("command line", "--video",
                        "needs --sweep N or --frames: the video's frames are the sweep's pictures "
                        "or the sequence's");
-    checkVideoCliOptions(o.video);
+    checkVideoRequest(o.video);
   }
   const Inputs in = loadInputs(o);
   const DisplayModel& display = *in.display;

@@ -9,14 +9,13 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/app/distributed.h"
-#include "parallax/app/rgbd_options.h"
-#include "parallax/app/sequence.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/image_file.h"
+#include "parallax/jobs/distributed.h"
+#include "parallax/jobs/sequence.h"
 #include "parallax/render/render.h"
 
 namespace parallax::app {
@@ -91,7 +90,7 @@ void runView(const ViewOptions& o) {
   o.sequence.videoOptions();  // refuses bad --video options before any work
   Scene scene =
       o.rgbd.given() ? loadRgbdFromOptions(o.rgbd) : loadSceneReportingWarnings(o.scene, o.load);
-  noteAnimation(o.sequence, scene);
+  noteAnimation(o.sequence, scene, cliReporter());
   const std::unique_ptr<Camera> camera = makeCamera(o, scene);
   // Before anything is allocated: the film and the writer's 8-bit copy, and the time.
   const std::string size = std::to_string(camera->width()) + "x" + std::to_string(camera->height());
@@ -114,7 +113,7 @@ void runView(const ViewOptions& o) {
       image = render(posed, accelerator, frameCamera, split ? frameShare(settings) : settings,
                      &stats, [&bar](int done, int total) { bar.update(done, total); });
     }
-    if (split && !mergeFrameShares({&image}, stats)) return;
+    if (split && !mergeFrameShares({&image}, stats, cliReporter())) return;
     writeImage(output, image);
     std::printf("wrote %s (%dx%d, %d spp) in %.2f s, %s\n", output.c_str(), frameCamera.width(),
                 frameCamera.height(), o.sampling.spp, stats.seconds,
@@ -128,6 +127,7 @@ void runView(const ViewOptions& o) {
   const SequencePlan plan = planSequence(o.sequence, scene);
   prepareFraming(scene, plan);
   FrameJob job;
+  job.reporter = &cliReporter();
   job.accelerator = acceleratorOptions;
   job.finished = [&](int frame) {
     return std::filesystem::is_regular_file(numberedPicture(o.output, frame));
@@ -137,7 +137,8 @@ void runView(const ViewOptions& o) {
                   false);
   };
   runSequence(plan, scene, job);
-  writeSequenceVideo(o.sequence, plan, [&](int frame) { return numberedPicture(o.output, frame); });
+  writeSequenceVideo(
+      o.sequence, plan, [&](int frame) { return numberedPicture(o.output, frame); }, cliReporter());
 }
 
 }  // namespace

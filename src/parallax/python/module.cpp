@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "parallax/app/cli_support.h"
 #include "parallax/core/error.h"
+#include "parallax/jobs/requests.h"
 #include "parallax/python/bindings_internal.h"
 
 namespace parallax::python {
@@ -77,10 +77,11 @@ PYBIND11_MODULE(_parallax, module) {
     try {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const parallax::InputError& e) {
-      // As the CLI prints it: an option's error reads "--spp: ...", not "command line: --spp",
-      // and on one line.
+      // One line, naming a request's field by its keyword ("spp: ...", "spp=16: ...").
       const std::string prefix = "command line: ";
-      std::string text = e.what();
+      std::string text = errorText(
+          e, [](const std::string& field) { return field; },
+          [](const std::string& field, const std::string& value) { return field + "=" + value; });
       if (e.file() == "command line" && !e.path().empty() && text.rfind(prefix, 0) == 0)
         text = text.substr(prefix.size());
       for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at))
@@ -90,7 +91,7 @@ PYBIND11_MODULE(_parallax, module) {
   });
   // As `parallax --version`: this build and the Embree it runs on.
   module.attr("__version__") = PARALLAX_VERSION;
-  module.def("version", &parallax::app::versionText);
+  module.def("version", &parallax::jobs::versionText);
   module.def(
       "_to_srgb8",
       [](const py::array_t<float, py::array::c_style | py::array::forcecast>& linear) {

@@ -13,7 +13,6 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
-#include "parallax/app/layer_output.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
@@ -22,6 +21,7 @@
 #include "parallax/io/display_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
+#include "parallax/jobs/layer_output.h"
 #include "parallax/python/bindings_internal.h"
 #include "parallax/render/display_render.h"
 #include "parallax/render/quilt.h"

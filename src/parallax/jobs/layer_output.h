@@ -9,9 +9,11 @@
 #include "parallax/display/display.h"
 #include "parallax/image/image.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/io/mesh_file.h"
 #include "parallax/layers/layer_solver.h"
+#include "parallax/scene/scene.h"
 
-namespace parallax::app {
+namespace parallax::jobs {
 
 // A set of output files that replaces the folder's old set in one step. The files are written
 // into a temporary sibling folder (.NAME.tmp-PID); commit() moves the folder's other files in
@@ -43,7 +45,8 @@ class OutputSet {
 // Program, version, time, method and display file at the top of a render.json record, and
 // /import: what loading the command's scenes did with each mesh file (importRecords()).
 void startRenderRecord(JsonWriter& record, const std::string& method,
-                       const std::string& displayFile);
+                       const std::string& displayFile, const ImportOptions& options,
+                       const std::vector<Scene::ImportRecord>& imports);
 
 // Refuses (naming `subject`) layers that would not fit in memory: the image layer's film
 // (`filmColumns` wide: three per pixel with subpixel rays, times `views` for N ordinary views),
@@ -58,19 +61,20 @@ void checkLayerWork(const DisplayDesign& design, bool directMapping, int spp, in
                     const std::string& displayPath);
 
 // The quilt of `render --quilt`: its 8-bit codes and PNG, the float quilt with `linear`, one
-// view at a time, and the time; refusals name "--quilt CxR" and the size.
+// view at a time, and the time; refusals name the quilt field ("{quilt} CxR") and the size.
 void checkQuiltWork(int columns, int rows, int width, int height, int spp, int threads,
                     const std::string& sizeText, bool linear);
 
 // Writes DIR/image.png, mask.png (image.pfm with `linear`), display.json and render.json (the
 // record, with /outputs and /design added) as one set, and says where on stdout.
-void writeDisplayLayers(const std::string& output, const Image& image, const Image& mask,
-                        const DisplayDesign& design, bool linear, JsonWriter& record);
+// Returns the line that says what was written.
+std::string writeDisplayLayers(const std::string& output, const Image& image, const Image& mask,
+                               const DisplayDesign& design, bool linear, JsonWriter& record);
 
 // Time-multiplexed layers (render --layers nmf --rank T): DIR/image-K.png and mask-K.png for
 // K = 1..T, shown in turn, with display.json and render.json (/frames lists the pairs), as one
 // set.
-void writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& frames,
-                      const DisplayDesign& design, JsonWriter& record);
+std::string writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& frames,
+                             const DisplayDesign& design, JsonWriter& record);
 
-}  // namespace parallax::app
+}  // namespace parallax::jobs

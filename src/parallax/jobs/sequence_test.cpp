@@ -1,10 +1,10 @@
-#include "parallax/app/sequence.h"
+#include "parallax/jobs/sequence.h"
 
 #include <gtest/gtest.h>
 
 #include "parallax/core/error.h"
 
-namespace parallax::app {
+namespace parallax::jobs {
 namespace {
 
 // The N parts of a range cover it once, in order, each within one frame of the others' length.
@@ -35,4 +35,4 @@ TEST(Chunk, RefusesWhatIsNotKOfN) {
 }
 
 }  // namespace
-}  // namespace parallax::app
+}  // namespace parallax::jobs

@@ -1,36 +1,14 @@
-#include "parallax/app/video_output.h"
-
-#include <CLI/CLI.hpp>
+#include "parallax/jobs/video_output.h"
 
 #include <cstdio>
 #include <filesystem>
 
-#include "parallax/app/cli_support.h"
 #include "parallax/core/error.h"
 #include "parallax/io/image_file.h"
 
-namespace parallax::app {
+namespace parallax::jobs {
 
-void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames, bool withFps) {
-  cmd.add_option("--video", o.file,
-                 "Also write " + frames +
-                     " as a video: .mp4 (H.264; H.265 above 4096 a side), .webm (VP9) or .mkv "
-                     "(docs/video.md)")
-      ->type_name("FILE");
-  cmd.add_option("--video-codec", o.codec, "Codec of --video: auto, h264, h265 or vp9")
-      ->capture_default_str();
-  cmd.add_option("--video-quality", o.quality,
-                 "Constant quality (CRF) of --video, lower is better: 0 to 51 for h264 and h265 "
-                 "(18: visually lossless), 0 to 63 for vp9")
-      ->capture_default_str()
-      ->check(integerIn(0, 63));
-  if (!withFps) return;
-  cmd.add_option("--fps", o.fps, "Frames per second of --video, above 0 and at most 240")
-      ->capture_default_str()
-      ->check(realIn(0, 240, Bound::Open));
-}
-
-void checkVideoCliOptions(const VideoCliOptions& o) {
+void checkVideoRequest(const VideoRequest& o) {
   if (o.wanted()) checkVideoOptions(o.file, o.videoOptions());
 }
 
@@ -55,13 +33,14 @@ void VideoOutput::add(const Image& picture) {
 }
 
 std::string VideoOutput::finish() {
-  if (!writer_.isOpen()) throw InputError("--video", options_.file, "no frames to write");
+  if (!writer_.isOpen()) throw InputError("{video}", options_.file, "no frames to write");
   writer_.finish();
   return videoSummary(writer_, width_, height_);
 }
 
-void writeVideo(const std::vector<std::string>& pngPaths, const VideoCliOptions& options) {
-  checkVideoCliOptions(options);
+void writeVideo(const std::vector<std::string>& pngPaths, const VideoRequest& options,
+                Reporter& reporter) {
+  checkVideoRequest(options);
   VideoOutput video(options);
   int width = 0, height = 0;
   for (const std::string& path : pngPaths) {
@@ -77,7 +56,7 @@ void writeVideo(const std::vector<std::string>& pngPaths, const VideoCliOptions&
     }
     video.add(picture);
   }
-  std::printf("%s\n", video.finish().c_str());
+  reporter.result(video.finish());
 }
 
-}  // namespace parallax::app
+}  // namespace parallax::jobs

@@ -1,5 +1,5 @@
-// Frame sequences for `render` (layers and quilts) and `view` (docs/animation.md): --frames,
-// --turntable, --duration and --fps, the plan they make, and the folder of finished frames.
+// Frame sequences for `render` (layers and quilts) and `view` (docs/animation.md): frames,
+// turntable, duration and fps, the plan they make, and the folder of finished frames.
 #pragma once
 
 #include <functional>
@@ -7,37 +7,30 @@
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
-#include "parallax/app/video_output.h"
+#include "parallax/jobs/reporter.h"
+#include "parallax/jobs/video_output.h"
 
 #include "parallax/scene/motion.h"
 #include "parallax/scene/scene.h"
-
-namespace CLI {
-class App;
-}
 
 namespace parallax {
 class JsonWriter;
 }
 
-namespace parallax::app {
+namespace parallax::jobs {
 
-struct SequenceOptions {
-  VideoCliOptions video;  // --video FILE: the frames as one video, at --fps
-  std::string frames;     // "A:B", 1-based and inclusive; "" = every frame of the animation
-  std::string chunk;      // "K/N": only the K-th of N contiguous parts of the frames (a farm task)
-  double turntable = 0;   // degrees the content turns over the whole animation; 0 = none
-  double duration = 0;    // seconds of the animation; 0 = the keys' last time, else 4 s
+struct SequenceRequest {
+  VideoRequest video;    // --video FILE: the frames as one video, at --fps
+  std::string frames;    // "A:B", 1-based and inclusive; "" = every frame of the animation
+  std::string chunk;     // "K/N": only the K-th of N contiguous parts of the frames (a farm task)
+  double turntable = 0;  // degrees the content turns over the whole animation; 0 = none
+  double duration = 0;   // seconds of the animation; 0 = the keys' last time, else 4 s
   double fps = 30;
   // A sequence was asked for (else the command renders one picture, at time 0).
   bool given() const { return !frames.empty() || !chunk.empty() || turntable != 0; }
   // --video's options at the sequence's --fps; refuses a video without a sequence.
-  VideoCliOptions videoOptions() const;
+  VideoRequest videoOptions() const;
 };
-
-// Adds the four options, and --video with its codec and quality, to `cmd`; `frames` says what a
-// video's frames are.
-void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames);
 
 // The animation's frames: frame k (1-based) shows time (k - 1) / fps. A 360-degree turntable
 // over N frames thus loops: frame N + 1 would be frame 1 again.
@@ -57,16 +50,16 @@ struct SequencePlan {
 // The plan for `scene` (its keys) and the options; throws InputError naming --frames,
 // --turntable, --duration or --fps. A turntable lasts `duration` (default 4 s) and turns the
 // content (contentTurntable) by `turntable` degrees over it; keys last until their last time.
-SequencePlan planSequence(const SequenceOptions& options, const Scene& scene);
+SequencePlan planSequence(const SequenceRequest& options, const Scene& scene);
 
 // Without a sequence asked for, one line on stderr when the scene moves (keys or a glTF
 // animation): how to render its frames.
-void noteAnimation(const SequenceOptions& options, const Scene& scene);
+void noteAnimation(const SequenceRequest& options, const Scene& scene, Reporter& reporter);
 
 // After a sequence: the plan's frames (finished now, whether in this run or before) as the
 // video --video asks for; `picture(frame)` is the path of a frame's picture.
-void writeSequenceVideo(const SequenceOptions& options, const SequencePlan& plan,
-                        const std::function<std::string(int frame)>& picture);
+void writeSequenceVideo(const SequenceRequest& options, const SequencePlan& plan,
+                        const std::function<std::string(int frame)>& picture, Reporter& reporter);
 
 // "A:B" (or "A") -> [A, B] within [1, total]; throws InputError naming --frames.
 void parseFrameRange(const std::string& text, int total, int& first, int& last);
@@ -93,7 +86,8 @@ void prepareFraming(Scene& scene, const SequencePlan& plan);
 struct FrameJob {
   std::function<bool(int frame)> finished;
   std::function<void(const Scene& posed, const Accelerator& accelerator, int frame)> render;
-  AcceleratorOptions accelerator;  // `dynamic` is set when the geometry moves
+  AcceleratorOptions accelerator;          // `dynamic` is set when the geometry moves
+  Reporter* reporter = &silentReporter();  // one line per frame and a summary
 };
 
 // Renders the plan's unfinished frames in order: the scene (framed once, after prepareFraming)
@@ -105,4 +99,4 @@ void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& 
 // The sequence's keys in a record: /sequence/{frames, first, last, fps, seconds, turntable...}.
 void recordSequence(JsonWriter& record, const SequencePlan& plan, int frame);
 
-}  // namespace parallax::app
+}  // namespace parallax::jobs

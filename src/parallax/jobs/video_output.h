@@ -1,6 +1,6 @@
-// `--video FILE` and its options for commands that make a sequence of pictures (the eye sweep of
-// `parallax simulate`): the pictures become one video file (video/video_writer.h,
-// docs/video.md).
+// A video request (video, video_codec, video_quality, fps) for commands that make a sequence of
+// pictures (the eye sweep of `parallax simulate`): the pictures become one video file
+// (video/video_writer.h, docs/video.md).
 #pragma once
 
 #include <memory>
@@ -8,15 +8,12 @@
 #include <vector>
 
 #include "parallax/image/image.h"
+#include "parallax/jobs/reporter.h"
 #include "parallax/video/video_writer.h"
 
-namespace CLI {
-class App;
-}  // namespace CLI
+namespace parallax::jobs {
 
-namespace parallax::app {
-
-struct VideoCliOptions {
+struct VideoRequest {
   std::string file;  // empty: no video
   std::string codec = "auto";
   int quality = 23;
@@ -26,13 +23,8 @@ struct VideoCliOptions {
   VideoOptions videoOptions() const { return {codec, quality, fps}; }
 };
 
-// Adds --video, --video-codec, --video-quality and (unless the command's sequence options
-// already have it: `withFps` false) --fps to `cmd`; `o` must outlive it (keep it in the
-// command's shared options). `frames` says what the frames are, for the help text.
-void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames,
-                     bool withFps = true);
 // Refuses bad video options (InputError naming the option) before any work is done.
-void checkVideoCliOptions(const VideoCliOptions& o);
+void checkVideoRequest(const VideoRequest& o);
 
 // One line for the user: "wrote FILE: N frames, WxH (coded WxH), CODEC, B bytes".
 std::string videoSummary(const VideoWriter& writer, int width, int height);
@@ -42,14 +34,14 @@ std::string videoSummary(const VideoWriter& writer, int width, int height);
 // no file.
 class VideoOutput {
  public:
-  explicit VideoOutput(VideoCliOptions options) : options_(std::move(options)) {}
+  explicit VideoOutput(VideoRequest options) : options_(std::move(options)) {}
   void add(const Image& picture);
   // Finishes the file and returns videoSummary()'s line.
   std::string finish();
   const VideoWriter& writer() const { return writer_; }
 
  private:
-  VideoCliOptions options_;
+  VideoRequest options_;
   VideoWriter writer_;
   int width_ = 0, height_ = 0;
 };
@@ -57,6 +49,7 @@ class VideoOutput {
 // Reads the pictures (io/image_file.h: PNG, JPEG or PFM; all of one size), encodes them in
 // order and prints videoSummary()'s line. Throws InputError naming a picture that cannot be read
 // or has another size than the first.
-void writeVideo(const std::vector<std::string>& pngPaths, const VideoCliOptions& options);
+void writeVideo(const std::vector<std::string>& pngPaths, const VideoRequest& options,
+                Reporter& reporter = silentReporter());
 
-}  // namespace parallax::app
+}  // namespace parallax::jobs

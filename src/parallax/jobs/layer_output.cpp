@@ -1,4 +1,4 @@
-#include "parallax/app/layer_output.h"
+#include "parallax/jobs/layer_output.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -14,14 +14,16 @@
 #include <filesystem>
 #include <vector>
 
-#include "parallax/app/cli_support.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/core/parallel.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/image_file.h"
+#include "parallax/jobs/limits.h"
+#include "parallax/jobs/reporter.h"
+#include "parallax/jobs/requests.h"
 
-namespace parallax::app {
+namespace parallax::jobs {
 
 namespace {
 
@@ -150,7 +152,8 @@ void OutputSet::commit() {
 }
 
 void startRenderRecord(JsonWriter& record, const std::string& method,
-                       const std::string& displayFile) {
+                       const std::string& displayFile, const ImportOptions& options,
+                       const std::vector<Scene::ImportRecord>& imports) {
   record.set("/program", "parallax");
   record.set("/version", PARALLAX_VERSION);
   record.set("/created", utcNow());
@@ -158,11 +161,9 @@ void startRenderRecord(JsonWriter& record, const std::string& method,
   record.set("/display_file", displayFile.empty() ? std::string("<built-in>") : displayFile);
   // docs/import.md, "What was done": the command's import options (which simulate's
   // loadSceneAsRendered reuses) and one object per mesh file, in loading order.
-  const ImportOptions options = importOptions();
   record.set("/import_options/up", upAxisName(options.up));
   record.set("/import_options/crease", double(options.creaseDegrees));
   record.setEmptyArray("/import");
-  const auto& imports = importRecords();
   for (size_t i = 0; i < imports.size(); ++i) {
     const std::string at = "/import/" + std::to_string(i);
     record.set(at + "/file", imports[i].file);
@@ -197,29 +198,31 @@ void checkLayerWork(const DisplayDesign& design, bool directMapping, int spp, in
   const double columns = directMapping ? panel.width : panel.width * subpixel;
   const std::string subject = displayPath.empty() ? "<built-in display>" : displayPath;
   checkLayerMemory(design, columns, views, subject);
-  checkTimeEstimate(columns * panel.height * views * spp, threads, "--spp " + std::to_string(spp),
+  checkTimeEstimate(columns * panel.height * views * spp, threads, "spp", std::to_string(spp),
                     "use fewer samples");
 }
 
 void checkQuiltWork(int columns, int rows, int width, int height, int spp, int threads,
                     const std::string& sizeText, bool linear) {
   const double views = double(columns) * rows;
-  const std::string subject = "--quilt " + std::to_string(columns) + "x" + std::to_string(rows) +
-                              (sizeText.empty() ? "" : " --size " + sizeText);
+  const std::string layout = std::to_string(columns) + "x" + std::to_string(rows) +
+                             (sizeText.empty() ? "" : " {size} " + sizeText);
+  const std::string subject = "{quilt} " + layout;
   // The quilt's 8-bit codes and its PNG (at most about as large), a float quilt only for
   // --linear, and one view at a time (its film, and its copy in the tile).
   const double bytes = (linear ? imageBytes(width, height, kFloatRgbPixelBytes, views) : 0.0) +
                        imageBytes(width, height, 2 * kRgba8PixelBytes, views) +
                        imageBytes(width, height, kFloatRgbPixelBytes, 2);
-  checkMemoryEstimate(bytes, subject, "the quilt", "use fewer views or a smaller --size");
+  checkMemoryEstimate(bytes, subject, "the quilt", "use fewer views or a smaller {size}");
   checkPixelCount(views * width * height, subject);
-  checkTimeEstimate(views * width * height * spp, threads, subject, "use fewer views or samples");
+  checkTimeEstimate(views * width * height * spp, threads, "quilt", layout,
+                    "use fewer views or samples");
 }
 
 // DIR/image.png, mask.png (image.pfm with `linear`), display.json and
 // render.json (the record, with /outputs and /design added).
-void writeDisplayLayers(const std::string& output, const Image& image, const Image& mask,
-                        const DisplayDesign& design, bool linear, JsonWriter& record) {
+std::string writeDisplayLayers(const std::string& output, const Image& image, const Image& mask,
+                               const DisplayDesign& design, bool linear, JsonWriter& record) {
   record.set("/outputs/image", "image.png");
   record.set("/outputs/mask", "mask.png");
   record.set("/outputs/display", "display.json");
@@ -240,12 +243,12 @@ void writeDisplayLayers(const std::string& output, const Image& image, const Ima
   writeFileAtomically(set.path("render.json"), record.dump() + "\n");
   set.commit();
   const char* dir = set.dir().c_str();
-  std::printf("wrote %s/image.png (%dx%d), %s/mask.png (%dx%d), %s/render.json\n", dir,
-              image.width(), image.height(), dir, mask.width(), mask.height(), dir);
+  return printed("wrote %s/image.png (%dx%d), %s/mask.png (%dx%d), %s/render.json", dir,
+                 image.width(), image.height(), dir, mask.width(), mask.height(), dir);
 }
 
-void writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& frames,
-                      const DisplayDesign& design, JsonWriter& record) {
+std::string writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& frames,
+                             const DisplayDesign& design, JsonWriter& record) {
   std::vector<std::string> imagePngs(frames.size()), maskPngs(frames.size());
   for (size_t k = 0; k < frames.size(); ++k) {
     const std::string n = std::to_string(k + 1);
@@ -266,9 +269,9 @@ void writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& 
   writeFileAtomically(set.path("display.json"), displayFileText(design.spec));
   writeFileAtomically(set.path("render.json"), record.dump() + "\n");
   set.commit();
-  std::printf("wrote %s/image-1..%zu.png, %s/mask-1..%zu.png (%dx%d), %s/render.json\n",
-              set.dir().c_str(), frames.size(), set.dir().c_str(), frames.size(),
-              frames[0].image.width(), frames[0].image.height(), set.dir().c_str());
+  return printed("wrote %s/image-1..%zu.png, %s/mask-1..%zu.png (%dx%d), %s/render.json",
+                 set.dir().c_str(), frames.size(), set.dir().c_str(), frames.size(),
+                 frames[0].image.width(), frames[0].image.height(), set.dir().c_str());
 }
 
-}  // namespace parallax::app
+}  // namespace parallax::jobs

@@ -1,18 +1,18 @@
-#include "parallax/app/sequence.h"
-
-#include <CLI/CLI.hpp>
+#include "parallax/jobs/sequence.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
-#include "parallax/app/cli_support.h"
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/jobs/limits.h"
+#include "parallax/jobs/reporter.h"
+#include "parallax/jobs/requests.h"
 
-namespace parallax::app {
+namespace parallax::jobs {
 
 namespace {
 
@@ -27,7 +27,7 @@ constexpr double kDefaultTurntableSeconds = 4.0;
 
 void parseFrameRange(const std::string& text, int total, int& first, int& last) {
   const auto fail = [&](const std::string& why) {
-    throw InputError("command line", "--frames", why + ", got '" + text + "'");
+    throw RequestError("frames", why + ", got '" + text + "'");
   };
   const size_t colon = text.find(':');
   const std::string a = text.substr(0, colon);
@@ -49,15 +49,14 @@ void narrowToChunk(const std::string& text, int& first, int& last) {
   const auto number = [&](const std::string& digits) {
     if (digits.empty() || digits.size() > 6 ||
         digits.find_first_not_of("0123456789") != std::string::npos)
-      throw InputError("command line", "--chunk",
-                       "expected K/N, the K-th of N parts (1 <= K <= N), got '" + text + "'");
+      throw RequestError("chunk",
+                         "expected K/N, the K-th of N parts (1 <= K <= N), got '" + text + "'");
     return std::stoi(digits);
   };
   const int k = number(text.substr(0, slash));
   const int n = slash == std::string::npos ? 0 : number(text.substr(slash + 1));
   if (n < 1 || k < 1 || k > n)
-    throw InputError("command line", "--chunk",
-                     "expected K/N with 1 <= K <= N, got '" + text + "'");
+    throw RequestError("chunk", "expected K/N with 1 <= K <= N, got '" + text + "'");
   const int64_t count = last - first + 1;
   const int start = first;
   first = start + int(count * (k - 1) / n);
@@ -72,55 +71,30 @@ std::string numberedPicture(const std::string& path, int frame) {
       .string();
 }
 
-void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames) {
-  cmd.add_option("--frames", options.frames,
-                 "Render frames FIRST:LAST of the animation (1-based) into DIR/frame-NNNN; "
-                 "finished frames are skipped, so a killed sequence resumes (docs/animation.md)")
-      ->type_name("FIRST:LAST");
-  cmd.add_option("--chunk", options.chunk,
-                 "Only the K-th of N contiguous parts of the frames (of --frames, else all): one "
-                 "task of a render farm (docs/distributed.md)")
-      ->type_name("K/N");
-  cmd.add_option("--turntable", options.turntable,
-                 "Turn the content DEGREES about the display's up axis over the animation "
-                 "(360: a loop)")
-      ->type_name("DEGREES")
-      ->check(realIn(-36000, 36000));
-  cmd.add_option("--duration", options.duration,
-                 "The animation's length in seconds (default: the scene's last key, else 4 s "
-                 "for a turntable)")
-      ->type_name("SECONDS")
-      ->check(realIn(0, 1e5, Bound::Open));
-  cmd.add_option("--fps", options.fps, "Frames per second of the animation (and of --video)")
-      ->capture_default_str()
-      ->check(realIn(0, 240, Bound::Open));
-  addVideoOptions(cmd, options.video, frames, false);
-}
-
-VideoCliOptions SequenceOptions::videoOptions() const {
-  VideoCliOptions o = video;
+VideoRequest SequenceRequest::videoOptions() const {
+  VideoRequest o = video;
   o.fps = fps;
   if (o.wanted() && !chunk.empty())
-    throw InputError("command line", "--video",
-                     "--chunk renders one part of the frames: make the video in a final step, the "
-                     "same command without --chunk (docs/distributed.md)");
+    throw RequestError("video",
+                       "{chunk} renders one part of the frames: make the video in a final step, "
+                       "the same command without {chunk} (docs/distributed.md)");
   if (o.wanted() && !given())
-    throw InputError("command line", "--video",
-                     "makes a video of a sequence: add --frames FIRST:LAST or --turntable DEGREES");
-  checkVideoCliOptions(o);
+    throw RequestError(
+        "video", "makes a video of a sequence: add {frames} FIRST:LAST or {turntable} DEGREES");
+  checkVideoRequest(o);
   return o;
 }
 
-void writeSequenceVideo(const SequenceOptions& options, const SequencePlan& plan,
-                        const std::function<std::string(int frame)>& picture) {
-  const VideoCliOptions video = options.videoOptions();
+void writeSequenceVideo(const SequenceRequest& options, const SequencePlan& plan,
+                        const std::function<std::string(int frame)>& picture, Reporter& reporter) {
+  const VideoRequest video = options.videoOptions();
   if (!video.wanted() || !cluster::world().isRoot()) return;  // after runSequence's last checkpoint
   std::vector<std::string> pictures;
   for (int frame = plan.first; frame <= plan.last; ++frame) pictures.push_back(picture(frame));
-  writeVideo(pictures, video);
+  writeVideo(pictures, video, reporter);
 }
 
-SequencePlan planSequence(const SequenceOptions& options, const Scene& scene) {
+SequencePlan planSequence(const SequenceRequest& options, const Scene& scene) {
   SequencePlan plan;
   plan.motion = sceneMotion(scene);
   plan.fps = options.fps;
@@ -136,9 +110,9 @@ SequencePlan planSequence(const SequenceOptions& options, const Scene& scene) {
   const double frames = options.turntable != 0 ? plan.seconds * plan.fps
                                                : std::floor(plan.seconds * plan.fps + 1e-9) + 1;
   if (!(frames <= kMaxFrames))
-    throw InputError("command line", options.duration > 0 ? "--duration" : "--fps",
-                     "the animation would have " + std::to_string(std::lround(frames)) +
-                         " frames; at most " + std::to_string(kMaxFrames));
+    throw RequestError(options.duration > 0 ? "duration" : "fps",
+                       "the animation would have " + std::to_string(std::lround(frames)) +
+                           " frames; at most " + std::to_string(kMaxFrames));
   plan.total = std::max(1, int(std::lround(frames)));
   plan.first = 1;
   plan.last = plan.total;
@@ -153,15 +127,15 @@ std::vector<double> SequencePlan::times() const {
   return t;
 }
 
-void noteAnimation(const SequenceOptions& options, const Scene& scene) {
+void noteAnimation(const SequenceRequest& options, const Scene& scene, Reporter& reporter) {
   if (options.given() || !cluster::world().isRoot()) return;
   const SceneMotion motion = sceneMotion(scene);
   if (motion.empty()) return;
   const SequencePlan plan = planSequence(options, scene);
-  std::fprintf(stderr,
-               "note: the scene is animated (%g s, %d frames at %g fps); this is its rest pose: "
-               "--frames 1:%d renders the frames (docs/animation.md)\n",
-               plan.seconds, plan.total, plan.fps, plan.total);
+  reporter.note(printed(
+      "the scene is animated (%g s, %d frames at %g fps); this is its rest pose: {frames} 1:%d "
+      "renders the frames (docs/animation.md)",
+      plan.seconds, plan.total, plan.fps, plan.total));
 }
 
 std::string frameName(int frame) {
@@ -213,10 +187,11 @@ void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& 
     if (!job.finished(frame)) todo.push_back(frame);
   const int done = plan.count() - int(todo.size());
   if (group.isRoot())
-    std::printf("sequence: frames %d to %d of %d at %g fps, %d to render%s%s\n", plan.first,
-                plan.last, plan.total, plan.fps, int(todo.size()),
-                done ? (", " + std::to_string(done) + " finished before").c_str() : "",
-                group.size() > 1 ? (" by " + std::to_string(group.size()) + " ranks").c_str() : "");
+    job.reporter->result(printed(
+        "sequence: frames %d to %d of %d at %g fps, %d to render%s%s", plan.first, plan.last,
+        plan.total, plan.fps, int(todo.size()),
+        done ? (", " + std::to_string(done) + " finished before").c_str() : "",
+        group.size() > 1 ? (" by " + std::to_string(group.size()) + " ranks").c_str() : ""));
   std::vector<int> mine;
   for (size_t i = 0; i < todo.size(); ++i)
     if (int(i % size_t(group.size())) == group.rank()) mine.push_back(todo[i]);
@@ -263,22 +238,20 @@ void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& 
       }
     }
     if (group.size() > 1)
-      std::printf("frame %d (rank %d: %zu of %zu, t = %.3f s)\n", frame, group.rank(), i + 1,
-                  mine.size(), plan.timeOf(frame));
+      job.reporter->result(printed("frame %d (rank %d: %zu of %zu, t = %.3f s)", frame,
+                                   group.rank(), i + 1, mine.size(), plan.timeOf(frame)));
     else
-      std::printf("frame %d (%zu of %zu, t = %.3f s)\n", frame, i + 1, mine.size(),
-                  plan.timeOf(frame));
-    std::fflush(stdout);
+      job.reporter->result(printed("frame %d (%zu of %zu, t = %.3f s)", frame, i + 1, mine.size(),
+                                   plan.timeOf(frame)));
     job.render(posed, accelerator, frame);
   }
   const double seconds = secondsSince(start);
-  std::printf(
-      "sequence: %zu frames in %.2f s (%.2f s a frame; BVH built once in %.3f s, "
-      "refitted in %.4f s a frame)\n",
-      mine.size(), seconds, seconds / double(mine.size()), buildSeconds,
-      mine.size() > 1 ? refitSeconds / double(mine.size() - 1) : 0.0);
-  std::fflush(stdout);
+  job.reporter->result(
+      printed("sequence: %zu frames in %.2f s (%.2f s a frame; BVH built once in %.3f s, "
+              "refitted in %.4f s a frame)",
+              mine.size(), seconds, seconds / double(mine.size()), buildSeconds,
+              mine.size() > 1 ? refitSeconds / double(mine.size() - 1) : 0.0));
   group.checkpoint();  // every frame is written
 }
 
-}  // namespace parallax::app
+}  // namespace parallax::jobs

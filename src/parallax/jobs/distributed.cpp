@@ -1,4 +1,4 @@
-#include "parallax/app/distributed.h"
+#include "parallax/jobs/distributed.h"
 
 #include <chrono>
 #include <cstdio>
@@ -6,7 +6,7 @@
 
 #include "parallax/cluster/process_group.h"
 
-namespace parallax::app {
+namespace parallax::jobs {
 
 RenderSettings frameShare(RenderSettings settings) {
   const cluster::ProcessGroup& group = cluster::world();
@@ -32,16 +32,18 @@ void mergeStats(cluster::ProcessGroup& group, RenderStats& stats) {
 // The merge's time and size on rank 0: the serial part a split frame adds
 // (docs/distributed.md, "Speed-up").
 void reportMerge(const cluster::ProcessGroup& group, double bytes,
-                 std::chrono::steady_clock::time_point start) {
+                 std::chrono::steady_clock::time_point start, Reporter& reporter) {
   if (!group.isRoot()) return;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("merged %d ranks' shares (%.1f MB) in %.3f s\n", group.size(), bytes / 1e6, seconds);
+  reporter.result(
+      printed("merged %d ranks' shares (%.1f MB) in %.3f s", group.size(), bytes / 1e6, seconds));
 }
 
 }  // namespace
 
-bool mergeFrameShares(std::initializer_list<Image*> images, RenderStats& stats) {
+bool mergeFrameShares(std::initializer_list<Image*> images, RenderStats& stats,
+                      Reporter& reporter) {
   cluster::ProcessGroup& group = cluster::world();
   if (group.size() == 1) return true;
   const auto start = std::chrono::steady_clock::now();
@@ -53,17 +55,17 @@ bool mergeFrameShares(std::initializer_list<Image*> images, RenderStats& stats) 
     bytes += double(pixels.size() * sizeof(Vec3f));
   }
   mergeStats(group, stats);
-  reportMerge(group, bytes, start);
+  reportMerge(group, bytes, start, reporter);
   return group.isRoot();
 }
 
-bool mergeFrameShares(std::vector<uint8_t>& codes, RenderStats& stats) {
+bool mergeFrameShares(std::vector<uint8_t>& codes, RenderStats& stats, Reporter& reporter) {
   cluster::ProcessGroup& group = cluster::world();
   if (group.size() == 1) return true;
   const auto start = std::chrono::steady_clock::now();
   group.mergeToRoot(codes);
   mergeStats(group, stats);
-  reportMerge(group, double(codes.size()), start);
+  reportMerge(group, double(codes.size()), start, reporter);
   return group.isRoot();
 }
 
@@ -71,4 +73,4 @@ bool writesJobOutputs() {
   return cluster::world().isRoot();
 }
 
-}  // namespace parallax::app
+}  // namespace parallax::jobs

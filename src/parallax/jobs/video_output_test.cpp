@@ -1,4 +1,4 @@
-#include "parallax/app/video_output.h"
+#include "parallax/jobs/video_output.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include "parallax/core/error.h"
 #include "parallax/io/image_file.h"
 
-namespace parallax::app {
+namespace parallax::jobs {
 namespace {
 
 namespace fs = std::filesystem;
@@ -66,12 +66,13 @@ TEST_F(VideoOutputTest, WritesThePicturesInOrder) {
     pngs.push_back(path(name));
     writeImage(pngs.back(), pictures.back());
   }
-  VideoCliOptions options;
+  VideoRequest options;
   options.file = path("out/v.mp4");
   options.quality = 18;
-  ::testing::internal::CaptureStdout();
-  writeVideo(pngs, options);
-  const std::string printed = ::testing::internal::GetCapturedStdout();
+  RecordingReporter reporter;
+  writeVideo(pngs, options, reporter);
+  ASSERT_EQ(reporter.results.size(), 1u);
+  const std::string printed = reporter.results[0];
   EXPECT_NE(printed.find(": 5 frames, 80x45 (coded 80x46), h264, "), std::string::npos) << printed;
   EXPECT_NE(printed.find(std::to_string(fs::file_size(options.file)) + " bytes"), std::string::npos)
       << printed;
@@ -91,7 +92,7 @@ TEST_F(VideoOutputTest, WritesThePicturesInOrder) {
 TEST_F(VideoOutputTest, RefusesPicturesItCannotUse) {
   writeImage(path("a.png"), picture(32, 32, 0));
   writeImage(path("b.png"), picture(32, 30, 0));
-  VideoCliOptions options;
+  VideoRequest options;
   options.file = path("v.webm");
   try {
     writeVideo({path("a.png"), path("b.png")}, options);
@@ -104,7 +105,7 @@ TEST_F(VideoOutputTest, RefusesPicturesItCannotUse) {
     writeVideo({}, options);
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "--video");
+    EXPECT_EQ(e.file(), "{video}");
   }
   options.codec = "h264";
   try {
@@ -118,4 +119,4 @@ TEST_F(VideoOutputTest, RefusesPicturesItCannotUse) {
 }
 
 }  // namespace
-}  // namespace parallax::app
+}  // namespace parallax::jobs

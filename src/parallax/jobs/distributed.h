@@ -7,9 +7,10 @@
 #include <vector>
 
 #include "parallax/image/image.h"
+#include "parallax/jobs/reporter.h"
 #include "parallax/render/render.h"
 
-namespace parallax::app {
+namespace parallax::jobs {
 
 // This process's share of one frame: its bands of rows (RenderSettings::bandParts).
 RenderSettings frameShare(RenderSettings settings);
@@ -17,10 +18,10 @@ RenderSettings frameShare(RenderSettings settings);
 // After every process rendered its share: the images' (or 8-bit codes') bits merged onto rank
 // 0, the ray counts summed and the slowest share's seconds taken. Returns whether this process
 // writes the outputs (rank 0); the others stop there.
-bool mergeFrameShares(std::initializer_list<Image*> images, RenderStats& stats);
-bool mergeFrameShares(std::vector<uint8_t>& codes, RenderStats& stats);
+bool mergeFrameShares(std::initializer_list<Image*> images, RenderStats& stats, Reporter& reporter);
+bool mergeFrameShares(std::vector<uint8_t>& codes, RenderStats& stats, Reporter& reporter);
 
 // Whether this process is the one that writes outputs made once for the whole job (rank 0).
 bool writesJobOutputs();
 
-}  // namespace parallax::app
+}  // namespace parallax::jobs

@@ -1,0 +1,41 @@
+// The limits every request is held to before any work starts (docs/inputs.md): memory (the
+// front end's max_memory, default 3/4 of physical memory) and time (max_time, default one day,
+// estimated at an optimistic rate), and the renderer's 2^31-pixel index.
+#pragma once
+
+#include <string>
+
+namespace parallax::jobs {
+
+// Process-wide: the front end sets them once (the CLI's global --max-memory / --max-time and
+// the commands' own; Python's set_limits). 0: the default.
+struct Limits {
+  double maxMemoryGiB = 0;
+  double maxSeconds = 0;
+};
+Limits& limits();
+
+// The memory limit in bytes.
+double memoryLimitBytes();
+// Refuses pictures of more than 2^31 pixels (the renderer's pixel index is an int); call it
+// after the memory estimate, which refuses them first where memory is smaller.
+void checkPixelCount(double pixels, const std::string& subject);
+// Refuses (InputError naming `subject`) when `bytes` exceed memoryLimitBytes().
+void checkMemoryEstimate(double bytes, const std::string& subject, const std::string& what,
+                         const std::string& advice);
+// The time estimate: `samples` camera samples (pixel x sample, each at least one ray) on
+// `threads` threads (0: all) at kSamplesPerSecondPerThread, an optimistic rate (the fastest
+// bench figure on a simple scene, rounded up), so that only work certain to take longer than
+// the time limit is refused. The refusal names the field `field` with the value `value`
+// ("--spp 16: needs ...").
+inline constexpr double kSamplesPerSecondPerThread = 1e8;
+inline constexpr double kDefaultMaxSeconds = 24 * 3600.0;
+void checkTimeEstimate(double samples, int threads, const std::string& field,
+                       const std::string& value, const std::string& advice);
+
+// "45 s", "12 min", "5 h", "58 days".
+std::string formatDuration(double seconds);
+// "12.3 M rays/s".
+std::string formatRate(double raysPerSecond);
+
+}  // namespace parallax::jobs

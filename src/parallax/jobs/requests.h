@@ -1,0 +1,110 @@
+// The typed requests every runner shares (docs/architecture.md, "Requests"): how to sample,
+// how a display pixel's rays spread, how the content is framed, which scene (a file, the
+// built-in one, or an RGB-D photo) and which display. Plain values that a front end fills from
+// its own spelling (the CLI's --spp, Python's spp=); each check throws RequestError naming the
+// field as the request spells it ("spp", "depth_budget").
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "parallax/camera/framing.h"
+#include "parallax/display/view_filter.h"
+#include "parallax/io/display_file.h"
+#include "parallax/io/json_writer.h"
+#include "parallax/io/scene_file.h"
+#include "parallax/jobs/reporter.h"
+#include "parallax/render/render.h"
+#include "parallax/scene/rgbd.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax::jobs {
+
+// "parallax 0.1.0 (Embree 4.3.3)": this build's version and the Embree it runs on.
+std::string versionText();
+
+// spp, threads, seed, jitter, adaptive, adaptive_threshold, bounces.
+struct SamplingRequest {
+  int spp = 16;
+  int threads = 0;
+  uint64_t seed = 0;
+  std::string jitter = "auto";
+  bool adaptive = false;
+  int bounces = 0;  // diffuse path-tracing bounces (RenderSettings::bounces)
+  double adaptiveThreshold = RenderSettings{}.adaptiveThreshold * 255.0;  // in 8-bit steps
+  // The render settings; throws RequestError naming spp (below 1), jitter (not auto, pixel or
+  // packet) or bounces.
+  RenderSettings settings() const;
+  // Refuses spp when width x height x spp x `passes` samples exceed the time limit.
+  void checkWork(double width, double height, double passes = 1.0) const;
+};
+
+// filter, filter_width: how a display pixel's rays spread in angle (display/view_filter.h).
+struct FilterRequest {
+  std::string kind = viewFilterName(ViewFilter{}.kind);
+  double widthViews = ViewFilter{}.widthViews;
+  // Throws RequestError naming filter (an unknown kind) or filter_width (outside [0.05, 20]).
+  ViewFilter filter() const;
+};
+
+// fit, focus, depth_budget: how the content is framed for the display (camera/framing.h).
+// Empty: the scene's own choice.
+struct FramingRequest {
+  std::string fit, focus, depthBudget;
+  bool given() const { return !fit.empty() || !focus.empty() || !depthBudget.empty(); }
+  // Sets them on the scene's placement; throws RequestError naming the field.
+  void apply(DisplayPlacement& placement) const {
+    applyFramingOptions(placement, fit, focus, depthBudget);
+  }
+  // Refuses bad values before anything is loaded.
+  void check() const;
+};
+
+// The framing's figures (camera/framing.h) under `at` ("/framing"): fit, focus, gaps, depth
+// of field and budget, and the content's near and far as given and as shown.
+void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& framing);
+// The framing in render.json, under "/framing": what was asked (fit, focus, depth_budget:
+// simulate --reference frames the scene again from these) and what followed.
+void recordFraming(JsonWriter& record, const Framing& framing);
+
+// rgbd (COLOUR DEPTH), depth_convention, depth_range, rgbd_edges, rgbd_fov (docs/rgbd.md).
+struct RgbdRequest {
+  std::vector<std::string> files;  // empty: not given
+  std::string convention = depthConventionName(RgbdOptions{}.convention);
+  std::string range = "1:3";  // NEAR:FAR (RgbdOptions' default)
+  std::string edges = rgbdEdgesName(RgbdOptions{}.edges);
+  double fovDegrees = RgbdOptions{}.fovDegrees;
+
+  bool given() const { return !files.empty(); }
+  // The parsed options; throws RequestError naming depth_convention, depth_range, rgbd_edges
+  // or rgbd_fov.
+  RgbdOptions options() const;
+};
+
+// The scene: a scene or mesh file (empty: the built-in scene), with the glTF camera to use and
+// how meshes are imported, or an RGB-D photo instead.
+struct SceneRequest {
+  std::string path;
+  SceneLoadOptions load;  // load.camera: a glTF camera by name or index
+  RgbdRequest rgbd;
+};
+// Loads it; its notes and warnings go to `reporter` (once, from rank 0, under mpirun). A photo
+// is loaded within the memory limit.
+Scene loadScene(const SceneRequest& request, Reporter& reporter);
+// The same without reporting.
+Scene loadSceneQuietly(const SceneRequest& request);
+// /scene, /scene_camera and /rgbd of a render record.
+void recordScene(JsonWriter& record, const SceneRequest& request, const Scene& scene);
+// The RGB-D choices under /rgbd: colour, depth, convention, near, far, fov_degrees, edges (and
+// edge_jump, background_offset, background_radius_px when layered), width_px, height_px and
+// triangles (of `scene`, the loaded photo).
+void recordRgbd(JsonWriter& record, const RgbdRequest& request, const Scene& scene);
+
+// A display of any kind (io/display_file.h: "" the built-in barrier, a file of either kind, or
+// lkg:NAME), the reader's warnings (defaulted or unknown calibration keys) to `reporter`.
+DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& reporter);
+// A barrier display ("" the built-in), designed; a lenticular calibration is refused.
+DisplayDesign loadBarrierDesign(const std::string& path, Reporter& reporter);
+
+}  // namespace parallax::jobs
