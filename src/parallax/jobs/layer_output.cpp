@@ -219,15 +219,41 @@ void checkQuiltWork(int columns, int rows, int width, int height, int spp, int t
                     "use fewer views or samples");
 }
 
-// DIR/image.png, mask.png (image.pfm with `linear`), display.json and
-// render.json (the record, with /outputs and /design added).
-std::string writeDisplayLayers(const std::string& output, const Image& image, const Image& mask,
-                               const DisplayDesign& design, bool linear, JsonWriter& record) {
+namespace {
+
+// DIR/image.png, mask.png (image.pfm with `linear`), the display's file and render.json (the
+// record, with /outputs added); several frames: image-K.png, mask-K.png.
+std::string writeLayerPictures(const std::string& output, const std::vector<LayerFrame>& frames,
+                               bool linear, const DisplayFile& file, JsonWriter& record) {
+  if (frames.size() > 1) {
+    std::vector<std::string> imagePngs(frames.size()), maskPngs(frames.size());
+    for (size_t k = 0; k < frames.size(); ++k) {
+      const std::string n = std::to_string(k + 1);
+      record.set("/frames/" + std::to_string(k) + "/image", "image-" + n + ".png");
+      record.set("/frames/" + std::to_string(k) + "/mask", "mask-" + n + ".png");
+      parallelInvoke(
+          0, [&] { imagePngs[k] = pngBytes(frames[k].image); },
+          [&] { maskPngs[k] = pngBytes(frames[k].mask); });
+    }
+    record.set("/outputs/" + file.recordKey, file.name);
+    OutputSet set(output);
+    for (size_t k = 0; k < frames.size(); ++k) {
+      const std::string n = std::to_string(k + 1);
+      writeFileAtomically(set.path("image-" + n + ".png"), imagePngs[k]);
+      writeFileAtomically(set.path("mask-" + n + ".png"), maskPngs[k]);
+    }
+    writeFileAtomically(set.path(file.name), file.text);
+    writeFileAtomically(set.path("render.json"), record.dump() + "\n");
+    set.commit();
+    return printed("wrote %s/image-1..%zu.png, %s/mask-1..%zu.png (%dx%d), %s/render.json",
+                   set.dir().c_str(), frames.size(), set.dir().c_str(), frames.size(),
+                   frames[0].image.width(), frames[0].image.height(), set.dir().c_str());
+  }
+  const Image &image = frames[0].image, &mask = frames[0].mask;
   record.set("/outputs/image", "image.png");
   record.set("/outputs/mask", "mask.png");
-  record.set("/outputs/display", "display.json");
+  record.set("/outputs/" + file.recordKey, file.name);
   if (linear) record.set("/outputs/image_linear", "image.pfm");
-  writeDesignJson(record, "/design", design);
 
   // Both pictures encoded at once (each on every core as well: io/png_encoder.h).
   std::string imagePng, maskPng;
@@ -239,7 +265,7 @@ std::string writeDisplayLayers(const std::string& output, const Image& image, co
   writeFileAtomically(set.path("mask.png"), maskPng);
   if (linear) writeImage(set.path("image.pfm"), image);
   // The display as a display file, so that `simulate DIR` and other tools can read it back.
-  writeFileAtomically(set.path("display.json"), displayFileText(design.spec));
+  writeFileAtomically(set.path(file.name), file.text);
   writeFileAtomically(set.path("render.json"), record.dump() + "\n");
   set.commit();
   const char* dir = set.dir().c_str();
@@ -247,31 +273,42 @@ std::string writeDisplayLayers(const std::string& output, const Image& image, co
                  image.width(), image.height(), dir, mask.width(), mask.height(), dir);
 }
 
-std::string writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& frames,
-                             const DisplayDesign& design, JsonWriter& record) {
-  std::vector<std::string> imagePngs(frames.size()), maskPngs(frames.size());
-  for (size_t k = 0; k < frames.size(); ++k) {
-    const std::string n = std::to_string(k + 1);
-    record.set("/frames/" + std::to_string(k) + "/image", "image-" + n + ".png");
-    record.set("/frames/" + std::to_string(k) + "/mask", "mask-" + n + ".png");
-    parallelInvoke(
-        0, [&] { imagePngs[k] = pngBytes(frames[k].image); },
-        [&] { maskPngs[k] = pngBytes(frames[k].mask); });
-  }
-  record.set("/outputs/display", "display.json");
+DisplayFile barrierFile(const DisplayDesign& design) {
+  return {"display.json", displayFileText(design.spec), "display"};
+}
+
+}  // namespace
+
+std::string writeDisplayLayers(const std::string& output, const Image& image, const Image& mask,
+                               const DisplayDesign& design, bool linear, JsonWriter& record) {
   writeDesignJson(record, "/design", design);
+  return writeLayerPictures(output, {{image, mask}}, linear, barrierFile(design), record);
+}
+
+std::string writePictureSet(const std::string& output, const std::vector<LayerFrame>& frames,
+                            bool linear, const DisplayFile& file, JsonWriter& record) {
+  if (frames.size() > 1 || !frames[0].mask.empty())
+    return writeLayerPictures(output, frames, linear, file, record);
+  const Image& image = frames[0].image;
+  record.set("/outputs/image", "image.png");
+  record.set("/outputs/" + file.recordKey, file.name);
+  if (linear) record.set("/outputs/image_linear", "image.pfm");
   OutputSet set(output);
-  for (size_t k = 0; k < frames.size(); ++k) {
-    const std::string n = std::to_string(k + 1);
-    writeFileAtomically(set.path("image-" + n + ".png"), imagePngs[k]);
-    writeFileAtomically(set.path("mask-" + n + ".png"), maskPngs[k]);
-  }
-  writeFileAtomically(set.path("display.json"), displayFileText(design.spec));
+  writeImage(set.path("image.png"), image);
+  if (linear) writeImage(set.path("image.pfm"), image);
+  // The display's file beside the picture, so that `lenticular simulate DIR` finds it.
+  writeFileAtomically(set.path(file.name), file.text);
   writeFileAtomically(set.path("render.json"), record.dump() + "\n");
   set.commit();
-  return printed("wrote %s/image-1..%zu.png, %s/mask-1..%zu.png (%dx%d), %s/render.json",
-                 set.dir().c_str(), frames.size(), set.dir().c_str(), frames.size(),
-                 frames[0].image.width(), frames[0].image.height(), set.dir().c_str());
+  const char* dir = set.dir().c_str();
+  return printed("wrote %s/image.png (%dx%d), %s/%s, %s/render.json", dir, image.width(),
+                 image.height(), dir, file.name.c_str(), dir);
+}
+
+std::string writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& frames,
+                             const DisplayDesign& design, JsonWriter& record) {
+  writeDesignJson(record, "/design", design);
+  return writeLayerPictures(output, frames, false, barrierFile(design), record);
 }
 
 }  // namespace parallax::jobs

@@ -71,6 +71,19 @@ void checkQuiltWork(int columns, int rows, int width, int height, int spp, int t
 std::string writeDisplayLayers(const std::string& output, const Image& image, const Image& mask,
                                const DisplayDesign& design, bool linear, JsonWriter& record);
 
+// The display's own file written beside its pictures: display.json (a barrier) or visual.json
+// (a lenticular calibration), and its key under /outputs ("display", "calibration").
+struct DisplayFile {
+  std::string name, text, recordKey;
+};
+
+// A display's pictures as one set in `output`, with its file and render.json (the record, with
+// /outputs added; /design is the caller's): one frame with a mask (writeDisplayLayers' files),
+// several (writeLayerFrames'), or a panel picture without a mask (image.png). Returns the line
+// that says what was written.
+std::string writePictureSet(const std::string& output, const std::vector<LayerFrame>& frames,
+                            bool linear, const DisplayFile& file, JsonWriter& record);
+
 // Time-multiplexed layers (render --layers nmf --rank T): DIR/image-K.png and mask-K.png for
 // K = 1..T, shown in turn, with display.json and render.json (/frames lists the pairs), as one
 // set.

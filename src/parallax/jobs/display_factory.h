@@ -1,0 +1,61 @@
+// The one display factory (docs/architecture.md, "One display, every kind"): a display's
+// description (io/display_file.h) and the camera's choices for it become a DisplayModel. Outside
+// display/, io's reader and the two-layer simulator, this is the only code that asks which kind
+// a display is; every runner works on the model it returns.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "parallax/camera/framing.h"
+#include "parallax/display/display_model.h"
+#include "parallax/display/view_filter.h"
+#include "parallax/io/display_file.h"
+#include "parallax/jobs/layer_output.h"
+#include "parallax/jobs/requests.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax::jobs {
+
+// The camera's choices for a display: render settings, not part of its physical description.
+struct DisplayCameraRequest {
+  bool subpixels = false;     // subpixels: one ray per R, G, B subpixel (barriers)
+  ViewFilter filter;          // how a film sample's rays spread in angle
+  double viewDistanceMm = 0;  // distance: a lenticular panel's design viewer (0: its default)
+};
+
+// A display built for a camera, and what a render writes beside its pictures.
+struct BuiltDisplay {
+  std::unique_ptr<DisplayModel> model;
+  // The display as its file (display.json, or a calibration's visual.json), for output sets.
+  DisplayFile file;
+  std::optional<Framing> framing;  // how the scene was framed for it (framed barriers)
+  // Every given and derived figure of its design under the JSON pointer `at`.
+  void recordDesign(JsonWriter& record, const std::string& at) const;
+
+  const DisplayModel& operator*() const { return *model; }
+  const DisplayModel* operator->() const { return model.get(); }
+};
+
+// Builds the display. Throws RequestError for a choice its kind does not have (subpixels on a
+// lenticular panel, a viewer distance on a barrier, whose distance is its design's).
+BuiltDisplay makeDisplay(const DisplayDescription& description,
+                         const DisplayCameraRequest& camera = {});
+
+// The same for a render of `scene`: a barrier frames the scene for itself first (camera/
+// framing.h: the placement's width, the zero-parallax plane, the virtual gap for the depth
+// budget) and `scene`'s placement becomes the framing's; a lenticular panel shows the scene as
+// placed and refuses a framing request (field "framing").
+BuiltDisplay makeFramedDisplay(const DisplayDescription& description,
+                               const DisplayCameraRequest& camera, const FramingRequest& framing,
+                               Scene& scene);
+
+// The refusal of a framing request for a display that cannot use one (before any work).
+void checkFramingApplies(const DisplayDescription& description, const FramingRequest& framing);
+
+// Whether the display's samples are one ray each whatever the sample count (the central ray of
+// filter none): a render of it needs one sample per film pixel.
+bool oneRayPerSample(const ViewFilter& filter);
+
+}  // namespace parallax::jobs

@@ -1,0 +1,76 @@
+// The render runner (docs/architecture.md, "Requests"): a display's pictures of a scene, of any
+// display kind: a barrier's image and mask layers (the display camera, the usual practice of
+// direct mapping as a baseline, or content-adaptive layers solved from them), a lenticular
+// panel's picture, or a quilt of off-axis views; one picture set or a sequence of frames with a
+// video. `parallax render` and Python's render functions are two spellings of one RenderRequest.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "parallax/image/image.h"
+#include "parallax/jobs/reporter.h"
+#include "parallax/jobs/requests.h"
+#include "parallax/jobs/sequence.h"
+#include "parallax/layers/layer_solver.h"
+#include "parallax/scene/scene.h"
+
+namespace parallax::jobs {
+
+// layers, rank, iterations, brightness, train_eyes, layer_error: content-adaptive layers
+// (docs/content-adaptive.md) instead of the slits' own.
+struct LayersRequest {
+  std::string method = "slits";  // slits, optimized-image or nmf
+  int rank = 1;                  // nmf's time-multiplexed frame pairs
+  int iterations = 0;            // 0: the method's default (10)
+  double brightness = 0;         // times the slits' brightness; 0: the method's default
+  int trainEyes = 2;             // training eyes per view at 0.8, 1 and 1.25 D
+  std::string error;             // srgb or linear; "": the method's default
+  bool solved() const { return method != "slits"; }
+  // The error measure the image layer is fitted in: srgb for optimized-image, linear for nmf.
+  std::string errorMeasure() const;
+  // Throws RequestError naming the field of a bad value.
+  void check() const;
+};
+
+// quilt (its layout) and size (one view's): the views of a quilt instead of the layers.
+struct QuiltRequest {
+  bool wanted = false;
+  int columns = 0, rows = 0;  // 0: the display's own (a device's quilt, a barrier's row of views)
+  int width = 0, height = 0;  // one view; 0: the device quilt's tile, or the panel's resolution
+};
+
+struct RenderRequest {
+  SceneRequest scene;
+  std::string display;  // "" the built-in barrier, a display file, a calibration, lkg:NAME
+  SamplingRequest sampling;
+  FilterRequest filter;
+  FramingRequest framing;
+  bool subpixels = false;      // one ray per R, G, B subpixel (barriers)
+  bool directMapping = false;  // direct_mapping: N ordinary views, interleaved (Fig. 2)
+  bool linear = false;         // also image.pfm (a quilt: its .pfm)
+  double distance = 0;         // a lenticular panel's design viewer in mm (0: its default)
+  QuiltRequest quilt;
+  LayersRequest layers;
+  SequenceRequest sequence;  // frames, chunk, turntable, duration, fps, video
+  std::string output = "out";
+};
+
+// One picture set in memory (Python): the image layer (a lenticular panel's picture) and mask
+// of each frame (one, or nmf's rank), or the quilt; and render.json's record.
+struct RenderResult {
+  std::vector<LayerFrame> frames;  // mask empty for a display without one
+  Image quilt;                     // linear; with quilt.wanted
+  std::string record;
+};
+
+// Renders to request.output: the picture set with the display's file and render.json, or a
+// sequence's frame-NNNN folders and its video. Every check and estimate runs before the scene
+// is loaded or anything is written.
+void runRender(const RenderRequest& request, Reporter& reporter);
+
+// The same picture set of `scene` (loaded by the caller; request.scene only names it in the
+// record), kept in memory: no files, no sequence.
+RenderResult renderInMemory(const RenderRequest& request, const Scene& scene, Reporter& reporter);
+
+}  // namespace parallax::jobs

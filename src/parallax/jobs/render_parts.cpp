@@ -1,0 +1,298 @@
+// One frame of the render runner: the display camera's layers (or direct mapping, or a lenticular
+// panel's picture, or solved layers) and quilts, each with its render.json record.
+#include "parallax/jobs/render_parts.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "parallax/cluster/process_group.h"
+#include "parallax/core/error.h"
+#include "parallax/core/memory.h"
+#include "parallax/core/parallel.h"
+#include "parallax/io/image_file.h"
+#include "parallax/io/png_encoder.h"
+#include "parallax/jobs/distributed.h"
+#include "parallax/jobs/layer_output.h"
+#include "parallax/jobs/limits.h"
+#include "parallax/render/display_render.h"
+
+namespace parallax::jobs {
+
+void planQuilt(const RenderRequest& r, const DisplayModel& display, RenderPlan& plan) {
+  const LenticularDesign* lenticular = display.lenticularDesign();
+  QuiltLayout& layout = plan.layout;
+  layout.columns = r.quilt.columns, layout.rows = r.quilt.rows;
+  if (layout.columns == 0) {  // auto: the device's quilt, or one row of the barrier's views
+    layout.columns = lenticular ? lenticular->calibration.quilt.columns : display.viewCount();
+    layout.rows = lenticular ? lenticular->calibration.quilt.rows : 1;
+  }
+  int width = display.film().panelWidth, height = display.film().panelHeight;
+  if (lenticular) {
+    width = lenticular->calibration.quilt.width / layout.columns;
+    height = lenticular->calibration.quilt.height / layout.rows;
+  }
+  const bool sized = r.quilt.width > 0;
+  if (sized) width = r.quilt.width, height = r.quilt.height;
+  if (width < 1 || height < 1)
+    throw RequestError("quilt", "the device's quilt is too small for " +
+                                    std::to_string(layout.columns) + "x" +
+                                    std::to_string(layout.rows) + " tiles");
+  checkQuiltWork(layout.columns, layout.rows, width, height, plan.settings.samplesPerPixel,
+                 plan.settings.threads,
+                 sized ? std::to_string(width) + "x" + std::to_string(height) : "", r.linear);
+  layout.aspect = double(width) / height;
+  plan.tileWidth = width, plan.tileHeight = height;
+}
+
+void checkPictureWork(const DisplayModel& display, bool directMapping,
+                      const RenderSettings& settings, const std::string& subject) {
+  if (const DisplayDesign* design = display.barrierDesign())
+    return checkLayerWork(*design, directMapping, settings.samplesPerPixel, settings.threads,
+                          subject == "<built-in display>" ? "" : subject);
+  // One panel picture: the film, the picture and its 8-bit copy.
+  const FilmLayout film = display.film();
+  checkMemoryEstimate(imageBytes(film.columns, film.rows) +
+                          imageBytes(film.panelWidth, film.panelHeight) +
+                          imageBytes(film.panelWidth, film.panelHeight, kRgba8PixelBytes),
+                      display.source(), "the panel image", "use a smaller panel");
+  checkTimeEstimate(double(film.columns) * film.rows * settings.samplesPerPixel, settings.threads,
+                    "spp", std::to_string(settings.samplesPerPixel), "use fewer samples");
+}
+
+AcceleratorOptions cameraRayAccelerator(const RenderRequest& r, const RenderPlan& plan,
+                                        const DisplayModel& display) {
+  const double spp = plan.settings.samplesPerPixel;
+  if (r.quilt.wanted)
+    return acceleratorForCameraRays(double(plan.layout.views()) * plan.tileWidth *
+                                    plan.tileHeight * spp);
+  const FilmLayout film = display.film();
+  const DisplayDesign* design = display.barrierDesign();
+  const double views =
+      r.directMapping && design ? std::max(1.0, std::round(design->screenPeriodPx)) : 1.0;
+  return acceleratorForCameraRays(double(film.columns) * film.rows * views * spp);
+}
+
+namespace {
+
+// The top of every record: program, method, display, imports, scene, sampling.
+JsonWriter startRecord(const FrameTarget& t, const std::string& method, const Scene& scene) {
+  const RenderRequest& r = *t.request;
+  JsonWriter record;
+  startRenderRecord(record, method, r.display, r.scene.load.import, scene.imports);
+  return record;
+}
+
+void recordSampling(JsonWriter& record, const RenderRequest& r, const RenderSettings& settings) {
+  record.set("/spp", settings.samplesPerPixel);
+  record.set("/bounces", settings.bounces);
+  record.set("/seed", r.sampling.seed);
+  record.set("/jitter", r.sampling.jitter);
+  record.set("/threads", r.sampling.threads);
+}
+
+void recordSpeed(JsonWriter& record, const RenderStats& stats) {
+  record.set("/seconds", stats.seconds);
+  record.set("/rays", stats.totalRays());
+  record.set("/rays_per_second", double(stats.totalRays()) / stats.seconds);
+}
+
+std::string speedLine(int spp, const RenderStats& stats) {
+  return printed("%d spp in %.2f s, %s", spp, stats.seconds,
+                 formatRate(double(stats.totalRays()) / stats.seconds).c_str());
+}
+
+// A frame's pictures and record, before they are written or handed over.
+struct FramePictures {
+  std::vector<LayerFrame> frames;
+  Image quilt;                 // a float quilt (linear or in memory)
+  std::vector<uint8_t> codes;  // a quilt as its PNG's 8-bit codes (files, not linear)
+  JsonWriter record;
+  RenderStats stats;
+  int spp = 0;
+};
+
+// The display camera's layers of one (posed) scene, solved if asked. False when this rank does
+// not write them (mpirun).
+bool renderLayers(const FrameTarget& t, const Scene& scene, const Accelerator& accelerator,
+                  Reporter& reporter, FramePictures& out) {
+  const RenderRequest& r = *t.request;
+  const RenderPlan& plan = *t.plan;
+  const BuiltDisplay& display = *t.display;
+  const RenderSettings& settings = plan.settings;
+  // One frame under mpirun: each rank renders its bands, rank 0 writes (docs/distributed.md).
+  // The layer solvers need the whole slit layers and fit them globally: rank 0 alone runs them.
+  const bool split = !t.sequence && !r.layers.solved();
+  if (!t.sequence && !split && !writesJobOutputs()) return false;
+  if (!t.sequence && !split && cluster::world().size() > 1)
+    reporter.note("{layers} " + r.layers.method +
+                  " is not split across ranks: rank 0 renders it alone");
+  const bool layered = display->hasMaskLayer();
+  DisplayLayers layers;
+  {
+    const auto progress = reporter.progress(layered ? "render" : "lenticular render");
+    const RenderSettings share = split ? frameShare(settings) : settings;
+    layers = r.directMapping
+                 ? renderDirectMapping(scene, accelerator, *display, share, progress->callback())
+                 : renderDisplay(scene, accelerator, *display, share, progress->callback());
+  }
+  if (split && !mergeFrameShares({&layers.image}, layers.stats, reporter)) return false;
+
+  const std::string method = !layered ? "lenticular: rays per subpixel around its view"
+                             : r.directMapping ? "direct-mapping"
+                                               : "barrier-camera";
+  out.record = startRecord(t, method, scene);
+  JsonWriter& record = out.record;
+  if (layered) record.set("/layers/method", r.layers.method);
+  out.frames = {{layers.image, layers.mask}};
+  if (r.layers.solved())
+    out.frames = solveLayers(r.layers, scene, accelerator, *display->barrierDesign(),
+                             plan.training, out.frames[0], record, reporter);
+  recordScene(record, r.scene, scene);
+  recordSampling(record, r, settings);
+  record.set("/adaptive", settings.adaptive);
+  if (settings.adaptive) {
+    const FilmLayout film = display->film();
+    record.set("/adaptive_threshold_8bit", settings.adaptiveThreshold * 255.0);
+    record.set("/camera_rays", layers.stats.cameraRays);
+    record.set("/mean_spp",
+               double(layers.stats.cameraRays) / (double(film.columns) * double(film.rows)));
+  }
+  if (!r.directMapping) {
+    record.set("/filter/kind", viewFilterName(plan.filter.kind));
+    record.set("/filter/width_views", plan.filter.widthViews);
+  }
+  recordSpeed(record, layers.stats);
+  record.set("/scene_display/center", scene.display.center);
+  record.set("/scene_display/normal", scene.display.normal);
+  record.set("/scene_display/up", scene.display.up);
+  record.set("/scene_display/width", double(fitDisplayWidth(scene.display, display->window())));
+  if (display.framing) recordFraming(record, *display.framing);
+  if (t.sequence) recordSequence(record, *t.sequence, t.frame);
+  display.recordDesign(record, "/design");
+  out.stats = layers.stats;
+  out.spp = settings.samplesPerPixel;
+  return true;
+}
+
+// The quilt's views of one (posed) scene. `codes`: kept as 8-bit codes (a PNG to write).
+bool renderQuiltFrame(const FrameTarget& t, const Scene& scene, const Accelerator& accelerator,
+                      bool codes, Reporter& reporter, FramePictures& out) {
+  const RenderRequest& r = *t.request;
+  const RenderPlan& plan = *t.plan;
+  const DisplayModel& display = **t.display;
+  const QuiltLayout& layout = plan.layout;
+  const int width = plan.tileWidth, height = plan.tileHeight;
+  // One quilt alone is split across mpirun's ranks by bands of every view's rows; a sequence's
+  // quilts are whole frames of one rank (docs/distributed.md).
+  const RenderSettings share = t.sequence ? plan.settings : frameShare(plan.settings);
+  const int quiltWidth = layout.columns * width, quiltHeight = layout.rows * height;
+  {
+    const auto progress = reporter.progress("render");
+    if (!codes) {
+      out.quilt = renderQuilt(scene, accelerator, display, share, layout, width, height,
+                              &out.stats, progress->callback());
+    } else {
+      out.codes.resize(size_t(quiltWidth) * size_t(quiltHeight) * 3);
+      const auto keepCodes = [&](int, int left, int top, const Image& view) {
+        parallelFor(view.height(), 0, 16, [&](int64_t begin, int64_t end) {
+          for (int64_t y = begin; y < end; ++y) {
+            uint8_t* row =
+                out.codes.data() + (size_t(top + y) * size_t(quiltWidth) + size_t(left)) * 3;
+            linearToSrgb8(&view.at(0, int(y)).x, 3 * size_t(view.width()), row);
+          }
+        });
+      };
+      renderQuiltTiles(scene, accelerator, display, share, layout, width, height, keepCodes,
+                       &out.stats, progress->callback());
+    }
+  }
+  if (!t.sequence) {
+    const bool writer = codes ? mergeFrameShares(out.codes, out.stats, reporter)
+                              : mergeFrameShares({&out.quilt}, out.stats, reporter);
+    if (!writer) return false;
+  }
+  out.record = startRecord(t, "quilt", scene);
+  JsonWriter& record = out.record;
+  record.set("/display_kind", displayKindName(display.kind()));
+  recordScene(record, r.scene, scene);
+  recordSampling(record, r, plan.settings);
+  recordSpeed(record, out.stats);
+  record.set("/quilt/columns", layout.columns);
+  record.set("/quilt/rows", layout.rows);
+  record.set("/quilt/view_size", std::to_string(width) + "x" + std::to_string(height));
+  record.set("/quilt/order", "view 0 = leftmost camera = bottom-left tile, rightward then upward");
+  for (int k = 0; k < layout.views(); ++k) {
+    const Vec3d eye = quiltEyePosition(display, k, layout.views());
+    record.set("/quilt/eyes_mm/" + std::to_string(k),
+               Vec3f(float(eye.x), float(eye.y), float(eye.z)));
+  }
+  record.set("/outputs/quilt", quiltFileName("quilt", layout, ".png"));
+  if (t.display->framing) recordFraming(record, *t.display->framing);
+  t.display->recordDesign(record, "/design");
+  if (r.linear) record.set("/outputs/quilt_linear", quiltFileName("quilt", layout, ".pfm"));
+  if (t.sequence) recordSequence(record, *t.sequence, t.frame);
+  out.spp = r.sampling.spp;
+  return true;
+}
+
+void writeQuilt(const FrameTarget& t, FramePictures& pictures, Reporter& reporter) {
+  const RenderRequest& r = *t.request;
+  const QuiltLayout& layout = t.plan->layout;
+  const std::string name = quiltFileName("quilt", layout, ".png");
+  OutputSet set(t.output);
+  if (r.linear) {
+    writeImage(set.path(name), pictures.quilt);
+    writeImage(set.path(quiltFileName("quilt", layout, ".pfm")), pictures.quilt);
+  } else {
+    writeFileAtomically(set.path(name),
+                        pngBytesFromSrgb8(pictures.codes, layout.columns * t.plan->tileWidth,
+                                          layout.rows * t.plan->tileHeight));
+  }
+  writeFileAtomically(set.path(t.display->file.name), t.display->file.text);
+  writeFileAtomically(set.path("render.json"), pictures.record.dump() + "\n");
+  set.commit();
+  const std::string dir = set.dir();
+  reporter.result(printed("wrote %s/%s (%d views of %dx%d), %s/render.json", dir.c_str(),
+                          name.c_str(), layout.views(), t.plan->tileWidth, t.plan->tileHeight,
+                          dir.c_str()));
+}
+
+}  // namespace
+
+void renderFrameToFiles(const FrameTarget& t, const Scene& scene, const Accelerator& accelerator,
+                        Reporter& reporter) {
+  const RenderRequest& r = *t.request;
+  FramePictures pictures;
+  if (r.quilt.wanted) {
+    if (!renderQuiltFrame(t, scene, accelerator, !r.linear, reporter, pictures)) return;
+    writeQuilt(t, pictures, reporter);
+    reporter.result(speedLine(pictures.spp, pictures.stats));
+    return;
+  }
+  if (!renderLayers(t, scene, accelerator, reporter, pictures)) return;
+  reporter.result(
+      writePictureSet(t.output, pictures.frames, r.linear, t.display->file, pictures.record));
+  std::string speed = speedLine(pictures.spp, pictures.stats);
+  if (const LenticularDesign* lenticular = (*t.display)->lenticularDesign())
+    speed = printed("%.2f pixels per lens, views over %.0f degrees; ", lenticular->pixelsPerLens,
+                    lenticular->calibration.viewConeDegrees) +
+            speed;
+  reporter.result(speed);
+}
+
+RenderResult renderFrameInMemory(const FrameTarget& t, const Scene& scene,
+                                 const Accelerator& accelerator, Reporter& reporter) {
+  FramePictures pictures;
+  RenderResult result;
+  if (t.request->quilt.wanted) {
+    renderQuiltFrame(t, scene, accelerator, false, reporter, pictures);
+    result.quilt = std::move(pictures.quilt);
+  } else {
+    renderLayers(t, scene, accelerator, reporter, pictures);
+    result.frames = std::move(pictures.frames);
+  }
+  result.record = pictures.record.dump();
+  return result;
+}
+
+}  // namespace parallax::jobs

@@ -1,0 +1,67 @@
+// The render runner's parts (jobs/render_job.h), internal to jobs: the checked plan, and one
+// frame's pictures (layers or a quilt) rendered, solved and recorded.
+#pragma once
+
+#include <string>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/render_job.h"
+#include "parallax/layers/training.h"
+#include "parallax/render/quilt.h"
+
+namespace parallax::jobs {
+
+// A render request checked against its display, before the scene is loaded.
+struct RenderPlan {
+  RenderSettings settings;  // one sample per pixel when every sample is the same ray
+  ViewFilter filter;
+  DisplayDescription description;
+  DisplayCameraRequest camera;
+  QuiltLayout layout;  // a quilt's: resolved (auto: the display's own), with its tiles' aspect
+  int tileWidth = 0, tileHeight = 0;
+  TrainingOptions training;  // content-adaptive layers' training eyes
+};
+
+// Where one frame's pictures go: the request, its plan and display, the sequence (if any) and
+// the folder.
+struct FrameTarget {
+  const RenderRequest* request;
+  const RenderPlan* plan;
+  const BuiltDisplay* display;
+  const SequencePlan* sequence;  // null: one picture set
+  int frame;
+  std::string output;
+};
+
+// The quilt's layout and tile size for `display`, refusing what does not fit (memory, pixels,
+// time) and noting tiles whose aspect is not the window's.
+void planQuilt(const RenderRequest& request, const DisplayModel& display, RenderPlan& plan);
+
+// Refuses (naming `subject`, the display) layers that would not fit in memory, and samples that
+// would take too long: the film (and with direct mapping one view per interleaved view), the
+// pictures and their 8-bit copies.
+void checkPictureWork(const DisplayModel& display, bool directMapping,
+                      const RenderSettings& settings, const std::string& subject);
+
+// The accelerator for the camera rays the request traces (their count picks its build).
+AcceleratorOptions cameraRayAccelerator(const RenderRequest& request, const RenderPlan& plan,
+                                        const DisplayModel& display);
+
+// One frame of `scene` rendered and written to target.output (under mpirun: split over the
+// ranks, written by rank 0).
+void renderFrameToFiles(const FrameTarget& target, const Scene& scene,
+                        const Accelerator& accelerator, Reporter& reporter);
+
+// The same frame kept in memory.
+RenderResult renderFrameInMemory(const FrameTarget& target, const Scene& scene,
+                                 const Accelerator& accelerator, Reporter& reporter);
+
+// Content-adaptive layers from the slit layers (docs/content-adaptive.md): the training views,
+// then the solver; its figures go under /layers of `record`.
+std::vector<LayerFrame> solveLayers(const LayersRequest& request, const Scene& scene,
+                                    const Accelerator& accelerator, const DisplayDesign& design,
+                                    TrainingOptions training, const LayerFrame& slits,
+                                    JsonWriter& record, Reporter& reporter);
+
+}  // namespace parallax::jobs
