@@ -12,7 +12,7 @@ BarrierRayGenerator::BarrierRayGenerator(const DisplayDesign& design, const View
       mask_(design),
       filter_(filter),
       warp_(filter),
-      subpixels_(design.spec.subpixelRays),
+      subpixels_(design.camera.subpixelRays),
       filmWidth_(design.spec.imagePanel.width * (subpixels_ ? 3 : 1)),
       zImage_(design.imageLayerZ()),
       zMask_(design.maskLayerZ()),
