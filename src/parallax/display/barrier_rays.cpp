@@ -135,6 +135,12 @@ PARALLAX_LANE_KERNEL void BarrierRayGenerator::rays16(const float filmX[16], con
   (void)v;
 }
 
+BarrierRayGenerator physicalBarrierRays(const DisplayDesign& design, const ViewFilter& filter) {
+  BarrierCameraSettings physical;
+  physical.subpixelRays = design.camera.subpixelRays;
+  return BarrierRayGenerator(designDisplay(design.spec, physical), filter);
+}
+
 BarrierRayGenerator::Association BarrierRayGenerator::associate(double filmX, double filmY) const {
   Association a;
   // 1. Association, at the pixel's centre: the aperture nearest to the line from the
