@@ -101,7 +101,7 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
   f.depthOfFieldMm = design.depthOfFieldMm;
   f.budgetMm = given.depthBudgetMm.value_or(design.depthOfFieldMm);
   f.gapMm = design.gapMm;
-  f.virtualGapFixed = design.spec.virtualGapMm.has_value();
+  f.virtualGapFixed = design.camera.virtualGapMm.has_value();
   f.design = design;
 
   const Bounds3f bounds = given.content ? *given.content : scene.bounds();
@@ -155,9 +155,9 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
     const double deepest = std::max(f.nearMm, -f.farMm);
     virtualGap = std::clamp(design.gapMm * deepest / f.budgetMm, design.gapMm, kGapRange.highest);
     if (virtualGap > design.gapMm * (1 + 1e-9)) {
-      DisplaySpec spec = design.spec;
-      spec.virtualGapMm = virtualGap;
-      f.design = designDisplay(spec);
+      BarrierCameraSettings camera = design.camera;
+      camera.virtualGapMm = virtualGap;
+      f.design = designDisplay(design.spec, camera);
     } else {
       virtualGap = design.gapMm;
     }
@@ -204,28 +204,24 @@ void applyFramingOptions(DisplayPlacement& placement, const std::string& fit,
          {DisplayFit::Auto, DisplayFit::Window, DisplayFit::Depth, DisplayFit::None})
       if (fit == displayFitName(mode)) placement.fitMode = mode, known = true;
     if (!known)
-      throw InputError("command line", "--fit",
-                       "expected window, depth, none or auto, got '" + fit + "'");
+      throw RequestError("fit", "expected window, depth, none or auto, got '" + fit + "'");
   }
-  const auto parseMm = [](const std::string& text, const char* option, double lowest,
-                          double highest, bool openBelow) -> std::optional<double> {
+  const auto parseMm = [](const std::string& text, const char* field, double lowest, double highest,
+                          bool openBelow) -> std::optional<double> {
     if (text == "auto") return std::nullopt;
     char* end = nullptr;
     const double mm = std::strtod(text.c_str(), &end);
     if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(mm))
-      throw InputError("command line", option,
-                       "expected a number of millimetres or auto, got '" + text + "'");
+      throw RequestError(field, "expected a number of millimetres or auto, got '" + text + "'");
     if (mm < lowest || mm > highest || (openBelow && !(mm > lowest)))
-      throw InputError("command line", option,
-                       std::string("expected ") + (openBelow ? "above " : "from ") +
-                           millimetres(lowest).substr(lowest == 0 ? 1 : 0) + " up to " +
-                           millimetres(highest).substr(1) + " mm, got " + text);
+      throw RequestError(field, std::string("expected ") + (openBelow ? "above " : "from ") +
+                                    millimetres(lowest).substr(lowest == 0 ? 1 : 0) + " up to " +
+                                    millimetres(highest).substr(1) + " mm, got " + text);
     return mm;
   };
-  if (!focus.empty())
-    placement.focusMm = parseMm(focus, "--focus", -kMaxFocusMm, kMaxFocusMm, false);
+  if (!focus.empty()) placement.focusMm = parseMm(focus, "focus", -kMaxFocusMm, kMaxFocusMm, false);
   if (!depthBudget.empty())
-    placement.depthBudgetMm = parseMm(depthBudget, "--depth-budget", 0, kMaxDepthBudgetMm, true);
+    placement.depthBudgetMm = parseMm(depthBudget, "depth_budget", 0, kMaxDepthBudgetMm, true);
 }
 
 std::string depthWarning(const Framing& f) {
@@ -240,7 +236,7 @@ std::string depthWarning(const Framing& f) {
   line += sharp;
   if (!f.budgetAuto) line += ", the budget is ±" + millimetres(f.budgetMm).substr(1) + " mm";
   if (f.fit != DisplayFit::Depth)
-    line += "; --fit depth compresses it";
+    line += "; {fit} depth compresses it";
   else if (f.virtualGapFixed)
     line += "; the display file fixes the virtual gap (virtual/gap_mm)";
   else

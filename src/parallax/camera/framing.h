@@ -15,6 +15,7 @@ struct Framing {
   DisplayFit fit = DisplayFit::None;  // the mode used: Window, Depth or None
   DisplayPlacement placement;         // width and centre resolved (no fit bounds left)
   DisplayDesign design;               // the display with the virtual gap g' the camera uses
+                                      // (design.camera.virtualGapMm set when the framing chose it)
   bool hasContent = false;            // false: nothing to measure (an empty scene)
   double scaleMmPerUnit = 0;          // display mm per scene unit
   double focusMm = 0;  // the zero-parallax plane's offset from the placement's centre (mm)
@@ -49,16 +50,16 @@ Scene framedScene(Scene scene, const DisplayDesign& design);
 // z: the plane with equal and opposite vergence (1/distance) errors to both ends.
 double harmonicFocusZ(double nearZ, double farZ, double eyeZ);
 
-// Command-line overrides (--fit, --focus, --depth-budget); an empty string leaves the scene's
-// value. Throws InputError("command line", "--focus", ...) on a bad value.
+// A request's overrides (its fields fit, focus, depth_budget); an empty string leaves the
+// scene's value. Throws RequestError("fit" | "focus" | "depth_budget", ...) on a bad value.
 void applyFramingOptions(DisplayPlacement& placement, const std::string& fit,
                          const std::string& focus, const std::string& depthBudget);
 
 const char* displayFitName(DisplayFit fit);
 
 // One line when the displayed content reaches beyond the budget (empty otherwise), e.g.
-// "the content spans -112 to +98 mm; the display is sharp within +-27 mm (G4); --fit depth
-// compresses it".
+// "the content spans -112 to +98 mm; the display is sharp within +-27 mm (G4); {fit} depth
+// compresses it" (the {fit} field spelled by the front end, core/error.h).
 std::string depthWarning(const Framing& framing);
 // One line describing the framing: the content's range, the focus, g' and the depth of field.
 std::string depthSummary(const Framing& framing);

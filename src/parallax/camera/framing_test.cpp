@@ -122,7 +122,7 @@ TEST(Framing, WindowFitIsTodaysFitAndWarns) {
   EXPECT_DOUBLE_EQ(f.virtualGapMm, d.gapMm);
   EXPECT_NEAR(f.nearMm, -f.farMm, 1e-9);
   const std::string warning = depthWarning(f);
-  EXPECT_NE(warning.find("the display is sharp within ±27 mm (G4); --fit depth compresses it"),
+  EXPECT_NE(warning.find("the display is sharp within ±27 mm (G4); {fit} depth compresses it"),
             std::string::npos)
       << warning;
 }
@@ -132,7 +132,7 @@ TEST(Framing, ShallowContentKeepsItsDepthAndAGivenWidthIsKept) {
   const Framing flat = frameForDisplay(boxScene({1, 1, 0.01f}), d);
   EXPECT_EQ(flat.fit, DisplayFit::Depth);
   EXPECT_DOUBLE_EQ(flat.virtualGapMm, d.gapMm);  // never below g
-  EXPECT_FALSE(flat.design.spec.virtualGapMm);
+  EXPECT_FALSE(flat.design.camera.virtualGapMm);
   Scene given = boxScene({1, 1, 1});
   given.display.fit.reset();
   given.display.width = 5;
@@ -143,9 +143,9 @@ TEST(Framing, ShallowContentKeepsItsDepthAndAGivenWidthIsKept) {
 }
 
 TEST(Framing, AVirtualGapFromTheDisplayFileIsKept) {
-  DisplaySpec spec = defaultDisplaySpec();
-  spec.virtualGapMm = 6.0;
-  const DisplayDesign d = designDisplay(spec);
+  BarrierCameraSettings camera;
+  camera.virtualGapMm = 6.0;
+  const DisplayDesign d = designDisplay(defaultDisplaySpec(), camera);
   const Framing f = frameForDisplay(boxScene({1, 1, 1}), d);
   EXPECT_TRUE(f.virtualGapFixed);
   EXPECT_DOUBLE_EQ(f.virtualGapMm, 6.0);
@@ -154,11 +154,23 @@ TEST(Framing, AVirtualGapFromTheDisplayFileIsKept) {
 
 TEST(Framing, OptionsAreChecked) {
   DisplayPlacement p;
-  EXPECT_THROW(applyFramingOptions(p, "wide", "", ""), InputError);
-  EXPECT_THROW(applyFramingOptions(p, "", "near", ""), InputError);
-  EXPECT_THROW(applyFramingOptions(p, "", "", "0"), InputError);
-  EXPECT_THROW(applyFramingOptions(p, "", "", "1e9"), InputError);
-  EXPECT_THROW(applyFramingOptions(p, "", "2e4", ""), InputError);
+  const auto refused = [&p](const std::string& fit, const std::string& focus,
+                            const std::string& budget, const std::string& field,
+                            const std::string& message) {
+    try {
+      applyFramingOptions(p, fit, focus, budget);
+      ADD_FAILURE() << field << ": accepted";
+    } catch (const RequestError& e) {
+      EXPECT_EQ(e.field(), field);
+      EXPECT_EQ(e.message(), message);
+      EXPECT_EQ(std::string(e.what()), "request: " + field + ": " + message);
+    }
+  };
+  refused("wide", "", "", "fit", "expected window, depth, none or auto, got 'wide'");
+  refused("", "near", "", "focus", "expected a number of millimetres or auto, got 'near'");
+  refused("", "", "0", "depth_budget", "expected above 0 up to 1000 mm, got 0");
+  refused("", "", "1e9", "depth_budget", "expected above 0 up to 1000 mm, got 1e9");
+  refused("", "2e4", "", "focus", "expected from -10000 up to 10000 mm, got 2e4");
   applyFramingOptions(p, "none", "-12.5", "auto");
   EXPECT_EQ(p.fitMode, DisplayFit::None);
   EXPECT_DOUBLE_EQ(*p.focusMm, -12.5);
@@ -173,8 +185,9 @@ TEST(VirtualEye, TheCentreIsItsOwnVirtualEyeAndOthersMoveInward) {
   const Vec3d eye{200, 10, 600};
   const Vec3d same = virtualEye(plain, eye);
   EXPECT_DOUBLE_EQ(same.x, 200);
-  spec.virtualGapMm = 12.0;
-  const DisplayDesign d = designDisplay(spec);
+  BarrierCameraSettings camera;
+  camera.virtualGapMm = 12.0;
+  const DisplayDesign d = designDisplay(spec, camera);
   const Vec3d centre = virtualEye(d, {0, 0, 600});
   EXPECT_NEAR(centre.x, 0, 1e-12);
   EXPECT_NEAR(centre.z, 600, 1e-9);

@@ -13,8 +13,9 @@ DisplayDesign smallDesign(bool subpixels) {
   s.imagePanel.width = s.maskPanel.width = 120;
   s.imagePanel.height = s.maskPanel.height = 20;
   s.imagePanel.pitchMm = s.maskPanel.pitchMm = 1.0;
-  s.subpixelRays = subpixels;
-  return designDisplay(s);
+  BarrierCameraSettings camera;
+  camera.subpixelRays = subpixels;
+  return designDisplay(s, camera);
 }
 
 TEST(BarrierDisplay, AnswersAsItsRayGeneratorAndMask) {
@@ -50,9 +51,9 @@ TEST(BarrierDisplay, AnswersAsItsRayGeneratorAndMask) {
 
 // The ideal view's eye is the virtual eye when the render compresses depth (g' != g).
 TEST(BarrierDisplay, IntendedEyeIsTheVirtualEye) {
-  DisplaySpec s = defaultDisplaySpec();
-  s.virtualGapMm = 6.0;
-  const DisplayDesign d = designDisplay(s);
+  BarrierCameraSettings camera;
+  camera.virtualGapMm = 6.0;
+  const DisplayDesign d = designDisplay(defaultDisplaySpec(), camera);
   const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(d);
   const Vec3d eye{40, 0, 500};
   EXPECT_EQ(display->intendedEye(eye).x, virtualEye(d, eye).x);

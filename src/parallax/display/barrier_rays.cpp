@@ -12,7 +12,7 @@ BarrierRayGenerator::BarrierRayGenerator(const DisplayDesign& design, const View
       mask_(design),
       filter_(filter),
       warp_(filter),
-      subpixels_(design.spec.subpixelRays),
+      subpixels_(design.camera.subpixelRays),
       filmWidth_(design.spec.imagePanel.width * (subpixels_ ? 3 : 1)),
       zImage_(design.imageLayerZ()),
       zMask_(design.maskLayerZ()),
@@ -133,6 +133,12 @@ PARALLAX_LANE_KERNEL void BarrierRayGenerator::rays16(const float filmX[16], con
     direction[0][i] = d[0][i], direction[1][i] = d[1][i], direction[2][i] = -1.0;
   }
   (void)v;
+}
+
+BarrierRayGenerator physicalBarrierRays(const DisplayDesign& design, const ViewFilter& filter) {
+  BarrierCameraSettings physical;
+  physical.subpixelRays = design.camera.subpixelRays;
+  return BarrierRayGenerator(designDisplay(design.spec, physical), filter);
 }
 
 BarrierRayGenerator::Association BarrierRayGenerator::associate(double filmX, double filmY) const {

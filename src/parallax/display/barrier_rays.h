@@ -98,4 +98,11 @@ class BarrierRayGenerator {
   Association associate(double filmX, double filmY) const;
 };
 
+// The display's own rays, for what measures or plots a barrier's ray space itself (the
+// light-field plot, sim/lightfield.h): the design's subpixel choice kept, its camera's virtual
+// gap and distance (section 2.3) replaced by the physical g and D, so that a ray's aperturePoint
+// is where it really crosses the mask. The display camera and everything that asks for views
+// use the display model instead (display_model.h, makeBarrierDisplay).
+BarrierRayGenerator physicalBarrierRays(const DisplayDesign& design, const ViewFilter& filter = {});
+
 }  // namespace parallax

@@ -101,9 +101,9 @@ TEST(BarrierRays, ViewIndexCountsPixelsAcrossTheGroup) {
 }
 
 TEST(BarrierRays, InfiniteVirtualDistanceGivesParallelViews) {
-  DisplaySpec s = narrowDisplay();
-  s.virtualDistanceMm = kInfinity;
-  const BarrierRayGenerator gen(designDisplay(s));
+  BarrierCameraSettings camera;
+  camera.virtualDistanceMm = kInfinity;
+  const BarrierRayGenerator gen(designDisplay(narrowDisplay(), camera));
   std::map<int, std::pair<double, double>> slopes;
   for (int x = 0; x < 180; ++x) {
     const BarrierRay r = gen.ray(x + 0.5, 3.5, 0.5, 0.5);
@@ -117,10 +117,10 @@ TEST(BarrierRays, InfiniteVirtualDistanceGivesParallelViews) {
 
 TEST(BarrierRays, VirtualGapScalesTheAngularSpan) {
   const auto span = [](double virtualGap) {
-    DisplaySpec s = narrowDisplay();
-    s.virtualGapMm = virtualGap;
-    s.virtualDistanceMm = kInfinity;  // parallel views: the span is a slope difference
-    const BarrierRayGenerator gen(designDisplay(s));
+    BarrierCameraSettings camera;
+    camera.virtualGapMm = virtualGap;
+    camera.virtualDistanceMm = kInfinity;  // parallel views: the span is a slope difference
+    const BarrierRayGenerator gen(designDisplay(narrowDisplay(), camera));
     double lo = 1e9, hi = -1e9;
     for (int x = 81; x < 90; ++x) {  // one whole group
       const double slope = gen.ray(x + 0.5, 20.5, 0.5, 0.5).direction.x;
@@ -135,8 +135,9 @@ TEST(BarrierRays, VirtualGapScalesTheAngularSpan) {
 TEST(BarrierRays, SubpixelsGetTheirOwnRays) {
   DisplaySpec s = narrowDisplay();
   s.imagePanel.subpixels = SubpixelOrder::BGR;
-  s.subpixelRays = true;
-  const BarrierRayGenerator gen(designDisplay(s));
+  BarrierCameraSettings camera;
+  camera.subpixelRays = true;
+  const BarrierRayGenerator gen(designDisplay(s, camera));
   EXPECT_EQ(gen.filmWidth(), 540);
   EXPECT_EQ(gen.channelOfColumn(0), 2);
   EXPECT_EQ(gen.channelOfColumn(4), 1);
@@ -167,21 +168,22 @@ TEST(BarrierRays, PeriodFilterSpansOnePixelAndOneApertureCell) {
 struct FootprintCase {
   const char* name;
   DisplaySpec spec;
+  BarrierCameraSettings camera = {};
 };
 
 std::vector<FootprintCase> footprintCases() {
   std::vector<FootprintCase> cases;
   cases.push_back({"barrier-back", narrowDisplay()});
   cases.push_back({"barrier-front", narrowDisplay(LayerOrder::BarrierFront)});
-  DisplaySpec virtualGap = narrowDisplay();
+  BarrierCameraSettings virtualGap;
   virtualGap.virtualGapMm = 5.0, virtualGap.virtualDistanceMm = 900.0;
-  cases.push_back({"virtual g' and D'", virtualGap});
-  DisplaySpec orthographic = narrowDisplay();
+  cases.push_back({"virtual g' and D'", narrowDisplay(), virtualGap});
+  BarrierCameraSettings orthographic;
   orthographic.virtualDistanceMm = kInfinity;
-  cases.push_back({"D' infinite", orthographic});
-  DisplaySpec subpixels = narrowDisplay();
+  cases.push_back({"D' infinite", narrowDisplay(), orthographic});
+  BarrierCameraSettings subpixels;
   subpixels.subpixelRays = true;
-  cases.push_back({"subpixels", subpixels});
+  cases.push_back({"subpixels", narrowDisplay(), subpixels});
   DisplaySpec pinholes = narrowDisplay();
   pinholes.mask.kind = MaskKind::Pinholes;
   pinholes.mask.verticalPeriodPx = 9.045;
@@ -195,13 +197,13 @@ std::vector<FootprintCase> footprintCases() {
 
 TEST(BarrierRays, ViewFilterRaysMeetAnEyeInsideThePixelsViewWindow) {
   for (const FootprintCase& c : footprintCases()) {
-    const DisplayDesign d = designDisplay(c.spec);
+    const DisplayDesign d = designDisplay(c.spec, c.camera);
     for (const ViewFilter filter :
          {ViewFilter{ViewFilterKind::View, 1.0}, ViewFilter{ViewFilterKind::Tent, 1.0},
           ViewFilter{ViewFilterKind::Gaussian, 1.5}, ViewFilter{ViewFilterKind::View, 0.5}}) {
       const BarrierRayGenerator gen(d, filter);
       const double halfSupport = ViewFilterWarp(filter).halfSupport();
-      const bool subpixel = c.spec.subpixelRays, pinhole = gen.mask().isPinholeGrid();
+      const bool subpixel = c.camera.subpixelRays, pinhole = gen.mask().isPinholeGrid();
       const double dx = d.spec.imagePanel.pitchMm / (subpixel ? 3.0 : 1.0);
       const double dy = d.spec.imagePanel.pitchMm;
       const double g = d.virtualGapMm;
@@ -305,8 +307,9 @@ TEST(BarrierRays, SixteenAtOnceMatchOneByOne) {
       s.mask.kind = kind;
       s.mask.slantDegrees = 10;
       s.viewZoneHeightMm = 20;
-      s.virtualGapMm = 4.0;
-      const BarrierRayGenerator gen(designDisplay(s), {filter, 1.0});
+      BarrierCameraSettings camera;
+      camera.virtualGapMm = 4.0;
+      const BarrierRayGenerator gen(designDisplay(s, camera), {filter, 1.0});
       alignas(64) float x[16], y[16], u[16], v[16];
       for (int i = 0; i < 16; ++i)
         x[i] = 11.3f * float(i) + 0.37f, y[i] = 2.1f * float(i) + 0.5f, u[i] = 0.06f * float(i),

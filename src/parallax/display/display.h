@@ -56,11 +56,16 @@ struct DisplaySpec {
   std::optional<double> viewZoneWidthMm;
   std::optional<double> screenPeriodPx, slitPeriodPx;
   MaskSpec mask;
-  // Camera only: trace one ray per R, G, B subpixel of the image layer (three times the views)
-  // instead of one per pixel; needs an image layer with an RGB or BGR subpixel order.
+};
+
+// How a camera traces a barrier display: render choices, not the display's physics
+// (docs/architecture.md). The display file may carry them (subpixel_rays, virtual/...); the
+// reader fills DisplayDescription::camera.
+struct BarrierCameraSettings {
+  // Trace one ray per R, G, B subpixel of the image layer (three times the views) instead of
+  // one per pixel; needs an image layer with an RGB or BGR subpixel order.
   bool subpixelRays = false;
-  // Camera only (section 2.3): the virtual gap g' and distance D' (infinity: orthographic).
-  std::optional<double> virtualGapMm, virtualDistanceMm;
+  std::optional<double> virtualGapMm, virtualDistanceMm;  // section 2.3's g' and D'
 };
 
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -94,6 +99,7 @@ inline constexpr DisplayRange kWiggleRange{0, 1e5, "mm", false};
 
 struct DisplayDesign {
   DisplaySpec spec;
+  BarrierCameraSettings camera;  // the settings it was designed with
   double gapMm = 0, viewDistanceMm = 0;
   double screenPeriodMm = 0, screenPeriodPx = 0;  // Tx, on the image layer
   double slitPeriodMm = 0, slitPeriodPx = 0;      // Tv, on the mask layer
@@ -104,7 +110,7 @@ struct DisplayDesign {
   double apertureSpanMm = 0;                        // Sv = (N - 1) Tv
   double depthOfFieldMm = 0;                        // G4: g Tv / dx either side of the mask
   double farthestConsistentDistanceMm = kInfinity;  // the paper's D S / (Sv - S)
-  double virtualGapMm = 0, virtualDistanceMm = 0;
+  double virtualGapMm = 0, virtualDistanceMm = 0;   // g' and D': camera's, or g and D
   // x of aperture 0 on the mask layer (before the mask's phase): the projection, from the
   // view-zone centre, of the centre of the group nearest x = 0, with groups laid from the
   // image layer's left edge so that group boundaries fall on pixel boundaries.
@@ -123,15 +129,17 @@ struct DisplayDesign {
 // three times as many with subpixel rays. The one place this count is made.
 int interleavedViewCount(const DisplayDesign& design);
 // The same counting pixel columns only (the eyes' views, whatever the rays): round(Tx / dx),
-// the range of BarrierRayGenerator::viewIndex in pixel mode.
+// the range of a barrier's viewIndex in pixel mode.
 int pixelViewCount(const DisplayDesign& design);
 
 // The paper's prototype: two 1920x1080 panels of 0.2745 mm pixels, g = 3 mm, 9 views,
 // D = 600 mm, barrier-back.
 DisplaySpec defaultDisplaySpec();
 
-// Derives the design (G1-G4) and checks it. Throws InputError naming `spec.source` and the key
-// with the broken relation ("/gap_mm: must be positive", "/slit_period_px: ...").
-DisplayDesign designDisplay(const DisplaySpec& spec);
+// Derives the design (G1-G4) and checks it, with the camera's settings (the default: one ray
+// per pixel, the physical gap and distance). Throws InputError naming `spec.source` and the key
+// with the broken relation ("/gap_mm: must be positive", "/slit_period_px: ...",
+// "/virtual/gap_mm: ...").
+DisplayDesign designDisplay(const DisplaySpec& spec, const BarrierCameraSettings& camera = {});
 
 }  // namespace parallax

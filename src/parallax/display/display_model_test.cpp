@@ -132,8 +132,9 @@ INSTANTIATE_TEST_SUITE_P(
              [] {
                DisplaySpec s = smallBarrier();
                s.order = LayerOrder::BarrierFront;
-               s.subpixelRays = true;
-               return makeBarrierDisplay(designDisplay(s));
+               BarrierCameraSettings camera;
+               camera.subpixelRays = true;
+               return makeBarrierDisplay(designDisplay(s, camera));
              }},
         Kind{"lenticular", [] { return makeLenticularDisplay(smallLenticularDesign()); }},
         Kind{"lenticular_filtered",

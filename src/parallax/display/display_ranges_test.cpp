@@ -11,12 +11,14 @@
 namespace parallax {
 namespace {
 
-void expectRefused(const std::function<void(DisplaySpec&)>& change, const std::string& key) {
+void expectRefused(const std::function<void(DisplaySpec&, BarrierCameraSettings&)>& change,
+                   const std::string& key) {
   DisplaySpec spec = defaultDisplaySpec();
   spec.source = "d.json";
-  change(spec);
+  BarrierCameraSettings camera;
+  change(spec, camera);
   try {
-    designDisplay(spec);
+    designDisplay(spec, camera);
     ADD_FAILURE() << key << ": accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.path(), key) << e.what();
@@ -25,19 +27,26 @@ void expectRefused(const std::function<void(DisplaySpec&)>& change, const std::s
 }
 
 TEST(DisplayRanges, NonsenseQuantitiesAreRefusedWithTheirKey) {
-  expectRefused([](DisplaySpec& s) { s.imagePanel.pitchMm = 1e-300; },
+  expectRefused([](DisplaySpec& s, BarrierCameraSettings&) { s.imagePanel.pitchMm = 1e-300; },
                 "/image_layer/pixel_pitch_mm");
-  expectRefused([](DisplaySpec& s) { s.maskPanel.pitchMm = 11; }, "/mask_layer/pixel_pitch_mm");
-  expectRefused([](DisplaySpec& s) { s.gapMm = 1e300; }, "/gap_mm");
-  expectRefused([](DisplaySpec& s) { s.viewDistanceMm = 1e300; }, "/view_distance_mm");
-  expectRefused([](DisplaySpec& s) { s.viewDistanceMm = 5; }, "/view_distance_mm");
-  expectRefused([](DisplaySpec& s) { s.viewZoneCenterXMm = 1e300; }, "/view_zone/center_x_mm");
-  expectRefused([](DisplaySpec& s) { s.views = 1e300; }, "/views");
-  expectRefused([](DisplaySpec& s) { s.mask.phasePx = 1e300; }, "/mask/phase_px");
-  expectRefused([](DisplaySpec& s) { s.virtualGapMm = 1e300; }, "/virtual/gap_mm");
-  expectRefused([](DisplaySpec& s) { s.virtualDistanceMm = 1e300; }, "/virtual/distance_mm");
+  expectRefused([](DisplaySpec& s, BarrierCameraSettings&) { s.maskPanel.pitchMm = 11; },
+                "/mask_layer/pixel_pitch_mm");
+  expectRefused([](DisplaySpec& s, BarrierCameraSettings&) { s.gapMm = 1e300; }, "/gap_mm");
+  expectRefused([](DisplaySpec& s, BarrierCameraSettings&) { s.viewDistanceMm = 1e300; },
+                "/view_distance_mm");
+  expectRefused([](DisplaySpec& s, BarrierCameraSettings&) { s.viewDistanceMm = 5; },
+                "/view_distance_mm");
+  expectRefused([](DisplaySpec& s, BarrierCameraSettings&) { s.viewZoneCenterXMm = 1e300; },
+                "/view_zone/center_x_mm");
+  expectRefused([](DisplaySpec& s, BarrierCameraSettings&) { s.views = 1e300; }, "/views");
+  expectRefused([](DisplaySpec& s, BarrierCameraSettings&) { s.mask.phasePx = 1e300; },
+                "/mask/phase_px");
+  expectRefused([](DisplaySpec&, BarrierCameraSettings& c) { c.virtualGapMm = 1e300; },
+                "/virtual/gap_mm");
+  expectRefused([](DisplaySpec&, BarrierCameraSettings& c) { c.virtualDistanceMm = 1e300; },
+                "/virtual/distance_mm");
   expectRefused(
-      [](DisplaySpec& s) {
+      [](DisplaySpec& s, BarrierCameraSettings&) {
         s.views.reset();
         s.viewDistanceMm.reset();
         s.screenPeriodPx = 9;
@@ -48,11 +57,12 @@ TEST(DisplayRanges, NonsenseQuantitiesAreRefusedWithTheirKey) {
 
 TEST(DisplayRanges, SensibleDisplaysStillDesign) {
   DisplaySpec spec = defaultDisplaySpec();
-  spec.virtualDistanceMm = kInfinity;
-  EXPECT_NO_THROW(designDisplay(spec));
+  BarrierCameraSettings camera;
+  camera.virtualDistanceMm = kInfinity;
+  EXPECT_NO_THROW(designDisplay(spec, camera));
   spec.gapMm = 999;
   spec.viewDistanceMm = 1e5;
-  EXPECT_NO_THROW(designDisplay(spec));
+  EXPECT_NO_THROW(designDisplay(spec, camera));
 }
 
 TEST(DisplayRanges, LenticularFieldsOutOfRange) {

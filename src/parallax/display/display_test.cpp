@@ -98,9 +98,10 @@ TEST(DisplayDesign, AcceptsWhatUsersKnow) {
   EXPECT_NEAR(designDisplay(measured).viewDistanceMm, 600.0, 1e-6);  // D = g / (Tr/Tf - 1)
 }
 
-void expectRefused(const DisplaySpec& s, const std::string& key) {
+void expectRefused(const DisplaySpec& s, const std::string& key,
+                   const BarrierCameraSettings& camera = {}) {
   try {
-    designDisplay(s);
+    designDisplay(s, camera);
     ADD_FAILURE() << "accepted an impossible display; expected an error at " << key;
   } catch (const InputError& e) {
     EXPECT_EQ(e.path(), key) << e.what();
@@ -131,9 +132,15 @@ TEST(DisplayDesign, RefusesImpossibleDisplays) {
   s = defaultDisplaySpec();
   s.mask.dutyCycle = 0;
   expectRefused(s, "/mask/duty_cycle");
+  BarrierCameraSettings camera;
+  camera.virtualGapMm = -1;
+  expectRefused(defaultDisplaySpec(), "/virtual/gap_mm", camera);
+  camera = {};
+  camera.subpixelRays = true;
   s = defaultDisplaySpec();
-  s.virtualGapMm = -1;
-  expectRefused(s, "/virtual/gap_mm");
+  s.imagePanel.subpixels = SubpixelOrder::None;
+  expectRefused(s, "/subpixel_rays", camera);
+  EXPECT_NO_THROW(designDisplay(s));  // the same panel, traced one ray per pixel
 }
 
 TEST(DisplayDesign, AdjacentViewDisparity) {

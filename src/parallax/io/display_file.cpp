@@ -1,6 +1,7 @@
 #include "parallax/io/display_file.h"
 
 #include <optional>
+#include <utility>
 
 #include "parallax/display/lenticular_presets.h"
 #include "parallax/io/lenticular_file.h"
@@ -99,12 +100,12 @@ MaskSpec readMask(const JsonReader& node) {
 
 }  // namespace
 
-DisplaySpec loadDisplayFile(const std::string& path) {
+BarrierDisplayFile loadDisplayFile(const std::string& path) {
   const JsonDocument doc = JsonDocument::parseFile(path);
   return readDisplayFile(doc.root(), path);
 }
 
-DisplaySpec readDisplayFile(const JsonReader& root, const std::string& path) {
+BarrierDisplayFile readDisplayFile(const JsonReader& root, const std::string& path) {
   root.expectObject({"image_layer", "mask_layer", "layer_order", "gap_mm", "view_distance_mm",
                      "view_zone", "views", "screen_period_px", "slit_period_px", "mask", "virtual",
                      "subpixel_rays", "name", "version"});
@@ -140,23 +141,24 @@ DisplaySpec readDisplayFile(const JsonReader& root, const std::string& path) {
     if (auto n = zone->find("width_mm")) s.viewZoneWidthMm = n->number();
   }
   if (auto n = root.find("mask")) s.mask = readMask(*n);
-  s.subpixelRays = root.boolean("subpixel_rays", false);
+  BarrierCameraSettings camera;
+  camera.subpixelRays = root.boolean("subpixel_rays", false);
   if (auto v = root.find("virtual")) {
     v->expectObject({"gap_mm", "distance_mm"});
-    if (auto n = v->find("gap_mm")) s.virtualGapMm = n->number();
+    if (auto n = v->find("gap_mm")) camera.virtualGapMm = n->number();
     if (auto n = v->find("distance_mm")) {
       if (n->isString()) {
         if (n->string() != "infinity") n->fail("expected a number of mm or \"infinity\"");
-        s.virtualDistanceMm = kInfinity;
+        camera.virtualDistanceMm = kInfinity;
       } else {
-        s.virtualDistanceMm = n->number();
+        camera.virtualDistanceMm = n->number();
       }
     }
   }
-  return s;
+  return {s, camera};
 }
 
-std::string displayFileText(const DisplaySpec& s) {
+std::string displayFileText(const DisplaySpec& s, const BarrierCameraSettings& camera) {
   JsonWriter json;
   const auto panel = [&json](const std::string& at, const Panel& p) {
     json.set(at + "/resolution/0", p.width);
@@ -191,13 +193,13 @@ std::string displayFileText(const DisplaySpec& s) {
     json.set("/mask/seed", uint64_t(m.jitterSeed));
   }
   if (m.kind == MaskKind::Pinholes) json.set("/mask/vertical_period_px", m.verticalPeriodPx);
-  json.set("/subpixel_rays", s.subpixelRays);
-  if (s.virtualGapMm) json.set("/virtual/gap_mm", *s.virtualGapMm);
-  if (s.virtualDistanceMm) {
-    if (std::isinf(*s.virtualDistanceMm))
+  json.set("/subpixel_rays", camera.subpixelRays);
+  if (camera.virtualGapMm) json.set("/virtual/gap_mm", *camera.virtualGapMm);
+  if (camera.virtualDistanceMm) {
+    if (std::isinf(*camera.virtualDistanceMm))
       json.set("/virtual/distance_mm", "infinity");
     else
-      json.set("/virtual/distance_mm", *s.virtualDistanceMm);
+      json.set("/virtual/distance_mm", *camera.virtualDistanceMm);
   }
   return json.dump() + "\n";
 }
@@ -219,7 +221,7 @@ void writeDesignJson(JsonWriter& json, const std::string& at, const DisplayDesig
   json.set(at + "/image_pixel_pitch_mm", d.spec.imagePanel.pitchMm);
   json.set(at + "/mask_pixel_pitch_mm", d.spec.maskPanel.pitchMm);
   json.set(at + "/subpixels", subpixelName(d.spec.imagePanel.subpixels));
-  json.set(at + "/subpixel_rays", d.spec.subpixelRays);
+  json.set(at + "/subpixel_rays", d.camera.subpixelRays);
   json.set(at + "/gap_mm", d.gapMm);
   json.set(at + "/view_distance_mm", d.viewDistanceMm);
   json.set(at + "/view_zone_center_x_mm", d.spec.viewZoneCenterXMm);
@@ -275,7 +277,9 @@ DisplayDescription loadDisplayDescription(const std::string& pathOrPreset) {
     d.kind = DisplayKind::Lenticular;
     d.lenticular = readLenticularCalibration(root);
   } else {
-    d.barrier = readDisplayFile(root, pathOrPreset);
+    BarrierDisplayFile file = readDisplayFile(root, pathOrPreset);
+    d.barrier = std::move(file.spec);
+    d.camera = file.camera;
   }
   return d;
 }

@@ -11,15 +11,23 @@
 
 namespace parallax {
 
+// A barrier display file: the display (the physics) and the camera settings it may carry
+// (subpixel_rays, virtual/gap_mm, virtual/distance_mm). designDisplay(spec, camera) designs it.
+struct BarrierDisplayFile {
+  DisplaySpec spec;
+  BarrierCameraSettings camera;
+};
+
 // Reads a display file. Unknown keys and wrong types throw InputError naming the file and key;
 // relations between values are checked by designDisplay (which names the same file).
-DisplaySpec loadDisplayFile(const std::string& path);
-DisplaySpec readDisplayFile(const JsonReader& root, const std::string& path);
+BarrierDisplayFile loadDisplayFile(const std::string& path);
+BarrierDisplayFile readDisplayFile(const JsonReader& root, const std::string& path);
 
 // A display of any kind, as described: a barrier's spec or a lenticular calibration.
 struct DisplayDescription {
   DisplayKind kind = DisplayKind::Barrier;
   DisplaySpec barrier;               // kind == Barrier
+  BarrierCameraSettings camera;      // kind == Barrier: the file's subpixel_rays and virtual/
   LenticularCalibration lenticular;  // kind == Lenticular
   const std::string& source() const {
     return kind == DisplayKind::Barrier ? barrier.source : lenticular.source;
@@ -31,8 +39,9 @@ struct DisplayDescription {
 // apart by content (a calibration has "pitch", "slope" or "DPI"). Throws InputError naming the
 // file (or the preset) and the key.
 DisplayDescription loadDisplayDescription(const std::string& pathOrPreset);
-// The spec as a display file that loadDisplayFile reads back (used by calibrate apply).
-std::string displayFileText(const DisplaySpec& spec);
+// The spec (and the camera settings) as a display file that loadDisplayFile reads back (used by
+// calibrate apply and the render's display.json).
+std::string displayFileText(const DisplaySpec& spec, const BarrierCameraSettings& camera = {});
 
 // Writes every given and derived figure of a design under the JSON pointer `at` ("" = root).
 void writeDesignJson(JsonWriter& json, const std::string& at, const DisplayDesign& design);

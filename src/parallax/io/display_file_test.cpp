@@ -21,11 +21,16 @@ std::string writeTemp(const std::string& name, const std::string& text) {
   return path.string();
 }
 
+DisplayDesign designFile(const std::string& path) {
+  const BarrierDisplayFile file = loadDisplayFile(path);
+  return designDisplay(file.spec, file.camera);
+}
+
 TEST(DisplayFile, EveryExampleLoadsAndDesigns) {
   int count = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(PARALLAX_SOURCE_DIR) / "displays")) {
     if (!entry.is_regular_file() || entry.path().extension() != ".json") continue;
-    const DisplayDesign d = designDisplay(loadDisplayFile(entry.path().string()));
+    const DisplayDesign d = designFile(entry.path().string());
     EXPECT_GT(d.views, 2.0) << entry.path();
     ++count;
   }
@@ -34,7 +39,7 @@ TEST(DisplayFile, EveryExampleLoadsAndDesigns) {
 
 TEST(DisplayFile, DefaultFileIsTheBuiltInDisplay) {
   const DisplayDesign file =
-      designDisplay(loadDisplayFile(std::string(PARALLAX_SOURCE_DIR) + "/displays/default.json"));
+      designFile(std::string(PARALLAX_SOURCE_DIR) + "/displays/default.json");
   const DisplayDesign builtIn = designDisplay(defaultDisplaySpec());
   EXPECT_DOUBLE_EQ(file.slitPeriodMm, builtIn.slitPeriodMm);
   EXPECT_DOUBLE_EQ(file.viewZoneWidthMm, builtIn.viewZoneWidthMm);
@@ -44,7 +49,7 @@ TEST(DisplayFile, DefaultFileIsTheBuiltInDisplay) {
 TEST(DisplayFile, MeasuredPeriodsGiveTheDistance) {
   const std::string path = writeTemp(
       "measured.json", R"({"gap_mm": 3, "screen_period_px": 9, "slit_period_px": 9.045})");
-  const DisplayDesign d = designDisplay(loadDisplayFile(path));
+  const DisplayDesign d = designFile(path);
   EXPECT_NEAR(d.viewDistanceMm, 3.0 / (9.045 / 9.0 - 1.0), 1e-6);
 }
 
@@ -56,24 +61,43 @@ TEST(DisplayFile, WrittenTextReadsBackToTheSameDesign) {
   s.mask.kind = MaskKind::Wiggling;
   s.mask.wiggleAmplitudeMm = 0.3;
   s.mask.wiggleWavelengthMm = 5;
-  s.virtualDistanceMm = kInfinity;
-  s.subpixelRays = true;
-  const DisplayDesign a = designDisplay(s);
-  const DisplayDesign b =
-      designDisplay(loadDisplayFile(writeTemp("round.json", displayFileText(s))));
+  BarrierCameraSettings camera;
+  camera.virtualDistanceMm = kInfinity;
+  camera.subpixelRays = true;
+  const DisplayDesign a = designDisplay(s, camera);
+  const DisplayDesign b = designFile(writeTemp("round.json", displayFileText(s, camera)));
   EXPECT_DOUBLE_EQ(a.slitPeriodMm, b.slitPeriodMm);
   EXPECT_DOUBLE_EQ(a.screenPeriodMm, b.screenPeriodMm);
   EXPECT_EQ(b.spec.order, LayerOrder::BarrierFront);
   EXPECT_EQ(b.spec.mask.kind, MaskKind::Wiggling);
   EXPECT_DOUBLE_EQ(b.spec.mask.wiggleWavelengthMm, 5.0);
   EXPECT_TRUE(std::isinf(b.virtualDistanceMm));
-  EXPECT_TRUE(b.spec.subpixelRays);
+  EXPECT_TRUE(b.camera.subpixelRays);
+  EXPECT_FALSE(b.camera.virtualGapMm);
+}
+
+// The camera settings a display file carries reach the description, not the display's spec.
+TEST(DisplayFile, DescriptionCarriesTheCameraSettings) {
+  const std::string path = writeTemp(
+      "camera.json", R"({"subpixel_rays": true, "virtual": {"gap_mm": 6, "distance_mm": 900}})");
+  const DisplayDescription d = loadDisplayDescription(path);
+  EXPECT_EQ(d.kind, DisplayKind::Barrier);
+  EXPECT_TRUE(d.camera.subpixelRays);
+  EXPECT_EQ(d.camera.virtualGapMm, 6.0);
+  EXPECT_EQ(d.camera.virtualDistanceMm, 900.0);
+  EXPECT_EQ(d.barrier.source, path);
+  const BarrierDisplayFile file = loadDisplayFile(path);
+  EXPECT_EQ(displayFileText(file.spec, file.camera), displayFileText(d.barrier, d.camera));
+  const std::string text = displayFileText(file.spec, file.camera);
+  EXPECT_NE(text.find("\"gap_mm\": 6"), std::string::npos) << text;
+  EXPECT_NE(displayFileText(file.spec).find("\"subpixel_rays\": false"), std::string::npos);
+  EXPECT_FALSE(loadDisplayDescription("").camera.subpixelRays);
 }
 
 void expectError(const std::string& text, const std::string& pointer) {
   const std::string path = writeTemp("bad.json", text);
   try {
-    designDisplay(loadDisplayFile(path));
+    designFile(path);
     ADD_FAILURE() << "accepted " << text;
   } catch (const InputError& e) {
     EXPECT_EQ(e.path(), pointer) << e.what();

@@ -200,10 +200,11 @@ TEST(Gltf, CameraOptionChoosesByNameOrIndex) {
   unknown.camera = "Top";
   try {
     loadScene(path, unknown);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    for (const char* part : {"--camera", "'Top'", "0 'Front'", "1 'Side'"})
+    ADD_FAILURE() << "no RequestError";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.field(), "camera");
+    const std::string what = e.message();
+    for (const char* part : {"no camera 'Top'", "0 'Front'", "1 'Side'"})
       EXPECT_NE(what.find(part), std::string::npos) << "'" << what << "' lacks '" << part << "'";
   }
   unknown.camera = "2";  // the orthographic camera has no index

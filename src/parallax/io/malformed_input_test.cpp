@@ -118,7 +118,12 @@ TEST(MalformedInput, DisplayQuantitiesOutOfRange) {
   const auto refused = [&](const std::string& text, const std::string& key) {
     const std::string path = dir.file("d.json");
     writeFile(path, text);
-    expectRefused([&] { designDisplay(loadDisplayFile(path)); }, {"d.json: " + key + ":"});
+    expectRefused(
+        [&] {
+          const BarrierDisplayFile file = loadDisplayFile(path);
+          designDisplay(file.spec, file.camera);
+        },
+        {"d.json: " + key + ":"});
   };
   refused(R"({"image_layer": {"pixel_pitch_mm": 1e-300}})", "/image_layer/pixel_pitch_mm");
   refused(R"({"mask_layer": {"pixel_pitch_mm": 50}})", "/mask_layer/pixel_pitch_mm");

@@ -353,7 +353,7 @@ class GltfReader {
     if (!contents_.lights.empty()) taken.push_back(count(contents_.lights.size(), "light"));
     if (coloredPrimitives_ > 0) taken.push_back("vertex colours (COLOR_0)");
     if (!model_.animations.empty())
-      taken.push_back(count(model_.animations.size(), "animation") + " (played by --frames)");
+      taken.push_back(count(model_.animations.size(), "animation") + " (played by {frames})");
 
     bool metallic = false, normalMaps = false, occlusion = false, emissiveMaps = false,
          alpha = false;

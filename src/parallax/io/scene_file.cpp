@@ -776,8 +776,7 @@ size_t findCamera(const Scene& scene, const std::string& selection) {
                                         [](unsigned char c) { return std::isdigit(c) != 0; });
   if (digits && selection.size() < 10) index = std::stoll(selection);
   if (index >= 0 && size_t(index) < scene.cameras.size()) return size_t(index);
-  throw InputError("command line", "--camera",
-                   "no camera '" + selection + "' (" + cameraList(scene) + ")");
+  throw RequestError("camera", "no camera '" + selection + "' (" + cameraList(scene) + ")");
 }
 
 }  // namespace
@@ -811,7 +810,7 @@ void useFileCamera(Scene& scene, size_t index) {
   }
   scene.display = placement;
   const std::string used = "camera " + std::to_string(index) + " '" + camera.name + "' used" +
-                           (scene.cameras.size() > 1 ? " (--camera picks another)" : "");
+                           (scene.cameras.size() > 1 ? " ({camera} picks another)" : "");
   if (camera.note >= 0 && size_t(camera.note) < scene.notes.size())
     scene.notes[size_t(camera.note)] += "; " + used;
   else

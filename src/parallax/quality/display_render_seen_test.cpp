@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "parallax/camera/display_camera.h"
+#include "parallax/display/display_model.h"
 #include "parallax/image/metrics.h"
 #include "parallax/render/display_test_support.h"
 #include "parallax/sim/simulator.h"
@@ -57,9 +58,9 @@ TEST(DisplayRender, SeenThroughTheMaskTheImageIsTheWindowView) {
 }
 
 TEST(DisplayRender, SubpixelChannelsComeFromTheirOwnRays) {
-  DisplaySpec s = smallDisplaySpec();
-  s.subpixelRays = true;
-  const DisplayDesign d = designDisplay(s);
+  BarrierCameraSettings subpixels;
+  subpixels.subpixelRays = true;
+  const DisplayDesign d = designDisplay(smallDisplaySpec(), subpixels);
   Scene scene = defaultScene();
   scene.display.width = 1.5f;
   const Accelerator accel(scene);
@@ -121,10 +122,10 @@ TEST(DisplayRender, SimulatedViewMatchesItsReferenceBestInsideTheViewZone) {
   RenderSettings settings;
   settings.samplesPerPixel = 4;
   const DisplayLayers layers = renderDisplay(scene, accel, d, settings);
-  const BarrierRayGenerator rays(d);
+  const std::unique_ptr<DisplayModel> rays = makeBarrierDisplay(d);
   double inside = 1e9;
   for (int view : {2, 4, 6})
-    inside = std::min(inside, psnrToReference(scene, accel, d, layers, rays.viewPosition(view)));
+    inside = std::min(inside, psnrToReference(scene, accel, d, layers, rays->viewPosition(view)));
   // Outside the zone the periodic barrier wraps: the eye sees other groups' views.
   const Vec3d outside{0.75 * d.viewZoneWidthMm, 0.0, d.viewDistanceMm};
   const double out = psnrToReference(scene, accel, d, layers, outside);
@@ -159,7 +160,7 @@ TEST(DisplayRender, SceneInTheAperturePlaneAgreesWithItsReference) {
   // point at its aperture, which is the point each design eye sees there. The same checker
   // far beyond the depth of field (G4: 27 mm) is not.
   const DisplayDesign d = designDisplay(smallDisplaySpec());
-  const BarrierRayGenerator rays(d);
+  const std::unique_ptr<DisplayModel> rays = makeBarrierDisplay(d);
   RenderSettings settings;
   settings.samplesPerPixel = 4;
   for (const auto& [z, inPlane] : {std::pair{float(d.maskLayerZ()), true}, {-150.0f, false}}) {
@@ -167,7 +168,7 @@ TEST(DisplayRender, SceneInTheAperturePlaneAgreesWithItsReference) {
     const Accelerator accel(scene);
     const DisplayLayers layers = renderDisplay(scene, accel, d, settings);
     for (int view : {1, 4, 7}) {
-      const double p = psnrToReference(scene, accel, d, layers, rays.viewPosition(view));
+      const double p = psnrToReference(scene, accel, d, layers, rays->viewPosition(view));
       if (inPlane) {
         EXPECT_GT(p, 17.0) << "in the aperture plane, view " << view;
       } else {
@@ -187,7 +188,7 @@ TEST(DisplayRender, ViewFilterEqualsIdealViewsAveragedOverEachPixelsViewWindow) 
   Scene scene = defaultScene();
   scene.display.width = 1.5f;
   const Accelerator accel(scene);
-  const BarrierRayGenerator rays(d);
+  const std::unique_ptr<DisplayModel> rays = makeBarrierDisplay(d);
   const int width = d.spec.imagePanel.width, height = d.spec.imagePanel.height;
   const int views = 9, eyesPerView = 8;
   RenderSettings idealSettings;
@@ -209,7 +210,7 @@ TEST(DisplayRender, ViewFilterEqualsIdealViewsAveragedOverEachPixelsViewWindow) 
   Image construction(width, height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
-      construction.at(x, y) = perView[size_t(rays.viewIndex(x, y))].at(x, y);
+      construction.at(x, y) = perView[size_t(rays->viewIndex(x, y))].at(x, y);
 
   RenderSettings settings;
   settings.samplesPerPixel = 64;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "parallax/camera/display_camera.h"
+#include "parallax/display/display_model.h"
 #include "parallax/display/mask.h"
 #include "parallax/image/metrics.h"
 #include "parallax/render/render.h"
@@ -27,12 +28,11 @@ std::vector<DenseEye> denseEyes(const DisplayDesign& design, int eyesPerView,
 }
 
 std::vector<DenseEye> designEyes(const DisplayDesign& design) {
-  DisplaySpec spec = design.spec;
-  spec.subpixelRays = false;  // the panel's pixel views, as the dense eyes count them
-  const BarrierRayGenerator rays(designDisplay(spec));
+  // The panel's pixel views (the default camera), as the dense eyes count them.
+  const std::unique_ptr<DisplayModel> pixels = makeBarrierDisplay(designDisplay(design.spec));
   std::vector<DenseEye> eyes;
   for (int v = 0; v < pixelViewCount(design); ++v)
-    eyes.push_back({rays.viewPosition(v), 1.0, v, true});
+    eyes.push_back({pixels->viewPosition(v), 1.0, v, true});
   return eyes;
 }
 

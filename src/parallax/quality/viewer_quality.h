@@ -22,7 +22,7 @@ struct DenseEye {
   Vec3d position;          // display mm
   double distance = 1.0;   // in units of the design distance D
   int view = 0;            // the view whose window holds the eye (at D; the same angle elsewhere)
-  bool designEye = false;  // one of the views' design eyes (BarrierRayGenerator::viewPosition)
+  bool designEye = false;  // one of the views' design eyes (DisplayModel::viewPosition)
 };
 
 // K eyes evenly inside every view's window across the zone, at each distance f D: at D the

@@ -11,6 +11,7 @@
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
+#include "parallax/display/display_model.h"
 #include "parallax/display/mask.h"
 #include "parallax/render/display_render.h"
 
@@ -113,7 +114,7 @@ std::vector<Image> splitQuilt(const Image& quilt, const QuiltLayout& layout,
                      grid + " tiles are " + std::to_string(w) + "x" + std::to_string(h) +
                          " (aspect " + formatQuiltAspect(double(w) / h) + "), the name says a" +
                          formatQuiltAspect(layout.aspect) +
-                         " (is the layout right? --quilt-layout overrides the name)");
+                         " (is the layout right? {quilt_layout} overrides the name)");
   std::vector<Image> views;
   for (int k = 0; k < layout.views(); ++k) {
     const int left = (k % layout.columns) * w;
@@ -131,11 +132,11 @@ int interlacedViewCount(const DisplayDesign& design) {
 }
 
 std::vector<int> designViewsLeftToRight(const DisplayDesign& design) {
-  const BarrierRayGenerator rays(design);
+  const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(design);
   std::vector<int> order(size_t(interlacedViewCount(design)));
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&rays](int a, int b) {
-    return rays.viewPosition(a).x < rays.viewPosition(b).x;
+  std::stable_sort(order.begin(), order.end(), [&display](int a, int b) {
+    return display->viewPosition(a).x < display->viewPosition(b).x;
   });
   return order;
 }

@@ -53,7 +53,7 @@ std::vector<Image> splitQuilt(const Image& quilt, const QuiltLayout& layout,
 // Views the image layer interleaves: round(views), or round(3 views) with subpixel rays.
 int interlacedViewCount(const DisplayDesign& design);
 
-// Element k: the design view index (BarrierRayGenerator::viewIndex) whose design eye position
+// Element k: the design view index (DisplayModel::viewIndex) whose design eye position
 // (viewPosition) is k-th from the left. Barrier-back counts views left to right, barrier-front
 // right to left.
 std::vector<int> designViewsLeftToRight(const DisplayDesign& design);

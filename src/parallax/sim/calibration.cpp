@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "parallax/core/error.h"
+#include "parallax/display/display_model.h"
 #include "parallax/image/contact_sheet.h"
 #include "parallax/image/metrics.h"
 #include "parallax/sim/simulator.h"
@@ -276,9 +277,9 @@ Vec3f viewColour(int view, int views) {
 
 Image numberedViewImage(const DisplaySpec& display, int screenPeriodPx, double slitPeriodPx,
                         double phasePx) {
-  DisplaySpec spec = measuredDisplaySpec(display, screenPeriodPx, slitPeriodPx, phasePx);
-  spec.subpixelRays = false;
-  const BarrierRayGenerator rays(designDisplay(spec));
+  // The panel's pixel views (the default camera: one ray per pixel).
+  const std::unique_ptr<DisplayModel> rays = makeBarrierDisplay(
+      designDisplay(measuredDisplaySpec(display, screenPeriodPx, slitPeriodPx, phasePx)));
   const Panel& panel = display.imagePanel;
   // Each view is a picture of one column per group by the panel's rows. A font pixel is sy
   // rows high and sx groups wide, about square on the panel, and the widest number fits.
@@ -290,7 +291,7 @@ Image numberedViewImage(const DisplaySpec& display, int screenPeriodPx, double s
   Image image(panel.width, panel.height);
   for (int x = 0; x < panel.width; ++x)
     for (int y = 0; y < panel.height; ++y) {
-      const int view = rays.viewIndex(x, y);
+      const int view = rays->viewIndex(x, y);
       const Vec3f colour = viewColour(view, screenPeriodPx);
       const bool lit =
           numberCovers(std::to_string(view), groups, panel.height, sx, sy, x / screenPeriodPx, y);
@@ -357,7 +358,7 @@ CalibrationScorer::CalibrationScorer(const DisplaySpec& assumed, const DisplayDe
   if (!samePanel(assumed.imagePanel, p.imagePanel) || !samePanel(assumed.maskPanel, p.maskPanel) ||
       assumed.order != p.order)
     throw std::invalid_argument("CalibrationScorer: the displays' panels or order differ");
-  if (!(eye.z > 0)) throw InputError("command line", "--eye", "must be in front (z > 0)");
+  if (!(eye.z > 0)) throw RequestError("eye", "must be in front (z > 0)");
   physics_.spec = strip(p);
   // One image pixel, seen through an aperture across the gap, spans dx (D - z_M) / g at the
   // eye's distance D (z_M = -g behind, 0 in front).

@@ -84,7 +84,7 @@ Image screenSlitImage(const Panel& imagePanel, int screenPeriodPx, double duty, 
 // Mask layer: slits at Tv and phase, duty * Tv wide (duty 0: one mask pixel), anti-aliased.
 Image maskSlitImage(const DisplaySpec& display, int screenPeriodPx, double slitPeriodPx,
                     double phasePx, double duty);
-// Image layer in which view v (BarrierRayGenerator::viewIndex) shows the number v, large, in
+// Image layer in which view v (the display's viewIndex) shows the number v, large, in
 // its own hue (viewColour) on a dim background of that hue.
 Image numberedViewImage(const DisplaySpec& display, int screenPeriodPx, double slitPeriodPx,
                         double phasePx);

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "parallax/core/error.h"
+#include "parallax/display/display_model.h"
 #include "parallax/image/contact_sheet.h"
 #include "parallax/image/metrics.h"
 #include "parallax/sim/crosstalk.h"
@@ -207,7 +208,7 @@ TEST(CalibrationPatterns, EachViewShowsItsNumberInItsColour) {
     SimulationOptions options;
     options.width = 4 * 240;
     const DisplaySimulator sim(design, {views, mask}, options);
-    const BarrierRayGenerator rays(design);
+    const std::unique_ptr<DisplayModel> rays = makeBarrierDisplay(design);
     for (int v = 0; v < 9; ++v) {
       // The eye of view v sees mostly view v's hue: the nearest of the nine.
       const Image seen = sim.view(designEyePosition(design, v));
@@ -226,7 +227,7 @@ TEST(CalibrationPatterns, EachViewShowsItsNumberInItsColour) {
       int left = 1 << 20, right = -1, top = 1 << 20, bottom = -1;
       for (int x = 0; x < 240; ++x)
         for (int y = 0; y < 60; ++y)
-          if (rays.viewIndex(x, y) == v && maxComponent(views.at(x, y)) > 0.5f) {
+          if (rays->viewIndex(x, y) == v && maxComponent(views.at(x, y)) > 0.5f) {
             lit[size_t(x / 9)][size_t(y)] = true;
             left = std::min(left, x / 9), right = std::max(right, x / 9);
             top = std::min(top, y), bottom = std::max(bottom, y);
@@ -337,6 +338,13 @@ TEST(CalibrationPrediction, ContrastCurveIsAboutOneOverNWide) {
   trueSpec.gapMm = t.gap;
   trueSpec.viewDistanceMm = t.distance;
   const CalibrationScorer scorer(assumed, designDisplay(trueSpec), {0, 0, t.distance}, 9);
+  try {
+    const CalibrationScorer behind(assumed, designDisplay(trueSpec), {0, 0, -1}, 9);
+    ADD_FAILURE() << "an eye behind the display was accepted";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.field(), "eye");
+    EXPECT_EQ(e.message(), "must be in front (z > 0)");
+  }
   const double truth = trueSlitPeriod(t), n = scorer.groupsAcross();
   const auto bestOverPhases = [&scorer](double period) {
     double best = 0;

@@ -3,34 +3,32 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallax/display/display_model.h"
 #include "parallax/image/metrics.h"
 
 namespace parallax {
 
 namespace {
 
-DisplayDesign pixelMode(const DisplayDesign& design) {
-  DisplayDesign d = design;
-  d.spec.subpixelRays = false;
-  return d;
+// The panel's pixel views: the display traced one ray per pixel, whatever the camera's choices.
+std::unique_ptr<DisplayModel> pixelViews(const DisplayDesign& design) {
+  return makeBarrierDisplay(designDisplay(design.spec));
 }
 
 }  // namespace
 
 Image viewCodedImage(const DisplayDesign& design, int view) {
-  const BarrierRayGenerator rays(pixelMode(design));
+  const std::unique_ptr<DisplayModel> display = pixelViews(design);
   const Panel& panel = design.spec.imagePanel;
   Image image(panel.width, panel.height);
   for (int y = 0; y < panel.height; ++y)
     for (int x = 0; x < panel.width; ++x)
-      if (rays.viewIndex(x, y) == view) image.at(x, y) = Vec3f(1.0f);
+      if (display->viewIndex(x, y) == view) image.at(x, y) = Vec3f(1.0f);
   return image;
 }
 
 Vec3d designEyePosition(const DisplayDesign& design, int view) {
-  DisplayDesign pixels = design;  // view-coded layers are in pixel mode
-  pixels.spec.subpixelRays = false;
-  return BarrierRayGenerator(pixels).viewPosition(view);
+  return pixelViews(design)->viewPosition(view);  // view-coded layers are in pixel mode
 }
 
 CrosstalkResult measureCrosstalk(const DisplayDesign& design, const Image& maskLayer,

@@ -11,7 +11,7 @@ namespace parallax {
 // (pixelViewCount, the views per group in pixel mode, is display/display.h's.)
 
 // The image layer with white (1) at the pixels serving `view` and black elsewhere. Pixel mode
-// always (one view per pixel, spec.subpixelRays ignored).
+// always (one view per pixel, the camera's subpixel rays ignored).
 Image viewCodedImage(const DisplayDesign& design, int view);
 
 // Where the rays of one view (pixel mode) meet: on the view line (y = y_e, z = D). A pixel of

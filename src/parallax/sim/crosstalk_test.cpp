@@ -1,5 +1,5 @@
 // Cross-talk of the simulated display against the display's geometry: where the rays of one
-// view meet (from BarrierRayGenerator), and how much light the anti-aliased mask raster and the
+// view meet (from the display's rays), and how much light the anti-aliased mask raster and the
 // diffuser spread out of an aperture's own view (a model derived below, computed here apart
 // from the simulator).
 #include "parallax/sim/crosstalk.h"
@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "parallax/display/display_model.h"
 #include "parallax/display/mask.h"
 
 namespace parallax {
@@ -35,15 +36,15 @@ TEST(Crosstalk, DesignEyeIsWhereTheRaysOfAViewMeet) {
   for (LayerOrder order : kOrders)
     for (double centre : {0.0, 40.0}) {
       const DisplayDesign d = wideDisplay(order, centre);
-      const BarrierRayGenerator rays(d);
+      const std::unique_ptr<DisplayModel> rays = makeBarrierDisplay(d);
       for (int v = 0; v < pixelViewCount(d); ++v) {
         // Two pixels of view v far apart; their rays (lines in x, z) cross at the eye.
         int first = -1, last = -1;
         for (int x = 0; x < d.spec.imagePanel.width; ++x)
-          if (rays.viewIndex(x, 4) == v) (first < 0 ? first : last) = x;
+          if (rays->viewIndex(x, 4) == v) (first < 0 ? first : last) = x;
         ASSERT_GE(last, first + 350);
-        const BarrierRay a = rays.ray(first + 0.5, 4.5, 0.5, 0.5);
-        const BarrierRay b = rays.ray(last + 0.5, 4.5, 0.5, 0.5);
+        const DisplayRay a = rays->ray(first + 0.5, 4.5, 0.5, 0.5);
+        const DisplayRay b = rays->ray(last + 0.5, 4.5, 0.5, 0.5);
         // x(z) = origin.x + (origin.z - z) * direction.x, since direction.z = -1.
         const double t = (b.origin.x - a.origin.x) / (a.direction.x - b.direction.x);
         const double z = a.origin.z - t, x = a.origin.x + t * a.direction.x;

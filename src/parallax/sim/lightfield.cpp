@@ -17,13 +17,17 @@ const char* const kSource = "<light field>";
 const char* const kBandFill = "#f5b041";
 const char* const kEdgeStroke = "#c0392b";
 
-// The display's own rays: the camera's virtual gap and distance (section 2.3) reset to the
-// physical ones, so the rays' v is where they really cross the mask.
-BarrierRayGenerator physicalRays(const DisplayDesign& design, const ViewFilter& filter = {}) {
-  DisplayDesign d = design;
-  d.virtualGapMm = d.gapMm;
-  d.virtualDistanceMm = d.viewDistanceMm;
-  return BarrierRayGenerator(d, filter);
+// The film as the display's physical rays see it (display/barrier_rays.h, physicalBarrierRays):
+// its size, and where its columns lie on the image layer.
+struct Film {
+  int width = 0, height = 0;
+  double left = 0, columnWidth = 0;  // column c spans left + [c, c + 1) columnWidth (mm)
+};
+
+template <class Rays>
+Film filmOf(const Rays& rays) {
+  const double left = rays.imagePoint(0, 0).x;
+  return {rays.filmWidth(), rays.filmHeight(), left, rays.imagePoint(1, 0).x - left};
 }
 
 // The film columns whose centres lie in [fromMm, toMm], of one row; n x n samples each.
@@ -31,24 +35,23 @@ struct Stretch {
   int row = 0, first = 0, last = -1, n = 0;
 };
 
-Stretch stretchOf(const BarrierRayGenerator& gen, const LightFieldOptions& o) {
+Stretch stretchOf(const Film& film, const LightFieldOptions& o) {
   Stretch s;
-  s.row = o.row < 0 ? gen.filmHeight() / 2 : o.row;
-  if (s.row >= gen.filmHeight()) throw InputError(kSource, "/row", "is off the panel");
+  s.row = o.row < 0 ? film.height / 2 : o.row;
+  if (s.row >= film.height) throw InputError(kSource, "/row", "is off the panel");
   s.n = int(std::lround(std::sqrt(double(std::max(0, o.samplesPerPixel)))));
   if (o.samplesPerPixel < 0 || s.n * s.n != o.samplesPerPixel)
     throw InputError(kSource, "/samples_per_pixel", "must be a square n * n (or 0)");
-  const double left = gen.imagePoint(0, 0).x;
-  const double width = gen.imagePoint(1, 0).x - left;
+  const double left = film.left, width = film.columnWidth;
   s.first = std::max(0, int(std::ceil((o.fromMm - left) / width - 0.5)));
-  s.last = std::min(gen.filmWidth() - 1, int(std::floor((o.toMm - left) / width - 0.5)));
+  s.last = std::min(film.width - 1, int(std::floor((o.toMm - left) / width - 0.5)));
   if (!(o.fromMm < o.toMm) || s.first > s.last)
     throw InputError(kSource, "/from_mm", "the stretch holds no pixel centre of the panel");
   return s;
 }
 
-LightFieldRay toPoint(const BarrierRayGenerator& gen, const BarrierRay& r, int column, int row) {
-  return {r.imagePoint.x, r.aperturePoint.x, r.aperture, column, gen.viewIndex(column, row)};
+LightFieldRay toPoint(const BarrierRay& r, int column, int view) {
+  return {r.imagePoint.x, r.aperturePoint.x, r.aperture, column, view};
 }
 
 std::string num(double value, int digits = 2) {
@@ -134,18 +137,18 @@ void writeLegend(std::ostream& svg, double x, double y, int views, int samplesPe
 
 std::vector<LightFieldRay> lightFieldRays(const DisplayDesign& design,
                                           const LightFieldOptions& options) {
-  const BarrierRayGenerator gen = physicalRays(design);
-  const Stretch s = stretchOf(gen, options);
+  const auto gen = physicalBarrierRays(design);
+  const Stretch s = stretchOf(filmOf(gen), options);
   std::vector<LightFieldRay> rays;
   for (int c = s.first; c <= s.last; ++c)
-    rays.push_back(toPoint(gen, gen.ray(c + 0.5, s.row + 0.5, 0.5, 0.5), c, s.row));
+    rays.push_back(toPoint(gen.ray(c + 0.5, s.row + 0.5, 0.5, 0.5), c, gen.viewIndex(c, s.row)));
   return rays;
 }
 
 std::vector<LightFieldRay> lightFieldSamples(const DisplayDesign& design,
                                              const LightFieldOptions& options) {
-  const BarrierRayGenerator gen = physicalRays(design, options.filter);
-  const Stretch s = stretchOf(gen, options);
+  const auto gen = physicalBarrierRays(design, options.filter);
+  const Stretch s = stretchOf(filmOf(gen), options);
   std::vector<LightFieldRay> samples;
   // Stratified jitter (docs/display-geometry.md, "Super-sampling"): the (x, f) cell in n x n
   // strata, x stratum i mod n, angular stratum i div n, spread by the filter. The row stays at its
@@ -155,7 +158,7 @@ std::vector<LightFieldRay> lightFieldSamples(const DisplayDesign& design,
       Rng rng = Rng::forSample(uint32_t(c), uint32_t(s.row), uint32_t(i), kSampleSeed);
       const double filmX = c + ((i % s.n) + rng.uniform()) / s.n;
       const double u = ((i / s.n) + rng.uniform()) / s.n;
-      samples.push_back(toPoint(gen, gen.ray(filmX, s.row + 0.5, u, 0.5), c, s.row));
+      samples.push_back(toPoint(gen.ray(filmX, s.row + 0.5, u, 0.5), c, gen.viewIndex(c, s.row)));
     }
   return samples;
 }
@@ -167,8 +170,9 @@ std::string lightFieldSvg(const DisplayDesign& design, const LightFieldOptions& 
     throw InputError(kSource, "/width_px", "the plot needs at least 422 x 360 pixels");
   const std::vector<LightFieldRay> rays = lightFieldRays(design, options);
   const std::vector<LightFieldRay> samples = lightFieldSamples(design, options);
-  const BarrierRayGenerator gen = physicalRays(design);
-  const double pitch = gen.imagePoint(1, 0).x - gen.imagePoint(0, 0).x;  // film column width
+  const auto gen = physicalBarrierRays(design);
+  const Film film = filmOf(gen);
+  const double pitch = film.columnWidth;
   const double Tv = design.slitPeriodMm, D = design.viewDistanceMm;
 
   // The band of rays reaching the view zone: for an eye point e at z = D the rays form the
@@ -248,7 +252,7 @@ std::string lightFieldSvg(const DisplayDesign& design, const LightFieldOptions& 
       << "<text x=\"" << num(f.left) << "\" y=\"44\" font-size=\"12.5\" fill=\"#444\">Tx "
       << num(design.screenPeriodMm, 4) << " mm, Tv " << num(Tv, 4) << " mm, gap "
       << num(design.gapMm, 2) << " mm, D " << num(D, 0) << " mm; image row "
-      << stretchOf(gen, options).row << "</text>\n";
+      << stretchOf(film, options).row << "</text>\n";
   writeLegend(svg, f.left + f.width + 18, f.top + 8, views, int(samples.size() / rays.size()));
   svg << "</svg>\n";
   return svg.str();

@@ -27,7 +27,7 @@ struct LightFieldRay {
   double x = 0, v = 0;   // mm on the image and the mask layer
   int64_t aperture = 0;  // serving aperture (column of the mask)
   int column = 0;        // film column (image pixel, or subpixel in subpixel mode)
-  int view = 0;          // BarrierRayGenerator::viewIndex of the column
+  int view = 0;          // the display's viewIndex of the column (DisplayModel::viewIndex)
 };
 
 // The central ray (u = 0.5) of every film column whose centre lies in [fromMm, toMm], left to

@@ -86,9 +86,9 @@ TEST(LightField, SvgIsAStandaloneDocumentWithOneDotPerPixel) {
 }
 
 TEST(LightField, SubpixelRaysPlotOneDotPerSubpixelColumn) {
-  DisplaySpec spec = defaultDisplaySpec();
-  spec.subpixelRays = true;
-  const DisplayDesign d = designDisplay(spec);
+  BarrierCameraSettings camera;
+  camera.subpixelRays = true;
+  const DisplayDesign d = designDisplay(defaultDisplaySpec(), camera);
   const std::vector<LightFieldRay> rays = lightFieldRays(d, {});
   // Centres of the R, G, B thirds of each pixel, in [-5, 5] (the default stretch).
   std::vector<double> thirds;

@@ -191,7 +191,7 @@ TEST(Simulator, ContentInTheAperturePlaneLooksTheSameFromEveryEye) {
   // anti-aliased light (about 2 mask pixels of 9) crosses into the neighbouring group.
   for (LayerOrder order : kOrders) {
     const DisplayDesign d = smallDisplay(order);
-    const BarrierRayGenerator rays(d);
+    const auto rays = physicalBarrierRays(d);  // the design has no virtual gap
     const Panel& panel = d.spec.imagePanel;
     std::map<int64_t, Vec3f> texture;
     Image image(panel.width, panel.height);

@@ -47,7 +47,7 @@ namespace fs = std::filesystem;
 constexpr int kEncoderThreads = 4;
 
 // FFmpeg logs through av_log to stderr by default; library code never prints, so the messages
-// are kept (the last error of this thread) and put into the InputError instead.
+// are kept (the last error of this thread) and put into the RequestError instead.
 thread_local std::string lastLogMessage;
 
 void logCallback(void* /*avcl*/, int level, const char* format, va_list args) {
@@ -96,12 +96,12 @@ const std::vector<Container>& containers() {
   return list;
 }
 
-const Container& containerOf(const std::string& path, const VideoOptionNames& names) {
+const Container& containerOf(const std::string& path, const VideoFieldNames& names) {
   const std::string ext = lowerExtension(path);
   for (const Container& c : containers())
     if (ext == c.extension) return c;
-  throw InputError(names.file, path,
-                   "unknown video extension '" + ext + "': expected .mp4, .webm or .mkv");
+  throw RequestError(names.file,
+                     "unknown video extension '" + ext + "': expected .mp4, .webm or .mkv", path);
 }
 
 const char* encoderName(const std::string& codec) {
@@ -154,7 +154,7 @@ struct SwsHolder {
 }  // namespace
 
 std::string resolveVideoCodec(const std::string& path, const VideoOptions& options, int width,
-                              int height, const VideoOptionNames& names) {
+                              int height, const VideoFieldNames& names) {
   const Container& container = containerOf(path, names);
   std::string codec = options.codec;
   if (codec == "auto") {
@@ -164,50 +164,49 @@ std::string resolveVideoCodec(const std::string& path, const VideoOptions& optio
       codec = (width > 4096 || height > 4096) ? "h265" : "h264";
   }
   if (codec != "h264" && codec != "h265" && codec != "vp9")
-    throw InputError(names.codec, "",
-                     "unknown codec '" + options.codec + "': expected auto, h264, h265 or vp9");
+    throw RequestError(names.codec,
+                       "unknown codec '" + options.codec + "': expected auto, h264, h265 or vp9");
   if (std::find(container.codecs.begin(), container.codecs.end(), codec) ==
       container.codecs.end()) {
     std::string allowed;
     for (const std::string& c : container.codecs) allowed += (allowed.empty() ? "" : ", ") + c;
-    throw InputError(names.codec, "",
-                     "a " + std::string(container.extension) + " file carries " + allowed +
-                         ", not " + codec + (codec == "vp9" ? " (use .webm or .mkv)" : ""));
+    throw RequestError(names.codec, "a " + std::string(container.extension) + " file carries " +
+                                        allowed + ", not " + codec +
+                                        (codec == "vp9" ? " (use .webm or .mkv)" : ""));
   }
   return codec;
 }
 
 void checkVideoOptions(const std::string& path, const VideoOptions& options,
-                       const VideoOptionNames& names) {
+                       const VideoFieldNames& names) {
   quietLogs();
-  if (path.empty()) throw InputError(names.file, "", "no file name given");
+  if (path.empty()) throw RequestError(names.file, "no file name given");
   // Size-dependent only for "auto" in MP4 (h264 or h265); both are checked below then.
   const std::string codec = resolveVideoCodec(path, options, 0, 0, names);
   std::vector<std::string> needed{codec};
   if (options.codec == "auto" && codec == "h264") needed.push_back("h265");
   for (const std::string& c : needed)
     if (!avcodec_find_encoder_by_name(encoderName(c)))
-      throw InputError(names.codec, "",
-                       "this FFmpeg has no " + std::string(encoderName(c)) + " encoder for " + c);
+      throw RequestError(names.codec,
+                         "this FFmpeg has no " + std::string(encoderName(c)) + " encoder for " + c);
   if (options.quality < 0 || options.quality > maxQuality(codec))
-    throw InputError(names.quality, "",
-                     "expected 0 to " + std::to_string(maxQuality(codec)) + " for " + codec +
-                         " (lower is better), got " + std::to_string(options.quality));
+    throw RequestError(names.quality, "expected 0 to " + std::to_string(maxQuality(codec)) +
+                                          " for " + codec + " (lower is better), got " +
+                                          std::to_string(options.quality));
   if (!(options.fps > 0 && options.fps <= 240))
-    throw InputError(
-        names.fps, "",
-        "expected a frame rate above 0 and at most 240, got " + std::to_string(options.fps));
+    throw RequestError(names.fps, "expected a frame rate above 0 and at most 240, got " +
+                                      std::to_string(options.fps));
   std::error_code ec;
   if (fs::is_directory(path, ec))
-    throw InputError(names.file, path, "is a folder, not a video file name");
+    throw RequestError(names.file, "is a folder, not a video file name", path);
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && fs::exists(parent, ec) && !fs::is_directory(parent, ec))
-    throw InputError(names.file, path, "its folder '" + parent.string() + "' is a file");
+    throw RequestError(names.file, "its folder '" + parent.string() + "' is a file", path);
 }
 
 struct VideoWriter::State {
   std::string path, tmpPath, codec;
-  VideoOptionNames names;
+  VideoFieldNames names;
   int width = 0, height = 0, codedWidth = 0, codedHeight = 0;
   AVFormatContext* format = nullptr;
   Owned<AVCodecContext, freeCodec> encoder;
@@ -231,7 +230,7 @@ struct VideoWriter::State {
   }
 
   [[noreturn]] void fail(const std::string& message) const {
-    throw InputError(names.file, path, message);
+    throw RequestError(names.file, message, path);
   }
 
   // Sends one frame (nullptr: the end) and writes every packet the encoder has ready.
@@ -275,12 +274,13 @@ const std::string& VideoWriter::path() const {
 }
 
 void VideoWriter::open(const std::string& path, int width, int height, const VideoOptions& options,
-                       const VideoOptionNames& names) {
+                       const VideoFieldNames& names) {
   checkVideoOptions(path, options, names);
   if (width < 1 || height < 1 || width > 65536 || height > 65536)
-    throw InputError(names.file, path,
-                     "a video frame of " + std::to_string(width) + "x" + std::to_string(height) +
-                         " pixels: expected 1 to 65536 a side");
+    throw RequestError(names.file,
+                       "a video frame of " + std::to_string(width) + "x" + std::to_string(height) +
+                           " pixels: expected 1 to 65536 a side",
+                       path);
   state_.reset();  // a writer opened again drops (and removes) what it had
   auto s = std::make_unique<State>();
   s->path = path;
@@ -434,9 +434,9 @@ void VideoWriter::finish() {
   State& s = *state_;
   if (s.frames == 0) {
     const std::string path = s.path;
-    const VideoOptionNames names = s.names;
+    const VideoFieldNames names = s.names;
     state_.reset();  // removes the temporary file
-    throw InputError(names.file, path, "no frames to write");
+    throw RequestError(names.file, "no frames to write", path);
   }
   s.encode(nullptr);
   lastLogMessage.clear();

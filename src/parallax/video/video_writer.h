@@ -32,26 +32,27 @@ struct VideoOptions {
   double fps = 30;
 };
 
-// The option names that errors carry (InputError's key), so the CLI can say which of its options
-// was wrong; the defaults are the CLI's names.
-struct VideoOptionNames {
-  std::string file = "--video";
-  std::string codec = "--video-codec";
-  std::string quality = "--video-quality";
-  std::string fps = "--fps";
+// The request fields that errors name (RequestError::field, core/error.h), so that a front end
+// can say which of its options was wrong in its own spelling; the defaults are the request's
+// fields. Errors about the file carry its path as the value.
+struct VideoFieldNames {
+  std::string file = "video";
+  std::string codec = "video_codec";
+  std::string quality = "video_quality";
+  std::string fps = "fps";
 };
 
 // The encoder a codec name stands for, after "auto" is resolved for a picture of width x
-// height saved at `path`. Throws InputError for an unknown extension, codec or a codec the
+// height saved at `path`. Throws RequestError for an unknown extension, codec or a codec the
 // container does not carry.
 std::string resolveVideoCodec(const std::string& path, const VideoOptions& options, int width,
-                              int height, const VideoOptionNames& names = {});
+                              int height, const VideoFieldNames& names = {});
 // Everything open() checks that does not need the picture size: the extension, the codec's name,
 // that Debian's FFmpeg has its encoder, the container, the quality and fps ranges, and that
 // `path` is not a folder and its folder exists (or can be made). Lets a command refuse bad options
 // before it works for the frames.
 void checkVideoOptions(const std::string& path, const VideoOptions& options,
-                       const VideoOptionNames& names = {});
+                       const VideoFieldNames& names = {});
 
 // Writes frames to a temporary file beside `path` (path + ".partial-<pid>.<ext>") and renames
 // it into place in finish(); a writer destroyed without finish() removes the temporary file, so
@@ -65,17 +66,17 @@ class VideoWriter {
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
 
-  // Throws InputError naming names.file (or the codec, quality, fps option) for a bad path or
+  // Throws RequestError naming names.file (or the codec, quality, fps field) for a bad path or
   // option, and for a size the encoder refuses.
   void open(const std::string& path, int width, int height, const VideoOptions& options = {},
-            const VideoOptionNames& names = {});
+            const VideoFieldNames& names = {});
   // A picture in linear light (encoded to 8-bit sRGB, image/image.h), of the size given to
-  // open(); throws InputError otherwise.
+  // open(); throws RequestError (names.file) otherwise.
   void addFrame(const Image& image);
   // 8-bit sRGB codes already made (width x height RGB triples, row 0 at the top; a PNG's codes
   // as they are).
   void addFrame8(const uint8_t* rgb, int width, int height);
-  // Flushes the encoder, closes the file and renames it into place. Throws InputError naming
+  // Flushes the encoder, closes the file and renames it into place. Throws RequestError naming
   // the file when no frame was added (and removes the temporary file).
   void finish();
 

@@ -238,10 +238,12 @@ TEST_F(VideoWriterTest, FrameRateIsKept) {
   }
 }
 
-// Which option an error names.
+// Which request field (or, for a file it reads, which file) an error names.
 std::string optionOf(const std::function<void()>& f) {
   try {
     f();
+  } catch (const RequestError& e) {
+    return e.field();
   } catch (const InputError& e) {
     return e.file();
   }
@@ -251,35 +253,41 @@ std::string optionOf(const std::function<void()>& f) {
 TEST_F(VideoWriterTest, BadInputsNameTheirOption) {
   const std::vector<uint8_t> frame = testFrame(32, 32, 0);
   VideoWriter writer;
-  EXPECT_EQ(optionOf([&] { writer.open(path("x.avi"), 32, 32); }), "--video");
-  EXPECT_EQ(optionOf([&] { writer.open(path("x"), 32, 32); }), "--video");
+  EXPECT_EQ(optionOf([&] { writer.open(path("x.avi"), 32, 32); }), "video");
+  try {
+    writer.open(path("x.avi"), 32, 32);
+  } catch (const RequestError& e) {  // the file's errors carry its path as the value
+    EXPECT_EQ(e.value(), path("x.avi"));
+    EXPECT_EQ(e.message(), "unknown video extension '.avi': expected .mp4, .webm or .mkv");
+  }
+  EXPECT_EQ(optionOf([&] { writer.open(path("x"), 32, 32); }), "video");
   fs::create_directories(path("folder.mp4"));
-  EXPECT_EQ(optionOf([&] { writer.open(path("folder.mp4"), 32, 32); }), "--video");
-  EXPECT_EQ(optionOf([&] { writer.open(path("x.mp4"), 0, 32); }), "--video");
+  EXPECT_EQ(optionOf([&] { writer.open(path("folder.mp4"), 32, 32); }), "video");
+  EXPECT_EQ(optionOf([&] { writer.open(path("x.mp4"), 0, 32); }), "video");
   // The option a 32x32 open of `file` with `options` blames.
   const auto blamed = [&](const std::string& file, const VideoOptions& options,
-                          const VideoOptionNames& names = {}) {
+                          const VideoFieldNames& names = {}) {
     return optionOf([&] { writer.open(path(file), 32, 32, options, names); });
   };
-  EXPECT_EQ(blamed("x.mp4", {"vp9", 23, 30}), "--video-codec");
-  EXPECT_EQ(blamed("x.webm", {"h264", 23, 30}), "--video-codec");
-  EXPECT_EQ(blamed("x.mp4", {"mpeg2", 23, 30}), "--video-codec");
-  EXPECT_EQ(blamed("x.mp4", {"h264", 52, 30}), "--video-quality");
-  EXPECT_EQ(blamed("x.mp4", {"h264", -1, 30}), "--video-quality");
-  EXPECT_EQ(blamed("x.webm", {"vp9", 64, 30}), "--video-quality");
+  EXPECT_EQ(blamed("x.mp4", {"vp9", 23, 30}), "video_codec");
+  EXPECT_EQ(blamed("x.webm", {"h264", 23, 30}), "video_codec");
+  EXPECT_EQ(blamed("x.mp4", {"mpeg2", 23, 30}), "video_codec");
+  EXPECT_EQ(blamed("x.mp4", {"h264", 52, 30}), "video_quality");
+  EXPECT_EQ(blamed("x.mp4", {"h264", -1, 30}), "video_quality");
+  EXPECT_EQ(blamed("x.webm", {"vp9", 64, 30}), "video_quality");
   EXPECT_NO_THROW(checkVideoOptions(path("x.webm"), {"vp9", 63, 30}));
-  EXPECT_EQ(blamed("x.mp4", {"h264", 23, 0}), "--fps");
-  EXPECT_EQ(blamed("x.mp4", {"h264", 23, NAN}), "--fps");
-  EXPECT_EQ(blamed("x.mp4", {"h264", 23, 241}), "--fps");
+  EXPECT_EQ(blamed("x.mp4", {"h264", 23, 0}), "fps");
+  EXPECT_EQ(blamed("x.mp4", {"h264", 23, NAN}), "fps");
+  EXPECT_EQ(blamed("x.mp4", {"h264", 23, 241}), "fps");
   // The caller's names for its options.
-  EXPECT_EQ(blamed("x.avi", {}, {"-o", "-c", "-q", "-r"}), "-o");
+  EXPECT_EQ(blamed("x.avi", {}, {"output", "codec", "quality", "rate"}), "output");
   EXPECT_EQ(folderEntries(), std::vector<std::string>{"folder.mp4"});
 
   // A frame of another size; then finishing without frames.
   writer.open(path("x.mp4"), 32, 32);
-  EXPECT_EQ(optionOf([&] { writer.addFrame8(frame.data(), 32, 31); }), "--video");
-  EXPECT_EQ(optionOf([&] { writer.addFrame(Image(31, 32)); }), "--video");
-  EXPECT_EQ(optionOf([&] { writer.finish(); }), "--video");
+  EXPECT_EQ(optionOf([&] { writer.addFrame8(frame.data(), 32, 31); }), "video");
+  EXPECT_EQ(optionOf([&] { writer.addFrame(Image(31, 32)); }), "video");
+  EXPECT_EQ(optionOf([&] { writer.finish(); }), "video");
   EXPECT_FALSE(writer.isOpen());
   EXPECT_EQ(folderEntries(), std::vector<std::string>{"folder.mp4"});  // no partial file
 }

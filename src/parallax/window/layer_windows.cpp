@@ -94,9 +94,9 @@ LayerWindows::LayerWindows(const std::vector<WindowRequest>& requests)
   const int monitors = SDL_GetNumVideoDisplays();
   for (const WindowRequest& r : requests) {
     if (r.fullScreen && (r.monitor < 0 || r.monitor >= monitors))
-      throw InputError("command line", "--" + r.title + "-monitor",
-                       "monitor " + std::to_string(r.monitor) + " does not exist (there are " +
-                           std::to_string(monitors) + ")");
+      throw RequestError(r.title + "_monitor", "monitor " + std::to_string(r.monitor) +
+                                                   " does not exist (there are " +
+                                                   std::to_string(monitors) + ")");
     Impl::Window w;
     SDL_Rect bounds{r.x, r.y, 64, 64};
     Uint32 flags = SDL_WINDOW_SHOWN;

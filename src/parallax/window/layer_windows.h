@@ -13,7 +13,7 @@
 namespace parallax {
 
 struct WindowRequest {
-  std::string title;
+  std::string title;       // a lower-case word ("image", "mask"): the request field TITLE_monitor
   int monitor = 0;         // SDL's display index; full screen there
   bool fullScreen = true;  // false: a plain window at (x, y) on the first monitor
   int x = 0, y = 0;
@@ -25,8 +25,8 @@ enum class ShowKey { Next, Previous, Info, Quit, Other };
 class LayerWindows {
  public:
   // Opens one window per request. Throws std::runtime_error with SDL's message when there is no
-  // display to open them on, and InputError naming "--*-monitor" for a monitor that does not
-  // exist.
+  // display to open them on, and RequestError naming the field TITLE_monitor ("image_monitor")
+  // for a monitor that does not exist.
   explicit LayerWindows(const std::vector<WindowRequest>& requests);
   ~LayerWindows();
   LayerWindows(const LayerWindows&) = delete;
