@@ -9,6 +9,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path =
       parallax::fuzz::writeScratch("display.json", parallax::fuzz::asText(data, size));
-  return parallax::fuzz::refuseCleanly(
-      [&] { parallax::designDisplay(parallax::loadDisplayFile(path)); });
+  return parallax::fuzz::refuseCleanly([&] {
+    const parallax::BarrierDisplayFile file = parallax::loadDisplayFile(path);
+    parallax::designDisplay(file.spec, file.camera);
+  });
 }

@@ -15,6 +15,7 @@
 #include "parallax/core/parallel.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/layer_output.h"
 #include "parallax/render/bench.h"
 #include "parallax/render/display_render.h"
@@ -40,7 +41,6 @@ void benchSimulator(const std::string& displayPath, const std::string& scenePath
   const Accelerator accelerator(scene);
   DisplayLayers layers = renderDisplay(scene, accelerator, design, {});
   const DisplaySimulator simulator(design, {std::move(layers.image), std::move(layers.mask)}, {});
-  const BarrierRayGenerator rays(design);
   const auto start = std::chrono::steady_clock::now();
   double checksum = 0;
   for (int i = 0; i < views; ++i) {
@@ -164,7 +164,7 @@ void runBench(const BenchOptions& o) {
   if (o.simulateViews > 0) {
     const DisplayDesign design = loadDesignOrDefault(o.display);
     const Panel& panel = design.spec.imagePanel;
-    checkLayerMemory(design, panel.width * (design.spec.subpixelRays ? 3.0 : 1.0), 1,
+    checkLayerMemory(design, panel.width * (design.camera.subpixelRays ? 3.0 : 1.0), 1,
                      o.display.empty() ? "<built-in display>" : o.display);
     checkTimeEstimate(double(o.simulateViews) * panel.width * panel.height, o.sampling.threads,
                       "simulate", std::to_string(o.simulateViews), "time fewer views");
@@ -192,10 +192,9 @@ void runBench(const BenchOptions& o) {
   const Scene scene = clock.run("load", [&] {
     if (o.camera == "display") {
       const DisplayDescription description = loadDisplayOrDefault(o.display);
-      display =
-          description.kind == DisplayKind::Lenticular
-              ? makeLenticularDisplay(designLenticular(description.lenticular), o.filter.filter())
-              : makeBarrierDisplay(designDisplay(description.barrier), o.filter.filter());
+      jobs::DisplayCameraRequest camera;
+      camera.filter = o.filter.filter();
+      display = jobs::makeDisplay(description, camera).model;
     }
     return loadSceneOrDefault(o.scene);
   });

@@ -57,10 +57,11 @@ auto withOptionNames(Call call) {
 
 namespace fs = std::filesystem;
 
-DisplaySpec loadSpecOrDefault(const std::string& path) {
-  DisplaySpec spec = path.empty() ? defaultDisplaySpec() : loadDisplayFile(path);
-  designDisplay(spec);  // the display itself must be possible
-  return spec;
+BarrierDisplayFile loadSpecOrDefault(const std::string& path) {
+  BarrierDisplayFile file =
+      path.empty() ? BarrierDisplayFile{defaultDisplaySpec(), {}} : loadDisplayFile(path);
+  designDisplay(file.spec, file.camera);  // the display itself must be possible
+  return file;
 }
 
 const char* orderName(LayerOrder order) {
@@ -81,7 +82,7 @@ struct PatternsOptions {
 };
 
 void runPatterns(const PatternsOptions& o) {
-  const DisplaySpec display = loadSpecOrDefault(o.display);
+  const DisplaySpec display = loadSpecOrDefault(o.display).spec;
   const Panel& maskPanel = display.maskPanel;
   if (o.settings.labelScale > maskPanel.height)
     throw InputError(
@@ -214,7 +215,8 @@ struct ApplyOptions {
 };
 
 void runApply(const ApplyOptions& o) {
-  DisplaySpec base = loadSpecOrDefault(o.display);
+  const BarrierDisplayFile file = loadSpecOrDefault(o.display);
+  DisplaySpec base = file.spec;
   // What is wrong from here on came from the command line.
   base.source = "command line";
   if (o.gap) base.gapMm = *o.gap;
@@ -222,8 +224,8 @@ void runApply(const ApplyOptions& o) {
   // moves the drawn mask (panel_offset_px), not the apertures the rays are traced through.
   DisplaySpec spec = measuredDisplaySpec(base, o.screenPeriod, o.slitPeriod, base.mask.phasePx);
   if (o.phase) spec.mask.panelOffsetPx = *o.phase;
-  const DisplayDesign d = designDisplay(spec);
-  writeFileAtomically(o.output, displayFileText(spec));
+  const DisplayDesign d = designDisplay(spec, file.camera);
+  writeFileAtomically(o.output, displayFileText(spec, file.camera));
   std::printf("wrote %s\n", o.output.c_str());
   std::printf(
       "Tx %g px, Tv %g mask px, panel offset %g px, g %g mm: D = %.1f mm (G1), S = %.1f mm, "

@@ -13,19 +13,6 @@ class App;
 
 namespace parallax::app {
 
-// `render` for a lenticular display (and its alias `lenticular render`): the panel's picture,
-// one ray per subpixel around its view, written with the calibration beside it.
-struct LenticularRenderJob {
-  LenticularCalibration calibration;
-  std::string scene, output;
-  SamplingOptions sampling;
-  FilterOptions filter;
-  double distance = 0;    // the design viewer's distance in mm; 0: the default
-  SceneLoadOptions load;  // --camera
-  RgbdCliOptions rgbd;    // --rgbd COLOUR DEPTH instead of the scene (docs/rgbd.md)
-};
-void runLenticularRender(const LenticularRenderJob& job);
-
 void registerViewCommand(CLI::App& cli);
 void registerInfoCommand(CLI::App& cli);
 void registerBenchCommand(CLI::App& cli);

@@ -30,7 +30,8 @@ void printDesign(const DisplayDesign& d, double depthMm) {
   std::printf("view distance D      %.6g mm\n", d.viewDistanceMm);
   std::printf("screen period Tx     %.6g mm = %.6g px\n", d.screenPeriodMm, d.screenPeriodPx);
   std::printf("slit period Tv       %.6g mm = %.6g mask px\n", d.slitPeriodMm, d.slitPeriodPx);
-  std::printf("views                %.6g%s\n", d.views, s.subpixelRays ? " x 3 subpixel rays" : "");
+  std::printf("views                %.6g%s\n", d.views,
+              d.camera.subpixelRays ? " x 3 subpixel rays" : "");
   std::printf("apertures            %.0f across", d.aperturesAcross);
   if (s.mask.kind == MaskKind::Pinholes) std::printf(", %.0f down", d.aperturesDown);
   std::printf("\nview zone width S    %.5g mm (%.4g mm per view) at D\n", d.viewZoneWidthMm,
@@ -106,7 +107,7 @@ void registerDesignCommand(CLI::App& cli) {
                          "frames a scene for a barrier display's depth of field");
       return printLenticularDesign(designLenticular(description.lenticular), options->json);
     }
-    const DisplayDesign d = designDisplay(description.barrier);
+    const DisplayDesign d = designDisplay(description.barrier, description.camera);
     std::optional<Framing> framing;
     if (!options->scene.empty()) {
       Scene scene = loadSceneOrDefault(options->scene);

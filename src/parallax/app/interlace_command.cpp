@@ -119,7 +119,7 @@ void runLenticularInterlace(const InterlaceOptions& o, const LenticularCalibrati
 std::string viewsNeeded(const DisplayDesign& design) {
   char text[128];
   std::snprintf(text, sizeof text, "%d views (%s, views = %g)", interlacedViewCount(design),
-                design.spec.subpixelRays ? "round(3 views) with subpixel rays" : "round(views)",
+                design.camera.subpixelRays ? "round(3 views) with subpixel rays" : "round(views)",
                 design.views);
   return text;
 }
@@ -129,12 +129,9 @@ void runInterlace(const InterlaceOptions& o) {
   const DisplayDescription description = loadDisplayOrDefault(o.display);
   if (description.kind == DisplayKind::Lenticular)
     return runLenticularInterlace(o, description.lenticular);
-  DisplayDesign design = designDisplay(description.barrier);
-  if (o.subpixels) {
-    DisplaySpec spec = design.spec;
-    spec.subpixelRays = true;
-    design = designDisplay(spec);
-  }
+  BarrierCameraSettings camera = description.camera;
+  camera.subpixelRays = camera.subpixelRays || o.subpixels;
+  const DisplayDesign design = designDisplay(description.barrier, camera);
   checkLayerMemory(design, design.spec.imagePanel.width, 1,
                    o.display.empty() ? "<built-in display>" : o.display);
   QuiltLayout layout;
@@ -161,11 +158,11 @@ void runInterlace(const InterlaceOptions& o) {
   record.set("/inputs/view_count", given);
   if (given != needed) record.set("/inputs/view_resampling", o.resampling);
   // Camera k (k-th from the left) feeds the design view seen from the k-th eye from the left.
-  const BarrierRayGenerator rays(design);
+  const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(design);
   const std::vector<int> designView = designViewsLeftToRight(design);
   for (size_t k = 0; k < designView.size(); ++k) {
     const std::string at = "/cameras/" + std::to_string(k);
-    const Vec3d eye = rays.viewPosition(designView[k]);
+    const Vec3d eye = display->viewPosition(designView[k]);
     record.set(at + "/design_view", designView[k]);
     record.set(at + "/eye_mm", Vec3f(float(eye.x), float(eye.y), float(eye.z)));
   }

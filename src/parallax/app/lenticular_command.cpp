@@ -18,6 +18,7 @@
 #include "parallax/io/lenticular_file.h"
 #include "parallax/jobs/distributed.h"
 #include "parallax/jobs/layer_output.h"
+#include "parallax/jobs/render_job.h"
 #include "parallax/render/display_render.h"
 #include "parallax/sim/lenticular_sim.h"
 
@@ -41,9 +42,18 @@ struct LenticularSimulateOptions {
   double distance = 0;
 };
 
+// `lenticular render CALIBRATION`: `render --display CALIBRATION` with a viewer distance.
 void runRender(const LenticularRenderOptions& o) {
-  runLenticularRender({loadDisplayOrDefault(o.calibration).lenticular, o.scene, o.output,
-                       o.sampling, o.filter, o.distance, o.load, RgbdCliOptions{}});
+  RenderRequest r;
+  r.display = o.calibration;
+  r.scene.path = o.scene;
+  r.scene.load = o.load;
+  r.scene.load.import = importOptions();
+  r.sampling = o.sampling;
+  r.filter = o.filter;
+  r.distance = o.distance;
+  r.output = o.output;
+  jobs::runRender(r, cliReporter());
 }
 
 void runSimulate(const LenticularSimulateOptions& o) {
@@ -79,66 +89,6 @@ void runSimulate(const LenticularSimulateOptions& o) {
 }
 
 }  // namespace
-
-void runLenticularRender(const LenticularRenderJob& o) {
-  RenderSettings settings = o.sampling.settings();
-  const ViewFilter filter = o.filter.filter();
-  // The central ray is one ray: more samples of it would all be the same.
-  if (filter.kind == ViewFilterKind::None) settings.samplesPerPixel = 1;
-  const LenticularDesign design = designLenticular(o.calibration, o.distance);
-  // Before anything is allocated: the subpixel film (three columns per pixel), the panel
-  // image and its 8-bit copy; and the time of one sample per subpixel and spp.
-  const double w = design.calibration.screenW, h = design.calibration.screenH;
-  checkMemoryEstimate(imageBytes(3 * w, h) + imageBytes(w, h) + imageBytes(w, h, kRgba8PixelBytes),
-                      o.calibration.source, "the panel image", "use a smaller panel");
-  o.sampling.checkWork(3 * w, h);
-  const Scene scene =
-      o.rgbd.given() ? loadRgbdFromOptions(o.rgbd) : loadSceneReportingWarnings(o.scene, o.load);
-  const Accelerator accelerator(scene,
-                                acceleratorForCameraRays(3 * w * h * settings.samplesPerPixel));
-  DisplayLayers out;
-  {
-    ProgressBar bar("lenticular render");
-    // Under mpirun each rank renders its bands of rows; rank 0 writes (docs/distributed.md).
-    out = renderDisplay(scene, accelerator, *makeLenticularDisplay(design, filter),
-                        frameShare(settings),
-                        [&bar](int done, int total) { bar.update(done, total); });
-  }
-  if (!mergeFrameShares({&out.image}, out.stats, cliReporter())) return;
-  JsonWriter record;
-  startRenderRecord(record, "lenticular: rays per subpixel around its view", o.calibration.source);
-  record.set("/scene", scene.source);
-  if (o.rgbd.given()) recordRgbd(record, o.rgbd, scene);
-  if (!o.load.camera.empty()) record.set("/scene_camera", o.load.camera);  // docs/gltf.md
-  record.set("/spp", settings.samplesPerPixel);
-  record.set("/bounces", settings.bounces);
-  record.set("/filter/kind", viewFilterName(filter.kind));
-  record.set("/filter/width_views", filter.widthViews);
-  record.set("/seed", o.sampling.seed);
-  record.set("/seconds", out.stats.seconds);
-  record.set("/rays", out.stats.totalRays());
-  record.set("/outputs/image", "image.png");
-  record.set("/outputs/calibration", "visual.json");
-  record.set("/scene_display/center", scene.display.center);
-  record.set("/scene_display/normal", scene.display.normal);
-  record.set("/scene_display/up", scene.display.up);
-  record.set("/scene_display/width", double(fitDisplayWidth(scene.display, displayWindow(design))));
-  writeLenticularDesignJson(record, "/design", design);
-
-  OutputSet set(o.output);
-  const char* dir = set.dir().c_str();
-  writeImage(set.path("image.png"), out.image);
-  // The calibration beside the image, so that `lenticular simulate DIR` finds it.
-  writeFileAtomically(set.path("visual.json"), lenticularCalibrationText(design.calibration));
-  writeFileAtomically(set.path("render.json"), record.dump() + "\n");
-  set.commit();
-  std::printf("wrote %s/image.png (%dx%d), %s/visual.json, %s/render.json\n", dir,
-              out.image.width(), out.image.height(), dir, dir);
-  std::printf("%.2f pixels per lens, views over %.0f degrees; %d spp in %.2f s, %s\n",
-              design.pixelsPerLens, design.calibration.viewConeDegrees, settings.samplesPerPixel,
-              out.stats.seconds,
-              formatRate(double(out.stats.totalRays()) / out.stats.seconds).c_str());
-}
 
 void registerLenticularCommand(CLI::App& cli) {
   CLI::App* cmd = cli.add_subcommand(

@@ -50,7 +50,7 @@ void registerLightfieldCommand(CLI::App& cli) {
                        "is off the panel (rows 0 to " + std::to_string(panel.height - 1) + ")");
     // The plot's cells: the film columns of the stretch (at most the panel's), each drawn with
     // its n x n samples; a few hundred bytes of SVG and of ray records apiece.
-    const double columnsPerPixel = design.spec.subpixelRays ? 3.0 : 1.0;
+    const double columnsPerPixel = design.camera.subpixelRays ? 3.0 : 1.0;
     const double columns =
         std::min(panel.width * columnsPerPixel,
                  (plot.toMm - plot.fromMm) / panel.pitchMm * columnsPerPixel + 1);

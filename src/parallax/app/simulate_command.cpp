@@ -27,6 +27,7 @@
 #include "parallax/io/json_reader.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/scene_file.h"
+#include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/sequence.h"
 #include "parallax/jobs/video_output.h"
 #include "parallax/quality/viewer_quality.h"
@@ -121,13 +122,9 @@ Inputs loadInputs(const SimulateOptions& o) {
   const DisplayDescription description = loadDisplayOrDefault(displayPath);
   Inputs in;
   in.scene = o.scene;
-  if (description.kind == DisplayKind::Lenticular) {
-    if (!o.mask.empty())
-      throw InputError("command line", "--mask", "a lenticular display has no mask layer");
-    in.display = makeLenticularDisplay(designLenticular(description.lenticular));
-  } else {
-    in.display = makeBarrierDisplay(designDisplay(description.barrier));
-  }
+  in.display = jobs::makeDisplay(description).model;
+  if (!o.mask.empty() && !in.display->hasMaskLayer())
+    throw InputError("command line", "--mask", "a lenticular display has no mask layer");
   if (o.image.empty() && o.mask.empty()) {
     LayerSet set = loadLayerSet(dir, in.display->hasMaskLayer());
     in.frames = std::move(set.frames);

@@ -13,9 +13,9 @@ DisplayDesign barrierDesign(const DisplayDescription& description,
     throw RequestError("distance",
                        "applies to lenticular displays; a barrier's view distance is its "
                        "design's (view_distance_mm in the display file)");
-  DisplaySpec spec = description.barrier;
-  if (camera.subpixels) spec.subpixelRays = true;
-  return designDisplay(spec);
+  BarrierCameraSettings settings = description.camera;
+  settings.subpixelRays = settings.subpixelRays || camera.subpixels;
+  return designDisplay(description.barrier, settings);
 }
 
 LenticularDesign lenticularDesign(const DisplayDescription& description,
@@ -30,7 +30,7 @@ LenticularDesign lenticularDesign(const DisplayDescription& description,
 BuiltDisplay barrierDisplay(const DisplayDesign& design, const ViewFilter& filter) {
   BuiltDisplay built;
   built.model = makeBarrierDisplay(design, filter);
-  built.file = {"display.json", displayFileText(design.spec), "display"};
+  built.file = {"display.json", displayFileText(design.spec, design.camera), "display"};
   return built;
 }
 
@@ -57,7 +57,8 @@ BuiltDisplay makeDisplay(const DisplayDescription& description,
 void checkFramingApplies(const DisplayDescription& description, const FramingRequest& framing) {
   framing.check();
   if (description.kind != DisplayKind::Barrier && framing.given())
-    throw RequestError("framing", "apply to barrier displays (their depth budget is the virtual gap)");
+    throw RequestError("framing",
+                       "apply to barrier displays (their depth budget is the virtual gap)");
 }
 
 BuiltDisplay makeFramedDisplay(const DisplayDescription& description,

@@ -192,7 +192,7 @@ void checkLayerMemory(const DisplayDesign& design, double filmColumns, double vi
 void checkLayerWork(const DisplayDesign& design, bool directMapping, int spp, int threads,
                     const std::string& displayPath) {
   const Panel& panel = design.spec.imagePanel;
-  const double subpixel = design.spec.subpixelRays ? 3.0 : 1.0;
+  const double subpixel = design.camera.subpixelRays ? 3.0 : 1.0;
   const double views =
       directMapping ? std::max(1.0, std::round(design.screenPeriodPx * subpixel)) : 1.0;
   const double columns = directMapping ? panel.width : panel.width * subpixel;
@@ -274,7 +274,7 @@ std::string writeLayerPictures(const std::string& output, const std::vector<Laye
 }
 
 DisplayFile barrierFile(const DisplayDesign& design) {
-  return {"display.json", displayFileText(design.spec), "display"};
+  return {"display.json", displayFileText(design.spec, design.camera), "display"};
 }
 
 }  // namespace

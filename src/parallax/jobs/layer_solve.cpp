@@ -79,11 +79,11 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   out.set("/layers/objective_first", report.objective.front());
   out.set("/layers/objective_last", report.objective.back());
   out.set("/layers/mean_layer_product", seen / double(frames.size()));
-  reporter.result(printed(
-      "%s: %zu frame(s), %d iterations, objective %.3g -> %.3g (per pixel and channel), "
-      "%zu training eyes, %.1f s (ideal views %.1f s)",
-      o.method.c_str(), frames.size(), report.iterations, report.objective.front(),
-      report.objective.back(), views.size(), seconds, trainSeconds));
+  reporter.result(
+      printed("%s: %zu frame(s), %d iterations, objective %.3g -> %.3g (per pixel and channel), "
+              "%zu training eyes, %.1f s (ideal views %.1f s)",
+              o.method.c_str(), frames.size(), report.iterations, report.objective.front(),
+              report.objective.back(), views.size(), seconds, trainSeconds));
   return frames;
 }
 

@@ -56,12 +56,13 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   if (r.quilt.wanted && (r.quilt.columns < 0 || r.quilt.rows < 0 || r.quilt.width < 0 ||
                          r.quilt.height < 0 || (r.quilt.columns == 0) != (r.quilt.rows == 0)))
     throw RequestError("quilt", "expected COLUMNSxROWS (both positive) or auto");
-  plan.description = loadDisplay(r.display, reporter);
+  plan.description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
   r.layers.check();
   r.sequence.videoOptions();  // refuses bad video options before any work
   r.framing.check();
   if (r.sequence.video.wanted() && r.layers.rank > 1)
-    throw RequestError("video", "time-multiplexed frames ({rank}) have several image layers a frame");
+    throw RequestError("video",
+                       "time-multiplexed frames ({rank}) have several image layers a frame");
 
   plan.camera.subpixels = r.subpixels;
   plan.camera.filter = plan.filter;
@@ -73,8 +74,9 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
                        "applies to barrier displays; for a lenticular display render a quilt "
                        "({quilt} auto) and interlace it");
   if (r.layers.solved() && !layered)
-    throw RequestError("layers", "a lenticular panel has one layer: only slits (its interlaced "
-                                 "image)");
+    throw RequestError("layers",
+                       "a lenticular panel has one layer: only slits (its interlaced "
+                       "image)");
   if (r.layers.solved() && (r.directMapping || r.quilt.wanted))
     throw RequestError("layers",
                        "optimised layers are made from the display camera's layers: not with "
@@ -90,7 +92,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   const std::string subject =
       plan.description.source() == "<built-in>" ? "<built-in display>" : plan.description.source();
   if (r.quilt.wanted) {
-    planQuilt(r, *display, plan);
+    planQuilt(r, *display, plan, reporter);
   } else {
     checkPictureWork(*display, r.directMapping, plan.settings, subject);
   }
@@ -101,9 +103,8 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   if (r.layers.solved()) {
     // The training targets and, per frame, two layers and their gradients.
     const DisplayDesign& design = *display->barrierDesign();
-    const double layerBytes = double(design.spec.imagePanel.width) *
-                              design.spec.imagePanel.height * sizeof(Vec3f) *
-                              (4.0 * r.layers.rank + 6.0);
+    const double layerBytes = double(design.spec.imagePanel.width) * design.spec.imagePanel.height *
+                              sizeof(Vec3f) * (4.0 * r.layers.rank + 6.0);
     checkMemoryEstimate(trainingBytes(design, plan.training) + layerBytes,
                         r.display.empty() ? "the built-in display" : r.display,
                         "the training views of {layers} " + r.layers.method,

@@ -5,10 +5,12 @@
 // video. `parallax render` and Python's render functions are two spellings of one RenderRequest.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "parallax/image/image.h"
+#include "parallax/io/display_file.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/sequence.h"
@@ -43,6 +45,7 @@ struct QuiltRequest {
 struct RenderRequest {
   SceneRequest scene;
   std::string display;  // "" the built-in barrier, a display file, a calibration, lkg:NAME
+  std::optional<DisplayDescription> loaded;  // the display already loaded (else `display`'s)
   SamplingRequest sampling;
   FilterRequest filter;
   FramingRequest framing;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallax/camera/display_camera.h"
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
@@ -18,7 +19,8 @@
 
 namespace parallax::jobs {
 
-void planQuilt(const RenderRequest& r, const DisplayModel& display, RenderPlan& plan) {
+void planQuilt(const RenderRequest& r, const DisplayModel& display, RenderPlan& plan,
+               Reporter& reporter) {
   const LenticularDesign* lenticular = display.lenticularDesign();
   QuiltLayout& layout = plan.layout;
   layout.columns = r.quilt.columns, layout.rows = r.quilt.rows;
@@ -42,6 +44,13 @@ void planQuilt(const RenderRequest& r, const DisplayModel& display, RenderPlan& 
                  sized ? std::to_string(width) + "x" + std::to_string(height) : "", r.linear);
   layout.aspect = double(width) / height;
   plan.tileWidth = width, plan.tileHeight = height;
+  const DisplayWindow window = display.window();
+  const double windowAspect = window.widthMm / window.heightMm;
+  if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01 && writesJobOutputs())
+    reporter.note(
+        printed("tiles of %dx%d have aspect %.4f, the display's window %.4f: the views "
+                "are stretched to fill them, as Looking Glass quilts are",
+                width, height, layout.aspect, windowAspect));
 }
 
 void checkPictureWork(const DisplayModel& display, bool directMapping,
@@ -63,8 +72,8 @@ AcceleratorOptions cameraRayAccelerator(const RenderRequest& r, const RenderPlan
                                         const DisplayModel& display) {
   const double spp = plan.settings.samplesPerPixel;
   if (r.quilt.wanted)
-    return acceleratorForCameraRays(double(plan.layout.views()) * plan.tileWidth *
-                                    plan.tileHeight * spp);
+    return acceleratorForCameraRays(double(plan.layout.views()) * plan.tileWidth * plan.tileHeight *
+                                    spp);
   const FilmLayout film = display.film();
   const DisplayDesign* design = display.barrierDesign();
   const double views =
@@ -74,12 +83,11 @@ AcceleratorOptions cameraRayAccelerator(const RenderRequest& r, const RenderPlan
 
 namespace {
 
-// The top of every record: program, method, display, imports, scene, sampling.
-JsonWriter startRecord(const FrameTarget& t, const std::string& method, const Scene& scene) {
+// The top of every record: program, version, method, display, imports.
+void startRecord(JsonWriter& record, const FrameTarget& t, const std::string& method,
+                 const Scene& scene) {
   const RenderRequest& r = *t.request;
-  JsonWriter record;
   startRenderRecord(record, method, r.display, r.scene.load.import, scene.imports);
-  return record;
 }
 
 void recordSampling(JsonWriter& record, const RenderRequest& r, const RenderSettings& settings) {
@@ -137,16 +145,16 @@ bool renderLayers(const FrameTarget& t, const Scene& scene, const Accelerator& a
   }
   if (split && !mergeFrameShares({&layers.image}, layers.stats, reporter)) return false;
 
-  const std::string method = !layered ? "lenticular: rays per subpixel around its view"
+  const std::string method = !layered          ? "lenticular: rays per subpixel around its view"
                              : r.directMapping ? "direct-mapping"
                                                : "barrier-camera";
-  out.record = startRecord(t, method, scene);
   JsonWriter& record = out.record;
+  startRecord(record, t, method, scene);
   if (layered) record.set("/layers/method", r.layers.method);
   out.frames = {{layers.image, layers.mask}};
   if (r.layers.solved())
-    out.frames = solveLayers(r.layers, scene, accelerator, *display->barrierDesign(),
-                             plan.training, out.frames[0], record, reporter);
+    out.frames = solveLayers(r.layers, scene, accelerator, *display->barrierDesign(), plan.training,
+                             out.frames[0], record, reporter);
   recordScene(record, r.scene, scene);
   recordSampling(record, r, settings);
   record.set("/adaptive", settings.adaptive);
@@ -189,8 +197,8 @@ bool renderQuiltFrame(const FrameTarget& t, const Scene& scene, const Accelerato
   {
     const auto progress = reporter.progress("render");
     if (!codes) {
-      out.quilt = renderQuilt(scene, accelerator, display, share, layout, width, height,
-                              &out.stats, progress->callback());
+      out.quilt = renderQuilt(scene, accelerator, display, share, layout, width, height, &out.stats,
+                              progress->callback());
     } else {
       out.codes.resize(size_t(quiltWidth) * size_t(quiltHeight) * 3);
       const auto keepCodes = [&](int, int left, int top, const Image& view) {
@@ -211,8 +219,8 @@ bool renderQuiltFrame(const FrameTarget& t, const Scene& scene, const Accelerato
                               : mergeFrameShares({&out.quilt}, out.stats, reporter);
     if (!writer) return false;
   }
-  out.record = startRecord(t, "quilt", scene);
   JsonWriter& record = out.record;
+  startRecord(record, t, "quilt", scene);
   record.set("/display_kind", displayKindName(display.kind()));
   recordScene(record, r.scene, scene);
   recordSampling(record, r, plan.settings);
@@ -226,6 +234,7 @@ bool renderQuiltFrame(const FrameTarget& t, const Scene& scene, const Accelerato
     record.set("/quilt/eyes_mm/" + std::to_string(k),
                Vec3f(float(eye.x), float(eye.y), float(eye.z)));
   }
+  record.set("/quilt/file_name", quiltFileName("quilt", layout, ".png"));
   record.set("/outputs/quilt", quiltFileName("quilt", layout, ".png"));
   if (t.display->framing) recordFraming(record, *t.display->framing);
   t.display->recordDesign(record, "/design");

@@ -36,7 +36,8 @@ struct FrameTarget {
 
 // The quilt's layout and tile size for `display`, refusing what does not fit (memory, pixels,
 // time) and noting tiles whose aspect is not the window's.
-void planQuilt(const RenderRequest& request, const DisplayModel& display, RenderPlan& plan);
+void planQuilt(const RenderRequest& request, const DisplayModel& display, RenderPlan& plan,
+               Reporter& reporter);
 
 // Refuses (naming `subject`, the display) layers that would not fit in memory, and samples that
 // would take too long: the film (and with direct mapping one view per interleaved view), the

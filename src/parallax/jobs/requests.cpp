@@ -218,7 +218,7 @@ DisplayDesign loadBarrierDesign(const std::string& path, Reporter& reporter) {
   if (description.kind != DisplayKind::Barrier)
     throw InputError(description.source(), "",
                      "is a lenticular calibration; this command takes a barrier display");
-  return designDisplay(description.barrier);
+  return designDisplay(description.barrier, description.camera);
 }
 
 }  // namespace parallax::jobs

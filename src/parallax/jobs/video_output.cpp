@@ -33,7 +33,7 @@ void VideoOutput::add(const Image& picture) {
 }
 
 std::string VideoOutput::finish() {
-  if (!writer_.isOpen()) throw InputError("{video}", options_.file, "no frames to write");
+  if (!writer_.isOpen()) throw RequestError("video", "no frames to write", options_.file);
   writer_.finish();
   return videoSummary(writer_, width_, height_);
 }

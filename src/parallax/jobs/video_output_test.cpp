@@ -104,15 +104,15 @@ TEST_F(VideoOutputTest, RefusesPicturesItCannotUse) {
   try {
     writeVideo({}, options);
     ADD_FAILURE() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "{video}");
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.field(), "video");
   }
   options.codec = "h264";
   try {
     writeVideo({path("a.png")}, options);
     ADD_FAILURE() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "--video-codec");
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.field(), "video_codec");
   }
   EXPECT_FALSE(fs::exists(path("v.webm")));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 2);

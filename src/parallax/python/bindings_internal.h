@@ -10,8 +10,10 @@
 #include <array>
 #include <string>
 
+#include "parallax/core/error.h"
 #include "parallax/core/math.h"
 #include "parallax/image/image.h"
+#include "parallax/jobs/reporter.h"
 
 namespace parallax::python {
 
@@ -27,6 +29,11 @@ Image arrayToImage(const py::array& array, const std::string& name);
 
 // An eye (display mm) in front of the display; raises parallax.Error naming `name` otherwise.
 Vec3d eyeInFront(const std::array<double, 3>& eye, const std::string& name);
+
+// Notes and warnings on stderr, as the command line prints them, fields named as keywords.
+jobs::Reporter& pythonReporter();
+// The one-line message of an InputError, fields named as keywords.
+std::string pythonErrorText(const InputError& error);
 
 void bindSceneAndDisplay(py::module_& module);
 void bindRender(py::module_& module);

@@ -14,6 +14,42 @@
 
 namespace parallax::python {
 
+namespace {
+
+std::string keyword(const std::string& field) {
+  // Fields Python spells otherwise than by their name.
+  if (field == "framing") return "fit/focus/depth_budget";
+  if (field == "sequence") return "frames/turntable";
+  return field;
+}
+
+class PythonReporter : public jobs::Reporter {
+ public:
+  void note(const std::string& text) override {
+    std::fprintf(stderr, "note: %s\n", spellFields(text, keyword).c_str());
+  }
+  void warning(const std::string& text) override {
+    std::fprintf(stderr, "warning: %s\n", spellFields(text, keyword).c_str());
+  }
+  void result(const std::string&) override {}
+  std::unique_ptr<jobs::Progress> progress(const std::string& label) override {
+    return jobs::silentReporter().progress(label);
+  }
+};
+
+}  // namespace
+
+jobs::Reporter& pythonReporter() {
+  static PythonReporter reporter;
+  return reporter;
+}
+
+std::string pythonErrorText(const InputError& e) {
+  return errorText(e, keyword, [](const std::string& field, const std::string& value) {
+    return keyword(field) + "=" + value;
+  });
+}
+
 py::array_t<float> imageToArray(const Image& image) {
   py::array_t<float> array(
       {py::ssize_t(image.height()), py::ssize_t(image.width()), py::ssize_t(3)});
@@ -79,9 +115,7 @@ PYBIND11_MODULE(_parallax, module) {
     } catch (const parallax::InputError& e) {
       // One line, naming a request's field by its keyword ("spp: ...", "spp=16: ...").
       const std::string prefix = "command line: ";
-      std::string text = errorText(
-          e, [](const std::string& field) { return field; },
-          [](const std::string& field, const std::string& value) { return field + "=" + value; });
+      std::string text = parallax::python::pythonErrorText(e);
       if (e.file() == "command line" && !e.path().empty() && text.rfind(prefix, 0) == 0)
         text = text.substr(prefix.size());
       for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at))

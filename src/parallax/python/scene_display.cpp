@@ -7,13 +7,14 @@
 #include <optional>
 #include <string>
 
-#include "parallax/app/cli_support.h"
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/display/lenticular.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
+#include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/requests.h"
 #include "parallax/python/bindings_internal.h"
 
 namespace parallax::python {
@@ -24,7 +25,7 @@ namespace {
 std::string designJson(const DisplayDescription& description, double depthMm,
                        const std::optional<Scene>& scene, const std::string& fit,
                        const std::string& focus, const std::string& depthBudget) {
-  app::FramingOptions framingOptions;
+  jobs::FramingRequest framingOptions;
   framingOptions.fit = fit, framingOptions.focus = focus, framingOptions.depthBudget = depthBudget;
   JsonWriter json;
   if (description.kind == DisplayKind::Lenticular) {
@@ -35,7 +36,7 @@ std::string designJson(const DisplayDescription& description, double depthMm,
     writeLenticularDesignJson(json, "", designLenticular(description.lenticular));
     return json.dump();
   }
-  const DisplayDesign design = designDisplay(description.barrier);
+  const DisplayDesign design = designDisplay(description.barrier, description.camera);
   std::optional<Framing> framing;
   if (scene) {
     Scene placed = *scene;
@@ -52,7 +53,7 @@ std::string designJson(const DisplayDescription& description, double depthMm,
   json.set("/disparity_mm", design.adjacentViewDisparityMm(depth));
   if (framing) {
     json.set("/scene/source", scene->source);
-    app::setFramingFigures(json, "/scene", *framing);
+    jobs::setFramingFigures(json, "/scene", *framing);
   }
   return json.dump();
 }
@@ -73,9 +74,10 @@ void bindSceneAndDisplay(py::module_& module) {
   module.def(
       "load_scene",
       [](const std::optional<std::string>& path, const std::string& camera) {
-        SceneLoadOptions options;
-        options.camera = camera;
-        return app::loadSceneReportingWarnings(path.value_or(""), options);
+        jobs::SceneRequest request;
+        request.path = path.value_or("");
+        request.load.camera = camera;
+        return jobs::loadScene(request, pythonReporter());
       },
       py::arg("path") = py::none(), py::kw_only(), py::arg("camera") = "",
       "The scene or mesh file (None: the built-in scene), as `parallax render SCENE` loads it");
@@ -84,23 +86,18 @@ void bindSceneAndDisplay(py::module_& module) {
                                  "A display of either kind (parallax.load_display)")
       .def_property_readonly("source", [](const DisplayDescription& d) { return d.source(); })
       .def_property_readonly("kind",
-                             [](const DisplayDescription& d) {
-                               return d.kind == DisplayKind::Lenticular ? "lenticular" : "barrier";
-                             })
+                             [](const DisplayDescription& d) { return displayKindName(d.kind); })
       .def("__repr__", [](const DisplayDescription& d) {
-        return std::string("<parallax.Display ") +
-               (d.kind == DisplayKind::Lenticular ? "lenticular " : "barrier ") + d.source() + ">";
+        return std::string("<parallax.Display ") + displayKindName(d.kind) + " " + d.source() + ">";
       });
 
   module.def(
       "load_display",
       [](const std::optional<std::string>& pathOrName) {
-        DisplayDescription description = app::loadDisplayOrDefault(pathOrName.value_or(""));
+        DisplayDescription description =
+            jobs::loadDisplay(pathOrName.value_or(""), pythonReporter());
         // Checked now, as every command checks it (G1-G4), not at the first render.
-        if (description.kind == DisplayKind::Lenticular)
-          designLenticular(description.lenticular);
-        else
-          designDisplay(description.barrier);
+        jobs::makeDisplay(description);
         return description;
       },
       py::arg("path_or_name") = py::none(),

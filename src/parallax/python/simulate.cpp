@@ -13,13 +13,14 @@
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
-#include "parallax/app/cli_support.h"
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/display/display_model.h"
 #include "parallax/display/lenticular.h"
 #include "parallax/image/metrics.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/requests.h"
 #include "parallax/python/bindings_internal.h"
 #include "parallax/quality/viewer_quality.h"
 #include "parallax/sim/crosstalk.h"
@@ -41,9 +42,7 @@ struct SeeOptions {
 };
 
 std::unique_ptr<DisplayModel> makeDisplay(const DisplayDescription& d) {
-  if (d.kind == DisplayKind::Lenticular)
-    return makeLenticularDisplay(designLenticular(d.lenticular));
-  return makeBarrierDisplay(designDisplay(d.barrier));
+  return jobs::makeDisplay(d).model;
 }
 
 // The options as SimulationOptions, refused as the CLI refuses them.
@@ -171,7 +170,7 @@ std::string quality(const Scene& loaded, const DisplayDescription& description,
   Scene scene = loaded;
   const DisplayDesign* barrier = display->barrierDesign();
   if (barrier) {  // framed as render framed it (framedScene: what simulate --reference reads)
-    app::FramingOptions framing;
+    jobs::FramingRequest framing;
     framing.fit = fit, framing.focus = focus, framing.depthBudget = depthBudget;
     framing.apply(scene.display);
     scene = framedScene(std::move(scene), *barrier);

@@ -285,7 +285,9 @@ def test_errors_carry_the_cli_lines(scene, small, tmp_path):
     assert str(caught.value).startswith("filter: expected none, view")
     with pytest.raises(parallax.Error) as caught:
         parallax.render(scene, small, fit="sideways")
-    assert str(caught.value) == cli_error("render", "--display", SMALL, "--fit", "sideways")
+    assert str(caught.value) == as_keywords(
+        cli_error("render", "--display", SMALL, "--fit", "sideways"))
+    assert str(caught.value).startswith("fit: expected window, depth")
     assert isinstance(caught.value, ValueError)
 
 

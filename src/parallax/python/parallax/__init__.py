@@ -9,6 +9,7 @@ The GIL is released while rays are traced and eyes simulated.
 from __future__ import annotations
 
 import json
+import os
 from dataclasses import dataclass, field
 from typing import Optional, Sequence, Tuple
 
@@ -19,7 +20,7 @@ from ._parallax import Display, Error, Scene, __version__, load_display, load_sc
 
 __all__ = [
     "Display", "Error", "Scene", "RenderResult", "QuiltResult", "load_scene", "load_display",
-    "design", "render", "view", "ideal_view", "quilt", "simulate", "sweep_eyes", "sweep",
+    "design", "render", "render_files", "view", "ideal_view", "quilt", "simulate", "sweep_eyes", "sweep",
     "quality", "to_srgb8", "version", "__version__",
 ]
 
@@ -51,13 +52,16 @@ def design(display: Optional[Display] = None, *, depth: float = 0.0,
 
 @dataclass
 class RenderResult:
-    """The display's layers (float32 linear, H x W x 3) and render.json's figures.
+    """The display's layers (float32 linear, H x W x 3) and render.json's record.
 
     A lenticular panel has one layer: its interlaced picture is `image`, `mask` is None.
+    Time-multiplexed layers (layers="nmf", rank > 1) are `frames`, (image, mask) pairs shown in
+    turn; `image` and `mask` are the first.
     """
     image: np.ndarray
     mask: Optional[np.ndarray]
     record: dict = field(repr=False)
+    frames: list = field(default_factory=list, repr=False)
 
     @property
     def image_srgb8(self) -> np.ndarray:
@@ -75,19 +79,47 @@ class QuiltResult:
     record: dict = field(repr=False)
 
 
+def _given(**keywords) -> dict:
+    """The keywords the caller gave (None: the request's default)."""
+    return {key: value for key, value in keywords.items() if value is not None}
+
+
 def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
            spp: int = 16, seed: int = 0, threads: int = 0, jitter: str = "auto",
-           bounces: int = 0, adaptive: bool = False, filter: str = "view",
-           filter_width: Optional[float] = None, subpixels: bool = False,
+           bounces: int = 0, adaptive: bool = False, adaptive_threshold: Optional[float] = None,
+           filter: str = "view", filter_width: Optional[float] = None, subpixels: bool = False,
+           direct_mapping: bool = False, layers: str = "slits", rank: int = 1,
+           iterations: int = 0, brightness: float = 0.0, train_eyes: int = 2,
+           layer_error: Optional[str] = None, distance: float = 0.0,
            fit: Optional[str] = None, focus=None, depth_budget=None) -> RenderResult:
-    """`parallax render`: the image and mask layers of a barrier display (slits), or a
-    lenticular panel's interlaced picture (`lenticular render`)."""
-    options = {} if filter_width is None else {"filter_width": filter_width}
-    image, mask, record = _parallax._render(
-        scene if scene is not None else load_scene(), _display(display), spp=spp, seed=seed,
-        threads=threads, jitter=jitter, bounces=bounces, adaptive=adaptive, filter=filter,
-        subpixels=subpixels, **options, **_framing(fit, focus, depth_budget))
-    return RenderResult(image, mask, json.loads(record))
+    """`parallax render`: the image and mask layers of a barrier display (the slits', direct
+    mapping's, or content-adaptive layers solved for eyes across the view zone), or a lenticular
+    panel's interlaced picture (`lenticular render`)."""
+    frames, _, record = _parallax._render(
+        scene if scene is not None else load_scene(), _display(display),
+        **_given(spp=spp, seed=seed, threads=threads, jitter=jitter, bounces=bounces,
+                 adaptive=adaptive, adaptive_threshold=adaptive_threshold, filter=filter,
+                 filter_width=filter_width, subpixels=subpixels, direct_mapping=direct_mapping,
+                 layers=layers, rank=rank, iterations=iterations, brightness=brightness,
+                 train_eyes=train_eyes, layer_error=layer_error, distance=distance),
+        **_framing(fit, focus, depth_budget))
+    image, mask = frames[0]
+    return RenderResult(image, mask, json.loads(record), frames)
+
+
+def render_files(output: str, scene: Optional[str] = None, display: Optional[str] = None, *,
+                 camera: str = "", **keywords) -> dict:
+    """`parallax render SCENE --display DISPLAY -o OUTPUT ...`: the same files, byte for byte:
+    layers, quilts (quilt="auto" or (columns, rows), size=(w, h), linear=True), sequences
+    (frames="A:B", turntable=DEGREES, duration, fps, chunk="K/N") and their video (video=FILE,
+    video_codec, video_quality). `scene` and `display` are paths (None: the built-in ones);
+    every keyword of render() is taken. Returns the record (OUTPUT/render.json) of one picture
+    set, or {} for a sequence."""
+    _parallax._render_files(str(output), None if scene is None else str(scene),
+                            None if display is None else str(display), camera=camera,
+                            **_given(**keywords))
+    record = os.path.join(str(output), "render.json")
+    return json.load(open(record)) if os.path.exists(record) else {}
 
 
 def view(scene: Optional[Scene] = None, *, eye: Optional[Sequence[float]] = None,
@@ -107,10 +139,10 @@ def ideal_view(scene: Optional[Scene] = None, display: Optional[Display] = None,
                adaptive: bool = False, fit: Optional[str] = None, focus=None,
                depth_budget=None) -> np.ndarray:
     """`parallax view --display-eye X,Y,Z`: the ideal picture through the display's window."""
-    return _parallax._ideal_view(
-        scene if scene is not None else load_scene(), _display(display), eye=eye, size=size,
-        spp=spp, seed=seed, threads=threads, jitter=jitter, bounces=bounces, adaptive=adaptive,
-        **_framing(fit, focus, depth_budget))
+    return _parallax._view(
+        scene if scene is not None else load_scene(), display=_display(display),
+        display_eye=tuple(eye), size=size, spp=spp, seed=seed, threads=threads, jitter=jitter,
+        bounces=bounces, adaptive=adaptive, **_framing(fit, focus, depth_budget))
 
 
 def quilt(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
@@ -119,10 +151,12 @@ def quilt(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
           bounces: int = 0, adaptive: bool = False, fit: Optional[str] = None, focus=None,
           depth_budget=None) -> QuiltResult:
     """`parallax render --quilt CxR|auto [--size WxH]`: layout None is auto."""
-    array, record = _parallax._quilt(
-        scene if scene is not None else load_scene(), _display(display), layout=layout,
-        size=size, spp=spp, seed=seed, threads=threads, jitter=jitter, bounces=bounces,
-        adaptive=adaptive, **_framing(fit, focus, depth_budget))
+    _, array, record = _parallax._render(
+        scene if scene is not None else load_scene(), _display(display),
+        quilt="auto" if layout is None else tuple(layout),
+        **_given(size=None if size is None else tuple(size), spp=spp, seed=seed, threads=threads,
+                 jitter=jitter, bounces=bounces, adaptive=adaptive),
+        **_framing(fit, focus, depth_budget))
     return QuiltResult(array, json.loads(record))
 
 
