@@ -14,7 +14,9 @@ namespace {
 class BarrierDisplay final : public DisplayModel {
  public:
   BarrierDisplay(const DisplayDesign& design, const ViewFilter& filter)
-      : design_(design), rays_(design, filter) {}
+      : design_(design),
+        rays_(design, filter),
+        centralRayOnly_(filter.kind == ViewFilterKind::None) {}
 
   DisplayKind kind() const override { return DisplayKind::Barrier; }
   const std::string& source() const override { return design_.spec.source; }
@@ -32,6 +34,7 @@ class BarrierDisplay final : public DisplayModel {
               double origin[3][16], double direction[3][16]) const override {
     rays_.rays16(filmX, filmY, u, v, origin, direction);
   }
+  bool centralRayOnly() const override { return centralRayOnly_; }
   bool columnFans() const override { return true; }
   int viewCount() const override { return interleavedViewCount(design_); }
   int viewIndex(int column, int row) const override { return rays_.viewIndex(column, row); }
@@ -63,6 +66,7 @@ class BarrierDisplay final : public DisplayModel {
  private:
   DisplayDesign design_;
   BarrierRayGenerator rays_;
+  bool centralRayOnly_;
 };
 
 }  // namespace

@@ -72,6 +72,9 @@ class DisplayModel {
   // Sixteen at once (the render loop's packets); the default calls ray() per lane.
   virtual void rays16(const float filmX[16], const float filmY[16], const float u[16],
                       const float v[16], double origin[3][16], double direction[3][16]) const;
+  // True when every sample of a film pixel is its central ray (the view filter none): more than
+  // one sample per pixel would trace the same ray again.
+  virtual bool centralRayOnly() const = 0;
   // True when the rays of one film column fan through one aperture (a slit), so that the
   // render loop's packets should run down a column and share their jitter.
   virtual bool columnFans() const = 0;

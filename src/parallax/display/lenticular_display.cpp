@@ -82,6 +82,11 @@ class LenticularDisplay final : public DisplayModel {
  private:
   LenticularDesign design_;
   ViewFilterKind filterKind_;
+
+ public:
+  bool centralRayOnly() const override { return filterKind_ == ViewFilterKind::None; }
+
+ private:
   ViewFilterWarp warp_;
 };
 

@@ -80,8 +80,4 @@ void BuiltDisplay::recordDesign(JsonWriter& record, const std::string& at) const
     writeLenticularDesignJson(record, at, *lenticular);
 }
 
-bool oneRayPerSample(const ViewFilter& filter) {
-  return filter.kind == ViewFilterKind::None;
-}
-
 }  // namespace parallax::jobs

@@ -54,8 +54,4 @@ BuiltDisplay makeFramedDisplay(const DisplayDescription& description,
 // The refusal of a framing request for a display that cannot use one (before any work).
 void checkFramingApplies(const DisplayDescription& description, const FramingRequest& framing);
 
-// Whether the display's samples are one ray each whatever the sample count (the central ray of
-// filter none): a render of it needs one sample per film pixel.
-bool oneRayPerSample(const ViewFilter& filter);
-
 }  // namespace parallax::jobs

@@ -85,9 +85,10 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   if (!layered && !r.quilt.wanted && r.sequence.given())
     throw RequestError("sequence",
                        "a lenticular panel's sequence is a sequence of quilts: add {quilt} auto");
-  // The central ray is one ray: more samples of it would all be the same.
-  if (oneRayPerSample(plan.filter) && !r.directMapping && !r.quilt.wanted)
-    plan.settings.samplesPerPixel = 1;
+  // The settings the display camera renders with (render/display_render.h): one sample per
+  // pixel when each is the central ray.
+  if (!r.directMapping && !r.quilt.wanted)
+    plan.settings = displayRenderSettings(*display, plan.settings);
 
   const std::string subject =
       plan.description.source() == "<built-in>" ? "<built-in display>" : plan.description.source();

@@ -13,6 +13,7 @@
 #include "parallax/io/display_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
+#include "parallax/jobs/design_job.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/python/bindings_internal.h"
@@ -25,37 +26,13 @@ namespace {
 std::string designJson(const DisplayDescription& description, double depthMm,
                        const std::optional<Scene>& scene, const std::string& fit,
                        const std::string& focus, const std::string& depthBudget) {
-  jobs::FramingRequest framingOptions;
-  framingOptions.fit = fit, framingOptions.focus = focus, framingOptions.depthBudget = depthBudget;
-  JsonWriter json;
-  if (description.kind == DisplayKind::Lenticular) {
-    if (scene || framingOptions.given())
-      throw InputError("command line", "--scene",
-                       "frames a scene for a barrier display's depth of field");
-    json.set("/kind", "lenticular");
-    writeLenticularDesignJson(json, "", designLenticular(description.lenticular));
-    return json.dump();
-  }
-  const DisplayDesign design = designDisplay(description.barrier, description.camera);
-  std::optional<Framing> framing;
-  if (scene) {
-    Scene placed = *scene;
-    framingOptions.apply(placed.display);
-    framing = frameForDisplay(placed, design);
-  } else if (framingOptions.given()) {
-    throw InputError("command line", "--fit", "--fit, --focus and --depth-budget need --scene");
-  }
-  const double depth = depthMm != 0.0 ? depthMm : design.depthOfFieldMm;
-  if (!(std::abs(depth) < design.viewDistanceMm))
-    throw InputError("command line", "--depth", "must lie between the viewer and -D");
-  writeDesignJson(json, "", design);
-  json.set("/disparity_depth_mm", depth);
-  json.set("/disparity_mm", design.adjacentViewDisparityMm(depth));
-  if (framing) {
-    json.set("/scene/source", scene->source);
-    jobs::setFramingFigures(json, "/scene", *framing);
-  }
-  return json.dump();
+  jobs::DesignRequest request;
+  request.loaded = description;
+  request.depth = depthMm;
+  if (scene) request.scene = jobs::SceneRequest{};
+  request.framing.fit = fit, request.framing.focus = focus,
+  request.framing.depthBudget = depthBudget;
+  return jobs::designReport(request, pythonReporter(), scene ? &*scene : nullptr).json;
 }
 
 }  // namespace

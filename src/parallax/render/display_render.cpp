@@ -4,12 +4,18 @@
 
 namespace parallax {
 
+RenderSettings displayRenderSettings(const DisplayModel& display, RenderSettings settings) {
+  if (display.centralRayOnly()) settings.samplesPerPixel = 1;
+  return settings;
+}
+
 DisplayLayers renderDisplay(const Scene& scene, const Accelerator& accelerator,
                             const DisplayModel& display, const RenderSettings& settings,
                             const ProgressCallback& progress) {
   const DisplayCamera camera(display, scene.display);
   DisplayLayers layers;
-  Image film = render(scene, accelerator, camera, settings, &layers.stats, progress);
+  Image film = render(scene, accelerator, camera, displayRenderSettings(display, settings),
+                      &layers.stats, progress);
   if (!display.film().subpixelColumns) {
     layers.image = std::move(film);
   } else {

@@ -20,6 +20,11 @@ struct DisplayLayers {
   RenderStats stats;
 };
 
+// The settings renderDisplay renders `display` with: one sample per film pixel when every sample
+// is its central ray (display.centralRayOnly(): the view filter none), since more would trace
+// the same ray again; `settings` otherwise.
+RenderSettings displayRenderSettings(const DisplayModel& display, RenderSettings settings);
+
 // The film of the display camera folded into the panel: with subpixel columns each film column
 // keeps only its own colour channel (panelFromSubpixelFilm).
 DisplayLayers renderDisplay(const Scene& scene, const Accelerator& accelerator,
