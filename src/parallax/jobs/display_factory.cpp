@@ -54,6 +54,13 @@ BuiltDisplay makeDisplay(const DisplayDescription& description,
   throw std::logic_error("unknown display kind");
 }
 
+DisplayDesign barrierDesignOf(const DisplayDescription& description) {
+  if (description.kind != DisplayKind::Barrier)
+    throw InputError(description.source(), "",
+                     "is a lenticular calibration; this command takes a barrier display");
+  return designDisplay(description.barrier, description.camera);
+}
+
 void checkFramingApplies(const DisplayDescription& description, const FramingRequest& framing) {
   framing.check();
   if (description.kind != DisplayKind::Barrier && framing.given())

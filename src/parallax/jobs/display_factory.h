@@ -38,6 +38,10 @@ struct BuiltDisplay {
   const DisplayModel* operator->() const { return model.get(); }
 };
 
+// A barrier's design (with the file's camera settings); a lenticular calibration is refused,
+// naming the file, for the commands that take barriers only.
+DisplayDesign barrierDesignOf(const DisplayDescription& description);
+
 // Builds the display. Throws RequestError for a choice its kind does not have (subpixels on a
 // lenticular panel, a viewer distance on a barrier, whose distance is its design's).
 BuiltDisplay makeDisplay(const DisplayDescription& description,

@@ -7,6 +7,7 @@
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/io/rgbd_file.h"
+#include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/limits.h"
 
 namespace parallax::jobs {
@@ -214,11 +215,7 @@ DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& report
 }
 
 DisplayDesign loadBarrierDesign(const std::string& path, Reporter& reporter) {
-  const DisplayDescription description = loadDisplay(path, reporter);
-  if (description.kind != DisplayKind::Barrier)
-    throw InputError(description.source(), "",
-                     "is a lenticular calibration; this command takes a barrier display");
-  return designDisplay(description.barrier, description.camera);
+  return barrierDesignOf(loadDisplay(path, reporter));
 }
 
 }  // namespace parallax::jobs

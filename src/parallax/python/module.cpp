@@ -95,7 +95,7 @@ Image arrayToImage(const py::array& array, const std::string& name) {
 }
 
 Vec3d eyeInFront(const std::array<double, 3>& eye, const std::string& name) {
-  if (!(eye[2] > 0)) throw InputError("command line", name, "the eye must be in front (z > 0 mm)");
+  if (!(eye[2] > 0)) throw RequestError(name, "the eye must be in front (z > 0 mm)");
   return {eye[0], eye[1], eye[2]};
 }
 
