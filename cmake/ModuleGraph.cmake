@@ -24,8 +24,8 @@ set(PARALLAX_USES_cluster core)               # the processes of one job (MPI)
 # one runner per use case (docs/architecture.md, "Requests")
 set(PARALLAX_USES_jobs core image display scene io accel camera render sim quality layers video cluster)
 set(PARALLAX_USES_app core image display scene io accel camera render sim quality layers window video cluster jobs)
-# app: the CLI's loaders, option checks and estimates, so Python refuses what the CLI refuses
-set(PARALLAX_USES_python core image display scene io accel camera render sim quality jobs app)
+# python: a peer of app on the request layer (jobs), never on app
+set(PARALLAX_USES_python core image display scene io accel camera render sim quality jobs)
 
 # Third-party include prefixes and the one module that may use each (only in its .cpp files).
 set(PARALLAX_THIRD_PARTY embree3 embree4 tbb nlohmann tiny_obj_loader tiny_gltf stb zlib assimp CLI SDL2
