@@ -227,6 +227,63 @@ def test_quilt_is_the_cli_quilt(scene, small, tmp_path):
     assert auto.record["quilt"]["columns"] == 9 and auto.record["quilt"]["rows"] == 1
 
 
+def same_files(one, other):
+    """The two folders hold the same files with the same bytes (render.json: the same record
+    but for when and how fast it was made)."""
+    names = sorted(p.relative_to(one).as_posix() for p in one.rglob("*") if p.is_file())
+    assert names == sorted(p.relative_to(other).as_posix() for p in other.rglob("*") if p.is_file())
+    timing = ("created", "seconds", "rays_per_second", "training_seconds")
+    for name in names:
+        a, b = (one / name).read_bytes(), (other / name).read_bytes()
+        if name.endswith("render.json"):
+            a, b = json.loads(a), json.loads(b)
+            for key in timing:
+                a.pop(key, None), b.pop(key, None)
+                a.get("layers", {}).pop(key, None), b.get("layers", {}).pop(key, None)
+                a.get("sequence", {}).pop(key, None), b.get("sequence", {}).pop(key, None)
+        assert a == b, name
+
+
+def test_render_files_are_the_cli_files(tmp_path):
+    # Layers, solved layers (nmf, two time-multiplexed frames), direct mapping, a quilt and a
+    # two-frame turntable sequence with its video: the same request, two spellings.
+    cases = [
+        ([], {}),
+        (["--layers", "nmf", "--rank", "2", "--iterations", "2", "--train-eyes", "1"],
+         {"layers": "nmf", "rank": 2, "iterations": 2, "train_eyes": 1}),
+        (["--direct-mapping"], {"direct_mapping": True}),
+        (["--quilt", "3x2", "--size", "48x27", "--linear"],
+         {"quilt": (3, 2), "size": (48, 27), "linear": True}),
+        (["--turntable", "90", "--frames", "1:2", "--fps", "2", "--video", "{out}/t.webm"],
+         {"turntable": 90, "frames": "1:2", "fps": 2, "video": "{out}/t.webm"}),
+    ]
+    for k, (options, keywords) in enumerate(cases):
+        by_cli, by_python = tmp_path / f"cli{k}", tmp_path / f"py{k}"
+        result = cli("render", "--display", SMALL, "--spp", 1, "-o", by_cli,
+                     *[o.replace("{out}", str(by_cli)) for o in options])
+        assert result.returncode == 0, result.stderr
+        parallax.render_files(by_python, display=SMALL, spp=1,
+                              **{key: value.replace("{out}", str(by_python))
+                                 if isinstance(value, str) else value
+                                 for key, value in keywords.items()})
+        same_files(by_cli, by_python)
+
+
+def test_solved_layers_and_direct_mapping_in_memory(scene, small, tmp_path):
+    made = parallax.render(scene, small, spp=1, layers="nmf", rank=2, iterations=2, train_eyes=1)
+    assert len(made.frames) == 2 and made.record["layers"]["rank"] == 2
+    result = cli("render", "--display", SMALL, "--spp", 1, "--layers", "nmf", "--rank", 2,
+                 "--iterations", 2, "--train-eyes", 1, "-o", tmp_path)
+    assert result.returncode == 0, result.stderr
+    for k, (image, mask) in enumerate(made.frames):
+        assert np.array_equal(parallax.to_srgb8(image), rgb(read_png(tmp_path / f"image-{k + 1}.png")))
+        assert np.array_equal(parallax.to_srgb8(mask), rgb(read_png(tmp_path / f"mask-{k + 1}.png")))
+    direct = parallax.render(scene, small, spp=1, direct_mapping=True)
+    assert direct.record["method"] == "direct-mapping"
+    with pytest.raises(parallax.Error, match=r"^rank: time-multiplexed frames need layers nmf$"):
+        parallax.render(scene, small, rank=2)
+
+
 def test_lenticular_render_is_the_cli_render(scene, tmp_path):
     # A Looking Glass calibration on a quarter-size panel (fast), read by both paths.
     calibration = json.loads((SOURCE / "displays" / "lenticular" / "portrait-like.json").read_text())
