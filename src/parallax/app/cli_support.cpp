@@ -330,35 +330,6 @@ DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset) {
   return jobs::loadDisplay(pathOrPreset, cliReporter());
 }
 
-ProgressBar::ProgressBar(std::string label)
-    : label_(std::move(label)),
-      enabled_(isatty(STDERR_FILENO) != 0),
-      start_(std::chrono::steady_clock::now()),
-      lastDraw_(start_) {}
-
-ProgressBar::~ProgressBar() {
-  if (drawn_) std::fputs("\r\033[K", stderr);
-}
-
-void ProgressBar::update(int done, int total) {
-  if (!enabled_ || total <= 0) return;
-  const std::lock_guard lock(mutex_);
-  const auto now = std::chrono::steady_clock::now();
-  if (done < total && now - lastDraw_ < std::chrono::milliseconds(100)) return;
-  lastDraw_ = now;
-  drawn_ = true;
-  const double fraction = double(done) / double(total);
-  const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double remaining = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
-  constexpr int kWidth = 30;
-  const int filled = int(fraction * kWidth);
-  std::string bar(size_t(filled), '#');
-  bar.append(size_t(kWidth - filled), '-');
-  std::fprintf(stderr, "\r%s [%s] %3d%%  %.1fs left\033[K", label_.c_str(), bar.c_str(),
-               int(fraction * 100), remaining);
-  std::fflush(stderr);
-}
-
 void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames) {
   cmd.add_option("--frames", options.frames,
                  "Render frames FIRST:LAST of the animation (1-based) into DIR/frame-NNNN; "
@@ -457,38 +428,8 @@ std::string errorLine(const InputError& error) {
   });
 }
 
-namespace {
-
-class ProgressBarTask : public jobs::Progress {
- public:
-  explicit ProgressBarTask(const std::string& label) : bar_(label) {}
-  void update(int done, int total) override { bar_.update(done, total); }
-
- private:
-  ProgressBar bar_;
-};
-
-class CliReporter : public jobs::Reporter {
- public:
-  void note(const std::string& text) override {
-    std::fprintf(stderr, "note: %s\n", spellFields(text, optionName).c_str());
-  }
-  void warning(const std::string& text) override {
-    std::fprintf(stderr, "warning: %s\n", spellFields(text, optionName).c_str());
-  }
-  void result(const std::string& line) override {
-    std::printf("%s\n", spellFields(line, optionName).c_str());
-    std::fflush(stdout);
-  }
-  std::unique_ptr<jobs::Progress> progress(const std::string& label) override {
-    return std::make_unique<ProgressBarTask>(label);
-  }
-};
-
-}  // namespace
-
 jobs::Reporter& cliReporter() {
-  static CliReporter reporter;
+  static jobs::TerminalReporter reporter(optionName, true, true);
   return reporter;
 }
 

@@ -2,10 +2,8 @@
 // the conversion of library errors into one-line messages and exit codes.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
 #include <limits>
-#include <mutex>
 #include <string>
 
 #include "parallax/camera/framing.h"
@@ -21,6 +19,7 @@
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/sequence.h"
+#include "parallax/jobs/terminal_reporter.h"
 #include "parallax/jobs/video_output.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
@@ -158,20 +157,5 @@ CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdCliOptions& options);
 // The RGB-D photo's scene, its warnings printed.
 Scene loadRgbdFromOptions(const RgbdCliOptions& options);
 using jobs::recordRgbd;
-
-// A progress bar on stderr, drawn only when stderr is a terminal; thread-safe and throttled.
-class ProgressBar {
- public:
-  explicit ProgressBar(std::string label);
-  ~ProgressBar();
-  void update(int done, int total);
-
- private:
-  std::string label_;
-  bool enabled_;
-  std::mutex mutex_;
-  std::chrono::steady_clock::time_point start_, lastDraw_;
-  bool drawn_ = false;
-};
 
 }  // namespace parallax::app

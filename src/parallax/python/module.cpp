@@ -10,6 +10,7 @@
 
 #include "parallax/core/error.h"
 #include "parallax/jobs/requests.h"
+#include "parallax/jobs/terminal_reporter.h"
 #include "parallax/python/bindings_internal.h"
 
 namespace parallax::python {
@@ -23,24 +24,11 @@ std::string keyword(const std::string& field) {
   return field;
 }
 
-class PythonReporter : public jobs::Reporter {
- public:
-  void note(const std::string& text) override {
-    std::fprintf(stderr, "note: %s\n", spellFields(text, keyword).c_str());
-  }
-  void warning(const std::string& text) override {
-    std::fprintf(stderr, "warning: %s\n", spellFields(text, keyword).c_str());
-  }
-  void result(const std::string&) override {}
-  std::unique_ptr<jobs::Progress> progress(const std::string& label) override {
-    return jobs::silentReporter().progress(label);
-  }
-};
-
 }  // namespace
 
 jobs::Reporter& pythonReporter() {
-  static PythonReporter reporter;
+  // Notes and warnings on stderr as the command line prints them; results are returned.
+  static jobs::TerminalReporter reporter(keyword, false, false);
   return reporter;
 }
 
