@@ -21,7 +21,7 @@ namespace {
 
 constexpr int kMaxTilesPerSide = 1024;
 constexpr const char* kNameConvention =
-    "expected the name to end in _qs{columns}x{rows}a{aspect} before the extension, e.g. "
+    "expected the name to end in _qs<columns>x<rows>a<aspect> before the extension, e.g. "
     "scene_qs5x9a1.7778.png";
 
 bool parseCount(std::string_view text, int& count) {
