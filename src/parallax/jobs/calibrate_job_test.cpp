@@ -46,34 +46,33 @@ TEST(CalibrationPatterns, OneOfEachStepEachAtItsLayersSize) {
   }
 }
 
+// The RequestError `call` throws (an empty one, and a failure, if none).
+template <class Call>
+RequestError refusal(Call call) {
+  try {
+    call();
+  } catch (const RequestError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no refusal";
+  return RequestError("", "");
+}
+
 TEST(CalibrationPatterns, RefusalsNameTheSettingsFields) {
   CalibrationPatternsRequest r = smallPatterns();
   r.settings.fromPx = 9.02;  // without to_px
-  try {
-    calibrationPatterns(r, silentReporter());
-    ADD_FAILURE() << "one end of the range";
-  } catch (const RequestError& e) {
-    EXPECT_EQ(e.field(), "from_px");
-    // The other fields the message names are left for the front end to spell.
-    EXPECT_EQ(e.message(), "give both ends of the period range ({from_px} and {to_px})");
-  }
+  RequestError e = refusal([&] { calibrationPatterns(r, silentReporter()); });
+  EXPECT_EQ(e.field(), "from_px");
+  // The other fields the message names are left for the front end to spell.
+  EXPECT_EQ(e.message(), "give both ends of the period range ({from_px} and {to_px})");
   r = smallPatterns();
-  r.settings.labelScale = 1000;
-  try {
-    calibrationPatterns(r, silentReporter());
-    ADD_FAILURE() << "a label taller than the panel";
-  } catch (const RequestError& e) {
-    EXPECT_EQ(e.field(), "label_scale");
-    EXPECT_EQ(e.value(), "1000");
-  }
+  r.settings.labelScale = 1000;  // a label taller than the panel
+  e = refusal([&] { calibrationPatterns(r, silentReporter()); });
+  EXPECT_EQ(e.field(), "label_scale");
+  EXPECT_EQ(e.value(), "1000");
   r = smallPatterns();
-  r.settings.periodSteps = 1000000000;
-  try {
-    calibrationPatterns(r, silentReporter());
-    ADD_FAILURE() << "a sweep of a billion steps";
-  } catch (const RequestError& e) {
-    EXPECT_EQ(e.field(), "period_steps");
-  }
+  r.settings.periodSteps = 1000000000;  // beyond the time limit
+  EXPECT_EQ(refusal([&] { calibrationPatterns(r, silentReporter()); }).field(), "period_steps");
   r = smallPatterns();
   r.loaded = loadDisplayDescription("lkg:portrait");
   EXPECT_THROW(calibrationPatterns(r, silentReporter()), InputError);
@@ -83,12 +82,7 @@ TEST(CalibrationPredict, RefusesAnEyeBehindTheDisplay) {
   CalibrationPredictRequest r;
   r.display = kSmall;
   r.eye = Vec3d{0, 0, -5};
-  try {
-    runCalibrationPredict(r, silentReporter());
-    ADD_FAILURE() << "an eye behind the display";
-  } catch (const RequestError& e) {
-    EXPECT_EQ(e.field(), "eye");
-  }
+  EXPECT_EQ(refusal([&] { runCalibrationPredict(r, silentReporter()); }).field(), "eye");
 }
 
 // The measured periods become the display: D = g / (Tv/Tx - 1) (G1, barrier-back), the phase

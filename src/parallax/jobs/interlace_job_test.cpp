@@ -108,11 +108,9 @@ TEST(InterlaceInMemory, OtherCountsAreResampledWithANote) {
 // A lenticular panel blends the two views around f N - 1/2 (f the subpixel's view fraction):
 // with view k grey k / (N - 1), each subpixel is that position over N - 1.
 TEST(InterlaceInMemory, ALenticularSubpixelBlendsTheViewsAroundItsFraction) {
-  LenticularCalibration calibration = *lenticularPreset("portrait");
+  DisplayDescription description = loadDisplay("lkg:portrait", silentReporter());
+  LenticularCalibration& calibration = description.lenticular;
   calibration.screenW /= 8, calibration.screenH /= 8;
-  DisplayDescription description;
-  description.kind = DisplayKind::Lenticular;
-  description.lenticular = calibration;
   InterlaceRequest r;
   r.loaded = description;
   const int count = 12;
