@@ -413,6 +413,14 @@ std::string optionName(const std::string& field) {
       {"framing", "--fit/--focus/--depth-budget"},
       {"sequence", "--frames/--turntable"},
       {"max_memory", "--max-memory"},
+      // calibrate's settings keep the library's names (jobs/calibrate_job.h).
+      {"screen_period_px", "--screen-period"},
+      {"slit_period_px", "--slit-period"},
+      {"phase_px", "--phase"},
+      {"from_px", "--from"},
+      {"to_px", "--to"},
+      {"period_steps", "--steps"},
+      {"phase_step_px", "--phase-step"},
   };
   for (const auto& [name, option] : kOwnSpelling)
     if (field == name) return option;

@@ -7,20 +7,11 @@
 #include <limits>
 #include <memory>
 
-#include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
-#include "parallax/core/memory.h"
-#include "parallax/io/image_file.h"
-#include "parallax/io/json_writer.h"
-#include "parallax/io/lenticular_file.h"
-#include "parallax/jobs/distributed.h"
-#include "parallax/jobs/layer_output.h"
+#include "parallax/jobs/interlace_job.h"
 #include "parallax/jobs/render_job.h"
-#include "parallax/render/display_render.h"
-#include "parallax/sim/lenticular_sim.h"
 
 namespace parallax::app {
 
@@ -57,35 +48,27 @@ void runRender(const LenticularRenderOptions& o) {
 }
 
 void runSimulate(const LenticularSimulateOptions& o) {
-  std::string imagePath = o.image, calibrationPath;
+  LenticularSimulateRequest r;
+  r.image = o.image;
   if (!o.image.empty()) {
     if (o.inputs.size() != 1)
       throw InputError("command line", "--image", "takes the calibration file as the argument");
-    calibrationPath = o.inputs[0];
+    r.calibration = o.inputs[0];
   } else {
     if (o.inputs.empty() || o.inputs.size() > 2)
       throw InputError("command line", "DIR",
                        "expected DIR [CALIBRATION] or --image FILE CALIBRATION");
-    imagePath = (fs::path(o.inputs[0]) / "image.png").string();
-    calibrationPath =
+    r.image = (fs::path(o.inputs[0]) / "image.png").string();
+    r.calibration =
         o.inputs.size() == 2 ? o.inputs[1] : (fs::path(o.inputs[0]) / "visual.json").string();
   }
-  const LenticularDesign design =
-      designLenticular(loadDisplayOrDefault(calibrationPath).lenticular, o.distance);
-  const double w = design.calibration.screenW, h = design.calibration.screenH;
-  checkMemoryEstimate(imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
-                      calibrationPath, "the panel and the view", "use a smaller panel");
-  const Image panel = readImage(imagePath);
-  Vec3d eye{0, 0, design.viewDistanceMm};
   if (!o.eye.empty()) {
     const Vec3f e = parseVec3("--eye", o.eye);
-    if (!(e.z > 0)) throw InputError("command line", "--eye", "the eye must be in front (z > 0)");
-    eye = {e.x, e.y, e.z};
+    r.eye = Vec3d{e.x, e.y, e.z};
   }
-  const Image view = simulateLenticularView(design, panel, eye);
-  writeImage(o.output, view);
-  std::printf("wrote %s (%dx%d): the panel seen from %.1f,%.1f,%.1f mm\n", o.output.c_str(),
-              view.width(), view.height(), eye.x, eye.y, eye.z);
+  r.distance = o.distance;
+  r.output = o.output;
+  jobs::runLenticularSimulate(r, cliReporter());
 }
 
 }  // namespace

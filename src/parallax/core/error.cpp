@@ -45,7 +45,12 @@ std::string errorText(const InputError& error,
                                     : withValue(request->field(), request->value());
     return subject + ": " + spellFields(request->message(), spell);
   }
-  return spellFields(error.what(), spell);
+  // A display (or other description) the request made, refused under a key of the file it
+  // stands for: "/gap_mm: message", with no file to name.
+  const std::string text = error.what(), prefix = std::string(RequestError::kRequestSource) + ": ";
+  if (error.file() == RequestError::kRequestSource && text.rfind(prefix, 0) == 0)
+    return spellFields(text.substr(prefix.size()), spell);
+  return spellFields(text, spell);
 }
 
 }  // namespace parallax

@@ -59,8 +59,10 @@ std::string spellFields(const std::string& text,
                         const std::function<std::string(const std::string& field)>& spell);
 
 // The one line a front end shows for an InputError: "FIELD: message" (RequestError; FIELD as
-// `spell` writes it, then " value" or what `withValue` makes of both), otherwise
-// "file: /path: message"; fields in the text spelled.
+// `spell` writes it, then " value" or what `withValue` makes of both), "/path: message" for an
+// InputError whose file is kRequestSource (a description the request made, such as a display
+// with measured periods, refused under its file's key), otherwise "file: /path: message";
+// fields in the text spelled.
 std::string errorText(const InputError& error,
                       const std::function<std::string(const std::string& field)>& spell,
                       const std::function<std::string(const std::string& field,

@@ -40,5 +40,11 @@ TEST(ErrorText, OtherInputErrorsKeepFileAndPointer) {
   EXPECT_EQ(errorText(bad, dashed, dashedWithValue), "scene.json: /objects/0: see --quilt-layout");
 }
 
+// A display the request made (calibrate apply's measured periods) refused under its file's key.
+TEST(ErrorText, ADescriptionTheRequestMadeNamesItsKey) {
+  const InputError bad(RequestError::kRequestSource, "/slit_period_px", "breaks {gap_mm}");
+  EXPECT_EQ(errorText(bad, dashed, dashedWithValue), "/slit_period_px: breaks --gap-mm");
+}
+
 }  // namespace
 }  // namespace parallax

@@ -1,4 +1,4 @@
-// The pieces the binding files share: numpy arrays <-> Images, eyes, and the three areas'
+// The pieces the binding files share: numpy arrays <-> Images, eyes, and the areas'
 // registration functions (module.cpp calls them). Internal to the python module, so it may
 // include pybind11 (the module's own third-party library).
 #pragma once
@@ -38,5 +38,6 @@ std::string pythonErrorText(const InputError& error);
 void bindSceneAndDisplay(py::module_& module);
 void bindRender(py::module_& module);
 void bindSimulate(py::module_& module);
+void bindTools(py::module_& module);  // tools.cpp: interlace, calibration, lenticular simulate
 
 }  // namespace parallax::python

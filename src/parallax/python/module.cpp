@@ -1,5 +1,5 @@
 // The `parallax._parallax` extension: parallax.Error for bad input, the array conversions, and
-// the three areas' bindings (scene_display.cpp, render.cpp, simulate.cpp). The package's
+// the areas' bindings (scene_display.cpp, render.cpp, simulate.cpp, tools.cpp). The package's
 // __init__.py wraps it in the documented API (docs/python.md).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -129,4 +129,5 @@ PYBIND11_MODULE(_parallax, module) {
   parallax::python::bindSceneAndDisplay(module);
   parallax::python::bindRender(module);
   parallax::python::bindSimulate(module);
+  parallax::python::bindTools(module);
 }

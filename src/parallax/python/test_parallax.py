@@ -449,3 +449,122 @@ def test_the_docs_example_runs(tmp_path, monkeypatch):
         exec(compile(block, "docs/python.md", "exec"), namespace)
     assert namespace["layers"].image.shape == (180, 320, 3)
     assert len(namespace["figures"]["eyes"]) == 3
+
+
+# ---- interlace, calibration, lenticular simulate (jobs/interlace_job.h, jobs/calibrate_job.h)
+
+def quarter_portrait(folder):
+    """A Looking Glass calibration on a quarter-size panel (fast): its path and its Display."""
+    calibration = json.loads((SOURCE / "displays" / "lenticular" / "portrait-like.json").read_text())
+    calibration["screenW"]["value"] /= 4
+    calibration["screenH"]["value"] /= 4
+    path = Path(folder) / "visual.json"
+    path.write_text(json.dumps(calibration))
+    return path, parallax.load_display(str(path))
+
+
+@pytest.fixture(scope="module")
+def cli_quilt(tmp_path_factory):
+    """A 3x3 quilt of 64x36 views from the CLI: its PNG file."""
+    out = tmp_path_factory.mktemp("quilt")
+    result = cli("render", "--quilt", "3x3", "--size", "64x36", "--spp", 1, "--display", SMALL,
+                 "-o", out)
+    assert result.returncode == 0, result.stderr
+    return out / "quilt_qs3x3a1.7778.png"
+
+
+def same_files(mine, theirs):
+    """Every file of the CLI's folder is in mine, byte for byte (render.json but its time)."""
+    names = sorted(p.name for p in Path(theirs).iterdir())
+    assert sorted(p.name for p in Path(mine).iterdir()) == names
+    for name in names:
+        a, b = (Path(mine) / name).read_bytes(), (Path(theirs) / name).read_bytes()
+        if name == "render.json":
+            a, b = (re.sub(rb'"created": "[^"]*"', b"", x) for x in (a, b))
+        assert a == b, name
+
+
+def test_interlace_is_the_cli_interlace(small, cli_quilt, tmp_path):
+    result = cli("interlace", cli_quilt, "--display", SMALL, "-o", tmp_path / "cli")
+    assert result.returncode == 0, result.stderr
+    quilt = rgb(read_png(cli_quilt))
+    made = parallax.interlace(quilt=quilt, display=small, quilt_layout=(3, 3))
+    assert made.image.shape == (180, 320, 3) and made.mask.shape == (180, 320, 3)
+    assert np.array_equal(made.image_srgb8, rgb(read_png(tmp_path / "cli" / "image.png")))
+    assert np.array_equal(made.mask_srgb8, rgb(read_png(tmp_path / "cli" / "mask.png")))
+    record = json.loads((tmp_path / "cli" / "render.json").read_text())
+    assert made.record["cameras"] == record["cameras"] and made.record["design"] == record["design"]
+    # The same views one by one (tiles from the bottom-left, leftmost camera first).
+    tiles = [quilt[36 * (2 - k // 3):36 * (3 - k // 3), 64 * (k % 3):64 * (k % 3 + 1)]
+             for k in range(9)]
+    assert np.array_equal(parallax.interlace(tiles, small).image, made.image)
+    # To files: the CLI's files.
+    written = parallax.interlace_files(tmp_path / "py", quilt=cli_quilt, display=SMALL)
+    assert written["inputs"] == record["inputs"]
+    same_files(tmp_path / "py", tmp_path / "cli")
+
+
+def test_interlace_onto_a_lenticular_panel_is_the_cli_interlace(cli_quilt, tmp_path):
+    path, display = quarter_portrait(tmp_path)
+    result = cli("interlace", cli_quilt, "--display", path, "--linear", "-o", tmp_path / "cli")
+    assert result.returncode == 0, result.stderr
+    made = parallax.interlace(quilt=rgb(read_png(cli_quilt)), display=display,
+                              quilt_layout=(3, 3))
+    assert made.mask is None and made.image.shape == (512, 384, 3)
+    assert np.array_equal(made.image_srgb8, rgb(read_png(tmp_path / "cli" / "image.png")))
+    parallax.interlace_files(tmp_path / "py", quilt=cli_quilt, display=path, linear=True)
+    same_files(tmp_path / "py", tmp_path / "cli")
+
+
+def test_calibration_patterns_are_the_cli_patterns(small, tmp_path):
+    result = cli("calibrate", "patterns", "--display", SMALL, "--steps", 3, "--duty", 0.5,
+                 "-o", tmp_path / "cli")
+    assert result.returncode == 0, result.stderr
+    made = parallax.calibration_patterns(small, period_steps=3, duty=0.5)
+    assert made.index == json.loads((tmp_path / "cli" / "index.json").read_text())
+    assert made.readme == (tmp_path / "cli" / "README.txt").read_text()
+    assert [name for name, _ in made.pictures] == [p["file"] for p in made.index["patterns"]]
+    assert sum(name.startswith("mask-period-") for name, _ in made.pictures) == 3
+    for name, picture in made.pictures:
+        assert picture.shape == (180, 320, 3) and picture.dtype == np.float32
+        assert np.array_equal(parallax.to_srgb8(picture), rgb(read_png(tmp_path / "cli" / name))), name
+    index = parallax.calibration_patterns_files(tmp_path / "py", SMALL, period_steps=3, duty=0.5)
+    assert index == made.index
+    same_files(tmp_path / "py", tmp_path / "cli")
+
+
+def test_lenticular_simulate_is_the_cli_simulate(cli_quilt, tmp_path):
+    path, display = quarter_portrait(tmp_path)
+    assert cli("interlace", cli_quilt, "--display", path, "-o", tmp_path / "set").returncode == 0
+    panel = rgb(read_png(tmp_path / "set" / "image.png"))
+    for eye, distance, extra in [((30, -5, 900), 0, ["--eye", "30,-5,900"]),
+                                 (None, 800, ["--distance", 800])]:
+        out = tmp_path / "seen.png"
+        result = cli("lenticular", "simulate", tmp_path / "set", *extra, "-o", out)
+        assert result.returncode == 0, result.stderr
+        seen = parallax.lenticular_simulate(panel, display, eye=eye, distance=distance)
+        assert seen.shape == (512, 384, 3)
+        assert np.array_equal(parallax.to_srgb8(seen), rgb(read_png(out)))
+
+
+def test_tool_errors_name_their_keywords(small, cli_quilt, tmp_path):
+    with pytest.raises(parallax.Error) as caught:
+        parallax.interlace(quilt=rgb(read_png(cli_quilt)), display=small, quilt_layout=(3, 3),
+                           view_resampling="cubic")
+    assert str(caught.value) == as_keywords(
+        cli_error("interlace", cli_quilt, "--display", SMALL, "--view-resampling", "cubic",
+                  "-o", tmp_path / "x"))
+    assert str(caught.value).startswith("view_resampling: expected nearest or linear")
+    with pytest.raises(parallax.Error) as caught:
+        parallax.calibration_patterns(small, from_px=8.8, to_px=9.1)
+    line = cli_error("calibrate", "patterns", "--display", SMALL, "--from", 8.8, "--to", 9.1,
+                     "-o", tmp_path / "y")
+    assert str(caught.value) == line.replace("--from", "from_px")
+    assert str(caught.value).startswith("from_px: G1 needs")
+    path, display = quarter_portrait(tmp_path)
+    with pytest.raises(parallax.Error, match=r"^eye: the eye must be in front"):
+        parallax.lenticular_simulate(np.zeros((512, 384, 3), np.float32), display, eye=(0, 0, -5))
+    with pytest.raises(parallax.Error, match="^quilt_layout: "):
+        parallax.interlace(quilt=np.zeros((36, 64, 3), np.float32), display=small)
+    with pytest.raises(TypeError):
+        parallax.calibration_patterns(small, steps=3)

@@ -21,7 +21,7 @@ from ._parallax import Display, Error, Scene, __version__, load_display, load_sc
 __all__ = [
     "Display", "Error", "Scene", "RenderResult", "QuiltResult", "load_scene", "load_display",
     "design", "render", "render_files", "view", "ideal_view", "quilt", "simulate", "sweep_eyes", "sweep",
-    "quality", "to_srgb8", "version", "__version__",
+    "quality", "to_srgb8", "version", "__version__", "interlace", "interlace_files", "CalibrationPatterns", "calibration_patterns", "calibration_patterns_files", "lenticular_simulate",
 ]
 
 Eye = Tuple[float, float, float]
@@ -202,3 +202,79 @@ def quality(scene: Optional[Scene], display: Optional[Display], image: np.ndarra
         scene if scene is not None else load_scene(), _display(display), image, mask,
         eyes=[tuple(e) for e in eyes], reference_spp=reference_spp,
         **_framing(fit, focus, depth_budget), **options))
+
+
+# ---- interlace, calibration (jobs/interlace_job.h, jobs/calibrate_job.h)
+
+def _layout(quilt_layout) -> Optional[Tuple[int, int]]:
+    return None if quilt_layout is None else tuple(quilt_layout)
+
+
+def interlace(views: Optional[Sequence[np.ndarray]] = None, display: Optional[Display] = None, *,
+              quilt: Optional[np.ndarray] = None, quilt_layout: Optional[Tuple[int, int]] = None,
+              subpixels: bool = False, view_resampling: str = "linear") -> RenderResult:
+    """`parallax interlace VIEW... | QUILT`: camera views (leftmost camera first, all of one
+    size) or one quilt array (tiles from the bottom-left, cut by quilt_layout=(columns, rows))
+    mapped onto the display: a barrier's image layer by direct mapping, with its mask, or a
+    lenticular panel's picture (mask None)."""
+    image, mask, record = _parallax._interlace(
+        None if views is None else list(views), quilt, _display(display),
+        quilt_layout=_layout(quilt_layout), subpixels=subpixels, view_resampling=view_resampling)
+    return RenderResult(image, mask, json.loads(record), [(image, mask)])
+
+
+def interlace_files(output: str, views: Optional[Sequence[str]] = None,
+                    display: Optional[str] = None, *, quilt: Optional[str] = None,
+                    quilt_layout: Optional[Tuple[int, int]] = None, subpixels: bool = False,
+                    view_resampling: str = "linear", linear: bool = False) -> dict:
+    """`parallax interlace VIEW... | QUILT --display DISPLAY -o OUTPUT`: the same files, byte for
+    byte. `views` are image files, `quilt` one quilt file (its layout from its name unless
+    quilt_layout is given), `display` a path (None: the built-in). Returns OUTPUT/render.json."""
+    _parallax._interlace_files(str(output), [str(v) for v in views or []],
+                               "" if quilt is None else str(quilt),
+                               "" if display is None else str(display),
+                               quilt_layout=_layout(quilt_layout), subpixels=subpixels,
+                               view_resampling=view_resampling, linear=linear)
+    return json.load(open(os.path.join(str(output), "render.json")))
+
+
+@dataclass
+class CalibrationPatterns:
+    """The calibration patterns: (file name, float32 linear picture) pairs in index order, each
+    at its layer's resolution, and what index.json and README.txt say of them."""
+    pictures: list
+    index: dict = field(repr=False)
+    readme: str = field(repr=False)
+
+
+def calibration_patterns(display: Optional[Display] = None, *, screen_period_px: int = 0,
+                         slit_period_px: float = 0.0, phase_px: float = 0.0, from_px: float = 0.0,
+                         to_px: float = 0.0, period_steps: int = 9, phase_step_px: float = 0.0,
+                         duty: float = 0.0, label_scale: int = 0) -> CalibrationPatterns:
+    """`parallax calibrate patterns`: the slit patterns for a barrier display's two layers (0: the
+    setting's default, as the CLI's options)."""
+    pictures, index, readme = _parallax._calibration_patterns(
+        _display(display), screen_period_px=screen_period_px, slit_period_px=slit_period_px,
+        phase_px=phase_px, from_px=from_px, to_px=to_px, period_steps=period_steps,
+        phase_step_px=phase_step_px, duty=duty, label_scale=label_scale)
+    return CalibrationPatterns(list(pictures), json.loads(index), readme)
+
+
+def calibration_patterns_files(output: str = "calibration", display: Optional[str] = None,
+                               **settings) -> dict:
+    """`parallax calibrate patterns --display DISPLAY -o OUTPUT`: the same files (the PNGs,
+    index.json, README.txt), byte for byte; calibration_patterns' keywords. Returns the index."""
+    _parallax._calibration_patterns_files(str(output), "" if display is None else str(display),
+                                          **settings)
+    return json.load(open(os.path.join(str(output), "index.json")))
+
+
+def lenticular_simulate(image: np.ndarray, display: Display, *,
+                        eye: Optional[Sequence[float]] = None,
+                        distance: float = 0.0) -> np.ndarray:
+    """`parallax lenticular simulate --image FILE CALIBRATION [--eye X,Y,Z] [--distance MM]`:
+    the panel picture seen from the eye through the lenses (default eye: the centre of the view
+    cone at the design distance), float32 linear."""
+    return _parallax._lenticular_simulate(image, display,
+                                          eye=None if eye is None else tuple(eye),
+                                          distance=distance)

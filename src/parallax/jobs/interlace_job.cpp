@@ -1,0 +1,300 @@
+// The interlace runner: the display, checked and estimated; the views, read or given; their
+// mapping onto the display; the picture set written or kept. And lenticular simulate.
+#include "parallax/jobs/interlace_job.h"
+
+#include <cstdio>
+
+#include "parallax/core/error.h"
+#include "parallax/core/memory.h"
+#include "parallax/io/image_file.h"
+#include "parallax/io/json_writer.h"
+#include "parallax/io/lenticular_file.h"
+#include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/layer_output.h"
+#include "parallax/jobs/limits.h"
+#include "parallax/sim/lenticular_sim.h"
+
+namespace parallax::jobs {
+
+namespace {
+
+ViewResampling viewResampling(const std::string& text) {
+  if (text == "nearest") return ViewResampling::Nearest;
+  if (text == "linear") return ViewResampling::Linear;
+  throw RequestError("view_resampling", "expected nearest or linear, got '" + text + "'");
+}
+
+// The display, built for interlacing, once its pictures are known to fit in memory.
+BuiltDisplay interlaceDisplay(const InterlaceRequest& r, Reporter& reporter) {
+  const DisplayDescription description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
+  BuiltDisplay display = makeDisplay(description);
+  if (const LenticularDesign* lenticular = display->lenticularDesign()) {
+    if (r.subpixels)
+      throw RequestError("subpixels",
+                         "applies to barrier displays; a lenticular panel is interlaced per "
+                         "subpixel");
+    const double w = lenticular->calibration.screenW, h = lenticular->calibration.screenH;
+    checkMemoryEstimate(
+        imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
+        lenticular->calibration.source, "the panel image", "use a smaller panel");
+    return display;
+  }
+  if (r.subpixels) {
+    DisplayCameraRequest camera;
+    camera.subpixels = true;
+    display = makeDisplay(description, camera);
+  }
+  const DisplayDesign& design = *display->barrierDesign();
+  checkLayerMemory(design, design.spec.imagePanel.width, 1,
+                   r.display.empty() ? "<built-in display>" : r.display);
+  return display;
+}
+
+// The views as given: leftmost camera first, and the quilt's layout if they came as one.
+struct Views {
+  std::vector<Image> images;
+  QuiltLayout layout;
+  bool quilt = false;              // cut from one quilt
+  std::vector<std::string> names;  // otherwise the views' files, or their places in memory
+};
+
+QuiltLayout givenLayout(const QuiltLayout& layout) {
+  if (layout.columns < 1 || layout.rows < 1 || layout.columns > 1024 || layout.rows > 1024)
+    throw RequestError("quilt_layout", "expected columns and rows from 1 to 1024, got " +
+                                           std::to_string(layout.columns) + "x" +
+                                           std::to_string(layout.rows));
+  return {layout.columns, layout.rows, 0.0};
+}
+
+std::string quiltName(const InterlaceRequest& r) {
+  return r.quilt.empty() ? "quilt" : r.quilt;
+}
+
+std::string viewName(const InterlaceRequest& r, size_t k) {
+  return k < r.views.size() ? r.views[k] : "views[" + std::to_string(k) + "]";
+}
+
+// All of the first view's size.
+void checkViewSizes(const InterlaceRequest& r, const std::vector<Image>& views) {
+  for (size_t k = 1; k < views.size(); ++k)
+    if (views[k].width() != views[0].width() || views[k].height() != views[0].height())
+      throw InputError(viewName(r, k), "",
+                       "is " + std::to_string(views[k].width()) + "x" +
+                           std::to_string(views[k].height()) + ", the first view " +
+                           std::to_string(views[0].width()) + "x" +
+                           std::to_string(views[0].height()));
+}
+
+// One of the two: views, or one quilt.
+void checkOneInput(bool views, bool quilt) {
+  if (views && quilt) throw RequestError("quilt", "give either the {views} or one quilt");
+  if (!views && !quilt)
+    throw RequestError("views", "expected the views (leftmost camera first) or one {quilt}");
+}
+
+Views readViews(const InterlaceRequest& r) {
+  checkOneInput(!r.views.empty(), !r.quilt.empty());
+  if (!r.quilt.empty()) {
+    const QuiltLayout layout =
+        r.quiltLayout ? givenLayout(*r.quiltLayout) : parseQuiltName(r.quilt);
+    return {splitQuilt(readImage(r.quilt), layout, r.quilt), layout, true, {}};
+  }
+  if (r.quiltLayout) throw RequestError("quilt_layout", "applies to a single quilt file");
+  Views given;
+  given.names = r.views;
+  for (const std::string& path : r.views) {
+    given.images.push_back(readImage(path));
+    checkViewSizes(r, given.images);
+  }
+  return given;
+}
+
+Views givenViews(const InterlaceRequest& r, const std::vector<Image>& views, const Image& quilt) {
+  checkOneInput(!views.empty(), !quilt.empty());
+  if (!quilt.empty()) {
+    if (!r.quiltLayout)
+      throw RequestError("quilt_layout", "is needed to cut a quilt picture into its views");
+    const QuiltLayout layout = givenLayout(*r.quiltLayout);
+    return {splitQuilt(quilt, layout, quiltName(r)), layout, true, {}};
+  }
+  if (r.quiltLayout) throw RequestError("quilt_layout", "applies to a single quilt");
+  checkViewSizes(r, views);
+  Views given{views, {}, false, {}};
+  for (size_t k = 0; k < views.size(); ++k) given.names.push_back(viewName(r, k));
+  return given;
+}
+
+void recordInputs(JsonWriter& record, const InterlaceRequest& r, const Views& given) {
+  if (given.quilt) {
+    record.set("/inputs/quilt", quiltName(r));
+    record.set("/inputs/columns", given.layout.columns);
+    record.set("/inputs/rows", given.layout.rows);
+  } else {
+    record.set("/inputs/views", given.names);
+  }
+  const Image& first = given.images[0];
+  record.set("/inputs/view_count", int(given.images.size()));
+  record.set("/inputs/view_size",
+             std::to_string(first.width()) + "x" + std::to_string(first.height()));
+}
+
+// "9 views (round(views), views = 9)": what the display takes, for notes.
+std::string viewsNeeded(const DisplayDesign& design) {
+  return printed("%d views (%s, views = %g)", interlacedViewCount(design),
+                 design.camera.subpixelRays ? "round(3 views) with subpixel rays" : "round(views)",
+                 design.views);
+}
+
+// A lenticular panel: every subpixel takes the views its view fraction lies between, blended,
+// as Looking Glass's interlacing shader does (render/quilt.h, interlaceQuiltLenticular).
+Image interlaceLenticular(const InterlaceRequest& r, const LenticularDesign& design,
+                          const Views& given, JsonWriter& record) {
+  Image panel = interlaceQuiltLenticular(design, given.images);
+  startRenderRecord(record, "interlace", r.display, {}, {});
+  record.set("/display_kind", "lenticular");
+  recordInputs(record, r, given);
+  record.set("/inputs/view_mapping",
+             "each subpixel's view fraction f between views f N - 1/2, blended linearly");
+  return panel;
+}
+
+// A barrier: the views resampled to its count if need be, then interleaved by direct mapping.
+Image interlaceBarrier(const InterlaceRequest& r, const DisplayModel& display, Views given,
+                       JsonWriter& record, Reporter& reporter) {
+  const DisplayDesign& design = *display.barrierDesign();
+  const int count = int(given.images.size()), needed = interlacedViewCount(design);
+  if (count != needed) {
+    // A standard quilt (48 views) on a 9-view barrier, or the reverse: resampled across views.
+    reporter.note(printed("%d views given, the display takes %s: resampled across views (%s)",
+                          count, viewsNeeded(design).c_str(), r.viewResampling.c_str()));
+    given.images = resampleViews(given.images, needed, viewResampling(r.viewResampling));
+  }
+  const Panel& panel = design.spec.imagePanel;
+  const Image& first = given.images[0];
+  if (first.width() != panel.width || first.height() != panel.height)
+    reporter.note(printed("resampling the views by area from %dx%d to the image layer's %dx%d",
+                          first.width(), first.height(), panel.width, panel.height));
+  Image image = interlaceCameraViews(design, given.images);
+
+  startRenderRecord(record, "interlace", r.display, {}, {});
+  recordInputs(record, r, given);
+  record.set("/inputs/view_count", count);
+  if (count != needed) record.set("/inputs/view_resampling", r.viewResampling);
+  // Camera k (k-th from the left) feeds the design view seen from the k-th eye from the left.
+  const std::vector<int> designView = designViewsLeftToRight(design);
+  for (size_t k = 0; k < designView.size(); ++k) {
+    const std::string at = "/cameras/" + std::to_string(k);
+    const Vec3d eye = display.viewPosition(designView[k]);
+    record.set(at + "/design_view", designView[k]);
+    record.set(at + "/eye_mm", Vec3f(float(eye.x), float(eye.y), float(eye.z)));
+  }
+  return image;
+}
+
+// The picture set of either kind: the image (a panel picture) and the mask (barriers).
+struct Interlaced {
+  Image image, mask;
+  JsonWriter record;
+};
+
+void interlace(const InterlaceRequest& r, const BuiltDisplay& display, Views given, Interlaced& out,
+               Reporter& reporter) {
+  if (const LenticularDesign* lenticular = display->lenticularDesign()) {
+    out.image = interlaceLenticular(r, *lenticular, given, out.record);
+    return;
+  }
+  out.image = interlaceBarrier(r, *display, std::move(given), out.record, reporter);
+  out.mask = maskLayerImage(*display->barrierDesign());
+}
+
+std::string writeLenticularSet(const InterlaceRequest& r, const BuiltDisplay& display,
+                               Interlaced& made, size_t views) {
+  JsonWriter& record = made.record;
+  record.set("/outputs/image", "image.png");
+  record.set("/outputs/calibration", "visual.json");
+  display.recordDesign(record, "/design");
+  OutputSet set(r.output);
+  writeImage(set.path("image.png"), made.image);
+  if (r.linear) writeImage(set.path("image.pfm"), made.image);
+  writeFileAtomically(set.path("visual.json"), display.file.text);
+  writeFileAtomically(set.path("render.json"), record.dump() + "\n");
+  set.commit();
+  const char* dir = set.dir().c_str();
+  return printed("wrote %s/image.png (%dx%d) from %zu views, %s/visual.json, %s/render.json", dir,
+                 made.image.width(), made.image.height(), views, dir, dir);
+}
+
+}  // namespace
+
+void runInterlace(const InterlaceRequest& r, Reporter& reporter) {
+  viewResampling(r.viewResampling);
+  const BuiltDisplay display = interlaceDisplay(r, reporter);
+  Views given = readViews(r);
+  const size_t count = given.images.size();
+  Interlaced made;
+  interlace(r, display, std::move(given), made, reporter);
+  if (display->lenticularDesign()) {
+    reporter.result(writeLenticularSet(r, display, made, count));
+    return;
+  }
+  reporter.result(writeDisplayLayers(r.output, made.image, made.mask, *display->barrierDesign(),
+                                     r.linear, made.record));
+}
+
+InterlaceResult interlaceInMemory(const InterlaceRequest& r, const std::vector<Image>& views,
+                                  const Image& quilt, Reporter& reporter) {
+  viewResampling(r.viewResampling);
+  const BuiltDisplay display = interlaceDisplay(r, reporter);
+  Interlaced made;
+  interlace(r, display, givenViews(r, views, quilt), made, reporter);
+  display.recordDesign(made.record, "/design");
+  return {std::move(made.image), std::move(made.mask), made.record.dump()};
+}
+
+// ---- lenticular simulate --------------------------------------------------------------------
+
+namespace {
+
+// The panel's design (at the request's viewer distance), its pictures checked against memory.
+LenticularDesign simulatedPanel(const LenticularSimulateRequest& r, Reporter& reporter) {
+  const DisplayDescription description =
+      r.loaded ? *r.loaded : loadDisplay(r.calibration, reporter);
+  const BuiltDisplay display = makeDisplay(description);
+  if (!display->lenticularDesign())
+    throw InputError(description.source(), "",
+                     "is a barrier display, not a lenticular calibration (visual.json, lkg:NAME)");
+  DisplayCameraRequest camera;
+  camera.viewDistanceMm = r.distance;
+  const LenticularDesign design = *makeDisplay(description, camera)->lenticularDesign();
+  const double w = design.calibration.screenW, h = design.calibration.screenH;
+  checkMemoryEstimate(imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
+                      r.loaded ? description.source() : r.calibration, "the panel and the view",
+                      "use a smaller panel");
+  return design;
+}
+
+Vec3d simulatedEye(const LenticularSimulateRequest& r, const LenticularDesign& design) {
+  if (!r.eye) return {0, 0, design.viewDistanceMm};
+  if (!(r.eye->z > 0)) throw RequestError("eye", "the eye must be in front (z > 0)");
+  return *r.eye;
+}
+
+}  // namespace
+
+void runLenticularSimulate(const LenticularSimulateRequest& r, Reporter& reporter) {
+  const LenticularDesign design = simulatedPanel(r, reporter);
+  const Image panel = readImage(r.image);
+  const Vec3d eye = simulatedEye(r, design);
+  const Image view = simulateLenticularView(design, panel, eye);
+  writeImage(r.output, view);
+  reporter.result(printed("wrote %s (%dx%d): the panel seen from %.1f,%.1f,%.1f mm",
+                          r.output.c_str(), view.width(), view.height(), eye.x, eye.y, eye.z));
+}
+
+Image lenticularViewInMemory(const LenticularSimulateRequest& r, const Image& panel,
+                             Reporter& reporter) {
+  const LenticularDesign design = simulatedPanel(r, reporter);
+  return simulateLenticularView(design, panel, simulatedEye(r, design));
+}
+
+}  // namespace parallax::jobs

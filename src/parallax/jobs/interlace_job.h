@@ -1,0 +1,73 @@
+// The interlace runner (docs/quilts.md): N ordinary camera views, or one quilt of them, mapped
+// onto a display as the usual practice does: a barrier's image layer (the paper's Fig. 2 direct
+// mapping) with its mask, or a lenticular panel's picture (Looking Glass's interlacing shader).
+// And what an eye sees on a lenticular panel through its lenses (`lenticular simulate`).
+// `parallax interlace`, `parallax lenticular simulate` and Python's interlace functions are
+// spellings of these requests.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "parallax/core/math.h"
+#include "parallax/image/image.h"
+#include "parallax/io/display_file.h"
+#include "parallax/jobs/reporter.h"
+#include "parallax/render/quilt.h"
+
+namespace parallax::jobs {
+
+struct InterlaceRequest {
+  std::vector<std::string> views;  // view files, leftmost camera first, all of one size
+  std::string quilt;               // or one quilt file (NAME_qs{C}x{R}a{aspect}.png)
+  // quilt_layout: the quilt's tiles when its name does not say (no aspect check).
+  std::optional<QuiltLayout> quiltLayout;
+  std::string display;  // "" the built-in barrier, a display file of any kind, lkg:NAME
+  std::optional<DisplayDescription> loaded;  // the display already loaded (else `display`'s)
+  bool subpixels = false;                    // views per R, G, B subpixel column (barriers)
+  // view_resampling: nearest or linear, when the views given are not the barrier's count.
+  std::string viewResampling = "linear";
+  bool linear = false;  // also image.pfm
+  std::string output = "out";
+};
+
+// One interlaced picture set in memory: a barrier's image and mask layers, or a lenticular
+// panel's picture (mask empty), and render.json's record (without /outputs).
+struct InterlaceResult {
+  Image image, mask;
+  std::string record;
+};
+
+// Reads the views (or the quilt) and writes request.output as `render` writes its layers: the
+// layers (or the panel picture), the display's file and render.json. Everything is checked
+// before anything is written.
+void runInterlace(const InterlaceRequest& request, Reporter& reporter);
+
+// The same in memory: `views` (leftmost camera first), or `quilt` cut into its tiles by
+// request.quiltLayout (which it then needs); request.views and request.quilt only name them in
+// messages and the record.
+InterlaceResult interlaceInMemory(const InterlaceRequest& request, const std::vector<Image>& views,
+                                  const Image& quilt, Reporter& reporter);
+
+// ---- lenticular simulate --------------------------------------------------------------------
+
+struct LenticularSimulateRequest {
+  std::string image;                         // the panel picture file
+  std::string calibration;                   // its calibration (visual.json, lkg:NAME)
+  std::optional<DisplayDescription> loaded;  // the calibration already loaded
+  // eye: display mm (origin the panel centre, z toward the viewer); default the centre of the
+  // view cone at the design distance.
+  std::optional<Vec3d> eye;
+  double distance = 0;  // the design viewer distance in mm (0: the cone spans 1 m)
+  std::string output = "out/lenticular-view.png";
+};
+
+// Writes request.output: the panel seen from the eye through the lenses.
+void runLenticularSimulate(const LenticularSimulateRequest& request, Reporter& reporter);
+
+// The same for a panel picture in memory (request.loaded, or request.calibration's).
+Image lenticularViewInMemory(const LenticularSimulateRequest& request, const Image& panel,
+                             Reporter& reporter);
+
+}  // namespace parallax::jobs
