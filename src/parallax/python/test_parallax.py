@@ -473,7 +473,7 @@ def cli_quilt(tmp_path_factory):
     return out / "quilt_qs3x3a1.7778.png"
 
 
-def same_files(mine, theirs):
+def same_tool_files(mine, theirs):
     """Every file of the CLI's folder is in mine, byte for byte (render.json but its time)."""
     names = sorted(p.name for p in Path(theirs).iterdir())
     assert sorted(p.name for p in Path(mine).iterdir()) == names
@@ -501,7 +501,7 @@ def test_interlace_is_the_cli_interlace(small, cli_quilt, tmp_path):
     # To files: the CLI's files.
     written = parallax.interlace_files(tmp_path / "py", quilt=cli_quilt, display=SMALL)
     assert written["inputs"] == record["inputs"]
-    same_files(tmp_path / "py", tmp_path / "cli")
+    same_tool_files(tmp_path / "py", tmp_path / "cli")
 
 
 def test_interlace_onto_a_lenticular_panel_is_the_cli_interlace(cli_quilt, tmp_path):
@@ -513,7 +513,7 @@ def test_interlace_onto_a_lenticular_panel_is_the_cli_interlace(cli_quilt, tmp_p
     assert made.mask is None and made.image.shape == (512, 384, 3)
     assert np.array_equal(made.image_srgb8, rgb(read_png(tmp_path / "cli" / "image.png")))
     parallax.interlace_files(tmp_path / "py", quilt=cli_quilt, display=path, linear=True)
-    same_files(tmp_path / "py", tmp_path / "cli")
+    same_tool_files(tmp_path / "py", tmp_path / "cli")
 
 
 def test_calibration_patterns_are_the_cli_patterns(small, tmp_path):
@@ -530,7 +530,7 @@ def test_calibration_patterns_are_the_cli_patterns(small, tmp_path):
         assert np.array_equal(parallax.to_srgb8(picture), rgb(read_png(tmp_path / "cli" / name))), name
     index = parallax.calibration_patterns_files(tmp_path / "py", SMALL, period_steps=3, duty=0.5)
     assert index == made.index
-    same_files(tmp_path / "py", tmp_path / "cli")
+    same_tool_files(tmp_path / "py", tmp_path / "cli")
 
 
 def test_lenticular_simulate_is_the_cli_simulate(cli_quilt, tmp_path):
