@@ -123,7 +123,7 @@ void runSimulateFrames(const SimulateRequest& r, Reporter& reporter) {
       lastFound = std::max(lastFound, std::stoi(digits));
   }
   if (lastFound == 0)
-    throw InputError(r.dir, "", "holds no rendered frames (frame-NNNN folders of render --frames)");
+    throw InputError(r.dir, "", "holds no rendered frames (frame-NNNN folders of render {frames})");
   int first = 1, last = lastFound;
   if (r.frames != "all") parseFrameRange(r.frames, lastFound, first, last);
   if (r.video.wanted()) checkVideoRequest(r.video);
