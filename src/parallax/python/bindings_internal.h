@@ -1,4 +1,4 @@
-// The pieces the binding files share: numpy arrays <-> Images, eyes, and the areas'
+// The pieces the binding files share: numpy arrays <-> Images, and the areas'
 // registration functions (module.cpp calls them). Internal to the python module, so it may
 // include pybind11 (the module's own third-party library).
 #pragma once
@@ -7,11 +7,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <array>
 #include <string>
 
 #include "parallax/core/error.h"
-#include "parallax/core/math.h"
 #include "parallax/image/image.h"
 #include "parallax/jobs/reporter.h"
 
@@ -26,9 +24,6 @@ py::array_t<float> imageToArray(const Image& image);
 // uint8 codes are sRGB and decoded as the PNG reader decodes them. Anything else raises
 // ValueError naming `name` and what it got.
 Image arrayToImage(const py::array& array, const std::string& name);
-
-// An eye (display mm) in front of the display; raises parallax.Error naming `name` otherwise.
-Vec3d eyeInFront(const std::array<double, 3>& eye, const std::string& name);
 
 // Notes and warnings on stderr, as the command line prints them, fields named as keywords.
 jobs::Reporter& pythonReporter();

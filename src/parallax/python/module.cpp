@@ -21,6 +21,8 @@ std::string keyword(const std::string& field) {
   // Fields Python spells otherwise than by their name.
   if (field == "framing") return "fit/focus/depth_budget";
   if (field == "sequence") return "frames/turntable";
+  if (field == "sweep") return "count";  // sweep_eyes(count=, sweep_range=, distance=)
+  if (field == "sweep_distance") return "distance";
   return field;
 }
 
@@ -80,11 +82,6 @@ Image arrayToImage(const py::array& array, const std::string& name) {
   else
     fill(py::array_t<float, style>(array), [](float v) { return v; });
   return image;
-}
-
-Vec3d eyeInFront(const std::array<double, 3>& eye, const std::string& name) {
-  if (!(eye[2] > 0)) throw RequestError(name, "the eye must be in front (z > 0 mm)");
-  return {eye[0], eye[1], eye[2]};
 }
 
 }  // namespace parallax::python

@@ -1,107 +1,45 @@
 // What an eye sees on the display (`simulate`), the eyes of a sweep (`simulate --sweep`) and
-// the quality figures against the ideal views (`simulate --reference --json`). The GIL is
-// released while the pictures are made.
+// the quality figures against the ideal views (`simulate --reference --json`): the keywords
+// spell the simulate runner's requests (jobs/simulate_job.h). The GIL is released while the
+// pictures are made.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <array>
-#include <cmath>
-#include <limits>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "parallax/accel/accelerator.h"
-#include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/display/display_model.h"
-#include "parallax/display/lenticular.h"
-#include "parallax/image/metrics.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/requests.h"
+#include "parallax/jobs/simulate_job.h"
 #include "parallax/python/bindings_internal.h"
-#include "parallax/quality/viewer_quality.h"
-#include "parallax/sim/crosstalk.h"
-#include "parallax/sim/simulated_display.h"
 
 namespace parallax::python {
 
 namespace {
 
-// The simulator's keywords (simulate's options).
-struct SeeOptions {
-  std::optional<std::array<int, 2>> size;
-  int spp;
-  double pupil;
-  int pupilSamples;
-  double diffuser;
-  bool colourFilters, raw, rawPixels;
-  int threads;
-};
-
-std::unique_ptr<DisplayModel> makeDisplay(const DisplayDescription& d) {
-  return jobs::makeDisplay(d).model;
-}
-
-// The options as SimulationOptions, refused as the CLI refuses them.
-SimulationOptions simulationOptions(const SeeOptions& o, const DisplayModel& display) {
-  const int root = int(std::lround(std::sqrt(double(std::max(o.spp, 0)))));
-  if (o.spp < 0 || root * root != o.spp)
-    throw InputError("command line", "--spp", "must be 0 or a square number n*n");
-  if (!(o.pupil >= 0 && o.pupil <= 100))
-    throw InputError("command line", "--pupil", "must be a number from 0 to 100");
-  if (o.pupilSamples < 1)
-    throw InputError("command line", "--pupil-samples", "must be a whole number of at least 1");
-  if (!(o.diffuser >= 0 && std::isfinite(o.diffuser)))
-    throw InputError("command line", "--diffuser", "must be a number of at least 0");
-  if (!display.barrierDesign()) {
-    const auto refuse = [](const char* option) {
-      throw InputError("command line", option,
-                       "applies to the two-layer (barrier) simulator; a lenticular panel is seen "
-                       "through its lenses at the panel's resolution");
-    };
-    if (o.size) refuse("--size");
-    if (o.spp != 0) refuse("--spp");
-    if (o.pupil > 0) refuse("--pupil");
-    if (o.diffuser > 0) refuse("--diffuser");
-    if (o.colourFilters) refuse("--color-filters");
-    if (o.raw) refuse("--raw");
-  }
-  SimulationOptions sim;
-  if (o.size) {
-    if ((*o.size)[0] < 1 || (*o.size)[1] < 1)
-      throw InputError("command line", "--size", "expected (width, height), both positive");
-    sim.width = (*o.size)[0], sim.height = (*o.size)[1];
-  }
-  sim.samplesPerPixel = o.spp;
-  sim.pupilDiameterMm = o.pupil;
-  sim.pupilSamples = o.pupilSamples;
-  sim.diffuserSigmaMm = o.diffuser;
-  sim.colourFilters = o.colourFilters;
-  sim.normalise = !o.raw;
-  sim.threads = o.threads;
-  return sim;
-}
+using SeeOptions = jobs::SimulatorRequest;
 
 LayerImages layerImages(const py::array& image, const std::optional<py::array>& mask,
                         const DisplayModel& display) {
+  jobs::checkMaskLayer(display, mask.has_value());
   LayerImages layers;
   layers.image = arrayToImage(image, "image");
   if (display.hasMaskLayer()) {
     if (!mask) throw py::value_error("mask: a barrier display needs the mask layer's array");
     layers.mask = arrayToImage(*mask, "mask");
-  } else if (mask) {
-    throw InputError("command line", "--mask", "a lenticular display has no mask layer");
   }
   return layers;
 }
 
-std::vector<Vec3d> eyesInFront(const std::vector<std::array<double, 3>>& given) {
+std::vector<Vec3d> givenEyes(const std::vector<std::array<double, 3>>& given) {
   if (given.empty()) throw py::value_error("eyes: expected at least one eye (x, y, z) in mm");
   std::vector<Vec3d> eyes;
-  for (const auto& e : given) eyes.push_back(eyeInFront(e, "--eye"));
+  for (const auto& e : given) eyes.push_back({e[0], e[1], e[2]});
   return eyes;
 }
 
@@ -111,19 +49,13 @@ std::vector<py::array_t<float>> see(const py::array& image, const std::optional<
                                     const DisplayDescription& description,
                                     const std::vector<std::array<double, 3>>& eyeList,
                                     const SeeOptions& o) {
-  const std::unique_ptr<DisplayModel> display = makeDisplay(description);
-  const SimulationOptions sim = simulationOptions(o, *display);
-  const std::vector<Vec3d> eyes = eyesInFront(eyeList);
+  const jobs::BuiltDisplay display = jobs::makeDisplay(description);
+  const std::vector<Vec3d> eyes = givenEyes(eyeList);
   LayerImages layers = layerImages(image, mask, *display);
   std::vector<Image> pictures;
   {
     py::gil_scoped_release released;
-    const std::unique_ptr<SimulatedDisplay> simulator =
-        simulateDisplay(*display, std::move(layers), sim);
-    for (const Vec3d& eye : eyes) {
-      const Image view = simulator->view(eye);
-      pictures.push_back(o.rawPixels ? view : simulator->atDisplayResolution(view));
-    }
+    pictures = jobs::simulatedPictures(*display, std::move(layers), o, eyes);
   }
   std::vector<py::array_t<float>> arrays;
   for (const Image& p : pictures) arrays.push_back(imageToArray(p));
@@ -133,24 +65,9 @@ std::vector<py::array_t<float>> see(const py::array& image, const std::optional<
 // `simulate --sweep N [--sweep-range F] [--sweep-distance MM]`'s eyes, left to right.
 std::vector<std::array<double, 3>> sweepEyes(const DisplayDescription& description, int count,
                                              double range, double distance) {
-  if (count < 1) throw InputError("command line", "--sweep", "must be at least 1 eye");
-  if (!(range > 0 && range <= 10))
-    throw InputError("command line", "--sweep-range", "must be above 0 and at most 10");
-  if (!(distance >= 0 && std::isfinite(distance)))
-    throw InputError("command line", "--sweep-distance", "must be 0 (D) or a distance in mm");
-  const std::unique_ptr<DisplayModel> display = makeDisplay(description);
-  const Vec3d centre = display->window().eyeMm;  // the zone's centre at the design distance D
-  if (distance > 100 * centre.z)
-    throw InputError("--sweep-distance", "",
-                     "must be at most 100 times the design distance D = " +
-                         std::to_string(int(centre.z)) + " mm");
-  const double z = distance > 0 ? distance : centre.z;
   std::vector<std::array<double, 3>> eyes;
-  for (int i = 0; i < count; ++i) {
-    const double t = count == 1 ? 0.5 : double(i) / double(count - 1);
-    const Vec3d e = display->eyeAcrossZone(0.5 + range * (t - 0.5));
-    eyes.push_back({centre.x + (e.x - centre.x) * z / centre.z, centre.y, z});
-  }
+  for (const Vec3d& e : jobs::sweepEyes(*jobs::makeDisplay(description), {count, range, distance}))
+    eyes.push_back({e.x, e.y, e.z});
   return eyes;
 }
 
@@ -161,73 +78,21 @@ std::string quality(const Scene& loaded, const DisplayDescription& description,
                     const std::vector<std::array<double, 3>>& eyeList, int referenceSpp,
                     const SeeOptions& o, const std::string& fit, const std::string& focus,
                     const std::string& depthBudget) {
-  if (referenceSpp < 1)
-    throw InputError("command line", "--reference-spp", "must be a whole number of at least 1");
-  const std::unique_ptr<DisplayModel> display = makeDisplay(description);
-  SimulationOptions sim = simulationOptions(o, *display);
-  const std::vector<Vec3d> eyes = eyesInFront(eyeList);
+  const jobs::BuiltDisplay display = jobs::makeDisplay(description);
+  const std::vector<Vec3d> eyes = givenEyes(eyeList);
   LayerImages layers = layerImages(image, mask, *display);
-  Scene scene = loaded;
-  const DisplayDesign* barrier = display->barrierDesign();
-  if (barrier) {  // framed as render framed it (framedScene: what simulate --reference reads)
-    jobs::FramingRequest framing;
-    framing.fit = fit, framing.focus = focus, framing.depthBudget = depthBudget;
-    framing.apply(scene.display);
-    scene = framedScene(std::move(scene), *barrier);
-  }
-  struct Figures {
-    double psnr = 0, ssim = 0, brightness = 0, crosstalk = 0;
-    int ownView = -1;
-  };
-  std::vector<Figures> figures;
+  jobs::FramingRequest framing;
+  framing.fit = fit, framing.focus = focus, framing.depthBudget = depthBudget;
+  const Scene scene = jobs::referenceScene(loaded, *display, framing);
+  std::vector<jobs::EyeFigures> figures;
   {
     py::gil_scoped_release released;
-    const Image maskLayer = layers.mask;
-    const std::unique_ptr<SimulatedDisplay> simulator =
-        simulateDisplay(*display, std::move(layers), sim);
-    const Accelerator accelerator(scene);
-    for (const Vec3d& eye : eyes) {
-      const Image view = simulator->view(eye);
-      const Image picture = o.rawPixels ? view : simulator->atDisplayResolution(view);
-      const Image reference = idealView(scene, accelerator, *display, *simulator, eye, view.width(),
-                                        view.height(), referenceSpp, o.threads);
-      const Image seen = o.rawPixels ? simulator->atDisplayResolution(view) : picture;
-      Figures f;
-      f.psnr = psnr(seen, reference);
-      f.ssim = ssim(seen, reference);
-      if (barrier) {
-        SimulationOptions raw = sim;  // brightness is the raw mean transmittance
-        raw.normalise = false;
-        const CrosstalkResult c = measureCrosstalk(*barrier, maskLayer, raw, eye);
-        f.brightness = c.brightness, f.crosstalk = c.crosstalk, f.ownView = c.ownView;
-      } else {
-        f.brightness = 1.0;  // a lens passes all its light
-        f.crosstalk = std::numeric_limits<double>::quiet_NaN();
-      }
-      figures.push_back(f);
-    }
+    figures = jobs::qualityFigures(scene, *display, std::move(layers), o, eyes, referenceSpp);
   }
   JsonWriter json;
   json.set("/display", display->source());
   json.set("/display_kind", displayKindName(display->kind()));
-  Figures mean;
-  const double n = double(eyes.size());
-  for (size_t i = 0; i < eyes.size(); ++i) {
-    const std::string at = "/eyes/" + std::to_string(i);
-    const Figures& f = figures[i];
-    json.set(at + "/eye", Vec3f{float(eyes[i].x), float(eyes[i].y), float(eyes[i].z)});
-    json.set(at + "/psnr", f.psnr);
-    json.set(at + "/ssim", f.ssim);
-    json.set(at + "/brightness", f.brightness);
-    json.set(at + "/crosstalk", f.crosstalk);
-    json.set(at + "/own_view", f.ownView);
-    mean.psnr += f.psnr / n, mean.ssim += f.ssim / n;
-    mean.brightness += f.brightness / n, mean.crosstalk += f.crosstalk / n;
-  }
-  json.set("/mean/psnr", mean.psnr);
-  json.set("/mean/ssim", mean.ssim);
-  json.set("/mean/brightness", mean.brightness);
-  json.set("/mean/crosstalk", mean.crosstalk);
+  jobs::recordEyeFigures(json, eyes, figures);
   return json.dump();
 }
 

@@ -302,7 +302,7 @@ def test_lenticular_render_is_the_cli_render(scene, tmp_path):
     assert made.record["design"] == json.loads((tmp_path / "out" / "render.json").read_text())["design"]
     seen = parallax.simulate(made.image_srgb8, None, display, eye=(0, 0, 600))
     assert seen.shape == (512, 384, 3)
-    with pytest.raises(parallax.Error, match="^--pupil: applies to the two-layer"):
+    with pytest.raises(parallax.Error, match="^" + as_keywords("--pupil: applies to the two-layer")):
         parallax.simulate(made.image, None, display, eye=(0, 0, 600), pupil=3)
 
 

@@ -1,0 +1,185 @@
+// The dense quality measure of `simulate` (reference without eyes or a sweep; docs/simulator.md):
+// K eyes inside every view's window at several distances against the ideal views, the design
+// eyes as their own column, and other renders of the same scene side by side (compare).
+#include <cstdlib>
+#include <memory>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/core/error.h"
+#include "parallax/io/json_writer.h"
+#include "parallax/jobs/simulate_parts.h"
+#include "parallax/quality/viewer_quality.h"
+#include "parallax/sim/simulated_display.h"
+
+namespace parallax::jobs {
+
+namespace {
+
+// "0.8,1,1.25": eye distances in units of the design distance D.
+std::vector<double> parseDistances(const std::string& text) {
+  std::vector<double> distances;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t end = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, end - start);
+    char* rest = nullptr;
+    const double f = std::strtod(item.c_str(), &rest);
+    if (item.empty() || *rest != '\0' || !(f >= 0.1 && f <= 10))
+      throw RequestError("distances",
+                         "expected distances in units of D between 0.1 and 10, separated by "
+                         "commas, got '" +
+                             text + "'");
+    distances.push_back(f);
+    start = end + 1;
+  }
+  return distances;
+}
+
+std::string summaryRow(const char* label, const QualitySummary& s) {
+  return printed("%-22s %5d %9.2f %7.4f %9.2f %9.4f", label, s.eyes, s.meanPsnr, s.meanSsim,
+                 s.worstPsnr, s.meanFlicker);
+}
+
+void setSummary(JsonWriter& json, const std::string& at, const QualitySummary& s) {
+  json.set(at + "/eyes", s.eyes);
+  json.set(at + "/psnr", s.meanPsnr);
+  json.set(at + "/ssim", s.meanSsim);
+  json.set(at + "/worst_psnr", s.worstPsnr);
+  json.set(at + "/worst_eye", Vec3f{float(s.worstEye.x), float(s.worstEye.y), float(s.worstEye.z)});
+  json.set(at + "/flicker", s.meanFlicker);
+}
+
+// The summaries by distance under `at` (/by_distance/K).
+void setByDistance(JsonWriter& json, const std::string& at, const ViewerQuality& result) {
+  for (size_t i = 0; i < result.byDistance.size(); ++i) {
+    const std::string row = at + "/by_distance/" + std::to_string(i);
+    json.set(row + "/distance", result.byDistance[i].first);
+    setSummary(json, row, result.byDistance[i].second);
+  }
+}
+
+// Several renders side by side: one row (one JSON entry) each. `brightness[k]`: what render k's
+// views send to the eye (their mean luminance times the normalisation the simulator divided
+// by), over the first render's.
+void reportComparison(const SimulateRequest& r, const std::vector<std::string>& labels,
+                      const std::vector<ViewerQuality>& results,
+                      const std::vector<double>& brightness, Reporter& reporter) {
+  if (r.json) {
+    JsonWriter json;
+    json.set("/eyes_per_view", r.eyesPerView);
+    for (size_t k = 0; k < results.size(); ++k) {
+      const std::string at = "/renders/" + std::to_string(k);
+      json.set(at + "/dir", labels[k]);
+      setSummary(json, at + "/mean", results[k].all);
+      setSummary(json, at + "/design_eyes", results[k].designOnly);
+      json.set(at + "/brightness_vs_first", brightness[k]);
+      setByDistance(json, at, results[k]);
+    }
+    return reporter.result(json.dump());
+  }
+  reporter.result(printed("%-28s %5s %9s %7s %9s %9s %12s %11s", "render", "eyes", "mean dB",
+                          "SSIM", "worst dB", "flicker", "design eyes", "brightness"));
+  for (size_t k = 0; k < results.size(); ++k) {
+    const QualitySummary& s = results[k].all;
+    reporter.result(printed("%-28s %5d %9.2f %7.4f %9.2f %9.4f %12.2f %10.2fx", labels[k].c_str(),
+                            s.eyes, s.meanPsnr, s.meanSsim, s.worstPsnr, s.meanFlicker,
+                            results[k].designOnly.meanPsnr, brightness[k]));
+  }
+}
+
+// One render's measure: every eye, then the summaries.
+void reportMeasure(const SimulateRequest& r, const DisplayModel& display,
+                   const ViewerQuality& result, Reporter& reporter) {
+  if (r.json) {
+    JsonWriter json;
+    json.set("/display", display.source());
+    json.set("/eyes_per_view", r.eyesPerView);
+    for (size_t i = 0; i < result.eyes.size(); ++i) {
+      const EyeQuality& q = result.eyes[i];
+      const std::string at = "/eyes/" + std::to_string(i);
+      const Vec3d& e = q.eye.position;
+      json.set(at + "/eye", Vec3f{float(e.x), float(e.y), float(e.z)});
+      json.set(at + "/distance", q.eye.distance);
+      json.set(at + "/view", q.eye.view);
+      json.set(at + "/design_eye", q.eye.designEye);
+      json.set(at + "/psnr", q.psnr);
+      json.set(at + "/ssim", q.ssim);
+      json.set(at + "/flicker", q.flicker);
+    }
+    setSummary(json, "/mean", result.all);
+    setSummary(json, "/design_eyes", result.designOnly);
+    setByDistance(json, "", result);
+    return reporter.result(json.dump());
+  }
+  reporter.result(printed("%-22s %5s %9s %7s %4s %9s", "eye (mm)", "dist", "PSNR dB", "SSIM",
+                          "view", "flicker"));
+  for (const EyeQuality& q : result.eyes) {
+    const std::string eye =
+        printed("%.1f,%.1f,%.1f", q.eye.position.x, q.eye.position.y, q.eye.position.z);
+    reporter.result(printed("%-22s %5.2f %9.2f %7.4f %4d %9.4f%s", eye.c_str(), q.eye.distance,
+                            q.psnr, q.ssim, q.eye.view, q.flicker,
+                            q.eye.designEye ? "  (design eye)" : ""));
+  }
+  reporter.result(printed("\n%-22s %5s %9s %7s %9s %9s", "summary", "eyes", "mean dB", "SSIM",
+                          "worst dB", "flicker"));
+  for (const auto& [distance, summary] : result.byDistance)
+    reporter.result(summaryRow(printed("at %.2f D", distance).c_str(), summary));
+  reporter.result(summaryRow("dense eyes", result.all));
+  reporter.result(summaryRow("design eyes (biased)", result.designOnly));
+}
+
+}  // namespace
+
+void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
+                       const SimulationOptions& sim, Reporter& reporter) {
+  const DisplayModel& display = *in.display;
+  if (r.eyesPerView < 1 || r.eyesPerView > 64)
+    throw RequestError("eyes_per_view",
+                       "expected 1 to 64 eyes per view, got " + std::to_string(r.eyesPerView));
+  const std::vector<double> distances = parseDistances(r.distances);
+  const Scene scene = renderedScene(in, r);
+  const Accelerator accelerator(scene);
+  // compare: more renders of the same scene for the same display, scored at the same eyes
+  // against the same ideal views (rendered once).
+  std::vector<std::string> labels{r.dir};
+  std::vector<LayerSet> sets{{in.frames, in.normalisation}};
+  for (const std::string& other : r.compare) {
+    labels.push_back(other);
+    sets.push_back(loadLayerSet(other, display.hasMaskLayer()));
+  }
+  std::vector<std::unique_ptr<SimulatedDisplay>> simulators;
+  std::vector<const SimulatedDisplay*> pointers;
+  std::vector<double> normalisers;  // what each simulator divided its views by
+  for (LayerSet& set : sets) {
+    SimulationOptions options = sim;
+    if (options.normalise) options.normalisation = set.normalisation;
+    double maskMean = 0;
+    for (const LayerImages& f : set.frames)
+      for (const Vec3f& p : f.mask.pixels()) maskMean += (double(p.x) + p.y + p.z) / 3.0;
+    const size_t maskPixels = set.frames.front().mask.pixels().size() * set.frames.size();
+    maskMean = maskPixels > 0 ? maskMean / double(maskPixels) : 1.0;
+    normalisers.push_back(!options.normalise          ? 1.0
+                          : options.normalisation > 0 ? options.normalisation
+                                                      : maskMean);
+    simulators.push_back(simulateDisplay(display, std::move(set.frames), options));
+    pointers.push_back(simulators.back().get());
+  }
+  std::vector<DenseEye> eyes = denseEyes(display, r.eyesPerView, distances);
+  for (const DenseEye& eye : designEyes(display)) eyes.push_back(eye);
+  std::vector<ViewerQuality> results;
+  {
+    const std::unique_ptr<Progress> progress = reporter.progress("measure");
+    results = measureViewerQuality(scene, accelerator, display, pointers, eyes,
+                                   {r.referenceSpp, r.simulator.threads}, progress->callback());
+  }
+  if (results.size() > 1) {
+    std::vector<double> brightness;
+    const double first = results[0].all.meanLuminance * normalisers[0];
+    for (size_t k = 0; k < results.size(); ++k)
+      brightness.push_back(first > 0 ? results[k].all.meanLuminance * normalisers[k] / first : 0);
+    return reportComparison(r, labels, results, brightness, reporter);
+  }
+  reportMeasure(r, display, results.front(), reporter);
+}
+
+}  // namespace parallax::jobs
