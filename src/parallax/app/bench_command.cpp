@@ -74,13 +74,13 @@ struct BenchOptions {
   std::string camera = "pinhole";
   std::string scene, display;
   std::string size = "1920x1080";
-  SamplingOptions sampling;
+  SamplingRequest sampling;
   int repeats = 2;
   bool json = false;
   int simulateViews = 0;
   int packetWidth = 0;
   std::string quality = "auto";
-  FilterOptions filter;
+  FilterRequest filter;
 };
 
 // One step of what `parallax render` does, timed, with the process's peak memory after it.

@@ -179,7 +179,7 @@ void addLimitOptions(CLI::App& cmd) {
   addTimeLimitOption(cmd);
 }
 
-void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::string& sppHelp) {
+void addSamplingOptions(CLI::App& cmd, SamplingRequest& options, const std::string& sppHelp) {
   cmd.add_option("--spp", options.spp, sppHelp)
       ->capture_default_str()
       ->check(integerIn(1, INT_MAX));
@@ -210,7 +210,7 @@ void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::stri
       ->check(integerIn(0, RenderSettings::kMaxBounces));
 }
 
-void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string& scope) {
+void addFramingOptions(CLI::App& cmd, FramingRequest& options, const std::string& scope) {
   addImportOptions(cmd);
   cmd.add_option("--fit", options.fit,
                  scope +
@@ -232,7 +232,7 @@ void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string
       ->type_name("MM|auto");
 }
 
-void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& scope,
+void addFilterOptions(CLI::App& cmd, FilterRequest& options, const std::string& scope,
                       const std::string& viewUnit) {
   cmd.add_option("--filter", options.kind,
                  scope +
@@ -250,7 +250,6 @@ void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& 
 namespace {
 std::string gUpAxis = upAxisName(UpAxis::Auto);
 double gCreaseDegrees = kDefaultCreaseDegrees;
-std::vector<Scene::ImportRecord> gImportRecords;
 }  // namespace
 
 void addImportOptions(CLI::App& cmd) {
@@ -278,40 +277,12 @@ ImportOptions importOptions() {
   return options;
 }
 
-const std::vector<Scene::ImportRecord>& importRecords() {
-  return gImportRecords;
-}
-
 Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& options) {
   jobs::SceneRequest request;
   request.path = path;
   request.load = options;
   request.load.import = importOptions();
-  Scene scene = jobs::loadSceneQuietly(request);
-  gImportRecords.insert(gImportRecords.end(), scene.imports.begin(), scene.imports.end());
-  return scene;
-}
-
-Scene loadSceneReportingWarnings(const std::string& path, const SceneLoadOptions& options) {
-  jobs::SceneRequest request;
-  request.path = path;
-  request.load = options;
-  request.load.import = importOptions();
-  Scene scene = jobs::loadScene(request, cliReporter());
-  gImportRecords.insert(gImportRecords.end(), scene.imports.begin(), scene.imports.end());
-  return scene;
-}
-
-Scene loadRgbdFromOptions(const RgbdCliOptions& options) {
-  if (!options.given()) throw RequestError("rgbd", "expected two files: COLOUR DEPTH");
-  jobs::SceneRequest request;
-  request.rgbd = options;
-  return jobs::loadScene(request, cliReporter());
-}
-
-void startRenderRecord(JsonWriter& record, const std::string& method,
-                       const std::string& displayFile) {
-  jobs::startRenderRecord(record, method, displayFile, importOptions(), importRecords());
+  return jobs::loadSceneQuietly(request);
 }
 
 void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options) {
@@ -330,7 +301,7 @@ DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset) {
   return jobs::loadDisplay(pathOrPreset, cliReporter());
 }
 
-void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames) {
+void addSequenceOptions(CLI::App& cmd, SequenceRequest& options, const std::string& frames) {
   cmd.add_option("--frames", options.frames,
                  "Render frames FIRST:LAST of the animation (1-based) into DIR/frame-NNNN; "
                  "finished frames are skipped, so a killed sequence resumes (docs/animation.md)")
@@ -355,7 +326,7 @@ void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::stri
   addVideoOptions(cmd, options.video, frames, false);
 }
 
-void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames, bool withFps) {
+void addVideoOptions(CLI::App& cmd, VideoRequest& o, const std::string& frames, bool withFps) {
   cmd.add_option("--video", o.file,
                  "Also write " + frames +
                      " as a video: .mp4 (H.264; H.265 above 4096 a side), .webm (VP9) or .mkv "
@@ -374,7 +345,7 @@ void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frame
       ->check(realIn(0, 240, Bound::Open));
 }
 
-CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdCliOptions& options) {
+CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdRequest& options) {
   CLI::Option* rgbd =
       cmd.add_option("--rgbd", options.files,
                      "An RGB-D photo instead of a scene: a colour image and its greyscale depth "

@@ -88,25 +88,21 @@ Vec3f parseVec3(const std::string& option, const std::string& text);
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);
 
 // --spp, --threads, --seed, --jitter, --adaptive, --bounces: how every rendering command samples.
-using SamplingOptions = jobs::SamplingRequest;
 // Adds the four options to `cmd`; what one sample is differs between commands: `sppHelp`.
-void addSamplingOptions(CLI::App& cmd, SamplingOptions& options, const std::string& sppHelp);
+void addSamplingOptions(CLI::App& cmd, SamplingRequest& options, const std::string& sppHelp);
 
-using jobs::recordFraming;
 using jobs::setFramingFigures;
 
 // --fit, --focus and --depth-budget (render, and design --scene, view --display-eye): how the
 // content is framed for the display (camera/framing.h). Empty: the scene's own choice.
-using FramingOptions = jobs::FramingRequest;
 // Adds the three options to `cmd`; `scope` begins their help ("" or "With --scene: ").
-void addFramingOptions(CLI::App& cmd, FramingOptions& options, const std::string& scope);
+void addFramingOptions(CLI::App& cmd, FramingRequest& options, const std::string& scope);
 
 // --filter and --filter-width (render, bench, lenticular render): how a display pixel's rays
 // spread in angle (display/view_filter.h).
-using FilterOptions = jobs::FilterRequest;
 // Adds the two options to `cmd`; `scope` begins their help ("" or "With --camera display: "),
 // `viewUnit` says what one view is for this display.
-void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& scope,
+void addFilterOptions(CLI::App& cmd, FilterRequest& options, const std::string& scope,
                       const std::string& viewUnit);
 
 // --up auto|y|z (also --mesh-up; only that on view, whose --up is the camera's) and --crease
@@ -117,15 +113,9 @@ void addFilterOptions(CLI::App& cmd, FilterOptions& options, const std::string& 
 void addImportOptions(CLI::App& cmd);
 // What the command line chose (the defaults if the command has no such options).
 ImportOptions importOptions();
-// What loading this command's scenes imported (every loadSceneOrDefault so far), for the
-// /import array of render.json (startRenderRecord).
-const std::vector<Scene::ImportRecord>& importRecords();
 
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
 Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& options = {});
-// The same, with the scene's notes and warnings printed to stderr (for the commands that
-// render it).
-Scene loadSceneReportingWarnings(const std::string& path, const SceneLoadOptions& options = {});
 // --camera NAME|INDEX (render, view): which camera of the scene's glTF files to use
 // (io/scene_file.h, SceneLoadOptions::camera).
 void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options);
@@ -136,26 +126,15 @@ DisplayDesign loadDesignOrDefault(const std::string& path);
 // A display of any kind, with the reader's warnings printed (jobs::loadDisplay).
 DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset);
 
-// Program, version, time, method and display file at the top of a render.json record, and
-// /import: what loading the command's scenes did with each mesh file (importRecords()).
-void startRenderRecord(JsonWriter& record, const std::string& method,
-                       const std::string& displayFile);
-
 // --frames, --chunk, --turntable, --duration, --fps, and --video with its codec and quality;
 // `frames` says what a video's frames are.
-using SequenceOptions = jobs::SequenceRequest;
-void addSequenceOptions(CLI::App& cmd, SequenceOptions& options, const std::string& frames);
+void addSequenceOptions(CLI::App& cmd, SequenceRequest& options, const std::string& frames);
 // --video, --video-codec, --video-quality and (unless `withFps` is false: the sequence options
 // have it) --fps.
-using VideoCliOptions = jobs::VideoRequest;
-void addVideoOptions(CLI::App& cmd, VideoCliOptions& o, const std::string& frames,
+void addVideoOptions(CLI::App& cmd, VideoRequest& o, const std::string& frames,
                      bool withFps = true);
 // --rgbd COLOUR DEPTH, --depth-convention, --depth-range, --rgbd-edges, --rgbd-fov. Returns the
 // --rgbd option, so that the caller can make it exclude its scene argument.
-using RgbdCliOptions = jobs::RgbdRequest;
-CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdCliOptions& options);
-// The RGB-D photo's scene, its warnings printed.
-Scene loadRgbdFromOptions(const RgbdCliOptions& options);
-using jobs::recordRgbd;
+CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdRequest& options);
 
 }  // namespace parallax::app

@@ -19,7 +19,7 @@ namespace parallax::app {
 void registerDesignCommand(CLI::App& cli) {
   struct Options {
     std::string display, scene;
-    FramingOptions framing;
+    FramingRequest framing;
     bool json = false;
     double depth = 0.0;
   };

@@ -22,8 +22,8 @@ namespace fs = std::filesystem;
 struct LenticularRenderOptions {
   std::string calibration, scene, output = "out";
   SceneLoadOptions load;     // --camera
-  SamplingOptions sampling;  // 16 rays per subpixel over its view window, as render
-  FilterOptions filter;
+  SamplingRequest sampling;  // 16 rays per subpixel over its view window, as render
+  FilterRequest filter;
   double distance = 0;
 };
 

@@ -32,7 +32,7 @@ std::string keyOfError(F f) {
 
 TEST(RgbdOptions, ParseThroughCli11) {
   CLI::App app;
-  RgbdCliOptions o;
+  RgbdRequest o;
   addRgbdOptions(app, o);
   app.parse(
       "--rgbd photo.png depth.png --depth-convention inverse --depth-range 2:5.5 "
@@ -47,13 +47,13 @@ TEST(RgbdOptions, ParseThroughCli11) {
   EXPECT_FLOAT_EQ(parsed.fovDegrees, 65.0f);
   // One file is not enough.
   CLI::App other;
-  RgbdCliOptions one;
+  RgbdRequest one;
   addRgbdOptions(other, one);
   EXPECT_THROW(other.parse("--rgbd photo.png", false), CLI::ParseError);
 }
 
 TEST(RgbdOptions, DefaultsAreTheLibrarys) {
-  const RgbdOptions parsed = RgbdCliOptions{}.options();
+  const RgbdOptions parsed = RgbdRequest{}.options();
   const RgbdOptions library;
   EXPECT_EQ(parsed.convention, library.convention);
   EXPECT_EQ(parsed.nearDistance, library.nearDistance);
@@ -64,16 +64,23 @@ TEST(RgbdOptions, DefaultsAreTheLibrarys) {
 
 TEST(RgbdOptions, BadValuesNameTheirOption) {
   const auto with = [](auto change) {
-    RgbdCliOptions o;
+    RgbdRequest o;
     change(o);
     return optionName(keyOfError([&] { o.options(); }));
   };
-  EXPECT_EQ(with([](RgbdCliOptions& o) { o.convention = "metric"; }), "--depth-convention");
+  EXPECT_EQ(with([](RgbdRequest& o) { o.convention = "metric"; }), "--depth-convention");
   for (const char* range : {"3", "3:1", "0:2", "1:x", "nan:2", "1:2:3", "-1:2", ""})
-    EXPECT_EQ(with([&](RgbdCliOptions& o) { o.range = range; }), "--depth-range") << range;
-  EXPECT_EQ(with([](RgbdCliOptions& o) { o.edges = "holes"; }), "--rgbd-edges");
-  EXPECT_EQ(with([](RgbdCliOptions& o) { o.fovDegrees = 180; }), "--rgbd-fov");
-  EXPECT_EQ(with([](RgbdCliOptions& o) { o.fovDegrees = 0.5; }), "--rgbd-fov");
+    EXPECT_EQ(with([&](RgbdRequest& o) { o.range = range; }), "--depth-range") << range;
+  EXPECT_EQ(with([](RgbdRequest& o) { o.edges = "holes"; }), "--rgbd-edges");
+  EXPECT_EQ(with([](RgbdRequest& o) { o.fovDegrees = 180; }), "--rgbd-fov");
+  EXPECT_EQ(with([](RgbdRequest& o) { o.fovDegrees = 0.5; }), "--rgbd-fov");
+}
+
+// The photo's scene as the request layer loads it.
+Scene loadPhoto(const RgbdRequest& options) {
+  jobs::SceneRequest request;
+  request.rgbd = options;
+  return jobs::loadSceneQuietly(request);
 }
 
 TEST(RgbdOptions, LoadsNamingRgbdAndRecordsTheChoices) {
@@ -86,10 +93,10 @@ TEST(RgbdOptions, LoadsNamingRgbdAndRecordsTheChoices) {
   for (size_t i = 0; i < codes.size(); ++i) codes[i] = uint16_t(1000 * i);
   writeFileAtomically(depth, encodePngGrey16(codes.data(), 6, 4));
 
-  RgbdCliOptions o;
+  RgbdRequest o;
   o.files = {colour, (dir / "missing.png").string()};
   try {
-    loadRgbdFromOptions(o);
+    loadPhoto(o);
     ADD_FAILURE() << "no error for a missing depth map";
   } catch (const InputError& e) {
     EXPECT_EQ(e.path(), "{rgbd}");
@@ -104,7 +111,7 @@ TEST(RgbdOptions, LoadsNamingRgbdAndRecordsTheChoices) {
   o.files = {colour, depth};
   o.edges = "layered";
   o.range = "2:4";
-  const Scene scene = loadRgbdFromOptions(o);
+  const Scene scene = loadPhoto(o);
   EXPECT_EQ(scene.meshes.size(), 2u);
   JsonWriter record;
   recordRgbd(record, o, scene);
