@@ -1,0 +1,85 @@
+// The render runner (jobs/render_job.h) against the library's own calls (a second code path),
+// and its refusals before any work.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/camera/camera.h"
+#include "parallax/camera/display_camera.h"
+#include "parallax/core/error.h"
+#include "parallax/display/lenticular_presets.h"
+#include "parallax/io/display_file.h"
+#include "parallax/jobs/design_job.h"
+#include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/jobs_test_support.h"
+#include "parallax/jobs/limits.h"
+#include "parallax/jobs/render_job.h"
+#include "parallax/jobs/requests.h"
+#include "parallax/jobs/view_job.h"
+#include "parallax/render/display_render.h"
+#include "parallax/render/display_test_support.h"
+#include "parallax/render/quilt.h"
+
+namespace parallax::jobs {
+namespace {
+
+TEST(RenderRunner, InMemoryLayersAreTheLibrarysLayers) {
+  const Scene scene = defaultScene();
+  RenderRequest request;
+  request.loaded = smallBarrier();
+  request.sampling.spp = 4;
+  RecordingReporter reporter;
+  const RenderResult result = renderInMemory(request, scene, reporter);
+  ASSERT_EQ(result.frames.size(), 1u);
+
+  // The same layers through the library alone: framed, accelerated and rendered by hand.
+  Scene framed = defaultScene();
+  const Framing framing = frameForDisplay(framed, designDisplay(smallDisplaySpec(90, 30)));
+  framed.display = framing.placement;
+  const Accelerator accelerator(framed);
+  RenderSettings settings;
+  settings.samplesPerPixel = 4;
+  const DisplayLayers expected =
+      renderDisplay(framed, accelerator, *makeBarrierDisplay(framing.design), settings);
+  EXPECT_EQ(result.frames[0].image.pixels(), expected.image.pixels());
+  EXPECT_EQ(result.frames[0].mask.pixels(), expected.mask.pixels());
+  EXPECT_NE(result.record.find("\"method\": \"barrier-camera\""), std::string::npos);
+  EXPECT_NE(result.record.find("\"spp\": 4"), std::string::npos);
+}
+
+TEST(RenderRunner, RefusesBeforeAnyWork) {
+  const Scene scene = defaultScene();
+  RenderRequest request;
+  request.loaded = smallBarrier();
+  request.quilt.width = request.quilt.height = 64;  // a tile size without a quilt
+  EXPECT_EQ(fieldOf([&] { renderInMemory(request, scene, silentReporter()); }), "size");
+  request.quilt = {};
+  request.sequence.frames = "1:2";
+  EXPECT_EQ(fieldOf([&] { renderInMemory(request, scene, silentReporter()); }), "sequence");
+  request.sequence = {};
+  request.loaded = portrait();
+  request.directMapping = true;
+  EXPECT_EQ(fieldOf([&] { renderInMemory(request, scene, silentReporter()); }), "direct_mapping");
+  request.directMapping = false;
+  request.layers.method = "nmf";
+  EXPECT_EQ(fieldOf([&] { renderInMemory(request, scene, silentReporter()); }), "layers");
+}
+
+TEST(RenderRunner, AQuiltInMemoryTakesTheDisplaysOwnLayout) {
+  const Scene scene = defaultScene();
+  RenderRequest request;
+  request.loaded = smallBarrier();
+  request.sampling.spp = 1;
+  request.quilt.wanted = true;
+  request.quilt.width = 30, request.quilt.height = 10;
+  const RenderResult result = renderInMemory(request, scene, silentReporter());
+  // auto: one row of the barrier's 9 views.
+  EXPECT_EQ(result.quilt.width(), 9 * 30);
+  EXPECT_EQ(result.quilt.height(), 10);
+  EXPECT_NE(result.record.find("quilt_qs9x1a3.png"), std::string::npos) << result.record;
+}
+
+}  // namespace
+}  // namespace parallax::jobs

@@ -1,0 +1,58 @@
+// The shared requests (jobs/requests.h): every check names the request's field.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/camera/camera.h"
+#include "parallax/camera/display_camera.h"
+#include "parallax/core/error.h"
+#include "parallax/display/lenticular_presets.h"
+#include "parallax/io/display_file.h"
+#include "parallax/jobs/design_job.h"
+#include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/jobs_test_support.h"
+#include "parallax/jobs/limits.h"
+#include "parallax/jobs/render_job.h"
+#include "parallax/jobs/requests.h"
+#include "parallax/jobs/view_job.h"
+#include "parallax/render/display_render.h"
+#include "parallax/render/display_test_support.h"
+#include "parallax/render/quilt.h"
+
+namespace parallax::jobs {
+namespace {
+
+TEST(Requests, ChecksNameTheirFields) {
+  SamplingRequest sampling;
+  sampling.spp = 0;
+  EXPECT_EQ(fieldOf([&] { sampling.settings(); }), "spp");
+  sampling.spp = 4, sampling.jitter = "sideways";
+  EXPECT_EQ(fieldOf([&] { sampling.settings(); }), "jitter");
+  sampling.jitter = "auto", sampling.bounces = -1;
+  EXPECT_EQ(fieldOf([&] { sampling.settings(); }), "bounces");
+  FilterRequest filter;
+  filter.kind = "blur";
+  EXPECT_EQ(fieldOf([&] { filter.filter(); }), "filter");
+  filter.kind = "view", filter.widthViews = 50;
+  EXPECT_EQ(fieldOf([&] { filter.filter(); }), "filter_width");
+  FramingRequest framing;
+  framing.fit = "sideways";
+  EXPECT_EQ(fieldOf([&] { framing.check(); }), "fit");
+  LayersRequest layers;
+  layers.method = "nmf", layers.rank = 17;
+  EXPECT_EQ(fieldOf([&] { layers.check(); }), "rank");
+  layers.rank = 2, layers.method = "optimized-image";
+  EXPECT_EQ(fieldOf([&] { layers.check(); }), "rank");
+  layers.rank = 1, layers.error = "srgb", layers.method = "nmf";
+  EXPECT_EQ(fieldOf([&] { layers.check(); }), "layer_error");
+  layers.error = "", layers.trainEyes = 0;
+  EXPECT_EQ(fieldOf([&] { layers.check(); }), "train_eyes");
+  RgbdRequest rgbd;
+  rgbd.range = "3:1";
+  EXPECT_EQ(fieldOf([&] { rgbd.options(); }), "depth_range");
+}
+
+}  // namespace
+}  // namespace parallax::jobs
