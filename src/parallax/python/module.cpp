@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "parallax/core/error.h"
+#include "parallax/jobs/limits.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/terminal_reporter.h"
 #include "parallax/python/bindings_internal.h"
@@ -111,6 +112,18 @@ PYBIND11_MODULE(_parallax, module) {
   // As `parallax --version`: this build and the Embree it runs on.
   module.attr("__version__") = PARALLAX_VERSION;
   module.def("version", &parallax::jobs::versionText);
+  // The CLI's --max-memory GiB and --max-time SECONDS: what every later call is held to before
+  // it allocates or starts (0: the default, 3/4 of physical memory and one day).
+  module.def(
+      "set_limits",
+      [](double maxMemoryGiB, double maxSeconds) {
+        if (!(maxMemoryGiB >= 0) || !(maxSeconds >= 0))
+          throw parallax::RequestError(maxMemoryGiB >= 0 ? "max_time" : "max_memory",
+                                       "must be 0 (the default) or above");
+        parallax::jobs::limits() = {maxMemoryGiB, maxSeconds};
+      },
+      py::kw_only(), py::arg("max_memory") = 0.0, py::arg("max_time") = 0.0,
+      "Limits for what every later call allocates (GiB) and takes (seconds); 0: the default");
   module.def(
       "_to_srgb8",
       [](const py::array_t<float, py::array::c_style | py::array::forcecast>& linear) {

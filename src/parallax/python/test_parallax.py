@@ -284,6 +284,22 @@ def test_solved_layers_and_direct_mapping_in_memory(scene, small, tmp_path):
         parallax.render(scene, small, rank=2)
 
 
+def test_limits_are_the_clis(scene, small):
+    # --max-time's refusal, spelled as Python's keywords; 0 restores the default.
+    result = cli("render", "--display", SMALL, "--spp", 4096, "--max-time", "0.001", "-o", "/nonexistent")
+    assert result.returncode == 2
+    parallax.set_limits(max_time=0.001)
+    try:
+        with pytest.raises(parallax.Error) as caught:
+            parallax.render(scene, small, spp=4096)
+    finally:
+        parallax.set_limits()
+    assert str(caught.value) == as_keywords(result.stderr.strip()[len("error: "):])
+    assert str(caught.value).startswith("spp=4096: needs ") and "raise max_time" in str(caught.value)
+    with pytest.raises(parallax.Error, match="^max_memory: "):
+        parallax.set_limits(max_memory=-1)
+
+
 def test_lenticular_render_is_the_cli_render(scene, tmp_path):
     # A Looking Glass calibration on a quarter-size panel (fast), read by both paths.
     calibration = json.loads((SOURCE / "displays" / "lenticular" / "portrait-like.json").read_text())

@@ -16,12 +16,13 @@ from typing import Optional, Sequence, Tuple
 import numpy as np
 
 from . import _parallax
-from ._parallax import Display, Error, Scene, __version__, load_display, load_scene, version
+from ._parallax import (Display, Error, Scene, __version__, load_display, load_scene, set_limits,
+                        version)
 
 __all__ = [
     "Display", "Error", "Scene", "RenderResult", "QuiltResult", "load_scene", "load_display",
     "design", "render", "render_files", "view", "ideal_view", "quilt", "simulate", "sweep_eyes", "sweep",
-    "quality", "to_srgb8", "version", "__version__", "interlace", "interlace_files", "CalibrationPatterns", "calibration_patterns", "calibration_patterns_files", "lenticular_simulate",
+    "quality", "to_srgb8", "version", "__version__", "set_limits", "interlace", "interlace_files", "CalibrationPatterns", "calibration_patterns", "calibration_patterns_files", "lenticular_simulate",
 ]
 
 Eye = Tuple[float, float, float]
