@@ -9,10 +9,11 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-# The modules the library is made of: all but the CLI's own (app) and those that wrap a
-# process-level service rather than rendering (python: the extension; cluster: MPI).
+# The modules the library is made of: all but the front ends (app: the CLI; python: the
+# extension), their request layer (jobs: it runs a whole job, under mpirun too) and the
+# process-level service it uses (cluster: MPI).
 set(PARALLAX_LIBRARY_MODULES ${PARALLAX_MODULES})
-list(REMOVE_ITEM PARALLAX_LIBRARY_MODULES app python cluster)
+list(REMOVE_ITEM PARALLAX_LIBRARY_MODULES app python jobs cluster)
 
 set(library_archives "")
 set(library_objects "")
