@@ -77,7 +77,11 @@ void registerRenderCommand(CLI::App& cli) {
   cmd->add_option("--rank", request.layers.rank,
                   "With --layers nmf: time-multiplexed frame pairs (image-K.png, mask-K.png)")
       ->capture_default_str();
-  cmd->add_option("--iterations", request.layers.iterations, "Solver iterations (default 10)");
+  // Through a function: the request tells a given --iterations from the default.
+  cmd->add_option_function<int>(
+         "--iterations", [&request](const int& n) { request.layers.iterations = n; },
+         "With --layers optimized-image or nmf: solver iterations, 1 to 1000 (default 10)")
+      ->type_name("INT");
   cmd->add_option("--brightness", request.layers.brightness,
                   "Brightness the optimised layers aim at, times the slits' (default 1 for "
                   "optimized-image, 1.05 max(2, rank) for nmf)");

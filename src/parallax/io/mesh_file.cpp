@@ -85,6 +85,13 @@ bool parseInteger(std::string_view token, int64_t& value) {
   return !token.empty() && ptr == end && ec == std::errc();
 }
 
+std::string numberText(double value) {
+  if (std::isnan(value)) return "nan";
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, value);
+  return std::string(text, result.ptr);
+}
+
 namespace {
 
 // Twice the signed area of the 2-D triangle (a, b, c); positive if it turns counter-clockwise.
@@ -628,7 +635,8 @@ bool parseUpAxis(const std::string& text, UpAxis& up) {
 namespace {
 
 bool ourFormat(const std::string& ext) {
-  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
+  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb" ||
+         ext == ".off";
 }
 
 }  // namespace
@@ -666,6 +674,8 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
     contents = meshio::readPly(path);
   } else if (ext == ".stl") {
     contents = meshio::readStl(path);
+  } else if (ext == ".off") {
+    contents = meshio::readOff(path);
   } else {
     contents = meshio::readGltf(path);
     reader = "parallax-gltf";

@@ -68,6 +68,7 @@ FileContents readObj(const std::string& path);
 FileContents readPly(const std::string& path);
 FileContents readStl(const std::string& path);
 FileContents readGltf(const std::string& path);
+FileContents readOff(const std::string& path);  // Geomview's OFF (mesh_off.cpp)
 // Every format assimp reads (mesh_assimp.cpp); assimpReads says which extensions (".fbx").
 FileContents readAssimp(const std::string& path);
 bool assimpReads(const std::string& lowerExtension);
@@ -109,5 +110,9 @@ class TextTokens {
 // that loadMeshFile can report them as such.
 bool parseNumber(std::string_view token, double& value);
 bool parseInteger(std::string_view token, int64_t& value);
+
+// The shortest text that reads back as `value` ("7", "0.25", "1e+300", "nan"): a number in a
+// message as the file gave it, never through an integer conversion.
+std::string numberText(double value);
 
 }  // namespace parallax::meshio

@@ -27,6 +27,13 @@ static_assert(std::endian::native == std::endian::little, "glTF buffers are litt
 
 constexpr size_t kMaxNodeDepth = 1000;
 constexpr size_t kMaxNodeInstances = 1000000;
+// Node transforms keep to the scene file's ranges (io/scene_file.cpp, docs/scene-format.md):
+// translations and matrix entries within 1e6 scene units, scale factors within 1e-6 to 1e6
+// in size (or 0, which hides a node), and so does a node's world position composed through
+// its parents. Float keeps about 7 digits; a file placing a mesh at 1e30 cannot be rendered
+// sensibly with anything else in view.
+constexpr double kMaxCoordinate = 1e6;
+constexpr double kMaxScale = 1e6;
 
 // KHR_lights_punctual gives point and spot intensities in candela (lm/sr) and directional
 // ones in lux (lm/m^2); our lights are radiometric (W/sr, W/m^2). Dividing by 683 lm/W (the
@@ -126,6 +133,28 @@ Vec3f transformVector(const Mat4& m, const Vec3f& v) {
   return out;
 }
 
+// "node 3 ('Cube')": a node for messages.
+std::string nodeName(const tinygltf::Model& model, int index) {
+  const std::string& name = model.nodes[size_t(index)].name;
+  return "node " + std::to_string(index) + (name.empty() ? "" : " ('" + name + "')");
+}
+
+// The problem with a node's own transform (kMaxCoordinate, kMaxScale), or "".
+std::string transformProblem(const tinygltf::Node& node) {
+  for (const double t : node.translation)
+    if (!(std::abs(t) <= kMaxCoordinate))
+      return "translation " + numberText(t) + " is beyond 1e6 scene units";
+  for (const double s : node.scale)
+    if (s != 0 && !(std::abs(s) >= 1 / kMaxScale && std::abs(s) <= kMaxScale))
+      return "scale " + numberText(s) + " is not within 1e-6 to 1e6 in size (nor 0)";
+  for (const double r : node.rotation)
+    if (!std::isfinite(r)) return "rotation " + numberText(r) + " is not finite";
+  for (const double m : node.matrix)
+    if (!(std::abs(m) <= kMaxScale))
+      return "matrix entry " + numberText(m) + " is beyond 1e6 in size";
+  return "";
+}
+
 // A glTF matrix is column-major; Mat4 is row-major.
 Mat4 nodeMatrix(const tinygltf::Node& node) {
   Mat4 m = Mat4::identity();
@@ -165,6 +194,9 @@ class GltfReader {
     for (const std::string& name : model_.extensionsRequired)
       if (!isSupportedExtension(name)) fail(path_, "requires the unsupported extension " + name);
     readMaterials();
+    for (size_t n = 0; n < model_.nodes.size(); ++n)
+      if (const std::string problem = transformProblem(model_.nodes[n]); !problem.empty())
+        fail(path_, nodeName(model_, int(n)) + ": " + problem);
     onPath_.assign(model_.nodes.size(), false);
     for (int root : rootNodes()) visitTree(root);
     readAnimations();
@@ -224,6 +256,11 @@ class GltfReader {
       onPath_[size_t(nodeIndex)] = true;
       const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
       const Mat4 fileFromNode = fileFromParent * nodeMatrix(node);
+      for (int row = 0; row < 3; ++row)
+        if (!(std::abs(fileFromNode.m[row][3]) <= kMaxCoordinate))
+          fail(path_, nodeName(model_, nodeIndex) +
+                          ": its position composed through its parents lies beyond 1e6 scene "
+                          "units");
       if (node.mesh >= 0) addMesh(node.mesh, fileFromNode, nodeIndex);
       if (node.camera >= 0) addCamera(node, nodeIndex, fileFromNode);
       if (const auto light = node.extensions.find("KHR_lights_punctual");
@@ -494,8 +531,12 @@ class GltfReader {
           // A spline key is (in-tangent, value, out-tangent): take the value.
           const size_t element = spline ? 3 * i + 1 : i;
           for (int j = 0; j < output.components; ++j) {
-            v[size_t(j)] = float(value(output, element, j));
-            if (!std::isfinite(v[size_t(j)])) fail(path_, what + ": a key value is not finite");
+            const double key = value(output, element, j);
+            if (!std::isfinite(key)) fail(path_, what + ": a key value is not finite");
+            // Animated translations and scales keep to the ranges of the nodes' own.
+            if (out1.path != NodeChannel::Path::Rotation && !(std::abs(key) <= kMaxCoordinate))
+              fail(path_, what + ": key value " + numberText(key) + " is beyond 1e6");
+            v[size_t(j)] = float(key);
           }
           out1.values.push_back(v);
         }

@@ -52,6 +52,48 @@ TEST(MeshFile, GltfUnderMirrorKeepsNormalsAndWindingConsistent) {
   EXPECT_EQ(triangle(mesh, 0)[0].x, -10.0f);
 }
 
+// Node transforms keep to the scene file's ranges (N75): translations within 1e6 scene units,
+// scales within 1e-6 to 1e6 (or 0), matrix entries within 1e6, also composed through the
+// parents and in animation keys; each refusal names the node.
+TEST(MeshFile, GltfNodeTransformsBeyond1e6AreRefused) {
+  TempDir dir;
+  const std::string path = dir.file("far.gltf");
+  const auto with = [](const std::string& from, const std::string& to) {
+    std::string text = hierarchyGltf();
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  struct Case {
+    std::string text, expected;
+  };
+  const Case cases[] = {
+      {with(R"("translation": [10, 0, 0])", R"("translation": [1e30, 0, 0])"),
+       "node 0: translation 1e+30 is beyond 1e6 scene units"},
+      {with(R"("translation": [10, 0, 0])", R"("translation": [10, -1000001, 0], "name": "far")"),
+       "node 0 ('far'): translation -1000001 is beyond 1e6 scene units"},
+      {with(R"("scale": [2, 2, 2])", R"("scale": [2, 1e7, 2])"),
+       "node 1: scale 1e+07 is not within 1e-6 to 1e6 in size (nor 0)"},
+      {with(R"("scale": [2, 2, 2])", R"("scale": [2, 1e-9, 2])"),
+       "node 1: scale 1e-09 is not within 1e-6 to 1e6 in size (nor 0)"},
+      {with("0,5,0,1]", "0,2e6,0,1]"), "node 3: matrix entry 2e+06 is beyond 1e6 in size"},
+      // Each within range, composed beyond it: 10 + 1e6 along x under node 0.
+      {with(R"("scale": [2, 2, 2], "mesh": 0})",
+            R"("scale": [2, 2, 2], "mesh": 0, "translation": [1000000, 0, 0]})"),
+       "node 1: its position composed through its parents lies beyond 1e6 scene units"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.expected);
+    writeFile(path, c.text);
+    expectInputError(path, c.expected);
+  }
+  // At the limits: accepted, and a zero scale hides its node's triangles.
+  writeFile(path, with(R"("translation": [10, 0, 0])", R"("translation": [999990, 0, 0])"));
+  EXPECT_EQ(load(path).triangleCount(), 2u);
+  writeFile(path, with(R"("scale": [2, 2, 2])", R"("scale": [0, 0, 0])"));
+  EXPECT_EQ(load(path).triangleCount(), 1u);
+}
+
 TEST_F(RealModels, CylinderEngineExpandsSharedMeshes) {
   const Scene scene = load(model("assimp/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"));
   EXPECT_EQ(scene.triangleCount(), 110336u);

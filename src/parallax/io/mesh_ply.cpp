@@ -401,11 +401,14 @@ class PlyParser {
 
   uint32_t vertexIndex(Type type, const std::string& where) {
     const double value = values_.read(type, where);
-    if (!isInteger(type) && value != std::floor(value))
-      fail(path_, where + ": vertex index " + std::to_string(value) + " is not an integer");
-    if (!(value >= 0 && value < double(vertexCount_)))
-      fail(path_, where + ": vertex index " + std::to_string(int64_t(value)) +
-                      " is out of range (" + std::to_string(vertexCount_) + " vertices)");
+    // The range first, in double: a float index beyond the integers (1e300, NaN) must not
+    // reach an integer conversion, which would be undefined. Quoted as the file gives it.
+    const double end = std::min(double(vertexCount_), 4294967296.0);
+    if (!(value >= 0 && value < end))
+      fail(path_, where + ": vertex index " + numberText(value) + " is out of range (" +
+                      std::to_string(vertexCount_) + " vertices)");
+    if (value != std::floor(value))
+      fail(path_, where + ": vertex index " + numberText(value) + " is not an integer");
     return uint32_t(value);
   }
 

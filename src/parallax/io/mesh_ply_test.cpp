@@ -102,5 +102,53 @@ TEST(MeshFile, BinaryPlyBothByteOrdersWithTransform) {
   }
 }
 
+// Float face indices (a list of double or float) are range-checked as floats before any
+// integer conversion: 1e300, -1 and NaN are refused and quoted as the file gives them, never as
+// an integer cast would make them (-9223372036854775808). Whole floats in range are taken.
+TEST(MeshFile, PlyFloatFaceIndicesAreCheckedBeforeConversion) {
+  TempDir dir;
+  const std::string header =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar double vertex_indices\nend_header\n";
+  const auto binary = [&](double index) {
+    Bytes body;
+    for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) body.f32(v);
+    body.put(uint8_t(3)).put(0.0).put(1.0).put(index);
+    return "ply\nformat binary_little_endian 1.0\n" + header + body.data;
+  };
+  const auto ascii = [&](const std::string& index) {
+    return "ply\nformat ascii 1.0\n" + header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 " + index + "\n";
+  };
+  struct Case {
+    std::string text, expected;
+  };
+  const Case cases[] = {
+      {binary(1e300), "face 0: vertex index 1e+300 is out of range (3 vertices)"},
+      {binary(-1e300), "face 0: vertex index -1e+300 is out of range"},
+      {binary(std::numeric_limits<double>::quiet_NaN()),
+       "face 0: vertex index nan is out of range"},
+      {binary(std::numeric_limits<double>::infinity()), "face 0: vertex index inf is out of range"},
+      {binary(1.5), "face 0: vertex index 1.5 is not an integer"},
+      {binary(3), "face 0: vertex index 3 is out of range (3 vertices)"},
+      {ascii("1e300"), "face 0: vertex index 1e+300 is out of range (3 vertices)"},
+      {ascii("-0.5"), "face 0: vertex index -0.5 is out of range"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.expected);
+    writeFile(dir.file("f.ply"), c.text);
+    expectInputError(dir.file("f.ply"), c.expected);
+    Scene scene;
+    try {
+      loadMeshFile(dir.file("f.ply"), {}, scene);
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).find("-9223372036854775808"), std::string::npos);
+    }
+  }
+  writeFile(dir.file("ok.ply"), binary(2.0));
+  EXPECT_EQ(load(dir.file("ok.ply")).triangleCount(), 1u);
+  writeFile(dir.file("ok.ply"), ascii("2.0"));
+  EXPECT_EQ(load(dir.file("ok.ply")).triangleCount(), 1u);
+}
+
 }  // namespace
 }  // namespace parallax

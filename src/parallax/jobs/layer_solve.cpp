@@ -38,7 +38,7 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   }
   const double trainSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const int iterations = o.iterations > 0 ? o.iterations : kDefaultIterations;
+  const int iterations = o.iterations.value_or(kDefaultIterations);
   SolveReport report;
   std::vector<LayerFrame> frames;
   if (o.method == "optimized-image") {

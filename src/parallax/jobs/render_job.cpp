@@ -30,12 +30,23 @@ void LayersRequest::check() const {
   if (rank < 1 || rank > 16) throw RequestError("rank", "must be between 1 and 16 frames");
   if (rank > 1 && method != "nmf")
     throw RequestError("rank", "time-multiplexed frames need {layers} nmf");
-  if (iterations < 0 || iterations > 1000)
+  // A solver's own settings: refused, not ignored, without a solver (and 0 iterations is no
+  // default: a solver runs at least once).
+  if (iterations && (*iterations < 1 || *iterations > 1000))
     throw RequestError("iterations", "must be between 1 and 1000");
+  if (iterations && !solved())
+    throw RequestError("iterations",
+                       "applies to {layers} optimized-image or nmf (slits solve nothing)");
   if (!(brightness >= 0) || brightness > 100)
     throw RequestError("brightness", "must be between 0 (default) and 100");
+  if (brightness > 0 && !solved())
+    throw RequestError("brightness",
+                       "applies to {layers} optimized-image or nmf (slits have the brightness of "
+                       "their duty cycle)");
   if (!error.empty() && error != "linear" && error != "srgb")
     throw RequestError("layer_error", "expected linear or srgb, got '" + error + "'");
+  if (!error.empty() && !solved())
+    throw RequestError("layer_error", "applies to {layers} optimized-image or nmf");
   if (errorMeasure() == "srgb" && method != "optimized-image")
     throw RequestError("layer_error",
                        "srgb is for {layers} optimized-image (nmf's updates fit in linear light)");

@@ -100,8 +100,30 @@ std::vector<Vec3d> simulatedEyes(const DisplayModel& display, const std::vector<
   return eyes;
 }
 
+void checkLayerValues(const LayerImages& layers) {
+  const auto check = [](const Image& image, const char* field, bool transmittance) {
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x)
+        for (int c = 0; c < 3; ++c) {
+          const float v = image.at(x, y)[c];
+          if (std::isfinite(v) && v >= 0 && (!transmittance || v <= 1)) continue;
+          const std::string where = "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                    ") channel " + std::to_string(c) + " is ";
+          throw RequestError(field, where +
+                                        (std::isnan(v)   ? std::string("NaN")
+                                         : std::isinf(v) ? std::string("infinite")
+                                                         : printed("%g", double(v))) +
+                                        (transmittance ? ": a transmittance is from 0 to 1"
+                                                       : ": light is finite and not negative"));
+        }
+  };
+  check(layers.image, "image", false);
+  check(layers.mask, "mask", true);
+}
+
 void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
                          const SimulatorRequest& r, size_t eyes, int sweep, int referenceSpp) {
+  checkLayerValues(layers);
   double w = display.film().panelWidth, h = display.film().panelHeight;
   if (const DisplayDesign* d = display.barrierDesign()) {
     const Panel& front =

@@ -67,6 +67,12 @@ std::vector<Vec3d> simulatedEyes(const DisplayModel& display, const std::vector<
 // copy and two copies of the layers; the time of every sample (spp x pupil samples per output
 // pixel, and referenceSpp per pixel of the ideal views; 0: none). The refusals name {sweep}
 // (sweep > 0), {size} or {eye}.
+// Refuses layers no panel shows, naming the first bad pixel: NaN, infinite or negative values
+// (field image or mask), and a mask's transmittance above 1. The image layer may exceed 1
+// (a render's linear layer keeps the scene's highlights).
+void checkLayerValues(const LayerImages& layers);
+
+// Also checks the layers' values (checkLayerValues).
 void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
                          const SimulatorRequest& request, size_t eyes, int sweep = 0,
                          int referenceSpp = 0);

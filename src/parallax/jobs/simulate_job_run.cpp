@@ -179,6 +179,14 @@ void reportFigures(const std::vector<Vec3d>& eyes, const std::vector<EyeFigures>
 }  // namespace
 
 void runSimulate(const SimulateRequest& r, Reporter& reporter) {
+  // The measure's own inputs without the measure: refused, not ignored.
+  if (!r.compare.empty() && !(r.reference && r.eyes.empty() && r.sweep.count == 0))
+    throw RequestError("compare",
+                       "scores other renders in the dense measure: needs {reference} without "
+                       "{eye} or {sweep}");
+  if (!r.scene.empty() && !r.reference)
+    throw RequestError("scene",
+                       "is the scene {reference} renders the ideal views of: add {reference}");
   if (!r.frames.empty()) return runSimulateFrames(r, reporter);
   if (r.video.wanted()) {
     if (r.sweep.count == 0)

@@ -55,7 +55,8 @@ jobs::RenderRequest renderRequest(const DisplayDescription& display, const py::k
   if (kw.contains("distance")) r.distance = kw["distance"].cast<double>();
   text("layers", r.layers.method);
   if (kw.contains("rank")) r.layers.rank = kw["rank"].cast<int>();
-  if (kw.contains("iterations")) r.layers.iterations = kw["iterations"].cast<int>();
+  if (kw.contains("iterations") && !kw["iterations"].is_none())
+    r.layers.iterations = kw["iterations"].cast<int>();
   if (kw.contains("brightness")) r.layers.brightness = kw["brightness"].cast<double>();
   if (kw.contains("train_eyes")) r.layers.trainEyes = kw["train_eyes"].cast<int>();
   text("layer_error", r.layers.error);

@@ -90,7 +90,7 @@ def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
            bounces: int = 0, adaptive: bool = False, adaptive_threshold: Optional[float] = None,
            filter: str = "view", filter_width: Optional[float] = None, subpixels: bool = False,
            direct_mapping: bool = False, layers: str = "slits", rank: int = 1,
-           iterations: int = 0, brightness: float = 0.0, train_eyes: int = 2,
+           iterations: Optional[int] = None, brightness: float = 0.0, train_eyes: int = 2,
            layer_error: Optional[str] = None, distance: float = 0.0,
            fit: Optional[str] = None, focus=None, depth_budget=None) -> RenderResult:
     """`parallax render`: the image and mask layers of a barrier display (the slits', direct
