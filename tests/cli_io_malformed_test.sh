@@ -213,6 +213,24 @@ printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty floa
 bad_mesh "ply without end_header" "nohead.ply: the header has no end_header" "$tmp/nohead.ply"
 printf 'ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 1e39\n' >"$tmp/big.ply"
 bad_mesh "ply coordinate beyond float" "big.ply: vertex 0: coordinate is infinite" "$tmp/big.ply"
+# A face index stored as the double 1e300: quoted as given, no integer conversion.
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar double vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1e300\n' >"$tmp/dindex.ply"
+bad_mesh "ply double index 1e300" "dindex.ply: face 0: vertex index 1e+300 is out of range (3 vertices)" "$tmp/dindex.ply"
+# OFF (our reader): 10^9 vertices in 25 bytes refused before allocating, under a 1 GiB address
+# space; an index 7 of 3 vertices named with its line; NaN; truncation; binary.
+printf 'OFF\n1000000000 0 0\n0 0 0\n' >"$tmp/billion.off"
+check "mesh off 10^9 vertices: exit 2 under ulimit -v 1 GiB" \
+  bash -c "ulimit -v 1048576; '$bin' info '$tmp/billion.off' 2>'$tmp/err'; test \$? -eq 2"
+check "mesh off 10^9 vertices: the message" \
+  grep -q "billion.off: line 2: the header announces 1000000000 vertices and 0 faces, more than the 6 bytes" "$tmp/err"
+printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n' >"$tmp/index.off"
+bad_mesh "off index out of range" "index.off: line 6: face 0: vertex index 7 is out of range (3 vertices)" "$tmp/index.off"
+printf 'OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n' >"$tmp/nan.off"
+bad_mesh "off NaN" "nan.off: line 4: vertex 1: coordinate is NaN" "$tmp/nan.off"
+printf 'OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' >"$tmp/short.off"
+bad_mesh "off truncated" "short.off: the file ends after 1 of 2 faces" "$tmp/short.off"
+printf 'OFF BINARY\n\0\0\0\3' >"$tmp/binary.off"
+bad_mesh "off binary" "binary.off: line 1: binary OFF" "$tmp/binary.off"
 { head -c 80 /dev/zero; printf '\x10\x27\x00\x00'; head -c 50 /dev/zero; } >"$tmp/lie.stl"
 bad_mesh "stl count lies" "lie.stl: as binary STL, the header announces 10000" "$tmp/lie.stl"
 head -c 40 /dev/zero >"$tmp/tiny.stl"

@@ -101,6 +101,31 @@ refuse "global --max-memory 0.01" "limit 0.01 GiB" --max-memory 0.01 render -o "
 for bad in 0 -1 nan inf abc 1e9; do
   refuse "render --max-memory '$bad'" --max-memory render --max-memory "$bad" -o "$o"
 done
+# Solver options: 0 iterations is no default, and without a solver they would be ignored.
+for bad in 0 -1 1001 abc 2.5; do
+  refuse "render --layers nmf --iterations '$bad'" --iterations \
+    render --layers nmf --iterations "$bad" -o "$o"
+done
+refuse "render --layers optimized-image --iterations 0" --iterations \
+  render --layers optimized-image --iterations 0 -o "$o"
+refuse "render --iterations with slits" "--iterations: applies to --layers optimized-image or nmf" \
+  render --iterations 5 -o "$o"
+refuse "render --brightness with slits" "--brightness: applies to --layers" render --brightness 2 -o "$o"
+refuse "render --layer-error with slits" "--layer-error: applies to --layers" \
+  render --layer-error linear -o "$o"
+# Settings of an option that is not given: refused (CLI11's "requires"), not ignored.
+refuse "render --adaptive-threshold without --adaptive" "--adaptive-threshold requires --adaptive" \
+  render --adaptive-threshold 5 -o "$o"
+refuse "render --video-quality without --video" "--video-quality requires --video" \
+  render --video-quality 10 -o "$o"
+refuse "render --video-codec without --video" "--video-codec requires --video" \
+  render --video-codec h265 -o "$o"
+refuse "simulate --fps without --video" "--fps requires --video" \
+  simulate "$tmp/set" --sweep 3 --fps 10 -o "$o"
+for opt in "--depth-range 1:2" "--depth-convention depth" "--rgbd-edges layered" "--rgbd-fov 60"; do
+  # shellcheck disable=SC2086
+  refuse "render $opt without --rgbd" "${opt%% *} requires --rgbd" render $opt -o "$o"
+done
 
 # ---- simulate --------------------------------------------------------------------------------
 for bad in 2 -4 abc nan; do
@@ -149,6 +174,16 @@ refuse "simulate --eye behind" --eye simulate "$tmp/set" --eye 0,0,-1 -o "$o.png
 # --reference reads the scene before it writes a picture.
 refuse "simulate --reference with a missing scene" nope.json \
   simulate "$tmp/set" --reference --eye 0,0,600 --scene "$tmp/nope.json" -o "$o.png"
+# The dense measure's inputs without it: refused, not ignored.
+refuse "simulate --compare without --reference" \
+  "--compare: scores other renders in the dense measure: needs --reference" \
+  simulate "$tmp/set" --compare "$tmp/set" -o "$o.png"
+refuse "simulate --compare with --eye" --compare \
+  simulate "$tmp/set" --reference --eye 0,0,600 --compare "$tmp/set" -o "$o.png"
+refuse "simulate --compare with --sweep" --compare \
+  simulate "$tmp/set" --reference --sweep 3 --compare "$tmp/set" -o "$o"
+refuse "simulate --scene without --reference" "--scene: is the scene --reference" \
+  simulate "$tmp/set" --scene "$tmp/nope.json" -o "$o.png"
 
 # ---- lightfield ------------------------------------------------------------------------------
 for bad in nan inf abc; do

@@ -194,15 +194,17 @@ void addSamplingOptions(CLI::App& cmd, SamplingRequest& options, const std::stri
                  "or packet (shared)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "pixel", "packet"}));
-  cmd.add_flag("--adaptive", options.adaptive,
-               "Adaptive sampling: --spp becomes a cap; a pixel stops after a stratified group "
-               "of samples once its mean is certain (from the spread of its groups' means) and "
-               "its neighbours agree (docs/display-geometry.md, \"Adaptive sampling\")");
+  CLI::Option* adaptive =
+      cmd.add_flag("--adaptive", options.adaptive,
+                   "Adaptive sampling: --spp becomes a cap; a pixel stops after a stratified group "
+                   "of samples once its mean is certain (from the spread of its groups' means) and "
+                   "its neighbours agree (docs/display-geometry.md, \"Adaptive sampling\")");
   cmd.add_option("--adaptive-threshold", options.adaptiveThreshold,
                  "With --adaptive: the standard error (in 8-bit sRGB steps of luminance) below "
                  "which a pixel stops")
       ->capture_default_str()
-      ->check(realIn(0.0, 255.0));
+      ->check(realIn(0.0, 255.0))
+      ->needs(adaptive);  // refused, not ignored, without it
   cmd.add_option("--bounces", options.bounces,
                  "Diffuse bounces of path tracing with next-event estimation (0: direct light "
                  "only; docs/path-tracing.md)")
@@ -327,22 +329,27 @@ void addSequenceOptions(CLI::App& cmd, SequenceRequest& options, const std::stri
 }
 
 void addVideoOptions(CLI::App& cmd, VideoRequest& o, const std::string& frames, bool withFps) {
-  cmd.add_option("--video", o.file,
-                 "Also write " + frames +
-                     " as a video: .mp4 (H.264; H.265 above 4096 a side), .webm (VP9) or .mkv "
-                     "(docs/video.md)")
-      ->type_name("FILE");
+  CLI::Option* video =
+      cmd.add_option("--video", o.file,
+                     "Also write " + frames +
+                         " as a video: .mp4 (H.264; H.265 above 4096 a side), .webm (VP9) or .mkv "
+                         "(docs/video.md)")
+          ->type_name("FILE");
+  // The video's own settings are refused, not ignored, without it.
   cmd.add_option("--video-codec", o.codec, "Codec of --video: auto, h264, h265 or vp9")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(video);
   cmd.add_option("--video-quality", o.quality,
                  "Constant quality (CRF) of --video, lower is better: 0 to 51 for h264 and h265 "
                  "(18: visually lossless), 0 to 63 for vp9")
       ->capture_default_str()
-      ->check(integerIn(0, 63));
+      ->check(integerIn(0, 63))
+      ->needs(video);
   if (!withFps) return;
   cmd.add_option("--fps", o.fps, "Frames per second of --video, above 0 and at most 240")
       ->capture_default_str()
-      ->check(realIn(0, 240, Bound::Open));
+      ->check(realIn(0, 240, Bound::Open))
+      ->needs(video);
 }
 
 CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdRequest& options) {
@@ -352,28 +359,33 @@ CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdRequest& options) {
                      "map (8- or 16-bit PNG) of the same size (docs/rgbd.md)")
           ->expected(2)
           ->type_name("COLOUR DEPTH");
+  // Its settings are refused, not ignored, without it.
   cmd.add_option("--depth-convention", options.convention,
                  "With --rgbd: how the depth map's values give distance: disparity (bright = "
                  "near, linear in 1/distance: MiDaS, Depth-Anything), depth (bright = far, "
                  "linear), inverse (bright = near, linear)")
       ->type_name("disparity|depth|inverse")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(rgbd);
   cmd.add_option("--depth-range", options.range,
                  "With --rgbd: the distances of the nearest and farthest values, in scene units; "
                  "only their ratio shapes the picture (the framing scales it to the display)")
       ->type_name("NEAR:FAR")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(rgbd);
   cmd.add_option("--rgbd-edges", options.edges,
                  "With --rgbd: at depth jumps, stretch (one sheet, rubber sheets across the "
                  "jumps) or layered (cut at jumps, a background sheet extended from the far side "
                  "fills them)")
       ->type_name("stretch|layered")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(rgbd);
   cmd.add_option("--rgbd-fov", options.fovDegrees,
                  "With --rgbd: the photo's horizontal field of view in degrees")
       ->check(realIn(1.0, 170.0))
       ->type_name("DEGREES")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(rgbd);
   return rgbd;
 }
 

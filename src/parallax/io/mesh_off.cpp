@@ -199,9 +199,10 @@ class OffParser {
         vertexColors_[v] = color(tokens, k, where);
         k += colors;
       }
-      if (prefixes_.uv)
-        for (int a = 0; a < 2; ++a)
-          part.uvs[v][a] = float(number(tokens[k++], where, "texture coordinate"));
+      if (prefixes_.uv) {
+        part.uvs[v].x = float(number(tokens[k], where, "texture coordinate"));
+        part.uvs[v].y = float(number(tokens[k + 1], where, "texture coordinate"));
+      }
     }
   }
 

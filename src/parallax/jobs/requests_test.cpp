@@ -49,6 +49,22 @@ TEST(Requests, ChecksNameTheirFields) {
   EXPECT_EQ(fieldOf([&] { layers.check(); }), "layer_error");
   layers.error = "", layers.trainEyes = 0;
   EXPECT_EQ(fieldOf([&] { layers.check(); }), "train_eyes");
+  // 0 iterations is no default (a solver runs at least once); the solver's settings without a
+  // solver are refused, not ignored.
+  layers.trainEyes = 2, layers.iterations = 0;
+  EXPECT_EQ(fieldOf([&] { layers.check(); }), "iterations");
+  layers.iterations = 1001;
+  EXPECT_EQ(fieldOf([&] { layers.check(); }), "iterations");
+  layers.iterations = 1;
+  EXPECT_NO_THROW(layers.check());
+  layers.method = "slits";
+  EXPECT_EQ(fieldOf([&] { layers.check(); }), "iterations");
+  layers.iterations.reset(), layers.brightness = 2;
+  EXPECT_EQ(fieldOf([&] { layers.check(); }), "brightness");
+  layers.brightness = 0, layers.error = "linear";
+  EXPECT_EQ(fieldOf([&] { layers.check(); }), "layer_error");
+  layers.error = "";
+  EXPECT_NO_THROW(layers.check());
   RgbdRequest rgbd;
   rgbd.range = "3:1";
   EXPECT_EQ(fieldOf([&] { rgbd.options(); }), "depth_range");

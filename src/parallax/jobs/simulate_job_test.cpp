@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "parallax/core/error.h"
@@ -191,6 +192,42 @@ TEST(SimulationWork, TimeEstimateNamesTheField) {
   EXPECT_EQ(refusedField([&] { checkSimulationWork(*display, {}, r, 1, 0, 1 << 30); }),
             "reference_spp");
   limits() = saved;
+}
+
+// Layers no panel shows are refused naming the layer and the first bad pixel; an image layer
+// above 1 (a linear layer's highlights) and a mask of exactly 0 and 1 are taken.
+TEST(SimulationWork, LayerValuesAreChecked) {
+  const auto layers = [](float image, float mask) {
+    LayerImages l{Image(4, 3, Vec3f(0.5f)), Image(4, 3, Vec3f(1.0f))};
+    l.image.at(2, 1).y = image;
+    l.mask.at(3, 2).z = mask;
+    return l;
+  };
+  const auto message = [&](float image, float mask) -> std::string {
+    try {
+      checkLayerValues(layers(image, mask));
+    } catch (const RequestError& e) {
+      return e.field() + ": " + e.what();
+    }
+    return "";
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(refusedField([&] { checkLayerValues(layers(nan, 1)); }), "image");
+  EXPECT_NE(message(nan, 1).find("pixel (2, 1) channel 1 is NaN"), std::string::npos)
+      << message(nan, 1);
+  EXPECT_NE(message(inf, 1).find("is infinite"), std::string::npos);
+  EXPECT_NE(message(-0.25f, 1).find("is -0.25"), std::string::npos);
+  EXPECT_EQ(refusedField([&] { checkLayerValues(layers(0.5f, -1)); }), "mask");
+  EXPECT_NE(message(0.5f, 1.5f).find("pixel (3, 2) channel 2 is 1.5: a transmittance"),
+            std::string::npos)
+      << message(0.5f, 1.5f);
+  EXPECT_EQ(refusedField([&] { checkLayerValues(layers(0.5f, nan)); }), "mask");
+  EXPECT_EQ(message(7.0f, 0.0f), "");
+  EXPECT_EQ(message(0.0f, 1.0f), "");
+  // checkSimulationWork, which every simulate path runs, checks them.
+  EXPECT_EQ(refusedField([&] { checkSimulationWork(*barrier(), layers(nan, 1), {}, 1); }),
+            "image");
 }
 
 TEST(Quality, RefusesReferenceSppBelowOne) {

@@ -29,8 +29,11 @@ jobs::SamplingRequest sampling(const py::kwargs& kw) {
   if (kw.contains("jitter")) s.jitter = kw["jitter"].cast<std::string>();
   if (kw.contains("bounces")) s.bounces = kw["bounces"].cast<int>();
   if (kw.contains("adaptive")) s.adaptive = kw["adaptive"].cast<bool>();
-  if (kw.contains("adaptive_threshold"))
+  if (kw.contains("adaptive_threshold") && !kw["adaptive_threshold"].is_none()) {
+    // As the command line's --adaptive-threshold needs --adaptive: refused, not ignored.
+    if (!s.adaptive) throw RequestError("adaptive_threshold", "applies with adaptive=True");
     s.adaptiveThreshold = kw["adaptive_threshold"].cast<double>();
+  }
   return s;
 }
 

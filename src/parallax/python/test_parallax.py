@@ -379,6 +379,30 @@ def test_bad_arrays_and_keywords_are_refused(layers, small):
         parallax.simulate(layers.image, layers.mask, small, eye=EYE, pupill=3)
 
 
+def test_nonsense_layers_and_solver_settings_are_refused(scene, layers, small):
+    # Layers no panel shows: NaN, infinite or negative light, a transmittance above 1; each
+    # names the argument and the first bad pixel (jobs::checkLayerValues, also the CLI's).
+    image = layers.image.copy()
+    image[0, 3, 1] = np.nan
+    with pytest.raises(parallax.Error, match=r"^image: pixel \(3, 0\) channel 1 is NaN"):
+        parallax.simulate(image, layers.mask, small, eye=EYE)
+    with pytest.raises(parallax.Error, match=r"^image: .* is infinite"):
+        parallax.simulate(np.full_like(layers.image, np.inf), layers.mask, small, eye=EYE)
+    with pytest.raises(parallax.Error, match=r"^mask: pixel \(0, 0\) channel 0 is -0.5"):
+        parallax.simulate(layers.image, np.full_like(layers.mask, -0.5), small, eye=EYE)
+    with pytest.raises(parallax.Error, match=r"^mask: .* is 2: a transmittance is from 0 to 1"):
+        parallax.simulate(layers.image, np.full_like(layers.mask, 2.0), small, eye=EYE)
+    with pytest.raises(parallax.Error, match=r"^image: .* is -1"):
+        parallax.quality(scene, small, -np.ones_like(layers.image), layers.mask, eyes=[EYE])
+    # An image layer above 1 (a linear layer's highlights) is taken.
+    assert np.isfinite(parallax.simulate(layers.image * 2, layers.mask, small, eye=EYE)).all()
+    # 0 iterations is no default; solver settings without a solver are not ignored.
+    with pytest.raises(parallax.Error, match="^iterations: must be between 1 and 1000"):
+        parallax.render(scene, small, spp=1, layers="nmf", iterations=0)
+    with pytest.raises(parallax.Error, match="^iterations: applies to layers optimized-image or nmf"):
+        parallax.render(scene, small, spp=1, iterations=5)
+
+
 def test_other_threads_run_while_rendering(scene):
     def render_beside_a_counter(spp):
         ticks = []
