@@ -2,7 +2,7 @@
 # Malformed and nonsense input files, end to end: every case must exit 2 with exactly one line
 # on stderr that names the file (and the JSON key or element), and write no output file.
 # Usage: cli_io_malformed_test.sh PARALLAX_BINARY SOURCE_DIR
-# 173 cases (each `bad`, `bad_scene`, `bad_display` or `bad_mesh` call is one case: exit 2, one
+# 178 cases (each `bad`, `bad_scene`, `bad_display` or `bad_mesh` call is one case: exit 2, one
 # line on stderr naming the file and key, no output file); the script prints the count it ran.
 set -u
 source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
@@ -357,5 +357,5 @@ bad "visual.json FIFO" "visual-fifo.json: not a regular file (a named pipe (FIFO
 bad "visual.json folder" "folder.json: is a folder, not a file" "$tmp/lr" lenticular render "$tmp/folder.json" -o "$tmp/lr"
 
 echo "$cases cases"
-check "all 173 cases ran" test "$cases" -eq 173
+check "all 178 cases ran" test "$cases" -eq 178
 cli_summary

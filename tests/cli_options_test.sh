@@ -3,7 +3,7 @@
 # refused with the memory estimate, the time estimate, --max-memory, CLI11's own errors as one
 # line, and output sets that are replaced whole or not at all.
 # Usage: cli_options_test.sh PARALLAX_BINARY SOURCE_DIR
-# CASES: 255 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
+# CASES: 275 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
 # output written) and 20 further cases (help, limits that let work run, output sets, the
 # import record).
 set -u
