@@ -3,7 +3,7 @@
 # refused with the memory estimate, the time estimate, --max-memory, CLI11's own errors as one
 # line, and output sets that are replaced whole or not at all.
 # Usage: cli_options_test.sh PARALLAX_BINARY SOURCE_DIR
-# CASES: 275 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
+# CASES: 286 refusals (each: exit 2, exactly one stderr line "error: ..." naming the option, no
 # output written) and 20 further cases (help, limits that let work run, output sets, the
 # import record).
 set -u
@@ -84,6 +84,17 @@ refuse "view --size 20000x20000 under 1 GiB" "--size 20000x20000" \
 check "20000x20000: GiB and limit" grep -q "GiB.*limit" "$tmp/err"
 refuse "view --eye garbage" --eye view --eye 1,2,nan -o "$o.png"
 refuse "view --display-eye behind" --display-eye view --display-eye 0,0,-5 -o "$o.png"
+# The pinhole camera and the ideal window view do not mix; eye on look-at names --look-at.
+refuse "view --fov with --display-eye" "--fov: places the pinhole camera: not with --display-eye" \
+  view --display-eye 0,0,600 --fov 40 -o "$o.png"
+refuse "view --eye with --display-eye" "--eye: places the pinhole camera" \
+  view --display-eye 0,0,600 --eye 0,0,5 -o "$o.png"
+refuse "view --display without --display-eye" "--display: is the display of --display-eye" \
+  view --display "$tmp/small.json" -o "$o.png"
+refuse "view --focus without --display-eye" "frames the scene for --display-eye" \
+  view --focus 5 -o "$o.png"
+refuse "view --eye on --look-at" "--look-at: the camera would look at its own position" \
+  view --eye 0,0,5 --look-at 0,0,5 -o "$o.png"
 
 # ---- render ----------------------------------------------------------------------------------
 for bad in 0x4 ax4 4 -1x2; do
@@ -184,6 +195,17 @@ refuse "simulate --compare with --sweep" --compare \
   simulate "$tmp/set" --reference --sweep 3 --compare "$tmp/set" -o "$o"
 refuse "simulate --scene without --reference" "--scene: is the scene --reference" \
   simulate "$tmp/set" --scene "$tmp/nope.json" -o "$o.png"
+for opt in "--reference-spp 4" "--eyes-per-view 3" "--distances 1"; do
+  # shellcheck disable=SC2086
+  refuse "simulate $opt without --reference" "${opt%% *} requires --reference" \
+    simulate "$tmp/set" $opt -o "$o.png"
+done
+refuse "simulate --pupil-samples without --pupil" "--pupil-samples requires --pupil" \
+  simulate "$tmp/set" --pupil-samples 4 -o "$o.png"
+refuse "simulate --sweep-range without --sweep" "--sweep-range requires --sweep" \
+  simulate "$tmp/set" --sweep-range 2 -o "$o.png"
+refuse "simulate --sweep-distance without --sweep" "--sweep-distance requires --sweep" \
+  simulate "$tmp/set" --sweep-distance 500 -o "$o.png"
 
 # ---- lightfield ------------------------------------------------------------------------------
 for bad in nan inf abc; do

@@ -68,11 +68,14 @@ void registerSimulateCommand(CLI::App& cli) {
                   "mask between design eyes)")
       ->capture_default_str()
       ->check(squareCount(true));
-  cmd->add_option("--pupil", r.simulator.pupil, "Pupil diameter in mm, 0 (a pinhole eye) to 100")
-      ->check(realIn(0, 100));
+  CLI::Option* pupil = cmd->add_option("--pupil", r.simulator.pupil,
+                                       "Pupil diameter in mm, 0 (a pinhole eye) to 100")
+                           ->check(realIn(0, 100));
+  // Settings of an option that is not given: refused (CLI11's "requires"), not ignored.
   cmd->add_option("--pupil-samples", r.simulator.pupilSamples, "Points averaged over the pupil")
       ->capture_default_str()
-      ->check(integerIn(1, INT_MAX));
+      ->check(integerIn(1, INT_MAX))
+      ->needs(pupil);
   cmd->add_option("--diffuser", r.simulator.diffuser,
                   "Blur of the rear layer by a diffuser foil, Gaussian sigma in mm (0 to the "
                   "display's width)")
@@ -84,29 +87,35 @@ void registerSimulateCommand(CLI::App& cli) {
   cmd->add_flag("--raw-pixels", r.simulator.rawPixels,
                 "Write the pinhole eye's samples unfiltered (default: integrated over one "
                 "screen period, as a viewer at the design distance perceives them)");
-  cmd->add_option("--sweep", r.sweep.count,
-                  "Move the eye across the view zone in N steps: contact sheet, APNG, HTML")
-      ->check(integerIn(0, INT_MAX));
+  CLI::Option* sweep =
+      cmd->add_option("--sweep", r.sweep.count,
+                      "Move the eye across the view zone in N steps: contact sheet, APNG, HTML")
+          ->check(integerIn(0, INT_MAX));
   cmd->add_option("--sweep-range", r.sweep.range,
                   "Sweep width in view-zone widths, above 0 and at most 10 (> 1 goes beyond the "
                   "zone)")
       ->capture_default_str()
-      ->check(realIn(0, 10, Bound::Open));
+      ->check(realIn(0, 10, Bound::Open))
+      ->needs(sweep);
   cmd->add_option("--sweep-distance", r.sweep.distance,
                   "Eye distance of the sweep in mm, above 0 and at most 100 D (default D)")
-      ->check(realIn(0, kInfinity, Bound::Open));
-  cmd->add_flag("--reference", r.reference,
-                "Quality figures against the ideal view: PSNR, SSIM, brightness, cross-talk at "
-                "the --eye positions; without --eye, the dense measure over the view zone "
-                "(--eyes-per-view, --distances): mean, worst eye, flicker");
+      ->check(realIn(0, kInfinity, Bound::Open))
+      ->needs(sweep);
+  CLI::Option* reference =
+      cmd->add_flag("--reference", r.reference,
+                    "Quality figures against the ideal view: PSNR, SSIM, brightness, cross-talk at "
+                    "the --eye positions; without --eye, the dense measure over the view zone "
+                    "(--eyes-per-view, --distances): mean, worst eye, flicker");
   cmd->add_option("--scene", r.scene, "Scene for --reference (default: from render.json)");
   cmd->add_option("--reference-spp", r.referenceSpp, "Samples per pixel of the ideal view")
       ->capture_default_str()
-      ->check(integerIn(1, INT_MAX));
+      ->check(integerIn(1, INT_MAX))
+      ->needs(reference);
   cmd->add_option("--eyes-per-view", r.eyesPerView,
                   "With --reference and no --eye: eyes evenly inside every view's window "
                   "(the dense measure)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(reference);
   cmd->add_option("--compare", r.compare,
                   "With the dense measure: another render folder of the same scene and display, "
                   "scored at the same eyes against the same ideal views; repeatable")
@@ -114,7 +123,8 @@ void registerSimulateCommand(CLI::App& cli) {
   cmd->add_option("--distances", r.distances,
                   "With --reference and no --eye: eye distances of the dense measure, in units "
                   "of the design distance D")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(reference);
   cmd->add_option("--threads", r.simulator.threads, "Worker threads (0: all cores)")
       ->check(threadCount());
   // As many frames a second as the sweep's APNG (250 ms a frame).

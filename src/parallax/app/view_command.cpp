@@ -36,11 +36,11 @@ void runView(ViewOptions o) {
   if (!o.displayEye.empty()) {
     const Vec3f eye = parseVec3("--display-eye", o.displayEye);
     r.displayEye = Vec3d{eye.x, eye.y, eye.z};
-  } else {
-    if (!o.eye.empty()) r.eye = parseVec3("--eye", o.eye);
-    if (!o.lookAt.empty()) r.lookAt = parseVec3("--look-at", o.lookAt);
-    if (!o.up.empty()) r.up = parseVec3("--up", o.up);
   }
+  // Given with --display-eye too, so that the request refuses the mix (jobs::viewCamera).
+  if (!o.eye.empty()) r.eye = parseVec3("--eye", o.eye);
+  if (!o.lookAt.empty()) r.lookAt = parseVec3("--look-at", o.lookAt);
+  if (!o.up.empty()) r.up = parseVec3("--up", o.up);
   jobs::runView(r, cliReporter());
 }
 

@@ -226,8 +226,7 @@ TEST(SimulationWork, LayerValuesAreChecked) {
   EXPECT_EQ(message(7.0f, 0.0f), "");
   EXPECT_EQ(message(0.0f, 1.0f), "");
   // checkSimulationWork, which every simulate path runs, checks them.
-  EXPECT_EQ(refusedField([&] { checkSimulationWork(*barrier(), layers(nan, 1), {}, 1); }),
-            "image");
+  EXPECT_EQ(refusedField([&] { checkSimulationWork(*barrier(), layers(nan, 1), {}, 1); }), "image");
 }
 
 TEST(Quality, RefusesReferenceSppBelowOne) {

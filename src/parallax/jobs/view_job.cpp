@@ -42,6 +42,18 @@ std::unique_ptr<Camera> displayEyeCamera(const ViewRequest& r, const Scene& scen
 }  // namespace
 
 std::unique_ptr<Camera> viewCamera(const ViewRequest& r, const Scene& scene, Reporter& reporter) {
+  // The two cameras' settings do not mix: refused, not ignored.
+  if (r.displayEye && (r.eye || r.lookAt || r.up || r.fov))
+    throw RequestError(r.eye      ? "eye"
+                       : r.lookAt ? "look_at"
+                       : r.up     ? "up"
+                                  : "fov",
+                       "places the pinhole camera: not with {display_eye}, whose view looks "
+                       "through the display's window");
+  if (!r.displayEye && (!r.display.empty() || r.loaded))
+    throw RequestError("display", "is the display of {display_eye}: add {display_eye}");
+  if (!r.displayEye && r.framing.given())
+    throw RequestError("framing", "frames the scene for {display_eye}: add {display_eye}");
   if (r.displayEye) return displayEyeCamera(r, scene, reporter);
   CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
   if (r.eye) spec.eye = *r.eye;
@@ -52,6 +64,9 @@ std::unique_ptr<Camera> viewCamera(const ViewRequest& r, const Scene& scene, Rep
       throw RequestError("fov", "must be a number above 0 and below 180");
     spec.fovDegrees = *r.fov;
   }
+  if (spec.lookAt == spec.eye)
+    throw RequestError(r.lookAt ? "look_at" : "eye",
+                       "the camera would look at its own position (eye and look-at coincide)");
   if (length(cross(spec.lookAt - spec.eye, spec.up)) == 0.0f)
     throw RequestError("up", "must not be parallel to the view direction");
   return std::make_unique<PinholeCamera>(spec.eye, spec.lookAt, spec.up, spec.fovDegrees,

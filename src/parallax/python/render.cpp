@@ -189,18 +189,16 @@ py::array_t<float> view(const Scene& scene, const std::optional<DisplayDescripti
       throw RequestError("size", "expected (width, height), both positive");
     r.width = (*size)[0], r.height = (*size)[1];
   }
-  if (displayEye) {
-    r.displayEye = Vec3d{(*displayEye)[0], (*displayEye)[1], (*displayEye)[2]};
-    if (display) r.loaded = *display;
-    const auto text = [&](const char* key, std::string& to) {
-      if (kw.contains(key) && !kw[key].is_none()) to = py::str(kw[key]).cast<std::string>();
-    };
-    text("fit", r.framing.fit);
-    text("focus", r.framing.focus);
-    text("depth_budget", r.framing.depthBudget);
-  } else {
-    r.eye = vec3(eye), r.lookAt = vec3(lookAt), r.up = vec3(up), r.fov = fov;
-  }
+  // Everything given goes into the request, which refuses a mix of the two cameras.
+  if (displayEye) r.displayEye = Vec3d{(*displayEye)[0], (*displayEye)[1], (*displayEye)[2]};
+  if (display) r.loaded = *display;
+  const auto text = [&](const char* key, std::string& to) {
+    if (kw.contains(key) && !kw[key].is_none()) to = py::str(kw[key]).cast<std::string>();
+  };
+  text("fit", r.framing.fit);
+  text("focus", r.framing.focus);
+  text("depth_budget", r.framing.depthBudget);
+  r.eye = vec3(eye), r.lookAt = vec3(lookAt), r.up = vec3(up), r.fov = fov;
   Image image;
   {
     py::gil_scoped_release released;
