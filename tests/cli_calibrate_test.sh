@@ -85,7 +85,12 @@ check "render wrote the mask" is_png "$tmp/render/mask.png"
 
 check "periods that break G1 exit 2" run 2 calibrate apply --screen-period 9 --slit-period 8.9 \
   -o "$tmp/cal/bad.json"
-check "the error names the key" one_line_naming "/slit_period_px"
+check "the error names the option" one_line_naming "--slit-period: G1 needs"
+check "a slit period beyond a panel exits 2" run 2 calibrate apply --screen-period 9 \
+  --slit-period 100000 -o "$tmp/cal/bad.json"
+check "the error names the option, not the file key" one_line_naming "--slit-period: must be above 0"
+check "a reversed predict range exits 2" run 2 calibrate predict --from 11 --to 10 --json
+check "the error names --to" one_line_naming "--to: must not be below --from"
 check "a zero gap exits 2" run 2 calibrate apply --screen-period 9 --slit-period 9.04 --gap 0 \
   -o "$tmp/cal/bad.json"
 check "the error names the gap" one_line_naming "--gap"

@@ -222,9 +222,28 @@ DisplayDesign appliedCalibration(const CalibrationApplyRequest& r, Reporter&) {
   if (r.gapMm) base.gapMm = *r.gapMm;
   // The phase measured from the view-zone centre is the panels' sideways misalignment: it
   // moves the drawn mask (panel_offset_px), not the apertures the rays are traced through.
-  DisplaySpec spec = measuredDisplaySpec(base, r.screenPeriodPx, r.slitPeriodPx, base.mask.phasePx);
-  if (r.phasePx) spec.mask.panelOffsetPx = *r.phasePx;
-  return designDisplay(spec, file.camera);
+  try {
+    DisplaySpec spec =
+        measuredDisplaySpec(base, r.screenPeriodPx, r.slitPeriodPx, base.mask.phasePx);
+    if (r.phasePx) spec.mask.panelOffsetPx = *r.phasePx;
+    return designDisplay(spec, file.camera);
+  } catch (const InputError& e) {
+    // The keys of the display this request made that are the request's own fields: the
+    // refusal names the option (--slit-period), not the file key (/slit_period_px).
+    static const std::pair<const char*, const char*> kFields[] = {
+        {"/screen_period_px", "screen_period"},
+        {"/slit_period_px", "slit_period"},
+        {"/gap_mm", "gap"},
+        {"/mask/panel_offset_px", "phase"}};
+    const std::string prefix = e.file() + ": " + e.path() + ": ";
+    const std::string text = e.what();
+    if (e.file() != RequestError::kRequestSource || dynamic_cast<const RequestError*>(&e) ||
+        text.rfind(prefix, 0) != 0)
+      throw;
+    for (const auto& [key, field] : kFields)
+      if (e.path() == key) throw RequestError(field, text.substr(prefix.size()));
+    throw;
+  }
 }
 
 void runCalibrationApply(const CalibrationApplyRequest& r, Reporter& reporter) {

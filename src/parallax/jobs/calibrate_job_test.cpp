@@ -103,9 +103,17 @@ TEST(CalibrationApply, TheMeasuredPeriodsMakeTheDisplay) {
   try {
     appliedCalibration(r, silentReporter());
     ADD_FAILURE() << "periods that break G1";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), RequestError::kRequestSource);
-    EXPECT_EQ(e.path(), "/slit_period_px");
+  } catch (const RequestError& e) {
+    // The field the option sets, not the key of the display file it makes.
+    EXPECT_EQ(e.field(), "slit_period");
+    EXPECT_EQ(e.message().rfind("G1 needs", 0), 0u) << e.message();
+  }
+  r.slitPeriodPx = 9.0347, r.gapMm = 2000;
+  try {
+    appliedCalibration(r, silentReporter());
+    ADD_FAILURE() << "a gap of 2 m";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.field(), "gap");
   }
 }
 

@@ -431,6 +431,10 @@ CalibrationPrediction predictCalibration(const DisplaySpec& assumed, const Displ
     throw optionError("from_px", "give both ends of the period range (from_px and to_px)");
   p.fromPx = settings.fromPx != 0 ? settings.fromPx : txMask + 0.25 * delta;
   p.toPx = settings.toPx != 0 ? settings.toPx : txMask + 2.0 * delta;
+  // A range given reversed is refused, as the patterns' sweep refuses it; the default one
+  // runs from a quarter to twice the design's offset, which is negative for a barrier in front.
+  if (settings.fromPx != 0 && !(settings.fromPx <= settings.toPx))
+    throw optionError("to_px", "must not be below from_px");
   if (p.fromPx > p.toPx) std::swap(p.fromPx, p.toPx);
   checkSlitPeriod(assumed, tx, p.fromPx, "from_px");
   checkSlitPeriod(assumed, tx, p.toPx, "to_px");
