@@ -1,5 +1,7 @@
 #include "parallax/jobs/display_factory.h"
 
+#include <cmath>
+
 #include "parallax/core/error.h"
 #include "parallax/io/lenticular_file.h"
 
@@ -9,7 +11,7 @@ namespace {
 
 DisplayDesign barrierDesign(const DisplayDescription& description,
                             const DisplayCameraRequest& camera) {
-  if (camera.viewDistanceMm > 0)
+  if (camera.viewDistanceMm != 0)  // NaN too
     throw RequestError("distance",
                        "applies to lenticular displays; a barrier's view distance is its "
                        "design's (view_distance_mm in the display file)");
@@ -24,6 +26,8 @@ LenticularDesign lenticularDesign(const DisplayDescription& description,
     throw RequestError("subpixels",
                        "applies to barrier displays; a lenticular render always traces one ray "
                        "per subpixel");
+  if (!(camera.viewDistanceMm >= 0 && std::isfinite(camera.viewDistanceMm)))
+    throw RequestError("distance", "must be 0 (the calibration's own) or a distance in mm");
   return designLenticular(description.lenticular, camera.viewDistanceMm);
 }
 

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <thread>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/cluster/process_group.h"
@@ -34,8 +35,20 @@ bool parseNumber(const std::string& text, double& value) {
 
 }  // namespace
 
+void checkThreads(int threads) {
+  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+  if (threads < 0 || threads > cores)
+    throw RequestError(
+        "threads",
+        "must be 0 (all cores) to " + std::to_string(cores) + " (this machine's hardware threads)",
+        std::to_string(threads));
+}
+
 RenderSettings SamplingRequest::settings() const {
   if (spp < 1) throw RequestError("spp", "must be at least 1");
+  checkThreads(threads);
+  if (!(adaptiveThreshold >= 0 && adaptiveThreshold <= 255))
+    throw RequestError("adaptive_threshold", "must be a number from 0 to 255");
   RenderSettings s;
   s.samplesPerPixel = spp;
   s.threads = threads;

@@ -24,6 +24,10 @@ namespace parallax::jobs {
 // "parallax 0.1.0 (Embree 4.3.3)": this build's version and the Embree it runs on.
 std::string versionText();
 
+// Refuses a worker-thread count below 0 (0: all cores) or above this machine's hardware
+// threads, as the command line's validator does (Python's threads= reaches only this).
+void checkThreads(int threads);
+
 // spp, threads, seed, jitter, adaptive, adaptive_threshold, bounces.
 struct SamplingRequest {
   int spp = 16;
@@ -33,8 +37,8 @@ struct SamplingRequest {
   bool adaptive = false;
   int bounces = 0;  // diffuse path-tracing bounces (RenderSettings::bounces)
   double adaptiveThreshold = RenderSettings{}.adaptiveThreshold * 255.0;  // in 8-bit steps
-  // The render settings; throws RequestError naming spp (below 1), jitter (not auto, pixel or
-  // packet) or bounces.
+  // The render settings; throws RequestError naming spp (below 1), threads, jitter (not auto,
+  // pixel or packet), adaptive_threshold (outside 0 to 255) or bounces.
   RenderSettings settings() const;
   // Refuses spp when width x height x spp x `passes` samples exceed the time limit.
   void checkWork(double width, double height, double passes = 1.0) const;

@@ -1,6 +1,7 @@
 // The shared requests (jobs/requests.h): every check names the request's field.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <string>
 
@@ -32,6 +33,14 @@ TEST(Requests, ChecksNameTheirFields) {
   EXPECT_EQ(fieldOf([&] { sampling.settings(); }), "jitter");
   sampling.jitter = "auto", sampling.bounces = -1;
   EXPECT_EQ(fieldOf([&] { sampling.settings(); }), "bounces");
+  sampling.bounces = 0, sampling.threads = 1 << 20;  // more than any machine's threads
+  EXPECT_EQ(fieldOf([&] { sampling.settings(); }), "threads");
+  sampling.threads = -1;
+  EXPECT_EQ(fieldOf([&] { sampling.settings(); }), "threads");
+  sampling.threads = 0, sampling.adaptiveThreshold = std::nan("");
+  EXPECT_EQ(fieldOf([&] { sampling.settings(); }), "adaptive_threshold");
+  sampling.adaptiveThreshold = 2;
+  EXPECT_NO_THROW(sampling.settings());
   FilterRequest filter;
   filter.kind = "blur";
   EXPECT_EQ(fieldOf([&] { filter.filter(); }), "filter");

@@ -16,12 +16,18 @@
 
 namespace parallax::jobs {
 
+namespace {
+// An eye farther than this from the display (1 km) sees nothing a simulation could show.
+constexpr double kMaxEyeMm = 1e6;
+}  // namespace
+
 SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayModel& display) {
   const int root = int(std::lround(std::sqrt(double(std::max(r.spp, 0)))));
   if (r.spp < 0 || root * root != r.spp)
     throw RequestError("spp", "must be 0 or a square number n*n");
   if (!(r.pupil >= 0 && r.pupil <= 100))
     throw RequestError("pupil", "must be a number from 0 to 100");
+  checkThreads(r.threads);
   if (r.pupilSamples < 1)
     throw RequestError("pupil_samples", "must be a whole number of at least 1");
   if (!(r.diffuser >= 0 && std::isfinite(r.diffuser)))
@@ -91,6 +97,10 @@ std::vector<Vec3d> simulatedEyes(const DisplayModel& display, const std::vector<
                                  const SweepRequest& sweep) {
   std::vector<Vec3d> eyes;
   for (const Vec3d& e : given) {
+    // Finite and within a kilometre: a NaN would otherwise pass as "in front" and reach the
+    // simulator, 1e300 mm gave a picture of nothing.
+    if (!(std::abs(e.x) <= kMaxEyeMm && std::abs(e.y) <= kMaxEyeMm && e.z <= kMaxEyeMm))
+      throw RequestError("eye", "must be finite and within 1e6 mm (1 km) of the display");
     if (!(e.z > 0)) throw RequestError("eye", "the eye must be in front (z > 0)");
     eyes.push_back(e);
   }

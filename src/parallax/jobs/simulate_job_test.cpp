@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
@@ -139,6 +140,14 @@ TEST(Sweep, ChecksNameTheirFields) {
   EXPECT_EQ(field({3, 11.0, 0.0}), "sweep_range");
   EXPECT_EQ(field({3, 1.0, -5.0}), "sweep_distance");
   EXPECT_EQ(field({3, 1.0, 1e9}), "sweep_distance");
+}
+
+TEST(SimulatedEyes, NonFiniteAndFarEyesAreRefused) {
+  const BuiltDisplay display = barrier();
+  for (const Vec3d& e : {Vec3d{std::nan(""), 0, 600}, Vec3d{1e300, 0, 600},
+                         Vec3d{0, 0, std::numeric_limits<double>::infinity()}, Vec3d{0, 0, 2e6}})
+    EXPECT_EQ(refusedField([&] { simulatedEyes(*display, {e}); }), "eye");
+  EXPECT_EQ(refusedField([&] { simulatedEyes(*display, {Vec3d{1e6, -1e6, 1e6}}); }), "");
 }
 
 TEST(SimulatedEyes, GivenThenSweptElseTheCentre) {

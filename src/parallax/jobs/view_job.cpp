@@ -1,6 +1,8 @@
 #include "parallax/jobs/view_job.h"
 
+#include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/camera/camera.h"
@@ -24,6 +26,8 @@ std::unique_ptr<Camera> displayEyeCamera(const ViewRequest& r, const Scene& scen
                                          Reporter& reporter) {
   const DisplayDescription description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
   const Vec3d eye = *r.displayEye;
+  if (!(std::isfinite(eye.x) && std::isfinite(eye.y) && std::isfinite(eye.z)))
+    throw RequestError("display_eye", "must be three finite numbers (display mm)");
   Scene placed;
   placed.display = scene.display;
   if (!placed.display.content) placed.display.content = scene.bounds();
@@ -55,6 +59,8 @@ std::unique_ptr<Camera> viewCamera(const ViewRequest& r, const Scene& scene, Rep
   if (!r.displayEye && r.framing.given())
     throw RequestError("framing", "frames the scene for {display_eye}: add {display_eye}");
   if (r.displayEye) return displayEyeCamera(r, scene, reporter);
+  for (const auto& [field, v] : {std::pair{"eye", r.eye}, {"look_at", r.lookAt}, {"up", r.up}})
+    if (v && !isFinite(*v)) throw RequestError(field, "must be three finite numbers");
   CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
   if (r.eye) spec.eye = *r.eye;
   if (r.lookAt) spec.lookAt = *r.lookAt;

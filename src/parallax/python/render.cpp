@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -24,7 +25,14 @@ namespace {
 jobs::SamplingRequest sampling(const py::kwargs& kw) {
   jobs::SamplingRequest s;
   if (kw.contains("spp")) s.spp = kw["spp"].cast<int>();
-  if (kw.contains("seed")) s.seed = kw["seed"].cast<uint64_t>();
+  if (kw.contains("seed")) {
+    // pybind11's own cast error would be a RuntimeError without the keyword's name.
+    const py::object seed = kw["seed"];
+    if (!py::isinstance<py::int_>(seed) || seed.cast<py::int_>() < py::int_(0) ||
+        seed.cast<py::int_>() > py::int_(std::numeric_limits<uint64_t>::max()))
+      throw RequestError("seed", "must be a whole number from 0 to 2^64 - 1");
+    s.seed = seed.cast<uint64_t>();
+  }
   if (kw.contains("threads")) s.threads = kw["threads"].cast<int>();
   if (kw.contains("jitter")) s.jitter = kw["jitter"].cast<std::string>();
   if (kw.contains("bounces")) s.bounces = kw["bounces"].cast<int>();

@@ -401,6 +401,30 @@ def test_nonsense_layers_and_solver_settings_are_refused(scene, layers, small):
         parallax.render(scene, small, spp=1, layers="nmf", iterations=0)
     with pytest.raises(parallax.Error, match="^iterations: applies to layers optimized-image or nmf"):
         parallax.render(scene, small, spp=1, iterations=5)
+    # Keywords the command line's validators check, checked for Python too.
+    nan = float("nan")
+    with pytest.raises(parallax.Error, match="^eye: must be finite and within 1e6 mm"):
+        parallax.simulate(layers.image, layers.mask, small, eye=(nan, 0, 600))
+    with pytest.raises(parallax.Error, match="^eye: must be finite and within 1e6 mm"):
+        parallax.simulate(layers.image, layers.mask, small, eye=(1e300, 0, 600))
+    with pytest.raises(parallax.Error, match=r"^threads=100000: must be 0 \(all cores\) to"):
+        parallax.simulate(layers.image, layers.mask, small, eye=EYE, threads=100000)
+    with pytest.raises(parallax.Error, match=r"^threads=100000: must be 0 \(all cores\) to"):
+        parallax.render(scene, small, spp=1, threads=100000)
+    with pytest.raises(parallax.Error, match="^eye: must be three finite numbers"):
+        parallax.view(scene, size=(8, 8), spp=1, eye=(nan, 0, 0))
+    with pytest.raises(parallax.Error, match="^display_eye: must be three finite numbers"):
+        parallax.ideal_view(scene, small, eye=(nan, 0, 600), spp=1, size=(8, 8))
+    with pytest.raises(parallax.Error, match="^look_at: the camera would look at its own position"):
+        parallax.view(scene, size=(8, 8), spp=1, eye=(0, 0, 5), look_at=(0, 0, 5))
+    with pytest.raises(parallax.Error, match="^distance: applies to lenticular displays"):
+        parallax.render(scene, small, spp=1, distance=nan)
+    with pytest.raises(parallax.Error, match="^adaptive_threshold: must be a number from 0 to 255"):
+        parallax.render(scene, small, spp=1, adaptive=True, adaptive_threshold=nan)
+    with pytest.raises(parallax.Error, match="^adaptive_threshold: applies with adaptive=True"):
+        parallax.render(scene, small, spp=1, adaptive_threshold=3.0)
+    with pytest.raises(parallax.Error, match="^seed: must be a whole number from 0 to 2"):
+        parallax.render(scene, small, spp=1, seed=-1)
 
 
 def test_other_threads_run_while_rendering(scene):
