@@ -68,7 +68,8 @@ FileContents readObj(const std::string& path);
 FileContents readPly(const std::string& path);
 FileContents readStl(const std::string& path);
 FileContents readGltf(const std::string& path);
-// Every format assimp reads (mesh_assimp.cpp); assimpReads says which extensions (".fbx").
+// Every format assimp reads (mesh_assimp.cpp), in a child process with limits
+// (isolated_import.h); assimpReads says which extensions (".fbx").
 FileContents readAssimp(const std::string& path);
 bool assimpReads(const std::string& lowerExtension);
 
