@@ -115,7 +115,8 @@ class Writer {
   void array(const std::vector<T>& values) {
     static_assert(std::is_trivially_copyable_v<T>);
     put(uint64_t(values.size()));
-    out_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    if (!values.empty())
+      out_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
   }
   void string(const std::string& text) {
     put(uint64_t(text.size()));
@@ -156,7 +157,7 @@ class Reader {
   std::vector<T> array(const char* what) {
     const size_t n = count(sizeof(T), what);
     std::vector<T> values(n);
-    std::memcpy(values.data(), data_.data(), n * sizeof(T));
+    if (n > 0) std::memcpy(values.data(), data_.data(), n * sizeof(T));  // no null pointer
     data_.remove_prefix(n * sizeof(T));
     return values;
   }
