@@ -499,6 +499,31 @@ uint64_t privateBytes(pid_t pid) {
   return kib * 1024;
 }
 
+// User and system CPU time of a process in clock ticks (/proc/PID/stat), 0 if unknown.
+uint64_t cpuTicksOf(pid_t pid) {
+  const std::string file = "/proc/" + std::to_string(pid) + "/stat";
+  const int fd = open(file.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return 0;
+  char text[1024];
+  const ssize_t n = read(fd, text, sizeof(text) - 1);
+  close(fd);
+  if (n <= 0) return 0;
+  text[n] = 0;
+  // After the command name's closing parenthesis: state (field 3) ... utime (14), stime (15).
+  const char* at = std::strrchr(text, ')');
+  if (!at) return 0;
+  char* next = const_cast<char*>(at + 1);
+  uint64_t ticks = 0;
+  for (int field = 3; field <= 15 && *next; ++field) {
+    while (*next == ' ') ++next;
+    if (field >= 14)
+      ticks += std::strtoull(next, &next, 10);
+    else
+      while (*next && *next != ' ') ++next;
+  }
+  return ticks;
+}
+
 std::string signalName(int signal) {
   const char* abbrev = sigabbrev_np(signal);
   return "signal " + std::to_string(signal) + (abbrev ? ", SIG" + std::string(abbrev) : "");
@@ -589,7 +614,12 @@ FileContents parseContents(std::string_view blob, const std::string& path,
 FileContents readIsolated(const std::string& path, const std::string& importer,
                           const std::function<FileContents(const std::string&)>& read) {
   const ImporterLimits limits = importerLimits();
+  // The wall clock ends a child that hangs without using CPU (blocked, sleeping, a lock held
+  // at the fork): past wallSeconds, one that used no CPU for a second is killed. A child still
+  // computing is left to its CPU limit (on a busy machine it gets less than a core), up to
+  // 10x the CPU limit.
   const double wallSeconds = 2 * limits.cpuSeconds + 5;
+  const double lastWallSeconds = 10 * limits.cpuSeconds + 5;
   const std::string damaged = "; the file is damaged or not supported";
 
   Fd result(memfd_create("parallax-import", MFD_CLOEXEC));
@@ -613,10 +643,16 @@ FileContents readIsolated(const std::string& path, const std::string& importer,
   const auto start = std::chrono::steady_clock::now();
   Ended ended = Ended::ByItself;
   int sleepMs = 1;
+  uint64_t cpuTicks = 0;
+  double lastCpuChange = 0;
   while (!child.poll()) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (elapsed >= wallSeconds) {
+    if (const uint64_t ticks = cpuTicksOf(pid); ticks != cpuTicks) {
+      cpuTicks = ticks;
+      lastCpuChange = elapsed;
+    }
+    if ((elapsed >= wallSeconds && elapsed - lastCpuChange >= 1) || elapsed >= lastWallSeconds) {
       ended = Ended::OverTime;
       child.killAndReap();
       break;
@@ -626,7 +662,7 @@ FileContents readIsolated(const std::string& path, const std::string& importer,
       child.killAndReap();
       break;
     }
-    const int waitMs = int(std::min(100.0, 1000 * (wallSeconds - elapsed) + 1));
+    const int waitMs = int(std::min(100.0, 1000 * std::max(wallSeconds - elapsed, 0.0) + 1));
     if (pidfd.fd >= 0) {
       struct pollfd p {
         pidfd.fd, POLLIN, 0

@@ -451,9 +451,9 @@ TEST_F(RealModels, DISABLED_IsolationCost) {
   };
   std::printf("%-28s %11s %11s %11s %11s %11s\n", "model (through assimp)", "in-process",
               "child, mute", "child", "overhead", "full load");
-  for (const char* name : {"bunny.obj", "assimp/Collada/duck.dae", "assimp/FBX/spider.fbx",
-                           "assimp/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
-                           "assimp/OFF/Cube.off"}) {
+  for (const char* name :
+       {"bunny.obj", "assimp/Collada/duck.dae", "assimp/FBX/spider.fbx",
+        "assimp/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "assimp/OFF/Cube.off"}) {
     const std::string path = model(name);
     meshio::readAssimpInProcess(path);  // warm the page cache
     const double inProcess = median([&] { meshio::readAssimpInProcess(path); });

@@ -48,8 +48,9 @@ struct MeshLoadOptions {
 
 // The limits of the child process that third-party importers (assimp) run in
 // (docs/import.md, "Isolation"): its memory budget (address space on top of what the process
-// had when it forked) and CPU time; wall-clock time is twice the CPU time plus 5 s, for a
-// child that hangs without burning CPU. 0: the default (memory: 3/4 of physical memory, as
+// had when it forked) and CPU time; past twice the CPU time plus 5 s of wall-clock time, a
+// child that has used no CPU for a second (a hang) is ended too. 0: the default (memory: 3/4 of
+// physical memory, as
 // --max-memory's default; CPU: kDefaultImporterCpuSeconds). Process-wide; jobs sets them from
 // the request limits (--max-memory, --max-time, Python's set_limits) before it loads a scene.
 inline constexpr double kDefaultImporterCpuSeconds = 300;
