@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "parallax/io/image_file.h"
+#include "parallax/io/isolated_import.h"
 #include "parallax/io/mesh_formats.h"
 
 namespace parallax::meshio {
@@ -238,7 +239,16 @@ bool assimpReads(const std::string& lowerExtension) {
   return !lowerExtension.empty() && importer.IsExtensionSupported(lowerExtension);
 }
 
+// In the child process of readIsolated (docs/import.md, "Isolation"): assimp and the
+// texture decoding the conversion does.
 FileContents readAssimp(const std::string& path) {
+  std::string format = std::filesystem::path(path).extension().string();
+  if (!format.empty()) format.erase(0, 1);
+  for (char& c : format) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return readIsolated(path, "the " + format + " importer (assimp)", readAssimpInProcess);
+}
+
+FileContents readAssimpInProcess(const std::string& path) {
   Assimp::Importer importer;
   // Points and lines are not surfaces: SortByPType separates them and this drops them.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,

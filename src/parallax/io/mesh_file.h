@@ -46,6 +46,22 @@ struct MeshLoadOptions {
   bool forceAssimp = false;
 };
 
+// The limits of the child process that third-party importers (assimp) run in
+// (docs/import.md, "Isolation"): its memory budget (address space on top of what the process
+// had when it forked) and CPU time; past twice the CPU time plus 5 s of wall-clock time, a
+// child that has used no CPU for a second (a hang) is ended too. 0: the default (memory: 3/4 of
+// physical memory, as
+// --max-memory's default; CPU: kDefaultImporterCpuSeconds). Process-wide; jobs sets them from
+// the request limits (--max-memory, --max-time, Python's set_limits) before it loads a scene.
+inline constexpr double kDefaultImporterCpuSeconds = 300;
+struct ImporterLimits {
+  double memoryBytes = 0;
+  double cpuSeconds = 0;
+};
+void setImporterLimits(const ImporterLimits& limits);
+// With the defaults filled in.
+ImporterLimits importerLimits();
+
 // Appends the file's triangles to `scene` as world-space meshes (one per material), and its
 // materials, textures and images, and one Scene::ImportRecord saying what was done. Degenerate
 // triangles are dropped with one warning per file in scene.warnings that counts them. A glTF

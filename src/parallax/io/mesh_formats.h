@@ -69,7 +69,8 @@ FileContents readPly(const std::string& path);
 FileContents readStl(const std::string& path);
 FileContents readGltf(const std::string& path);
 FileContents readOff(const std::string& path);  // Geomview's OFF (mesh_off.cpp)
-// Every format assimp reads (mesh_assimp.cpp); assimpReads says which extensions (".fbx").
+// Every format assimp reads (mesh_assimp.cpp), in a child process with limits
+// (isolated_import.h); assimpReads says which extensions (".fbx").
 FileContents readAssimp(const std::string& path);
 bool assimpReads(const std::string& lowerExtension);
 

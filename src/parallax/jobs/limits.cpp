@@ -7,6 +7,7 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/io/mesh_file.h"
 
 namespace parallax::jobs {
 
@@ -18,6 +19,15 @@ Limits& limits() {
 double memoryLimitBytes() {
   const double giB = limits().maxMemoryGiB;
   return giB > 0 ? giB * kGiB : defaultMemoryLimitBytes(physicalMemoryBytes());
+}
+
+void applyImporterLimits() {
+  ImporterLimits importer;
+  importer.memoryBytes = memoryLimitBytes();
+  importer.cpuSeconds = limits().maxSeconds > 0
+                            ? std::min(limits().maxSeconds, kDefaultImporterCpuSeconds)
+                            : kDefaultImporterCpuSeconds;
+  setImporterLimits(importer);
 }
 
 void checkPixelCount(double pixels, const std::string& subject) {

@@ -174,6 +174,7 @@ Scene loadRgbd(const RgbdRequest& request) {
 }  // namespace
 
 Scene loadSceneQuietly(const SceneRequest& request) {
+  applyImporterLimits();
   if (request.rgbd.given()) return loadRgbd(request.rgbd);
   if (request.path.empty() && !request.load.camera.empty())
     throw RequestError("camera", "the built-in scene has no cameras");

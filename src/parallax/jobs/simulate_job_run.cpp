@@ -14,6 +14,7 @@
 #include "parallax/io/json_writer.h"
 #include "parallax/io/scene_file.h"
 #include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/limits.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/sequence.h"
 #include "parallax/jobs/simulate_parts.h"
@@ -82,6 +83,7 @@ SimulateInputs loadSimulateInputs(const SimulateRequest& r, Reporter& reporter) 
 }
 
 Scene renderedScene(const SimulateInputs& in, const SimulateRequest& r) {
+  applyImporterLimits();
   return referenceScene(loadSceneAsRendered(in.scene, r.dir), *in.display);
 }
 

@@ -300,6 +300,26 @@ def test_limits_are_the_clis(scene, small):
         parallax.set_limits(max_memory=-1)
 
 
+def test_assimp_crashes_are_refused_and_the_interpreter_goes_on():
+    # assimp runs in a child process (docs/import.md, "Isolation"): its crash, abort or runaway
+    # allocation is a parallax.Error naming the file, the CLI's line spelled as keywords.
+    files = SOURCE / "fuzz" / "regressions" / "fuzz_assimp"
+    parallax.set_limits(max_memory=1)
+    try:
+        for name, what in [("crash-2c65eb78.fbx", "the FBX importer (assimp) crashed reading it ("),
+                           ("crash-cb1d3a87.x", "the X importer (assimp) crashed reading it (signal 11"),
+                           ("timeout-25565c.dae", "the DAE importer (assimp) ran out of its memory "
+                            "budget reading it (1 GiB, max_memory)")]:
+            with pytest.raises(parallax.Error) as caught:
+                parallax.load_scene(str(files / name))
+            assert str(caught.value).startswith(f"{files / name}: {what}")
+            result = cli("--max-memory", "1", "info", files / name)
+            assert result.returncode == 2
+            assert str(caught.value) == as_keywords(result.stderr.strip()[len("error: "):])
+    finally:
+        parallax.set_limits()
+
+
 def test_lenticular_render_is_the_cli_render(scene, tmp_path):
     # A Looking Glass calibration on a quarter-size panel (fast), read by both paths.
     calibration = json.loads((SOURCE / "displays" / "lenticular" / "portrait-like.json").read_text())
