@@ -152,6 +152,19 @@ struct SwsHolder {
   ~SwsHolder() { sws_freeContext(p); }
 };
 
+// libvpx's VP9 encoder opens at any size up to 65536 but fails its first frame ("Failed to
+// allocate last frame buffer") beyond 16384 a side (measured with Debian's libvpx): refused
+// with the others' limits, before any frame.
+void refuseBeyondVp9(const std::string& codec, int width, int height, const VideoFieldNames& names,
+                     const std::string& path) {
+  if (codec == "vp9" && (width > 16384 || height > 16384))
+    throw RequestError(names.file,
+                       "the libvpx-vp9 encoder takes at most 16384 pixels a side, not " +
+                           std::to_string(width) + "x" + std::to_string(height) +
+                           ": use a smaller size, or h265 (.mp4, .mkv)",
+                       path);
+}
+
 // Sets up `e` for `codecName` at the coded size and opens it: the one setup of open() and
 // checkVideoSize(). Returns avcodec_open2's code.
 int openEncoder(AVCodecContext* e, const AVCodec* codec, const std::string& codecName,
@@ -264,6 +277,7 @@ void checkVideoSize(const std::string& path, int width, int height, const VideoO
                            " pixels: expected 1 to 65536 a side",
                        path);
   const std::string codecName = resolveVideoCodec(path, options, width, height, names);
+  refuseBeyondVp9(codecName, width, height, names, path);
   const AVCodec* codec = avcodec_find_encoder_by_name(encoderName(codecName));
   if (!codec)
     throw RequestError(names.codec, "this FFmpeg has no " + std::string(encoderName(codecName)) +
@@ -368,6 +382,7 @@ void VideoWriter::open(const std::string& path, int width, int height, const Vid
   s->path = path;
   s->names = names;
   s->codec = resolveVideoCodec(path, options, width, height, names);
+  refuseBeyondVp9(s->codec, width, height, names, path);
   s->width = width;
   s->height = height;
   // YUV 4:2:0 codes one chroma sample per 2 x 2 pixels: the coded size is even.
