@@ -97,8 +97,8 @@ check "names --video and the folder" one_line_naming "--video"
 check "before rendering: no frame" test ! -e "$tmp/frames1"
 check "a view sequence's video too" as_user 2 view --size 32x18 --spp 1 --turntable 90 --duration 0.1 --video "$tmp/ro/x.mp4" -o "$tmp/v1/view.png"
 check "no view frame" test ! -e "$tmp/v1"
-# x264 takes at most 16384 pixels a side (its own check), x265 at most 8192 (its levels),
-# libvpx's VP9 16384.
+# Sizes the encoders refuse (each opened at the size before any frame): x264 more than 16384
+# pixels a side, x265 a 16-pixel-high picture, libvpx's VP9 more than 16384 a side.
 check "a frame too wide for x264 is refused" run 2 view --size 20000x16 --spp 1 --turntable 90 --duration 0.1 --video "$tmp/w.mp4" --video-codec h264 -o "$tmp/v2/view.png"
 check "names the encoder and the size" one_line_naming "libx264 encoder refuses 20000x16"
 check "before rendering: no frame" test ! -e "$tmp/v2"

@@ -461,8 +461,7 @@ void writeFileAtomically(const std::string& path, std::string_view bytes) {
   removeStaleTemporaryFiles(path);
   const std::string temp = path + ".tmp-" + std::to_string(::getpid());
   ::unlink(temp.c_str());
-  const int fd =
-      ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) throw ioFailure("write", path, errno);
   size_t written = 0;
   while (written < bytes.size()) {

@@ -7,10 +7,10 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/core/output_path.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/jobs/display_factory.h"
-#include "parallax/core/output_path.h"
 #include "parallax/jobs/layer_output.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/requests.h"

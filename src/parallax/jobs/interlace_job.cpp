@@ -6,11 +6,11 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/core/output_path.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
 #include "parallax/jobs/display_factory.h"
-#include "parallax/core/output_path.h"
 #include "parallax/jobs/layer_output.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/sim/lenticular_sim.h"
@@ -231,8 +231,8 @@ void runInterlace(const InterlaceRequest& r, Reporter& reporter) {
   viewResampling(r.viewResampling);
   const BuiltDisplay display = interlaceDisplay(r, reporter);
   // Before the views are read: where the set goes can take it (docs/inputs.md, "Outputs").
-  OutputSet::check(r.output, pictureSetNames(1, !display->lenticularDesign(), r.linear,
-                                             display.file.name));
+  OutputSet::check(r.output,
+                   pictureSetNames(1, !display->lenticularDesign(), r.linear, display.file.name));
   Views given = readViews(r);
   const size_t count = given.images.size();
   Interlaced made;

@@ -142,8 +142,9 @@ void refuseConflicts(const std::string& dir, const fs::path& folder,
     const std::string why = conflict(folder, name, owned);
     if (!why.empty())
       throw InputError((fs::path(dir) / name).string(), "",
-                       why + "; parallax replaces only files it wrote: move it or choose another "
-                             "{output}");
+                       why +
+                           "; parallax replaces only files it wrote: move it or choose another "
+                           "{output}");
   }
 }
 
@@ -243,8 +244,8 @@ std::vector<std::string> pictureSetNames(size_t frames, bool mask, bool linear,
   std::vector<std::string> names;
   if (frames > 1) {
     for (size_t k = 1; k <= frames; ++k)
-      names.insert(names.end(), {"image-" + std::to_string(k) + ".png",
-                                 "mask-" + std::to_string(k) + ".png"});
+      names.insert(names.end(),
+                   {"image-" + std::to_string(k) + ".png", "mask-" + std::to_string(k) + ".png"});
   } else {
     names.push_back("image.png");
     if (mask) names.push_back("mask.png");
@@ -327,7 +328,8 @@ void OutputSet::commit() {
   try {
     finishCommit(folder, temporary);
   } catch (const fs::filesystem_error& e) {
-    throw InputError(dir_, "", std::string("cannot commit the output files: ") + e.code().message());
+    throw InputError(dir_, "",
+                     std::string("cannot commit the output files: ") + e.code().message());
   }
 }
 

@@ -139,10 +139,9 @@ TEST_F(OutputSetTest, TheFolderKeepsItsModeOwnerGroupAndAcl) {
   const std::string acl = std::string("\x02\0\0\0", 4) + entry(0x01, 7, ~0u) +
                           entry(0x02, 7, kNobody) + entry(0x04, 5, ~0u) + entry(0x10, 7, ~0u) +
                           entry(0x20, 5, ~0u);
-  const bool acls = ::setxattr(dir.c_str(), "system.posix_acl_access", acl.data(), acl.size(),
-                               0) == 0 &&
-                    ::setxattr(dir.c_str(), "system.posix_acl_default", acl.data(), acl.size(),
-                               0) == 0;
+  const bool acls =
+      ::setxattr(dir.c_str(), "system.posix_acl_access", acl.data(), acl.size(), 0) == 0 &&
+      ::setxattr(dir.c_str(), "system.posix_acl_default", acl.data(), acl.size(), 0) == 0;
   struct stat before {};
   ASSERT_EQ(::stat(dir.c_str(), &before), 0);
   const auto aclOf = [&](const char* name) {
@@ -202,8 +201,9 @@ TEST_F(OutputSetTest, FilesLinksAndFifosNotOursAreRefused) {
   const std::string dir = at("out");
   ASSERT_TRUE(fs::create_directory(dir));
   writeText(at("out/image.png"), "the user's picture");
-  EXPECT_NE(refusal([&] { OutputSet::check(dir, {"image.png"}); })
-                .find("image.png: is a file not written by parallax"),
+  EXPECT_NE(refusal([&] {
+              OutputSet::check(dir, {"image.png"});
+            }).find("image.png: is a file not written by parallax"),
             std::string::npos);
   EXPECT_NE(refusal([&] { writeSet(dir, {"image.png"}, "new"); }).find("not written by parallax"),
             std::string::npos);
@@ -241,7 +241,8 @@ TEST_F(OutputSetTest, AnEarlierVersionsRecordMakesItsFilesOurs) {
 
 TEST_F(OutputSetTest, FilesOfAnEarlierSetThatTheNewOneLacksAreRemoved) {
   const std::string dir = at("nmf");
-  writeSet(dir, {"image-1.png", "mask-1.png", "image-2.png", "mask-2.png", "render.json"}, "rank 2");
+  writeSet(dir, {"image-1.png", "mask-1.png", "image-2.png", "mask-2.png", "render.json"},
+           "rank 2");
   writeText(at("nmf/notes.txt"), "mine");
   writeSet(dir, {"image.png", "mask.png", "render.json"}, "rank 1");
   EXPECT_EQ(entries(dir), (std::set<std::string>{".parallax-outputs", "image.png", "mask.png",
@@ -258,14 +259,16 @@ TEST_F(OutputSetTest, AReadOnlyFolderIsRefusedBeforeAnyWorkAndLeftAsItWas) {
   const int code = inChildProcess(
       [&] {
         int refused = 0;
-        if (refusal([&] { OutputSet::check(dir, {"image.png", "render.json"}); })
-                .find("cannot be written") != std::string::npos)
+        if (refusal([&] {
+              OutputSet::check(dir, {"image.png", "render.json"});
+            }).find("cannot be written") != std::string::npos)
           ++refused;
         if (refusal([&] { OutputSet set(dir); }).find("cannot be written") != std::string::npos)
           ++refused;
         // A folder still to be made inside it: its nearest existing ancestor decides.
-        if (refusal([&] { OutputSet::check(dir + "/new/deeper", {"image.png"}); })
-                .find("readonly: cannot be written") != std::string::npos)
+        if (refusal([&] {
+              OutputSet::check(dir + "/new/deeper", {"image.png"});
+            }).find("readonly: cannot be written") != std::string::npos)
           ++refused;
         return refused;
       },
@@ -275,12 +278,11 @@ TEST_F(OutputSetTest, AReadOnlyFolderIsRefusedBeforeAnyWorkAndLeftAsItWas) {
   EXPECT_EQ(readText(at("readonly/image.png")), "image.png of first");
   // The same folder, writable to this user, is written: the check is not a refusal of all.
   ASSERT_EQ(::chmod(dir.c_str(), 0777), 0);
-  EXPECT_EQ(inChildProcess(
-                [&] {
-                  return refusal([&] { OutputSet::check(dir, {"notes.txt"}); }).empty() ? 0 : 1;
-                },
-                true),
-            0);
+  EXPECT_EQ(
+      inChildProcess(
+          [&] { return refusal([&] { OutputSet::check(dir, {"notes.txt"}); }).empty() ? 0 : 1; },
+          true),
+      0);
 }
 
 // A kill between two renames of a commit: the next set for the folder finishes the renames
@@ -307,8 +309,8 @@ TEST_F(OutputSetTest, AKilledCommitIsRolledForward) {
   { OutputSet next(dir); }  // recovers; then dropped without a commit
   EXPECT_EQ(readText(at("killed/mask.png")), "mask.png of new");
   EXPECT_EQ(readText(at("killed/render.json")), "render.json of new");
-  EXPECT_EQ(entries(dir), (std::set<std::string>{".parallax-outputs", "image.png", "mask.png",
-                                                 "render.json"}));
+  EXPECT_EQ(entries(dir),
+            (std::set<std::string>{".parallax-outputs", "image.png", "mask.png", "render.json"}));
 }
 
 TEST_F(OutputSetTest, AKilledRunBeforeItsCommitLeavesTheOldSet) {
@@ -358,8 +360,9 @@ TEST_F(OutputSetTest, SingleFileOutputsAreCheckedBeforeWork) {
   ASSERT_EQ(::chmod(at("ro").c_str(), 0555), 0);
   EXPECT_EQ(inChildProcess(
                 [&] {
-                  return refusal([&] { checkOutputFile(at("ro/x.mp4")); })
-                                 .find("cannot be written (Permission denied)") != std::string::npos
+                  return refusal([&] {
+                           checkOutputFile(at("ro/x.mp4"));
+                         }).find("cannot be written (Permission denied)") != std::string::npos
                              ? 0
                              : 1;
                 },

@@ -325,8 +325,8 @@ void recordMadeFrom(JsonWriter& record, const MadeFrom& made) {
   }
 }
 
-void checkMadeFrom(const std::string& recordFile, const std::string& finished,
-                   const MadeFrom& made, const std::string& startOver) {
+void checkMadeFrom(const std::string& recordFile, const std::string& finished, const MadeFrom& made,
+                   const std::string& startOver) {
   const std::string howToStart =
       "; the frames of one sequence must match: give another {output}, or remove " + startOver +
       " to start over";
@@ -365,12 +365,11 @@ void checkMadeFrom(const std::string& recordFile, const std::string& finished,
     bool asked = false;
     for (const auto& entry : made) asked = asked || entry.first == setting;
     if (!asked)
-      throw InputError(finished, "",
-                       setting.rfind("content of ", 0) == 0
-                           ? "was made from " + setting.substr(11) + ", this run does not use it" +
-                                 howToStart
-                           : setting + ": it was made with " + value + ", this run has none" +
-                                 howToStart);
+      throw InputError(
+          finished, "",
+          setting.rfind("content of ", 0) == 0
+              ? "was made from " + setting.substr(11) + ", this run does not use it" + howToStart
+              : setting + ": it was made with " + value + ", this run has none" + howToStart);
   }
 }
 

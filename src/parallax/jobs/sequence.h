@@ -132,7 +132,7 @@ void recordMadeFrom(JsonWriter& record, const MadeFrom& made);
 // frame was made with and what this run asks, and how to start over) a finished frame whose
 // record `recordFile` has another /made_from than `made`, or none (an earlier version's). `start
 // over` names what to remove to start over.
-void checkMadeFrom(const std::string& recordFile, const std::string& finished,
-                   const MadeFrom& made, const std::string& startOver);
+void checkMadeFrom(const std::string& recordFile, const std::string& finished, const MadeFrom& made,
+                   const std::string& startOver);
 
 }  // namespace parallax::jobs

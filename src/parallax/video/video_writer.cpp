@@ -268,16 +268,28 @@ void checkVideoOptions(const std::string& path, const VideoOptions& options,
   }
 }
 
-void checkVideoSize(const std::string& path, int width, int height, const VideoOptions& options,
-                    const VideoFieldNames& names) {
+namespace {
+
+// What open() and checkVideoSize() refuse before an encoder is opened: the options, a size
+// beyond 1 to 65536 a side, VP9's 16384. Returns the codec for that size.
+std::string checkedCodec(const std::string& path, int width, int height,
+                         const VideoOptions& options, const VideoFieldNames& names) {
   checkVideoOptions(path, options, names);
   if (width < 1 || height < 1 || width > 65536 || height > 65536)
     throw RequestError(names.file,
                        "a video frame of " + std::to_string(width) + "x" + std::to_string(height) +
                            " pixels: expected 1 to 65536 a side",
                        path);
-  const std::string codecName = resolveVideoCodec(path, options, width, height, names);
-  refuseBeyondVp9(codecName, width, height, names, path);
+  const std::string codec = resolveVideoCodec(path, options, width, height, names);
+  refuseBeyondVp9(codec, width, height, names, path);
+  return codec;
+}
+
+}  // namespace
+
+void checkVideoSize(const std::string& path, int width, int height, const VideoOptions& options,
+                    const VideoFieldNames& names) {
+  const std::string codecName = checkedCodec(path, width, height, options, names);
   const AVCodec* codec = avcodec_find_encoder_by_name(encoderName(codecName));
   if (!codec)
     throw RequestError(names.codec, "this FFmpeg has no " + std::string(encoderName(codecName)) +
@@ -291,13 +303,12 @@ void checkVideoSize(const std::string& path, int width, int height, const VideoO
   const int codedWidth = width + (width & 1), codedHeight = height + (height & 1);
   const int r = openEncoder(encoder.p, codec, codecName, codedWidth, codedHeight, options);
   if (r < 0)
-    throw RequestError(names.file,
-                       "the " + std::string(encoderName(codecName)) + " encoder refuses " +
-                           std::to_string(width) + "x" + std::to_string(height) +
-                           " frames (coded " + std::to_string(codedWidth) + "x" +
-                           std::to_string(codedHeight) + "): " + avError(r) +
-                           "; nothing was rendered",
-                       path);
+    throw RequestError(
+        names.file,
+        "the " + std::string(encoderName(codecName)) + " encoder refuses " + std::to_string(width) +
+            "x" + std::to_string(height) + " frames (coded " + std::to_string(codedWidth) + "x" +
+            std::to_string(codedHeight) + "): " + avError(r) + "; nothing was rendered",
+        path);
 }
 
 struct VideoWriter::State {
@@ -371,18 +382,12 @@ const std::string& VideoWriter::path() const {
 
 void VideoWriter::open(const std::string& path, int width, int height, const VideoOptions& options,
                        const VideoFieldNames& names) {
-  checkVideoOptions(path, options, names);
-  if (width < 1 || height < 1 || width > 65536 || height > 65536)
-    throw RequestError(names.file,
-                       "a video frame of " + std::to_string(width) + "x" + std::to_string(height) +
-                           " pixels: expected 1 to 65536 a side",
-                       path);
+  const std::string codecName = checkedCodec(path, width, height, options, names);
   state_.reset();  // a writer opened again drops (and removes) what it had
   auto s = std::make_unique<State>();
   s->path = path;
   s->names = names;
-  s->codec = resolveVideoCodec(path, options, width, height, names);
-  refuseBeyondVp9(s->codec, width, height, names, path);
+  s->codec = codecName;
   s->width = width;
   s->height = height;
   // YUV 4:2:0 codes one chroma sample per 2 x 2 pixels: the coded size is even.
