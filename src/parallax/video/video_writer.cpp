@@ -290,13 +290,17 @@ std::string checkedCodec(const std::string& path, int width, int height,
 void checkVideoSize(const std::string& path, int width, int height, const VideoOptions& options,
                     const VideoFieldNames& names) {
   const std::string codecName = checkedCodec(path, width, height, options, names);
+  // libvpx allocates its frame buffers when it opens (measured at 8192 x 8192: 6.9 s and
+  // 3.6 GB), and its only size limit is checked by name above: not opened twice.
+  if (codecName == "vp9") return;
   const AVCodec* codec = avcodec_find_encoder_by_name(encoderName(codecName));
   if (!codec)
     throw RequestError(names.codec, "this FFmpeg has no " + std::string(encoderName(codecName)) +
                                         " encoder for " + codecName);
-  // The encoder itself is the truth about its limits (x264's and x265's levels, VP9's 16384,
-  // the even sizes of 4:2:0, which the coded size pads to): it is opened at the coded size
-  // and closed again, without a file.
+  // The encoder itself is the truth about its limits (x264's 16384 a side, x265's minimum
+  // sizes, the even sizes of 4:2:0, which the coded size pads to): it is opened at the coded
+  // size and closed again, without a file (measured: 8 ms at 1920 x 1080 and 32 ms at
+  // 4096 x 4096 for x264, 13 ms at 8192 x 8192 for x265).
   Owned<AVCodecContext, freeCodec> encoder;
   encoder.p = avcodec_alloc_context3(codec);
   if (!encoder.p) throw std::bad_alloc();

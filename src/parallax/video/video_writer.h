@@ -54,9 +54,9 @@ std::string resolveVideoCodec(const std::string& path, const VideoOptions& optio
 // A path whose folder (or nearest existing ancestor) cannot be written is refused too.
 void checkVideoOptions(const std::string& path, const VideoOptions& options,
                        const VideoFieldNames& names = {});
-// checkVideoOptions and what open() would refuse for frames of width x height: the encoder is
-// opened at that size (and closed) without a file, so that a size it refuses (beyond its
-// levels or dimensions) is known before the frames are rendered.
+// checkVideoOptions and what open() would refuse for frames of width x height: the x264 or x265
+// encoder is opened at that size (and closed) without a file, so that a size it refuses is
+// known before the frames are rendered; VP9's limit (16384 a side) is checked by name.
 void checkVideoSize(const std::string& path, int width, int height, const VideoOptions& options,
                     const VideoFieldNames& names = {});
 
