@@ -50,16 +50,25 @@ std::string sibling(const std::string& name, const char* kind, const std::string
   return text;
 }
 
-// Removes the earlier versions' .NAME.tmp-PID and .NAME.old-PID folders in `parent` whose
-// process is gone (they held links to DIR's files and the new set, never the only copy).
-void removeLegacyTemporaries(const fs::path& parent, const std::string& name) {
+// The earlier versions' .NAME.tmp-PID and .NAME.old-PID folders beside `target` whose process
+// is gone. A .tmp- folder held the new set and links to the folder's files (or, after the
+// exchange, the old folder, whose files the new one links): removed. An .old- folder is the old
+// folder moved aside before the new one moved in: when `target` is missing, the run was killed
+// between the two renames and it is the only copy, so it is moved back; otherwise removed.
+void recoverLegacyTemporaries(const fs::path& target) {
+  const std::string name = target.filename().string();
   std::vector<fs::path> stale;
   std::error_code ec;
-  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+  for (fs::directory_iterator it(target.parent_path(), ec), end; !ec && it != end;
+       it.increment(ec)) {
     const std::string entry = it->path().filename().string();
     for (const char* kind : {".tmp-", ".old-"}) {
       const long pid = temporaryOwner(entry, sibling(name, kind, ""));
-      if (pid > 0 && !processRunning(pid)) stale.push_back(it->path());
+      if (pid <= 0 || processRunning(pid)) continue;
+      if (kind[1] == 'o' && !fs::exists(fs::symlink_status(target, ec)))
+        fs::rename(it->path(), target, ec);  // restored
+      else
+        stale.push_back(it->path());
     }
   }
   for (const fs::path& path : stale) fs::remove_all(path, ec);
@@ -278,9 +287,10 @@ OutputSet::OutputSet(const std::string& dir) : dir_(dir.empty() ? "." : dir) {
     throw InputError(dir_, "", "is a file; the output must be a folder");
   checkOutputFolder(dir_);
   try {
+    if (target.has_parent_path() && target != target.root_path() &&
+        fs::is_directory(target.parent_path(), ec))
+      recoverLegacyTemporaries(target);
     fs::create_directories(target);
-    if (target.has_parent_path() && target != target.root_path())
-      removeLegacyTemporaries(target.parent_path(), target.filename().string());
     {
       const FolderLock lock(target);
       recoverKilledSets(target);

@@ -331,6 +331,23 @@ TEST_F(OutputSetTest, AKilledRunBeforeItsCommitLeavesTheOldSet) {
   EXPECT_EQ(readText(at("early/image.png")), "image.png of old");
 }
 
+// An earlier version killed between moving the old folder aside (.NAME.old-PID) and the new one
+// in: the old folder is the only copy of the user's files, and comes back.
+TEST_F(OutputSetTest, AnEarlierVersionsFolderMovedAsideIsMovedBack) {
+  ASSERT_TRUE(fs::create_directories(at(".set.old-999999999/mine")));
+  writeText(at(".set.old-999999999/mine/notes.txt"), "the user's");
+  ASSERT_TRUE(fs::create_directory(at(".set.tmp-999999999")));  // the new set, not moved in
+  writeSet(at("set"), {"image.png"}, "new");
+  EXPECT_EQ(readText(at("set/mine/notes.txt")), "the user's");
+  EXPECT_EQ(readText(at("set/image.png")), "image.png of new");
+  EXPECT_EQ(entries(root_), std::set<std::string>{"set/"});
+  // With the folder there (the earlier commit finished), the leftovers just go.
+  ASSERT_TRUE(fs::create_directory(at(".set.old-999999999")));
+  writeSet(at("set"), {"image.png"}, "again");
+  EXPECT_EQ(entries(root_), std::set<std::string>{"set/"});
+  EXPECT_EQ(readText(at("set/mine/notes.txt")), "the user's");
+}
+
 TEST_F(OutputSetTest, StaleTemporaryFilesOfKilledRunsAreRemoved) {
   const std::string file = at("view.png");
   writeText(file + ".partial-999999999", "a killed video");
