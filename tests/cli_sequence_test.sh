@@ -53,6 +53,35 @@ check "frame 2 is back" test -s "$tmp/all/frame-0002/image.png"
 check "finished frames are left alone" test "$(stat -c %Y "$tmp/all/frame-0001/image.png")" = "$(date -d 2001-01-01 +%s)"
 check "frame 2 again is the same picture" cmp "$tmp/all/frame-0002/image.png" "$tmp/part/../all/frame-0002/image.png"
 
+# A resume with other settings is refused before it renders, naming the setting that differs
+# (docs/animation.md, "Resuming"): never a video of mixed frames.
+check "each frame records what it was made from" grep -q '"made_from"' "$tmp/all/frame-0001/render.json"
+rm -rf "$tmp/all/frame-0003"
+stamp=$(stat -c %Y "$tmp/all/frame-0001/image.png")
+mixed() {  # mixed NAME TEXT ARGS...: a resume with ARGS is refused naming TEXT; nothing rendered
+  local name=$1 text=$2
+  shift 2
+  check "resume with $name is refused" run 2 "$@" -o "$tmp/all"
+  check "names $name" one_line_naming "$text"
+  check "says how to start over" grep -qF "give another --output, or remove $tmp/all to start over" "$tmp/err"
+  check "frame 3 was not rendered ($name)" test ! -e "$tmp/all/frame-0003"
+}
+mixed "--spp" "--spp: it was made with 4, this run asks 1" render --display "$tmp/small.json" --spp 1 --turntable 90 --duration 0.2 --fps 20
+mixed "--turntable" "--turntable: it was made with 90, this run asks 180" render --display "$tmp/small.json" --spp 4 --turntable 180 --duration 0.4 --fps 10
+mixed "--layers" "--layers: it was made with slits, this run asks nmf" "${turn[@]}" --layers nmf --iterations 1
+mixed "--quilt" "--quilt: it was made with off, this run asks 3x1" "${turn[@]}" --quilt 3x1 --size 48x12
+cp "$tmp/small.json" "$tmp/small-copy.json"
+mixed "--display" "--display: it was made with $tmp/small.json, this run asks $tmp/small-copy.json" \
+  render --display "$tmp/small-copy.json" --spp 4 --turntable 90 --duration 0.2 --fps 20
+cp "$tmp/small.json" "$tmp/small.json.orig"
+echo " " >>"$tmp/small.json"  # the same name, other bytes
+mixed "a changed display file" "was made from another version of $tmp/small.json" "${turn[@]}"
+mv "$tmp/small.json.orig" "$tmp/small.json"
+check "the finished frames were left alone by the refusals" test "$(stat -c %Y "$tmp/all/frame-0001/image.png")" = "$stamp"
+check "the matching resume still works" run 0 "${turn[@]}" -o "$tmp/all"
+check "it renders only frame 3" grep -q "1 to render, 3 finished before" "$tmp/out"
+check "frame 3 again is the same picture" cmp "$tmp/all/frame-0003/image.png" "$tmp/part/frame-0003/image.png"
+
 # simulate --reference of a frame poses the scene at the frame's time (and frames it over the
 # whole animation, as the render did): frame 4 scores as well as frame 1 (measured 31.9 and
 # 31.5 dB; against the scene at rest, frame 4 scored 21.5 dB).
@@ -85,6 +114,27 @@ check "one quilt per frame" bash -c "ls '$tmp/quilts/frame-0001/'quilt_qs3x1*.pn
 # view: numbered pictures.
 check "view sequence" run 0 view --size 64x36 --spp 1 --turntable 180 --duration 0.1 --fps 20 -o "$tmp/v/view.png"
 check "numbered views" bash -c "test -s '$tmp/v/view-0001.png' && test -s '$tmp/v/view-0002.png' && ! test -e '$tmp/v/view-0003.png'"
+
+# A scene file whose content changed, and a view sequence resumed with other settings.
+cat >"$tmp/box.json" <<'JSON'
+{
+  "materials": {"grey": {"diffuse": [0.7, 0.7, 0.7]}},
+  "objects": [{"shape": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": "grey"}],
+  "lights": [{"type": "point", "position": [3, 4, 5], "intensity": [40, 40, 40]}]
+}
+JSON
+boxturn=(render "$tmp/box.json" --display "$tmp/small.json" --spp 1 --turntable 90 --duration 0.2 --fps 20)
+check "a scene file's sequence" run 0 "${boxturn[@]}" --frames 1:2 -o "$tmp/box"
+sed -i 's/0.7, 0.7, 0.7/0.2, 0.7, 0.7/' "$tmp/box.json"
+check "resumed after the scene file changed is refused" run 2 "${boxturn[@]}" -o "$tmp/box"
+check "names the scene file" one_line_naming "was made from another version of $tmp/box.json"
+check "no frame 3" test ! -e "$tmp/box/frame-0003"
+check "view sequence resumed with another --spp is refused" run 2 view --size 64x36 --spp 2 --turntable 180 --duration 0.1 --fps 20 -o "$tmp/v/view.png"
+check "names --spp" one_line_naming "--spp: it was made with 1, this run asks 2"
+check "view sequence resumed with another --size is refused" run 2 view --size 64x32 --spp 1 --turntable 180 --duration 0.1 --fps 20 -o "$tmp/v/view.png"
+check "names --size" one_line_naming "--size"
+check "view sequence resumed as it was" run 0 view --size 64x36 --spp 1 --turntable 180 --duration 0.1 --fps 20 -o "$tmp/v/view.png"
+check "nothing to render" grep -q "0 to render, 2 finished before" "$tmp/out"
 
 # Camera keys in a scene file: the camera moves between them.
 cat >"$tmp/keys.json" <<'JSON'

@@ -11,6 +11,7 @@
 #include "parallax/app/commands.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/core/output_path.h"
 #include "parallax/io/image_file.h"
 #include "parallax/sim/lightfield.h"
 
@@ -58,6 +59,7 @@ void registerLightfieldCommand(CLI::App& cli) {
     checkMemoryEstimate(columns * (1.0 + plot.samplesPerPixel) * kBytesPerCell,
                         "--spp " + std::to_string(plot.samplesPerPixel), "the plot",
                         "use fewer samples or a shorter stretch");
+    checkOutputFile(options->output);  // a folder or an unwritable place: before the plot
     writeFileAtomically(options->output, lightFieldSvg(design, options->plot));
     std::printf("wrote %s\n", options->output.c_str());
   });

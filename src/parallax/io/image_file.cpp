@@ -22,6 +22,7 @@
 #include <type_traits>
 
 #include "parallax/core/error.h"
+#include "parallax/core/output_path.h"
 #include "parallax/core/parallel.h"
 #include "parallax/io/input_file.h"
 #include "parallax/io/png_encoder.h"
@@ -455,8 +456,12 @@ void writeFileAtomically(const std::string& path, std::string_view bytes) {
   }
   // The temporary name lives in the target's folder so that rename() stays on one file system
   // and is atomic: readers see either the old file or the complete new one.
+  // FILE.tmp-PID of killed runs go; this process's own name is made afresh (O_EXCL, no link
+  // followed: whatever held the name is not written through).
+  removeStaleTemporaryFiles(path);
   const std::string temp = path + ".tmp-" + std::to_string(::getpid());
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  ::unlink(temp.c_str());
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) throw ioFailure("write", path, errno);
   size_t written = 0;
   while (written < bytes.size()) {

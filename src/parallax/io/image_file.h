@@ -47,7 +47,8 @@ std::string pngBytes(const Image& image, bool greyAsOneChannel = true);
 // the buffer is reused for the one-channel copy of a grey picture).
 std::string pngBytesFromSrgb8(std::vector<uint8_t>& rgbCodes, int width, int height,
                               bool greyAsOneChannel = true);
-// Writes bytes to `path` atomically (temporary file + rename); creates missing parent folders.
+// Writes bytes to `path` atomically (temporary file PATH.tmp-PID + rename); creates missing
+// parent folders, and removes the PATH.tmp-PID and PATH.partial-PID of killed runs.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
 
 }  // namespace parallax

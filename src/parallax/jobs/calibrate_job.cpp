@@ -7,6 +7,7 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/core/output_path.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/jobs/display_factory.h"
@@ -143,12 +144,15 @@ CalibrationPatternSet calibrationPatterns(const CalibrationPatternsRequest& r, R
 void runCalibrationPatterns(const CalibrationPatternsRequest& r, Reporter& reporter) {
   // Everything is checked here, before the first file is written.
   const CalibrationPatternSet set = calibrationPatterns(r, reporter);
+  std::vector<std::string> names;
+  for (const auto& pattern : set.patterns) names.push_back(pattern.file);
+  names.insert(names.end(), {"index.json", "README.txt"});
+  OutputSet::check(r.output, names);
   OutputSet out(r.output);
-  const std::filesystem::path dir(out.path(""));
   for (size_t i = 0; i < set.patterns.size(); ++i)
-    writeImage((dir / set.patterns[i].file).string(), set.draw(i));
-  writeFileAtomically((dir / "index.json").string(), set.index);
-  writeFileAtomically((dir / "README.txt").string(), set.readme);
+    writeImage(out.path(set.patterns[i].file), set.draw(i));
+  writeFileAtomically(out.path("index.json"), set.index);
+  writeFileAtomically(out.path("README.txt"), set.readme);
   out.commit();
   reporter.result(printed("wrote %zu patterns, index.json and README.txt to %s",
                           set.patterns.size(), out.dir().c_str()));
@@ -249,6 +253,7 @@ DisplayDesign appliedCalibration(const CalibrationApplyRequest& r, Reporter&) {
 void runCalibrationApply(const CalibrationApplyRequest& r, Reporter& reporter) {
   const DisplayDesign d = appliedCalibration(r, reporter);
   const DisplaySpec& spec = d.spec;
+  checkOutputFile(r.output);
   writeFileAtomically(r.output, displayFileText(spec, d.camera));
   reporter.result("wrote " + r.output);
   reporter.result(printed(

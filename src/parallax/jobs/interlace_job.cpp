@@ -6,6 +6,7 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/core/output_path.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
@@ -229,6 +230,9 @@ std::string writeLenticularSet(const InterlaceRequest& r, const BuiltDisplay& di
 void runInterlace(const InterlaceRequest& r, Reporter& reporter) {
   viewResampling(r.viewResampling);
   const BuiltDisplay display = interlaceDisplay(r, reporter);
+  // Before the views are read: where the set goes can take it (docs/inputs.md, "Outputs").
+  OutputSet::check(r.output,
+                   pictureSetNames(1, !display->lenticularDesign(), r.linear, display.file.name));
   Views given = readViews(r);
   const size_t count = given.images.size();
   Interlaced made;
@@ -283,6 +287,7 @@ Vec3d simulatedEye(const LenticularSimulateRequest& r, const LenticularDesign& d
 
 void runLenticularSimulate(const LenticularSimulateRequest& r, Reporter& reporter) {
   const LenticularDesign design = simulatedPanel(r, reporter);
+  checkOutputFile(r.output);
   const Image panel = readImage(r.image);
   const Vec3d eye = simulatedEye(r, design);
   const Image view = simulateLenticularView(design, panel, eye);

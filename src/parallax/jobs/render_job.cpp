@@ -9,6 +9,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
+#include "parallax/core/output_path.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/distributed.h"
 #include "parallax/jobs/layer_output.h"
@@ -108,6 +109,26 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   } else {
     checkPictureWork(*display, r.directMapping, plan.settings, subject);
   }
+  if (r.quilt.wanted) {
+    plan.pictureWidth = plan.layout.columns * plan.tileWidth;
+    plan.pictureHeight = plan.layout.rows * plan.tileHeight;
+  } else if (const DisplayDesign* design = display->barrierDesign()) {
+    plan.pictureWidth = design->spec.imagePanel.width;
+    plan.pictureHeight = design->spec.imagePanel.height;
+  } else {
+    plan.pictureWidth = display->film().panelWidth;
+    plan.pictureHeight = display->film().panelHeight;
+  }
+  if (r.sequence.video.wanted())  // the encoder's limits, before the frames are rendered
+    checkVideoFrames(r.sequence.videoOptions(), plan.pictureWidth, plan.pictureHeight);
+  if (r.quilt.wanted) {
+    plan.outputNames = {quiltFileName("quilt", plan.layout, ".png")};
+    if (r.linear) plan.outputNames.push_back(quiltFileName("quilt", plan.layout, ".pfm"));
+    plan.outputNames.insert(plan.outputNames.end(), {display.file.name, "render.json"});
+  } else {
+    plan.outputNames = pictureSetNames(size_t(r.layers.solved() ? r.layers.rank : 1), layered,
+                                       r.linear, display.file.name);
+  }
   plan.training.eyesPerView = r.layers.trainEyes;
   plan.training.srgbWeights = r.layers.errorMeasure() == "srgb";
   plan.training.threads = plan.settings.threads;
@@ -132,6 +153,37 @@ void reportFraming(const BuiltDisplay& display, Reporter& reporter) {
   reporter.result(depthSummary(*display.framing));
   const std::string warning = depthWarning(*display.framing);
   if (!warning.empty()) reporter.warning(warning);
+}
+
+// Every setting that changes a sequence's pictures (SequenceRequest's frames and chunk choose
+// frames, threads and the video change none), and the contents of the files they come from.
+MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
+  MadeFrom made = sceneMadeFrom(r.scene, scene);
+  made.insert(made.end(),
+              {{"{display}", r.display.empty() ? "<built-in>" : r.display},
+               {"{filter}", r.filter.kind},
+               {"{filter_width}", madeFromNumber(r.filter.widthViews)},
+               {"{fit}", r.framing.fit},
+               {"{focus}", r.framing.focus},
+               {"{depth_budget}", r.framing.depthBudget},
+               {"{subpixels}", r.subpixels ? "on" : "off"},
+               {"{direct_mapping}", r.directMapping ? "on" : "off"},
+               {"{linear}", r.linear ? "on" : "off"},
+               {"{distance}", madeFromNumber(r.distance)},
+               {"{quilt}", r.quilt.wanted ? std::to_string(r.quilt.columns) + "x" +
+                                                std::to_string(r.quilt.rows)
+                                          : "off"},
+               {"{size}", std::to_string(r.quilt.width) + "x" + std::to_string(r.quilt.height)},
+               {"{layers}", r.layers.method},
+               {"{rank}", std::to_string(r.layers.rank)},
+               {"{iterations}", std::to_string(r.layers.iterations)},
+               {"{brightness}", madeFromNumber(r.layers.brightness)},
+               {"{train_eyes}", std::to_string(r.layers.trainEyes)},
+               {"{layer_error}", r.layers.error}});
+  addSamplingMadeFrom(made, r.sampling);
+  addSequenceMadeFrom(made, r.sequence);
+  addFileContent(made, r.display);
+  return made;
 }
 
 // DIR/frame-NNNN.
@@ -159,12 +211,37 @@ std::string framePicture(const RenderRequest& r, int frame) {
   return (folder / "quilt.png").string();  // not there: writeVideo names it
 }
 
+// Before any frame is rendered: every finished frame of the folder was made from `made`, and
+// the folders of the frames to render take the set (OutputSet::check).
+void checkSequenceFolder(const RenderRequest& r, const RenderPlan& plan,
+                         const SequencePlan& sequence, const MadeFrom& made) {
+  namespace fs = std::filesystem;
+  const std::string folder = r.output.empty() ? "." : r.output;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const fs::path record = it->path() / "render.json";
+    if (name.rfind("frame-", 0) == 0 && fs::is_regular_file(record, ec))
+      checkMadeFrom(record.string(), it->path().string(), made, folder);
+  }
+  for (int frame = sequence.first; frame <= sequence.last; ++frame)
+    if (!frameFinished(r.output, frame))
+      OutputSet::check(frameFolder(r.output, frame), plan.outputNames);
+}
+
 }  // namespace
 
 void runRender(const RenderRequest& r, Reporter& reporter) {
   const RenderPlan plan = planRender(r, reporter);
+  // Before the scene is loaded: where the files go can take them (docs/inputs.md, "Outputs").
+  if (r.sequence.given())
+    checkOutputFolder(r.output.empty() ? "." : r.output);
+  else
+    OutputSet::check(r.output, plan.outputNames);
   Scene scene = loadScene(r.scene, reporter);
   const SequencePlan sequence = planSequence(r.sequence, scene);
+  const MadeFrom made = r.sequence.given() ? renderMadeFrom(r, scene) : MadeFrom{};
+  if (r.sequence.given()) checkSequenceFolder(r, plan, sequence, made);
   if (r.sequence.given()) prepareFraming(scene, sequence);
   noteAnimation(r.sequence, scene, reporter);
   const BuiltDisplay display = makeFramedDisplay(plan.description, plan.camera, r.framing, scene);
@@ -185,6 +262,7 @@ void runRender(const RenderRequest& r, Reporter& reporter) {
     one.sequence = &sequence;
     one.frame = frame;
     one.output = frameFolder(r.output, frame);
+    one.madeFrom = &made;
     renderFrameToFiles(one, posed, accelerator, reporter);
   };
   runSequence(sequence, scene, job);

@@ -176,6 +176,7 @@ bool renderLayers(const FrameTarget& t, const Scene& scene, const Accelerator& a
   record.set("/scene_display/width", double(fitDisplayWidth(scene.display, display->window())));
   if (display.framing) recordFraming(record, *display.framing);
   if (t.sequence) recordSequence(record, *t.sequence, t.frame);
+  if (t.madeFrom) recordMadeFrom(record, *t.madeFrom);
   display.recordDesign(record, "/design");
   out.stats = layers.stats;
   out.spp = settings.samplesPerPixel;
@@ -240,6 +241,7 @@ bool renderQuiltFrame(const FrameTarget& t, const Scene& scene, const Accelerato
   t.display->recordDesign(record, "/design");
   if (r.linear) record.set("/outputs/quilt_linear", quiltFileName("quilt", layout, ".pfm"));
   if (t.sequence) recordSequence(record, *t.sequence, t.frame);
+  if (t.madeFrom) recordMadeFrom(record, *t.madeFrom);
   out.spp = r.sampling.spp;
   return true;
 }

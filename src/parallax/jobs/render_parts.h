@@ -21,6 +21,9 @@ struct RenderPlan {
   QuiltLayout layout;  // a quilt's: resolved (auto: the display's own), with its tiles' aspect
   int tileWidth = 0, tileHeight = 0;
   TrainingOptions training;  // content-adaptive layers' training eyes
+  // The files one picture set writes (OutputSet::check, before the scene is loaded).
+  std::vector<std::string> outputNames;
+  int pictureWidth = 0, pictureHeight = 0;  // a sequence's video frame: the image layer or quilt
 };
 
 // Where one frame's pictures go: the request, its plan and display, the sequence (if any) and
@@ -32,6 +35,7 @@ struct FrameTarget {
   const SequencePlan* sequence;  // null: one picture set
   int frame;
   std::string output;
+  const MadeFrom* madeFrom = nullptr;  // a sequence's frames: what they are made from
 };
 
 // The quilt's layout and tile size for `display`, refusing what does not fit (memory, pixels,

@@ -4,10 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <map>
 
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
+#include "parallax/io/json_reader.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/io/mesh_file.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
@@ -252,6 +256,121 @@ void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& 
               mine.size(), seconds, seconds / double(mine.size()), buildSeconds,
               mine.size() > 1 ? refitSeconds / double(mine.size() - 1) : 0.0));
   group.checkpoint();  // every frame is written
+}
+
+void addFileContent(MadeFrom& made, const std::string& path) {
+  std::error_code ec;
+  if (path.empty() || !std::filesystem::is_regular_file(path, ec)) return;
+  std::ifstream in(path, std::ios::binary);
+  uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits
+  char buffer[65536];
+  while (in) {
+    in.read(buffer, sizeof buffer);
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      hash ^= uint8_t(buffer[i]);
+      hash *= 1099511628211ull;
+    }
+  }
+  char text[24];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  made.emplace_back("content of " + path, text);
+}
+
+std::string madeFromNumber(double value) {
+  return printed("%.10g", value);
+}
+
+MadeFrom sceneMadeFrom(const SceneRequest& request, const Scene& scene) {
+  MadeFrom made{{"version", PARALLAX_VERSION},
+                {"scene", request.path.empty() ? "<built-in>" : request.path},
+                {"{camera}", request.load.camera},
+                {"{mesh_up}", upAxisName(request.load.import.up)},
+                {"{crease}", madeFromNumber(request.load.import.creaseDegrees)}};
+  const RgbdRequest& rgbd = request.rgbd;
+  if (rgbd.given()) {
+    std::string files;
+    for (const std::string& file : rgbd.files) files += (files.empty() ? "" : " ") + file;
+    made.insert(made.end(), {{"{rgbd}", files},
+                             {"{depth_convention}", rgbd.convention},
+                             {"{depth_range}", rgbd.range},
+                             {"{rgbd_edges}", rgbd.edges},
+                             {"{rgbd_fov}", madeFromNumber(rgbd.fovDegrees)}});
+    for (const std::string& file : rgbd.files) addFileContent(made, file);
+  }
+  addFileContent(made, request.path);
+  for (const Scene::ImportRecord& import : scene.imports)
+    if (import.file != request.path) addFileContent(made, import.file);
+  return made;
+}
+
+void addSamplingMadeFrom(MadeFrom& made, const SamplingRequest& s) {
+  made.insert(made.end(), {{"{spp}", std::to_string(s.spp)},
+                           {"{seed}", std::to_string(s.seed)},
+                           {"{jitter}", s.jitter},
+                           {"{adaptive}", s.adaptive ? "on" : "off"},
+                           {"{adaptive_threshold}", madeFromNumber(s.adaptiveThreshold)},
+                           {"{bounces}", std::to_string(s.bounces)}});
+}
+
+void addSequenceMadeFrom(MadeFrom& made, const SequenceRequest& sequence) {
+  made.insert(made.end(), {{"{turntable}", madeFromNumber(sequence.turntable)},
+                           {"{duration}", madeFromNumber(sequence.duration)},
+                           {"{fps}", madeFromNumber(sequence.fps)}});
+}
+
+void recordMadeFrom(JsonWriter& record, const MadeFrom& made) {
+  for (size_t i = 0; i < made.size(); ++i) {
+    record.set("/made_from/" + std::to_string(i) + "/setting", made[i].first);
+    record.set("/made_from/" + std::to_string(i) + "/value", made[i].second);
+  }
+}
+
+void checkMadeFrom(const std::string& recordFile, const std::string& finished, const MadeFrom& made,
+                   const std::string& startOver) {
+  const std::string howToStart =
+      "; the frames of one sequence must match: give another {output}, or remove " + startOver +
+      " to start over";
+  std::map<std::string, std::string> before;
+  bool recorded = false;
+  try {
+    const JsonDocument document = JsonDocument::parseFile(recordFile);
+    if (const auto list = document.root().find("made_from")) {
+      recorded = true;
+      for (const JsonReader& entry : list->elements())
+        before[entry["setting"].string()] = entry["value"].string();
+    }
+  } catch (const InputError&) {
+    recorded = false;
+  }
+  if (!recorded)
+    throw InputError(finished, "",
+                     "is a finished frame without a record of its settings (an earlier parallax, "
+                     "or a damaged record)" +
+                         howToStart);
+  for (const auto& [setting, value] : made) {
+    const auto was = before.find(setting);
+    if (was != before.end() && was->second == value) continue;
+    if (setting.rfind("content of ", 0) == 0)
+      throw InputError(finished, "",
+                       was == before.end()
+                           ? "was not made from " + setting.substr(11) + howToStart
+                           : "was made from another version of " + setting.substr(11) +
+                                 " (the file has changed since)" + howToStart);
+    throw InputError(finished, "",
+                     setting + ": it was made with " +
+                         (was == before.end() ? std::string("another setting") : was->second) +
+                         ", this run asks " + value + howToStart);
+  }
+  for (const auto& [setting, value] : before) {
+    bool asked = false;
+    for (const auto& entry : made) asked = asked || entry.first == setting;
+    if (!asked)
+      throw InputError(
+          finished, "",
+          setting.rfind("content of ", 0) == 0
+              ? "was made from " + setting.substr(11) + ", this run does not use it" + howToStart
+              : setting + ": it was made with " + value + ", this run has none" + howToStart);
+  }
 }
 
 }  // namespace parallax::jobs

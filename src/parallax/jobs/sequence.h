@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
@@ -18,6 +19,9 @@ class JsonWriter;
 }
 
 namespace parallax::jobs {
+
+struct SamplingRequest;
+struct SceneRequest;
 
 struct SequenceRequest {
   VideoRequest video;    // --video FILE: the frames as one video, at --fps
@@ -98,5 +102,37 @@ void runSequence(const SequencePlan& plan, const Scene& framed, const FrameJob& 
 
 // The sequence's keys in a record: /sequence/{frames, first, last, fps, seconds, turntable...}.
 void recordSequence(JsonWriter& record, const SequencePlan& plan, int frame);
+
+// What a sequence's frames are made from, so that a resumed sequence never mixes frames of other
+// settings (docs/animation.md, "Resuming"): every setting that changes the pictures, as (label,
+// value) pairs in a fixed order. A label is a request field as {field} (spelled by the front
+// end), "scene", or "content of FILE" (a hash of the file's bytes).
+using MadeFrom = std::vector<std::pair<std::string, std::string>>;
+
+// ("content of PATH", a 64-bit FNV-1a hash of its bytes in hex); nothing for "" or a path that
+// is not a readable file (a preset name, the built-in display).
+void addFileContent(MadeFrom& made, const std::string& path);
+
+// A number as made-from values write it (10 significant digits).
+std::string madeFromNumber(double value);
+
+// The version, the scene (its path, import options, RGB-D photo) and the contents of its files
+// (the scene file, the mesh files it imported, the photo).
+MadeFrom sceneMadeFrom(const SceneRequest& request, const Scene& scene);
+// spp, seed, jitter, adaptive, adaptive_threshold and bounces (not threads: they change no
+// picture).
+void addSamplingMadeFrom(MadeFrom& made, const SamplingRequest& sampling);
+// turntable, duration and fps (not frames and chunk: they choose frames).
+void addSequenceMadeFrom(MadeFrom& made, const SequenceRequest& sequence);
+
+// /made_from in a frame's record: [{"setting": label, "value": value}, ...].
+void recordMadeFrom(JsonWriter& record, const MadeFrom& made);
+
+// Refuses (InputError naming `finished`, the first setting that differs, what the finished
+// frame was made with and what this run asks, and how to start over) a finished frame whose
+// record `recordFile` has another /made_from than `made`, or none (an earlier version's). `start
+// over` names what to remove to start over.
+void checkMadeFrom(const std::string& recordFile, const std::string& finished, const MadeFrom& made,
+                   const std::string& startOver);
 
 }  // namespace parallax::jobs

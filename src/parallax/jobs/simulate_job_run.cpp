@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "parallax/core/error.h"
+#include "parallax/core/output_path.h"
 #include "parallax/image/contact_sheet.h"
 #include "parallax/io/animation.h"
 #include "parallax/io/html_viewer.h"
@@ -130,6 +131,7 @@ void runSimulateFrames(const SimulateRequest& r, Reporter& reporter) {
   if (r.frames != "all") parseFrameRange(r.frames, lastFound, first, last);
   if (r.video.wanted()) checkVideoRequest(r.video);
   const std::string output = r.output.empty() ? "out/simulated.png" : r.output;
+  checkOutputFile(output);
   std::vector<std::string> pictures;
   for (int frame = first; frame <= last; ++frame) {
     SimulateRequest one = r;
@@ -198,6 +200,12 @@ void runSimulate(const SimulateRequest& r, Reporter& reporter) {
     checkVideoRequest(r.video);
   }
   if (r.reference) checkReferenceSpp(r.referenceSpp);
+  // Where the pictures go can take them, before anything is loaded (docs/inputs.md, "Outputs"):
+  // one file, or a sweep's files beside its prefix.
+  if (r.sweep.count > 0)
+    checkOutputFolder(fs::path(r.output.empty() ? "out/sweep" : r.output).parent_path().string());
+  else
+    checkOutputFile(r.output.empty() ? "out/simulated.png" : r.output);
   const SimulateInputs in = loadSimulateInputs(r, reporter);
   const DisplayModel& display = *in.display;
   SimulationOptions sim = simulationOptions(r.simulator, display);

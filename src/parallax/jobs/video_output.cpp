@@ -12,6 +12,10 @@ void checkVideoRequest(const VideoRequest& o) {
   if (o.wanted()) checkVideoOptions(o.file, o.videoOptions());
 }
 
+void checkVideoFrames(const VideoRequest& o, int width, int height) {
+  if (o.wanted()) checkVideoSize(o.file, width, height, o.videoOptions());
+}
+
 std::string videoSummary(const VideoWriter& writer, int width, int height) {
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(writer.path(), ec);

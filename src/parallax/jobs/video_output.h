@@ -26,6 +26,10 @@ struct VideoRequest {
 // Refuses bad video options (InputError naming the option) before any work is done.
 void checkVideoRequest(const VideoRequest& o);
 
+// checkVideoRequest and the encoder's limits for frames of width x height (checkVideoSize), before
+// the frames are made.
+void checkVideoFrames(const VideoRequest& o, int width, int height);
+
 // One line for the user: "wrote FILE: N frames, WxH (coded WxH), CODEC, B bytes".
 std::string videoSummary(const VideoWriter& writer, int width, int height);
 

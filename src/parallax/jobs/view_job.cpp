@@ -10,7 +10,9 @@
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/core/output_path.h"
 #include "parallax/io/image_file.h"
+#include "parallax/io/json_writer.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/distributed.h"
 #include "parallax/jobs/limits.h"
@@ -97,15 +99,71 @@ AcceleratorOptions viewAccelerator(const ViewRequest& r, const Camera& camera) {
   return acceleratorForCameraRays(double(camera.width()) * camera.height() * r.sampling.spp);
 }
 
+std::string optionalText(const std::optional<Vec3f>& v) {
+  return v ? printed("%.9g,%.9g,%.9g", v->x, v->y, v->z) : std::string();
+}
+
+// A view sequence's record, OUTPUT's stem + ".sequence.json" (out/view.sequence.json): what
+// every numbered picture beside it is made from. Its pictures have no record of their own, so
+// the one record covers them all: a run whose settings differ is refused before it writes one.
+std::string sequenceRecordPath(const std::string& output) {
+  const std::filesystem::path p(output);
+  return (p.parent_path() / (p.stem().string() + ".sequence.json")).string();
+}
+
+// Before the first frame: finished pictures were made from this request (else refused), and the
+// record says so from now on.
+void checkViewSequence(const ViewRequest& r, const Scene& scene, const SequencePlan& plan) {
+  MadeFrom made = sceneMadeFrom(r.scene, scene);
+  made.insert(made.end(),
+              {{"{eye}", optionalText(r.eye)},
+               {"{look_at}", optionalText(r.lookAt)},
+               {"{up}", optionalText(r.up)},
+               {"{fov}", r.fov ? madeFromNumber(*r.fov) : ""},
+               {"{size}", std::to_string(r.width) + "x" + std::to_string(r.height)},
+               {"{display_eye}", r.displayEye ? printed("%.9g,%.9g,%.9g", r.displayEye->x,
+                                                        r.displayEye->y, r.displayEye->z)
+                                              : ""},
+               {"{display}", r.display},
+               {"{fit}", r.framing.fit},
+               {"{focus}", r.framing.focus},
+               {"{depth_budget}", r.framing.depthBudget}});
+  addSamplingMadeFrom(made, r.sampling);
+  addSequenceMadeFrom(made, r.sequence);
+  if (r.displayEye) addFileContent(made, r.display);
+  const std::string record = sequenceRecordPath(r.output);
+  int finished = 0;
+  std::string first;
+  for (int frame = 1; frame <= plan.total; ++frame) {
+    const std::string picture = numberedPicture(r.output, frame);
+    checkOutputFile(picture);
+    if (!std::filesystem::is_regular_file(picture)) continue;
+    if (++finished == 1) first = picture;
+  }
+  if (finished > 0) {
+    checkMadeFrom(record, first, made, "the numbered pictures");
+    return;
+  }
+  // No finished picture: the record of a run killed before its first is replaced.
+  if (!writesJobOutputs()) return;
+  JsonWriter json;
+  json.set("/program", "parallax");
+  json.set("/about", "what the numbered pictures beside this file are made from");
+  recordMadeFrom(json, made);
+  writeFileAtomically(record, json.dump() + "\n");
+}
+
 }  // namespace
 
 void runView(const ViewRequest& r, Reporter& reporter) {
   const RenderSettings settings = r.sampling.settings();
   r.sequence.videoOptions();  // refuses bad video options before any work
+  checkOutputFile(r.output);  // and a place the picture cannot go (docs/inputs.md, "Outputs")
   Scene scene = loadScene(r.scene, reporter);
   noteAnimation(r.sequence, scene, reporter);
   const std::unique_ptr<Camera> camera = viewCamera(r, scene, reporter);
   checkViewWork(r, *camera);
+  checkVideoFrames(r.sequence.videoOptions(), camera->width(), camera->height());
   // One picture under mpirun: each rank renders its bands, rank 0 writes (docs/distributed.md);
   // a sequence's pictures are whole frames of one rank.
   const auto renderPicture = [&](const Scene& posed, const Accelerator& accelerator,
@@ -130,6 +188,7 @@ void runView(const ViewRequest& r, Reporter& reporter) {
     return;
   }
   const SequencePlan plan = planSequence(r.sequence, scene);
+  checkViewSequence(r, scene, plan);
   prepareFraming(scene, plan);
   FrameJob job;
   job.reporter = &reporter;

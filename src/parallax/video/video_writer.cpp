@@ -25,6 +25,7 @@ extern "C" {
 #include <system_error>
 
 #include "parallax/core/error.h"
+#include "parallax/core/output_path.h"
 
 // LeakSanitizer (PARALLAX_SANITIZE): Debian's libx265 (3.5) leaks about 1.2 kB per encoder it
 // opens (x265_malloc inside x265_encoder_open, and the strdup'd "pools" value), freed by
@@ -151,6 +152,62 @@ struct SwsHolder {
   ~SwsHolder() { sws_freeContext(p); }
 };
 
+// libvpx's VP9 encoder opens at any size up to 65536 but fails its first frame ("Failed to
+// allocate last frame buffer") beyond 16384 a side (measured with Debian's libvpx): refused
+// with the others' limits, before any frame.
+void refuseBeyondVp9(const std::string& codec, int width, int height, const VideoFieldNames& names,
+                     const std::string& path) {
+  if (codec == "vp9" && (width > 16384 || height > 16384))
+    throw RequestError(names.file,
+                       "the libvpx-vp9 encoder takes at most 16384 pixels a side, not " +
+                           std::to_string(width) + "x" + std::to_string(height) +
+                           ": use a smaller size, or h265 (.mp4, .mkv)",
+                       path);
+}
+
+// Sets up `e` for `codecName` at the coded size and opens it: the one setup of open() and
+// checkVideoSize(). Returns avcodec_open2's code.
+int openEncoder(AVCodecContext* e, const AVCodec* codec, const std::string& codecName,
+                int codedWidth, int codedHeight, const VideoOptions& options) {
+  e->width = codedWidth;
+  e->height = codedHeight;
+  e->pix_fmt = AV_PIX_FMT_YUV420P;
+  e->framerate = av_d2q(options.fps, 100000);
+  e->time_base = av_inv_q(e->framerate);
+  e->sample_aspect_ratio = AVRational{1, 1};
+  // What the codes mean, so that players convert back as they were made: BT.709 primaries
+  // (sRGB's), the sRGB transfer (IEC 61966-2-1), BT.709's YUV matrix in limited range.
+  e->color_primaries = AVCOL_PRI_BT709;
+  e->color_trc = AVCOL_TRC_IEC61966_2_1;
+  e->colorspace = AVCOL_SPC_BT709;
+  e->color_range = AVCOL_RANGE_MPEG;
+  e->thread_count = kEncoderThreads;
+  e->flags |= AV_CODEC_FLAG_BITEXACT;
+
+  Owned<AVDictionary, freeDictionary> opts;
+  const std::string crf = std::to_string(options.quality);
+  av_dict_set(&opts.p, "crf", crf.c_str(), 0);
+  if (codecName == "h264") {
+    av_dict_set(&opts.p, "preset", "medium", 0);
+  } else if (codecName == "h265") {
+    av_dict_set(&opts.p, "preset", "medium", 0);
+    // A fixed pool and frame-thread count (see kEncoderThreads): x265's bytes depend on both
+    // (measured: pools 1, 2, 3, 4 and the machine's default give five different files).
+    // x265's own log off.
+    av_dict_set(&opts.p, "x265-params", "pools=4:frame-threads=2:log-level=error", 0);
+  } else {
+    // libvpx's constant-quality mode needs a zero bitrate beside the crf; "good" at cpu-used 4
+    // is its usual speed for files (0 is several times slower for about 1 dB); row-mt keeps
+    // the threads busy on one tile column of small pictures.
+    e->bit_rate = 0;
+    av_dict_set(&opts.p, "deadline", "good", 0);
+    av_dict_set(&opts.p, "cpu-used", "4", 0);
+    av_dict_set(&opts.p, "row-mt", "1", 0);
+  }
+  lastLogMessage.clear();
+  return avcodec_open2(e, codec, &opts.p);
+}
+
 }  // namespace
 
 std::string resolveVideoCodec(const std::string& path, const VideoOptions& options, int width,
@@ -202,6 +259,60 @@ void checkVideoOptions(const std::string& path, const VideoOptions& options,
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && fs::exists(parent, ec) && !fs::is_directory(parent, ec))
     throw RequestError(names.file, "its folder '" + parent.string() + "' is a file", path);
+  // A file that cannot be written, or a folder that cannot take it: refused now, not after the
+  // frames are rendered.
+  try {
+    checkOutputFile(path);
+  } catch (const InputError& e) {
+    throw RequestError(names.file, e.what(), path);
+  }
+}
+
+namespace {
+
+// What open() and checkVideoSize() refuse before an encoder is opened: the options, a size
+// beyond 1 to 65536 a side, VP9's 16384. Returns the codec for that size.
+std::string checkedCodec(const std::string& path, int width, int height,
+                         const VideoOptions& options, const VideoFieldNames& names) {
+  checkVideoOptions(path, options, names);
+  if (width < 1 || height < 1 || width > 65536 || height > 65536)
+    throw RequestError(names.file,
+                       "a video frame of " + std::to_string(width) + "x" + std::to_string(height) +
+                           " pixels: expected 1 to 65536 a side",
+                       path);
+  const std::string codec = resolveVideoCodec(path, options, width, height, names);
+  refuseBeyondVp9(codec, width, height, names, path);
+  return codec;
+}
+
+}  // namespace
+
+void checkVideoSize(const std::string& path, int width, int height, const VideoOptions& options,
+                    const VideoFieldNames& names) {
+  const std::string codecName = checkedCodec(path, width, height, options, names);
+  // libvpx allocates its frame buffers when it opens (measured at 8192 x 8192: 6.9 s and
+  // 3.6 GB), and its only size limit is checked by name above: not opened twice.
+  if (codecName == "vp9") return;
+  const AVCodec* codec = avcodec_find_encoder_by_name(encoderName(codecName));
+  if (!codec)
+    throw RequestError(names.codec, "this FFmpeg has no " + std::string(encoderName(codecName)) +
+                                        " encoder for " + codecName);
+  // The encoder itself is the truth about its limits (x264's 16384 a side, x265's minimum
+  // sizes, the even sizes of 4:2:0, which the coded size pads to): it is opened at the coded
+  // size and closed again, without a file (measured: 8 ms at 1920 x 1080 and 32 ms at
+  // 4096 x 4096 for x264, 13 ms at 8192 x 8192 for x265).
+  Owned<AVCodecContext, freeCodec> encoder;
+  encoder.p = avcodec_alloc_context3(codec);
+  if (!encoder.p) throw std::bad_alloc();
+  const int codedWidth = width + (width & 1), codedHeight = height + (height & 1);
+  const int r = openEncoder(encoder.p, codec, codecName, codedWidth, codedHeight, options);
+  if (r < 0)
+    throw RequestError(
+        names.file,
+        "the " + std::string(encoderName(codecName)) + " encoder refuses " + std::to_string(width) +
+            "x" + std::to_string(height) + " frames (coded " + std::to_string(codedWidth) + "x" +
+            std::to_string(codedHeight) + "): " + avError(r) + "; nothing was rendered",
+        path);
 }
 
 struct VideoWriter::State {
@@ -275,17 +386,12 @@ const std::string& VideoWriter::path() const {
 
 void VideoWriter::open(const std::string& path, int width, int height, const VideoOptions& options,
                        const VideoFieldNames& names) {
-  checkVideoOptions(path, options, names);
-  if (width < 1 || height < 1 || width > 65536 || height > 65536)
-    throw RequestError(names.file,
-                       "a video frame of " + std::to_string(width) + "x" + std::to_string(height) +
-                           " pixels: expected 1 to 65536 a side",
-                       path);
+  const std::string codecName = checkedCodec(path, width, height, options, names);
   state_.reset();  // a writer opened again drops (and removes) what it had
   auto s = std::make_unique<State>();
   s->path = path;
   s->names = names;
-  s->codec = resolveVideoCodec(path, options, width, height, names);
+  s->codec = codecName;
   s->width = width;
   s->height = height;
   // YUV 4:2:0 codes one chroma sample per 2 x 2 pixels: the coded size is even.
@@ -297,6 +403,7 @@ void VideoWriter::open(const std::string& path, int width, int height, const Vid
   std::error_code ec;
   if (!parent.empty()) fs::create_directories(parent, ec);
   if (ec) s->fail("cannot create its folder: " + ec.message());
+  removeStaleTemporaryFiles(path);  // a killed run's FILE.partial-PID
   s->tmpPath = path + ".partial-" + std::to_string(::getpid());
 
   lastLogMessage.clear();
@@ -314,44 +421,8 @@ void VideoWriter::open(const std::string& path, int width, int height, const Vid
   if (!s->stream || !s->encoder.p || !s->frame.p || !s->packet.p) s->fail("out of memory");
 
   AVCodecContext* e = s->encoder.p;
-  e->width = s->codedWidth;
-  e->height = s->codedHeight;
-  e->pix_fmt = AV_PIX_FMT_YUV420P;
-  e->framerate = av_d2q(options.fps, 100000);
-  e->time_base = av_inv_q(e->framerate);
-  e->sample_aspect_ratio = AVRational{1, 1};
-  // What the codes mean, so that players convert back as they were made: BT.709 primaries
-  // (sRGB's), the sRGB transfer (IEC 61966-2-1), BT.709's YUV matrix in limited range.
-  e->color_primaries = AVCOL_PRI_BT709;
-  e->color_trc = AVCOL_TRC_IEC61966_2_1;
-  e->colorspace = AVCOL_SPC_BT709;
-  e->color_range = AVCOL_RANGE_MPEG;
-  e->thread_count = kEncoderThreads;
-  e->flags |= AV_CODEC_FLAG_BITEXACT;
   if (s->format->oformat->flags & AVFMT_GLOBALHEADER) e->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
-
-  Owned<AVDictionary, freeDictionary> opts;
-  const std::string crf = std::to_string(options.quality);
-  av_dict_set(&opts.p, "crf", crf.c_str(), 0);
-  if (s->codec == "h264") {
-    av_dict_set(&opts.p, "preset", "medium", 0);
-  } else if (s->codec == "h265") {
-    av_dict_set(&opts.p, "preset", "medium", 0);
-    // A fixed pool and frame-thread count (see kEncoderThreads): x265's bytes depend on both
-    // (measured: pools 1, 2, 3, 4 and the machine's default give five different files).
-    // x265's own log off.
-    av_dict_set(&opts.p, "x265-params", "pools=4:frame-threads=2:log-level=error", 0);
-  } else {
-    // libvpx's constant-quality mode needs a zero bitrate beside the crf; "good" at cpu-used 4
-    // is its usual speed for files (0 is several times slower for about 1 dB); row-mt keeps
-    // the threads busy on one tile column of small pictures.
-    e->bit_rate = 0;
-    av_dict_set(&opts.p, "deadline", "good", 0);
-    av_dict_set(&opts.p, "cpu-used", "4", 0);
-    av_dict_set(&opts.p, "row-mt", "1", 0);
-  }
-  lastLogMessage.clear();
-  r = avcodec_open2(e, codec, &opts.p);
+  r = openEncoder(e, codec, s->codec, s->codedWidth, s->codedHeight, options);
   if (r < 0)
     s->fail("the " + std::string(encoderName(s->codec)) + " encoder refuses " +
             std::to_string(s->codedWidth) + "x" + std::to_string(s->codedHeight) + " at " +

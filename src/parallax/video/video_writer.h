@@ -51,10 +51,17 @@ std::string resolveVideoCodec(const std::string& path, const VideoOptions& optio
 // that Debian's FFmpeg has its encoder, the container, the quality and fps ranges, and that
 // `path` is not a folder and its folder exists (or can be made). Lets a command refuse bad options
 // before it works for the frames.
+// A path whose folder (or nearest existing ancestor) cannot be written is refused too.
 void checkVideoOptions(const std::string& path, const VideoOptions& options,
                        const VideoFieldNames& names = {});
+// checkVideoOptions and what open() would refuse for frames of width x height: the x264 or x265
+// encoder is opened at that size (and closed) without a file, so that a size it refuses is
+// known before the frames are rendered; VP9's limit (16384 a side) is checked by name.
+void checkVideoSize(const std::string& path, int width, int height, const VideoOptions& options,
+                    const VideoFieldNames& names = {});
 
-// Writes frames to a temporary file beside `path` (path + ".partial-<pid>.<ext>") and renames
+// Writes frames to a temporary file beside `path` (path + ".partial-<pid>"; those of killed
+// runs are removed when the next writer of `path` opens) and renames
 // it into place in finish(); a writer destroyed without finish() removes the temporary file, so
 // a failed run never leaves a partial video. The output is deterministic: the same frames and
 // options give the same bytes (one encoder thread per frame order, no times or versions in the

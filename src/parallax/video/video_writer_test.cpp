@@ -315,6 +315,37 @@ TEST_F(VideoWriterTest, AbandonedWriterLeavesNoFile) {
   EXPECT_EQ(folderEntries(), std::vector<std::string>{"kept.mp4"});
 }
 
+// The sizes an encoder refuses are known before any frame: checkVideoSize opens the encoder
+// as open() would, and says the same; sizes it takes pass, and no file is made either way.
+TEST_F(VideoWriterTest, EncoderSizeLimitsAreKnownBeforeTheFrames) {
+  VideoOptions h264;
+  h264.codec = "h264";
+  VideoOptions h265;
+  h265.codec = "h265";
+  EXPECT_EQ(optionOf([&] { checkVideoSize(path("wide.mp4"), 20000, 16, h264); }), "video");
+  EXPECT_EQ(optionOf([&] { checkVideoSize(path("flat.mp4"), 8192, 16, h265); }), "video");
+  EXPECT_EQ(optionOf([&] { checkVideoSize(path("tall.webm"), 16, 16385, {}); }), "video");
+  EXPECT_EQ(optionOf([&] { checkVideoSize(path("ok.mp4"), 65, 37, h264); }), "(no error)");
+  EXPECT_EQ(optionOf([&] { checkVideoSize(path("ok.webm"), 16, 16384, {}); }), "(no error)");
+  EXPECT_TRUE(folderEntries().empty());
+  // What checkVideoSize refuses, open() refuses too (no frame needed).
+  VideoWriter writer;
+  EXPECT_EQ(optionOf([&] { writer.open(path("wide.mp4"), 20000, 16, h264); }), "video");
+  EXPECT_EQ(optionOf([&] { writer.open(path("tall.webm"), 16, 16385); }), "video");
+  EXPECT_TRUE(folderEntries().empty());
+}
+
+// A killed run's FILE.partial-PID goes when the next video of FILE opens.
+TEST_F(VideoWriterTest, KilledRunsPartialFilesAreRemoved) {
+  std::ofstream(path("x.mp4.partial-999999999")) << "half";
+  VideoWriter writer;
+  writer.open(path("x.mp4"), 32, 32);
+  const std::vector<uint8_t> frame = testFrame(32, 32, 0);
+  writer.addFrame8(frame.data(), 32, 32);
+  writer.finish();
+  EXPECT_EQ(folderEntries(), std::vector<std::string>{"x.mp4"});
+}
+
 TEST_F(VideoWriterTest, ProbeRefusesWhatIsNoVideo) {
   std::ofstream(path("text.mp4")) << "not a video at all";
   EXPECT_EQ(optionOf([&] { probeVideo(path("text.mp4")); }), path("text.mp4"));
