@@ -75,11 +75,11 @@ namespace {
 std::pair<double, std::string> framePictureBytes(const RenderRequest& r, const RenderPlan& plan,
                                                  const DisplayModel& display) {
   if (r.quilt.wanted) {
-    // The quilt's 8-bit codes and the PNG encoder's filtered rows (or the float quilt and, as it
-    // is written, its codes and rows), beside one view's film and its copy in the tile.
+    // The quilt's 8-bit codes and the PNG encoder's filtered rows; with --linear the float quilt
+    // and, as it is written, the PFM's bytes (the PNG's codes and rows are freed before). Beside
+    // them, one view's film and its copy in the tile.
     const double views = plan.layout.views(), w = plan.tileWidth, h = plan.tileHeight;
-    const double perPixel =
-        (r.linear ? kFloatRgbPixelBytes : 0.0) + 2 * kRgb8PixelBytes;
+    const double perPixel = r.linear ? 2 * kFloatRgbPixelBytes : 2 * kRgb8PixelBytes;
     return {imageBytes(w, h, perPixel, views) + imageBytes(w, h, kFloatRgbPixelBytes, 2),
             "the quilt"};
   }
@@ -98,13 +98,17 @@ std::pair<double, std::string> framePictureBytes(const RenderRequest& r, const R
   const double subpixel = design->camera.subpixelRays ? 3.0 : 1.0;
   const double views =
       r.directMapping ? std::max(1.0, std::round(design->screenPeriodPx * subpixel)) : 1.0;
-  // The film (one per view with direct mapping); each layer as rendered, its copy in the frame
-  // set, its 8-bit codes and the PNG encoder's rows (30 bytes a pixel, measured: 72 bytes a
-  // pixel for a 2000x2000 display's film and both layers).
+  // While rendering: the film (one per view with direct mapping) and the image layer made from
+  // it. Then each layer as rendered, its copy in the frame set, its 8-bit codes and the PNG
+  // encoder's rows, and the image layer's picture once more (72 bytes a pixel of a display
+  // without subpixel rays, measured at 480x270 to 4000x4000, whatever the film).
   const double perLayerPixel = 2 * kFloatRgbPixelBytes + 2 * kRgb8PixelBytes;
-  const double layers = imageBytes(film.columns, film.rows, kFloatRgbPixelBytes, views) +
-                        imageBytes(image.width, image.height, perLayerPixel) +
-                        imageBytes(mask.width, mask.height, perLayerPixel);
+  const double layers =
+      std::max(imageBytes(film.columns, film.rows, kFloatRgbPixelBytes, views) +
+                   imageBytes(image.width, image.height, kFloatRgbPixelBytes,
+                              r.directMapping ? 2.0 : 1.0),  // direct mapping: interleaved too
+               imageBytes(image.width, image.height, perLayerPixel + kFloatRgbPixelBytes) +
+                   imageBytes(mask.width, mask.height, perLayerPixel));
   if (!r.layers.solved()) return {layers, "the layers"};
   // Solved layers: the slits' layers stay while the solver holds its training views (their
   // ideal images and the eyes' sampling tables) and per frame two layers and their gradients.

@@ -119,9 +119,16 @@ void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
       sweep > 0 ? "{sweep} " + std::to_string(sweep)
       : r.size  ? "{size} " + std::to_string((*r.size)[0]) + "x" + std::to_string((*r.size)[1])
                 : "{eye}";
-  checkMemoryEstimate(2 * layerBytes + oneEye + double(eyes) * perEye, subject,
-                      std::to_string(eyes) + " simulated views",
-                      sweep > 0 ? "use fewer steps" : "use a smaller size or fewer eyes");
+  // Eyes alone (no sweep, no reference): the whole estimate, the layers loaded (the simulator
+  // holds its own copy). A sweep's is
+  // made at its first picture, the dense measure's with its scene; this one refuses early.
+  if (sweep == 0 && referenceSpp == 0)
+    checkPeakMemory(layerBytes + oneEye, subject, std::to_string(eyes) + " simulated views",
+                    "use a smaller size or fewer eyes");
+  else
+    checkMemoryEstimate(2 * layerBytes + oneEye + double(eyes) * perEye, subject,
+                        std::to_string(eyes) + " simulated views",
+                        sweep > 0 ? "use fewer steps" : "use a smaller size or fewer eyes");
   checkPixelCount(w * h, subject);
   // The exact integral costs about as much as 3 x 3 point samples (the pieces between the two
   // layers' pixel edges: 2 to 3 along each axis).
