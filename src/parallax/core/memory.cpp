@@ -18,7 +18,9 @@ double peakResidentMiB() {
   return double(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
 }
 
-double peakResidentBytes() { return peakResidentMiB() * 1024.0 * 1024.0; }
+double peakResidentBytes() {
+  return peakResidentMiB() * 1024.0 * 1024.0;
+}
 
 double residentBytes() {
   std::ifstream statm("/proc/self/statm");

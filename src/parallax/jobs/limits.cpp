@@ -52,7 +52,9 @@ void checkPeakMemory(double workBytes, const std::string& subject, const std::st
   if (limits().estimateOnly) throw EstimateOnly(estimateRecord());
 }
 
-const MemoryEstimate& lastEstimate() { return estimateRecord(); }
+const MemoryEstimate& lastEstimate() {
+  return estimateRecord();
+}
 
 void checkTimeEstimate(double samples, int threads, const std::string& field,
                        const std::string& value, const std::string& advice) {

@@ -100,8 +100,7 @@ std::vector<Vec3d> simulatedEyes(const DisplayModel& display, const std::vector<
   return eyes;
 }
 
-void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
-                         const SimulatorRequest& r, size_t eyes, int sweep, int referenceSpp) {
+std::pair<double, double> seenPictureSize(const DisplayModel& display, const SimulatorRequest& r) {
   double w = display.film().panelWidth, h = display.film().panelHeight;
   if (const DisplayDesign* d = display.barrierDesign()) {
     const Panel& front =
@@ -109,6 +108,12 @@ void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
     w = r.size ? (*r.size)[0] : front.width;
     h = r.size ? (*r.size)[1] : front.height;
   }
+  return {w, h};
+}
+
+void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
+                         const SimulatorRequest& r, size_t eyes, int sweep, int referenceSpp) {
+  const auto [w, h] = seenPictureSize(display, r);
   const double layerBytes = imageBytes(layers.image.width(), layers.image.height()) +
                             imageBytes(layers.mask.width(), layers.mask.height());
   // Eyes are seen one at a time: one view and its picture at once, and per eye only what is

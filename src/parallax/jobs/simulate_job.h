@@ -8,6 +8,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
@@ -70,6 +71,11 @@ std::vector<Vec3d> simulatedEyes(const DisplayModel& display, const std::vector<
 void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
                          const SimulatorRequest& request, size_t eyes, int sweep = 0,
                          int referenceSpp = 0);
+
+// The size of the pictures an eye sees: the request's size, else the barrier's front panel or the
+// lenticular panel.
+std::pair<double, double> seenPictureSize(const DisplayModel& display,
+                                          const SimulatorRequest& request);
 
 // The picture an eye sees in `view`: at the display's resolution (one screen period, one lens
 // around each output pixel, as a viewer at the design distance perceives it), or raw.

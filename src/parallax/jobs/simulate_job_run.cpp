@@ -203,8 +203,8 @@ void checkSweepMemory(size_t eyes, double pngBytes, int width, int height, int t
   const double thumbnailHeight = std::max(1.0, std::round(double(height) * thumbnailWidth / width));
   const double thumbnails = n * imageBytes(thumbnailWidth, thumbnailHeight);
   const double sheetRows = std::ceil(n / std::min(n, 3.0));
-  const double sheetPixels = (std::min(n, 3.0) * (thumbnailWidth + 4) + 4) *
-                             sheetRows * (thumbnailHeight + kLabelStripHeight + 4);
+  const double sheetPixels = (std::min(n, 3.0) * (thumbnailWidth + 4) + 4) * sheetRows *
+                             (thumbnailHeight + kLabelStripHeight + 4);
   const double sheet = thumbnails + sheetPixels * (kFloatRgbPixelBytes + kRgb8PixelBytes);
   const double pages = std::max(sheet, n * pngBytes * 4.0 / 3.0);
   checkPeakMemory(n * pngBytes + thumbnails + pages, "{sweep} " + std::to_string(sweep),

@@ -65,9 +65,8 @@ namespace {
 // codes and its filtered rows (the compressed PNG is small beside them), and the time.
 void checkViewWork(const ViewRequest& r, const Scene& scene, const Camera& camera) {
   const std::string size = std::to_string(camera.width()) + "x" + std::to_string(camera.height());
-  checkPeakMemory(acceleratorBytes(scene) +
-                      imageBytes(camera.width(), camera.height(),
-                                 kFloatRgbPixelBytes + 2 * kRgb8PixelBytes),
+  checkPeakMemory(acceleratorBytes(scene) + imageBytes(camera.width(), camera.height(),
+                                                       kFloatRgbPixelBytes + 2 * kRgb8PixelBytes),
                   (r.width > 0 ? "{size} " : "image ") + size, "the scene's BVH and the film",
                   "use a smaller size");
   checkPixelCount(double(camera.width()) * camera.height(), "{size} " + size);
