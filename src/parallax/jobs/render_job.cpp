@@ -163,7 +163,7 @@ void runRender(const RenderRequest& r, Reporter& reporter) {
   if (r.sequence.given()) prepareFraming(scene, sequence);
   noteAnimation(r.sequence, scene, reporter);
   const BuiltDisplay display = makeFramedDisplay(plan.description, plan.camera, r.framing, scene);
-  checkRenderMemory(r, plan, *display, scene, memorySubject(r));
+  checkRenderMemory(r, plan, *display, scene, memorySubject(r), false);
   reportFraming(display, reporter);
 
   FrameTarget target{&r, &plan, &display, nullptr, 0, r.output};
@@ -197,7 +197,7 @@ RenderResult renderInMemory(const RenderRequest& r, const Scene& loaded, Reporte
   Scene scene = loaded;
   const BuiltDisplay display =
       makeFramedDisplay(plan.description, plan.camera, request.framing, scene);
-  checkRenderMemory(request, plan, *display, scene, memorySubject(request));
+  checkRenderMemory(request, plan, *display, scene, memorySubject(request), true);
   const Accelerator accelerator(scene, cameraRayAccelerator(request, plan, *display));
   const FrameTarget target{&request, &plan, &display, nullptr, 0, ""};
   return renderFrameInMemory(target, scene, accelerator, reporter);

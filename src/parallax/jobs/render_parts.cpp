@@ -73,7 +73,10 @@ namespace {
 
 // What one frame's pictures hold at their peak, in bytes, and what that is.
 std::pair<double, std::string> framePictureBytes(const RenderRequest& r, const RenderPlan& plan,
-                                                 const DisplayModel& display) {
+                                                 const DisplayModel& display, bool inMemory) {
+  // Per pixel of a finished picture: a PNG's 8-bit codes and the encoder's filtered rows, or the
+  // caller's float copy.
+  const double handedOver = inMemory ? kFloatRgbPixelBytes : 2 * kRgb8PixelBytes;
   if (r.quilt.wanted) {
     // The quilt's 8-bit codes and the PNG encoder's filtered rows; with --linear the float quilt
     // and, as it is written, the PFM's bytes (the PNG's codes and rows are freed before). Beside
@@ -88,11 +91,11 @@ std::pair<double, std::string> framePictureBytes(const RenderRequest& r, const R
   if (!design) {
     // A lenticular panel: the film, then the panel picture, its 8-bit codes and the encoder's
     // rows.
-    return {std::max(imageBytes(film.columns, film.rows),
-                     imageBytes(film.panelWidth, film.panelHeight,
-                                kFloatRgbPixelBytes + 2 * kRgb8PixelBytes)) +
-                imageBytes(film.panelWidth, film.panelHeight),
-            "the panel image"};
+    return {
+        std::max(imageBytes(film.columns, film.rows),
+                 imageBytes(film.panelWidth, film.panelHeight, kFloatRgbPixelBytes + handedOver)) +
+            imageBytes(film.panelWidth, film.panelHeight),
+        "the panel image"};
   }
   const Panel &image = design->spec.imagePanel, &mask = design->spec.maskPanel;
   const double subpixel = design->camera.subpixelRays ? 3.0 : 1.0;
@@ -102,6 +105,7 @@ std::pair<double, std::string> framePictureBytes(const RenderRequest& r, const R
   // it. Then each layer as rendered, its copy in the frame set, its 8-bit codes and the PNG
   // encoder's rows, and the image layer's picture once more (72 bytes a pixel of a display
   // without subpixel rays, measured at 480x270 to 4000x4000, whatever the film).
+  // In memory the same, measured: the caller's copy is made once the frame set's copies are gone.
   const double perLayerPixel = 2 * kFloatRgbPixelBytes + 2 * kRgb8PixelBytes;
   const double layers =
       std::max(imageBytes(film.columns, film.rows, kFloatRgbPixelBytes, views) +
@@ -122,8 +126,8 @@ std::pair<double, std::string> framePictureBytes(const RenderRequest& r, const R
 }  // namespace
 
 void checkRenderMemory(const RenderRequest& r, const RenderPlan& plan, const DisplayModel& display,
-                       const Scene& scene, const std::string& subject) {
-  const auto [bytes, what] = framePictureBytes(r, plan, display);
+                       const Scene& scene, const std::string& subject, bool inMemory) {
+  const auto [bytes, what] = framePictureBytes(r, plan, display, inMemory);
   checkPeakMemory(acceleratorBytes(scene) + bytes, subject, "the scene's BVH and " + what,
                   r.quilt.wanted ? "use fewer views or a smaller {size}"
                                  : "use a smaller display or a simpler scene");

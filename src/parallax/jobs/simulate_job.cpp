@@ -112,7 +112,8 @@ std::pair<double, double> seenPictureSize(const DisplayModel& display, const Sim
 }
 
 void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
-                         const SimulatorRequest& r, size_t eyes, int sweep, int referenceSpp) {
+                         const SimulatorRequest& r, size_t eyes, int sweep, int referenceSpp,
+                         int keptCopies) {
   const auto [w, h] = seenPictureSize(display, r);
   const double layerBytes = imageBytes(layers.image.width(), layers.image.height()) +
                             imageBytes(layers.mask.width(), layers.mask.height());
@@ -128,8 +129,13 @@ void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
   // holds its own copy). A sweep's is
   // made at its first picture, the dense measure's with its scene; this one refuses early.
   if (sweep == 0 && referenceSpp == 0)
-    checkPeakMemory(layerBytes + oneEye, subject, std::to_string(eyes) + " simulated views",
-                    "use a smaller size or fewer eyes");
+    checkPeakMemory(
+        keptCopies == 0 ? layerBytes + oneEye
+                        // In memory (Python): the layers are moved into the simulator; the
+                        // pictures are kept as made, then copied for the caller.
+                        : std::max(oneEye + double(eyes - 1) * imageBytes(w, h),
+                                   double(keptCopies) * double(eyes) * imageBytes(w, h)),
+        subject, std::to_string(eyes) + " simulated views", "use a smaller size or fewer eyes");
   else
     checkMemoryEstimate(2 * layerBytes + oneEye + double(eyes) * perEye, subject,
                         std::to_string(eyes) + " simulated views",
@@ -159,7 +165,7 @@ std::vector<Image> simulatedPictures(const DisplayModel& display, LayerImages la
                                      const std::vector<Vec3d>& eyes) {
   const SimulationOptions sim = simulationOptions(request, display);
   const std::vector<Vec3d> checked = simulatedEyes(display, eyes);
-  checkSimulationWork(display, layers, request, checked.size());
+  checkSimulationWork(display, layers, request, checked.size(), 0, 0, 2);
   const std::unique_ptr<SimulatedDisplay> simulator =
       simulateDisplay(display, std::move(layers), sim);
   std::vector<Image> pictures;

@@ -67,10 +67,12 @@ std::vector<Vec3d> simulatedEyes(const DisplayModel& display, const std::vector<
 // Before the simulator allocates: memory for one eye's view and picture, each eye's encoded
 // copy and two copies of the layers; the time of every sample (spp x pupil samples per output
 // pixel, and referenceSpp per pixel of the ideal views; 0: none). The refusals name {sweep}
-// (sweep > 0), {size} or {eye}.
+// (sweep > 0), {size} or {eye}. Eyes alone (no sweep, no reference): the whole estimate
+// (checkPeakMemory), with `keptCopies` copies of every eye's picture kept to the end (Python's
+// simulate: the pictures and their arrays).
 void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
                          const SimulatorRequest& request, size_t eyes, int sweep = 0,
-                         int referenceSpp = 0);
+                         int referenceSpp = 0, int keptCopies = 0);
 
 // The size of the pictures an eye sees: the request's size, else the barrier's front panel or the
 // lenticular panel.
