@@ -3,11 +3,13 @@
 # sizes, the peak resident set size `/usr/bin/time -v` measures must be within 0.9-1.1 times the
 # estimate `parallax --estimate` prints (the same figure the command checks against
 # --max-memory). Prints the table; fails on any row outside the band.
-# Usage: memory_estimate_test.sh PARALLAX_BINARY SOURCE_DIR [PYTHON_MODULE_DIR]
+# Python's functions the same way, through parallax.estimate_memory, when the module is given.
+# Usage: memory_estimate_test.sh PARALLAX_BINARY SOURCE_DIR [PYTHON_PACKAGE_DIR PYTHON]
 set -u
 bin=$1
 src=$2
 pydir=${3:-}
+python=${4:-python3}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 if [ ! -x /usr/bin/time ]; then
@@ -118,6 +120,35 @@ row "simulate --sweep 100" 960x540 simulate "$tmp/r960" --sweep 100 -o "$tmp/s3/
 row "simulate --reference (dense)" 480x270 simulate "$tmp/r480" --reference --reference-spp 1 -o "$tmp/d.png"
 row "simulate --reference (dense)" 960x540 simulate "$tmp/r960" --reference --reference-spp 1 -o "$tmp/d.png"
 row "simulate --reference --compare" 480x270 simulate "$tmp/r480" --reference --reference-spp 1 --compare "$tmp/r480" -o "$tmp/d.png"
+
+# pyrow LABEL SIZE CODE: CODE sets up `call`; estimate_memory(call), then call() measured.
+pyrow() {
+  local label=$1 size=$2 code="import numpy as np, parallax as p
+$3"
+  local est peak
+  est=$(cd "$tmp" && PYTHONPATH=$pydir "$python" -c "$code
+print(p.estimate_memory(call))" 2>"$tmp/err")
+  (cd "$tmp" && PYTHONPATH=$pydir /usr/bin/time -v "$python" -c "$code
+call()" >"$tmp/out" 2>"$tmp/time")
+  local rc=$?
+  peak=$(awk '/Maximum resident set size/ {print $NF * 1024}' "$tmp/time")
+  judge "$label" "$size" "$rc" "$est" "$peak"
+}
+if [ -n "$pydir" ]; then
+  pyrow "python view" 2000x2000 "call = lambda: p.view(p.load_scene(), size=(2000, 2000), spp=1)"
+  pyrow "python render" 1000x1000 "d = p.load_display('d1000.json')
+call = lambda: p.render(p.load_scene(), d, spp=1)"
+  pyrow "python render lenticular" lkg:portrait "d = p.load_display('lkg:portrait')
+call = lambda: p.render(p.load_scene(), d, spp=1, filter='none')"
+  pyrow "python quilt" lkg:portrait "d = p.load_display('lkg:portrait')
+call = lambda: p.quilt(p.load_scene(), d, spp=1)"
+  pyrow "python simulate (one eye)" 960x540 "d = p.load_display('d960.json')
+r = p.render(p.load_scene(), d, spp=1)
+call = lambda: p.simulate(r.image, r.mask, d, eye=(0, 0, 600))"
+  pyrow "python sweep 100" 480x270 "d = p.load_display('d480.json')
+r = p.render(p.load_scene(), d, spp=1)
+call = lambda: p.sweep(r.image, r.mask, d, 100)"
+fi
 
 if [ "$failures" -gt 0 ]; then
   echo "FAIL: $failures rows outside 0.9-1.1 (peak / estimate) or failed"
