@@ -121,6 +121,21 @@ row "simulate --reference (dense)" 480x270 simulate "$tmp/r480" --reference --re
 row "simulate --reference (dense)" 960x540 simulate "$tmp/r960" --reference --reference-spp 1 -o "$tmp/d.png"
 row "simulate --reference --compare" 480x270 simulate "$tmp/r480" --reference --reference-spp 1 --compare "$tmp/r480" -o "$tmp/d.png"
 
+# show under a virtual X server (as tests/cli_show_test.sh), when there is one.
+if command -v Xvfb >/dev/null && command -v xdpyinfo >/dev/null; then
+  screen=":$((500 + RANDOM % 400))"
+  Xvfb "$screen" -screen 0 4200x2200x24 -nolisten tcp -noreset >/dev/null 2>&1 &
+  xvfb=$!
+  trap 'kill $xvfb 2>/dev/null; rm -rf "$tmp"' EXIT
+  for _ in $(seq 300); do xdpyinfo -display "$screen" >/dev/null 2>&1 && break; sleep 0.1; done
+  "$bin" calibrate patterns --display "$tmp/d960.json" --steps 5 -o "$tmp/c960" >/dev/null 2>&1
+  DISPLAY=$screen row "show (layers)" 480x270 show "$tmp/r480" --windowed --exit-after 1
+  DISPLAY=$screen row "show (layers)" 2000x2000 show "$tmp/r2000" --windowed --exit-after 1
+  DISPLAY=$screen row "show (calibration patterns)" 960x540 show "$tmp/c960" --windowed --exit-after 1
+else
+  echo "show: skipped (no Xvfb)"
+fi
+
 # pyrow LABEL SIZE CODE: CODE sets up `call`; estimate_memory(call), then call() measured.
 pyrow() {
   local label=$1 size=$2 code="import numpy as np, parallax as p
