@@ -77,7 +77,8 @@ TEST(Limits, AnEstimateOnlyRunStopsAtTheWholeEstimate) {
     checkPeakMemory(kGiB, "--size 1x1", "the film", "use a smaller size");
     ADD_FAILURE() << "no refusal";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("needs about 1 GiB for the film"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("needs about 1 GiB for the film"), std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("(limit 0.5 GiB)"), std::string::npos) << e.what();
   }
   limits() = saved;
