@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -19,7 +20,9 @@ double peakResidentMiB() {
 }
 
 double peakResidentBytes() {
-  return peakResidentMiB() * 1024.0 * 1024.0;
+  rusage children{};
+  getrusage(RUSAGE_CHILDREN, &children);
+  return std::max(peakResidentMiB(), double(children.ru_maxrss) / 1024.0) * 1024.0 * 1024.0;
 }
 
 double residentBytes() {

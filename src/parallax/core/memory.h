@@ -10,7 +10,8 @@ namespace parallax {
 
 // Peak resident set size of this process so far, in MiB (from getrusage).
 double peakResidentMiB();
-// The same in bytes: what `/usr/bin/time -v` reports as the maximum resident set size.
+// The same in bytes, or the peak of a finished child process (a sandboxed importer) when that
+// was higher: what `/usr/bin/time -v` reports as the maximum resident set size.
 double peakResidentBytes();
 // Resident set size of this process now, in bytes (/proc/self/statm); 0 when unknown. What a
 // command holds before its work: the program, its libraries, Embree's and oneTBB's own memory,
