@@ -78,7 +78,7 @@ for bad in 0x10 10x0 -5x5 10by10 axb 10x 1.5x2 99999999999x2; do
   refuse "view --size '$bad'" --size view --size "$bad" -o "$o.png"
 done
 refuse "view --size 65536x65536" "--size 65536x65536" view --size 65536x65536 -o "$o.png"
-check "view --size 65536x65536: says GiB and limit" grep -q "GiB for the film (limit .* GiB)" "$tmp/err"
+check "view --size 65536x65536: says GiB and limit" grep -q "GiB for the scene.s BVH and the film (limit .* GiB)" "$tmp/err"
 refuse "view --size 20000x20000 under 1 GiB" "--size 20000x20000" \
   view --size 20000x20000 --max-memory 1 -o "$o.png"
 check "20000x20000: GiB and limit" grep -q "GiB.*limit" "$tmp/err"

@@ -16,6 +16,8 @@
 #include "parallax/app/commands.h"
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
+#include "parallax/jobs/limits.h"
 
 namespace {
 
@@ -59,6 +61,23 @@ int main(int argc, char** argv) {
   parallax::app::registerShowCommand(cli);
   parallax::app::registerInfoCommand(cli);
   parallax::app::registerBenchCommand(cli);
+  // A dry run: the commands that estimate their whole peak stop at the estimate and print it.
+  cli.add_flag("--estimate", parallax::jobs::limits().estimateOnly,
+               "Print the command's estimated peak memory (resident set size) and exit before "
+               "any work; nothing is written (render, view, simulate, lenticular render, show)");
+  cli.parse_complete_callback([&cli] {
+    if (!parallax::jobs::limits().estimateOnly) return;
+    std::string name;
+    for (const CLI::App* c = cli.get_subcommands().empty() ? nullptr : cli.get_subcommands()[0]; c;
+         c = c->get_subcommands().empty() ? nullptr : c->get_subcommands()[0])
+      name += (name.empty() ? "" : " ") + c->get_name();
+    if (name != "render" && name != "view" && name != "simulate" && name != "lenticular render" &&
+        name != "show")
+      throw parallax::InputError("command line", "--estimate",
+                                 "not available for " + name +
+                                     "; it is for render, view, simulate, lenticular render and "
+                                     "show");
+  });
   std::optional<parallax::cluster::Failure> failure;
   const auto fail = [&](int exitCode, const std::string& message) {
     failure = parallax::cluster::Failure{group.rank(), exitCode, message};
@@ -77,6 +96,12 @@ int main(int argc, char** argv) {
         message = rest.front() + ": not a command (" + message + ")";
       fail(parallax::app::kExitInputError, message);
     }
+  } catch (const parallax::jobs::EstimateOnly& e) {
+    // --estimate: rank 0 says what the command would need; nothing was allocated or written.
+    if (group.isRoot())
+      std::printf("would need about %s (peak resident memory, %.0f bytes) for %s\n",
+                  parallax::formatGiB(e.estimate().bytes).c_str(), e.estimate().bytes,
+                  e.estimate().what.c_str());
   } catch (const parallax::cluster::PeerFailed& e) {
     // Another rank failed and said so at a checkpoint: it prints its message; stop quietly.
     return e.failure().exitCode;

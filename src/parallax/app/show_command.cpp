@@ -3,6 +3,7 @@
 // panels").
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -12,8 +13,10 @@
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_reader.h"
+#include "parallax/jobs/limits.h"
 #include "parallax/window/layer_windows.h"
 
 namespace parallax::app {
@@ -109,9 +112,37 @@ void printPattern(const std::vector<MaskPattern>& patterns, int k) {
   std::fflush(stdout);
 }
 
+// SDL's video subsystem with the X11 client libraries it loads, and per pixel shown, the window
+// system's copies beside our RGBA one (the texture, the window's surface, the shared image):
+// measured under Xvfb (SDL's software renderer), 1 to 8 M pixels shown. A GPU's driver loads
+// other libraries: the constant is this setup's.
+constexpr double kWindowSystemBytes = 96e6;
+constexpr double kWindowPixelBytes = 5 * kRgba8PixelBytes;
+
+// The whole estimate before any picture is decoded, from their headers (docs/inputs.md,
+// "Memory"): every picture kept as a float image; while one is read, its file and stb_image's
+// samples; the window system and the windows' copies of what they show.
+void checkShowMemory(const ShowOptions& o, const ShowSet& set) {
+  std::vector<std::string> files{set.imagePath};
+  for (const MaskPattern& p : set.maskPatterns) files.push_back(p.file);
+  if (!set.maskPath.empty()) files.push_back(set.maskPath);
+  double kept = 0, reading = 0, shown = 0;
+  for (size_t i = 0; i < files.size(); ++i) {
+    const ImageInfo info = readImageInfo(files[i]);
+    const double pixels = double(info.width) * double(info.height);
+    kept += pixels * kFloatRgbPixelBytes;
+    reading = std::max(reading, info.fileBytes + pixels * info.channels * info.bytesPerSample);
+    if (i < 2) shown += pixels * kWindowPixelBytes;  // the image's window and the mask's
+  }
+  checkPeakMemory(kWindowSystemBytes + kept + reading + shown, o.dir,
+                  std::to_string(files.size()) + " pictures and their windows",
+                  "show fewer or smaller pictures");
+}
+
 void runShow(const ShowOptions& o) {
   const std::vector<ShowKey> keys = parseKeys(o.keys);
   const ShowSet set = readShowSet(o);
+  checkShowMemory(o, set);
   // Read every picture before a window opens: a bad file is refused with nothing shown.
   const Image image = readImage(set.imagePath);
   Image mask;

@@ -1,8 +1,10 @@
 #include "parallax/core/memory.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -15,6 +17,25 @@ double peakResidentMiB() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return double(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
+
+double peakResidentBytes() {
+  rusage children{};
+  getrusage(RUSAGE_CHILDREN, &children);
+  return std::max(peakResidentMiB(), double(children.ru_maxrss) / 1024.0) * 1024.0 * 1024.0;
+}
+
+double residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  unsigned long long pages = 0, resident = 0;
+  if (!(statm >> pages >> resident)) return 0;
+  return double(resident) * double(sysconf(_SC_PAGE_SIZE));
+}
+
+void releaseFreeMemory() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
 }
 
 uint64_t physicalMemoryBytes() {

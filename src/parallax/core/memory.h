@@ -10,6 +10,17 @@ namespace parallax {
 
 // Peak resident set size of this process so far, in MiB (from getrusage).
 double peakResidentMiB();
+// The same in bytes, or the peak of a finished child process (a sandboxed importer) when that
+// was higher: what `/usr/bin/time -v` reports as the maximum resident set size.
+double peakResidentBytes();
+// Resident set size of this process now, in bytes (/proc/self/statm); 0 when unknown. What a
+// command holds before its work: the program, its libraries, Embree's and oneTBB's own memory,
+// the loaded scene and pictures.
+double residentBytes();
+// Hands the heap's free pages back to the system (glibc's malloc_trim), so that residentBytes()
+// counts what is held rather than what was freed after loading (a parser's temporaries), which
+// later allocations may or may not reuse.
+void releaseFreeMemory();
 
 inline constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 
@@ -17,6 +28,8 @@ inline constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 inline constexpr double kFloatRgbPixelBytes = 12.0;
 // Bytes per pixel of an 8-bit RGBA picture (the PNG writer's buffer, an upper bound).
 inline constexpr double kRgba8PixelBytes = 4.0;
+// Bytes per pixel of 8-bit RGB codes (a PNG's samples, its encoder's filtered rows).
+inline constexpr double kRgb8PixelBytes = 3.0;
 
 // Physical memory of the machine in bytes (sysconf), lowered to the cgroup's memory.max when a
 // container sets one; 0 when unknown.

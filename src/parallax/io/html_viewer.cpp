@@ -98,13 +98,21 @@ std::string sliderPage(const std::string& title, const std::vector<std::string>&
   if (!labels.empty() && labels.size() != pngFrames.size())
     throw std::invalid_argument("sliderPage: need one label per frame (or none)");
   const size_t count = pngFrames.size();
-  std::vector<std::string> uris, texts;
+  // The data URIs are written into the page one at a time, which is reserved at its size: the
+  // page is the only copy of the frames in base64 (a sweep's memory estimate counts on it).
+  const std::string uriPrefix = "data:image/png;base64,";
+  const auto uri = [&](size_t k) { return uriPrefix + base64Encode(pngFrames[k]); };
+  std::vector<std::string> texts;
+  size_t reserved = std::string_view(kStyle).size() + std::string_view(kScript).size() + 4096;
   for (size_t k = 0; k < count; ++k) {
-    uris.push_back("data:image/png;base64," + base64Encode(pngFrames[k]));
     texts.push_back(htmlEscape(labels.empty() ? "frame " + std::to_string(k) : labels[k]));
+    reserved += uriPrefix.size() + (pngFrames[k].size() + 2) / 3 * 4 + texts[k].size() + 64;
   }
+  reserved += uriPrefix.size() + (pngFrames[0].size() + 2) / 3 * 4 + title.size() * 12;
   const std::string heading = htmlEscape(title);
-  std::string page = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  std::string page;
+  page.reserve(reserved);
+  page += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   page += "<title>" + heading + "</title>\n";
   page += kStyle;
   page += "</head>\n<body>\n<h1>" + heading + "</h1>\n<div id=\"controls\">\n";
@@ -112,10 +120,10 @@ std::string sliderPage(const std::string& title, const std::vector<std::string>&
           "\" step=\"1\" value=\"0\" aria-label=\"frame\" autofocus>\n";
   page += "<span id=\"counter\">1 / " + std::to_string(count) + "</span>\n";
   page += "<span id=\"label\">" + texts[0] + "</span>\n</div>\n";
-  page += "<img id=\"frame\" alt=\"frame 0\" data-frame=\"0\" src=\"" + uris[0] + "\">\n";
+  page += "<img id=\"frame\" alt=\"frame 0\" data-frame=\"0\" src=\"" + uri(0) + "\">\n";
   page += "<ol id=\"frames\" hidden>\n";
   for (size_t k = 0; k < count; ++k)
-    page += "<li data-src=\"" + uris[k] + "\" data-label=\"" + texts[k] + "\"></li>\n";
+    page += "<li data-src=\"" + uri(k) + "\" data-label=\"" + texts[k] + "\"></li>\n";
   page += "</ol>\n";
   page += kScript;
   page += "</body>\n</html>\n";

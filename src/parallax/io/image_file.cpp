@@ -421,6 +421,16 @@ Image readImage(const std::string& path) {
   return decodeImage(readInputFile(path), path);
 }
 
+ImageInfo readImageInfo(const std::string& path) {
+  ImageInfo info;
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || !stbi_info(path.c_str(), &info.width, &info.height, &info.channels)) return {};
+  info.fileBytes = double(size);
+  info.bytesPerSample = stbi_is_hdr(path.c_str()) ? 4 : stbi_is_16_bit(path.c_str()) ? 2 : 1;
+  return info;
+}
+
 ImageSamples readImageSamples(const std::string& path) {
   const std::string bytes = readInputFile(path);
   if (checkedFormat(bytes, path) != Format::Pfm) return samplesWithStb(bytes, path);

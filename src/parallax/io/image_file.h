@@ -22,6 +22,14 @@ inline constexpr int64_t kMaxImageDecodeBytes = int64_t(2) << 30;
 // an image, another format than its extension claims, too large (see above), or a PFM with
 // NaN or infinite pixels.
 Image readImage(const std::string& path);
+// What a file's header announces, read without decoding it (stb_image's info): its size, its
+// channels and bytes per sample, and the file's bytes; all 0 when the header is not readable
+// (readImage then refuses the file). For memory estimates before reading.
+struct ImageInfo {
+  int width = 0, height = 0, channels = 0, bytesPerSample = 0;
+  double fileBytes = 0;
+};
+ImageInfo readImageInfo(const std::string& path);
 // The samples of an image file as stored, without the sRGB transfer function: what a depth map
 // holds. 8- and 16-bit codes are divided by 255 or 65535 (a 16-bit PNG keeps its 16 bits), PFM
 // and Radiance HDR floats are as stored (a grey PFM as three equal channels). The same checks

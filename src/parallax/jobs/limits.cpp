@@ -38,7 +38,32 @@ void checkPixelCount(double pixels, const std::string& subject) {
 
 void checkMemoryEstimate(double bytes, const std::string& subject, const std::string& what,
                          const std::string& advice) {
+  checkMemory(residentBytes() + bytes, memoryLimitBytes(), subject, what,
+              advice + ", or raise {max_memory}");
+}
+
+namespace {
+MemoryEstimate& estimateRecord() {
+  static MemoryEstimate last;
+  return last;
+}
+}  // namespace
+
+double peakEstimate(double workBytes) {
+  releaseFreeMemory();
+  return std::max(peakResidentBytes(), residentBytes() + workBytes);
+}
+
+void checkPeakMemory(double workBytes, const std::string& subject, const std::string& what,
+                     const std::string& advice) {
+  const double bytes = peakEstimate(workBytes);
   checkMemory(bytes, memoryLimitBytes(), subject, what, advice + ", or raise {max_memory}");
+  estimateRecord() = {bytes, what};
+  if (limits().estimateOnly) throw EstimateOnly(estimateRecord());
+}
+
+const MemoryEstimate& lastEstimate() {
+  return estimateRecord();
 }
 
 void checkTimeEstimate(double samples, int threads, const std::string& field,

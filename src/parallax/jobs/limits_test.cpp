@@ -1,6 +1,7 @@
 // The limits (jobs/limits.h): a refusal names the field and its value.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <functional>
 #include <string>
 
@@ -8,6 +9,7 @@
 #include "parallax/camera/camera.h"
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/display/lenticular_presets.h"
 #include "parallax/io/display_file.h"
 #include "parallax/jobs/design_job.h"
@@ -39,6 +41,47 @@ TEST(Limits, TheTimeEstimateNamesTheFieldAndItsValue) {
   }
   limits() = saved;
   EXPECT_NO_THROW(sampling.checkWork(16, 16));
+}
+
+// The whole estimate is what the process holds now plus the work: a work of 64 MiB on top of
+// this test process's resident memory, measured independently from /proc/self/status.
+TEST(Limits, ThePeakEstimateIsTheResidentMemoryPlusTheWork) {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  double residentKiB = 0;
+  while (std::getline(status, line))
+    if (line.rfind("VmRSS:", 0) == 0) residentKiB = std::stod(line.substr(6));
+  ASSERT_GT(residentKiB, 0);
+  const double work = 64.0 * 1024 * 1024;
+  const double estimate = peakEstimate(work);
+  EXPECT_GE(estimate, work);
+  // Within 8 MiB of the resident size read here (the heap trim only lowers it).
+  EXPECT_LE(estimate - work, residentKiB * 1024 + 8.0 * 1024 * 1024);
+}
+
+TEST(Limits, AnEstimateOnlyRunStopsAtTheWholeEstimate) {
+  const Limits saved = limits();
+  limits().estimateOnly = true;
+  try {
+    checkPeakMemory(1e8, "--size 1x1", "the film", "use a smaller size");
+    ADD_FAILURE() << "no stop";
+  } catch (const EstimateOnly& e) {
+    EXPECT_GE(e.estimate().bytes, 1e8);
+    EXPECT_EQ(e.estimate().what, "the film");
+  }
+  limits() = saved;
+  EXPECT_EQ(lastEstimate().what, "the film");
+  // Over the limit: refused with the estimate in the message, under --estimate too.
+  limits().maxMemoryGiB = 0.5;
+  try {
+    checkPeakMemory(kGiB, "--size 1x1", "the film", "use a smaller size");
+    ADD_FAILURE() << "no refusal";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("needs about 1 GiB for the film"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("(limit 0.5 GiB)"), std::string::npos) << e.what();
+  }
+  limits() = saved;
 }
 
 }  // namespace

@@ -146,6 +146,12 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   return plan;
 }
 
+// What a memory refusal names: the quilt's layout, else the display.
+std::string memorySubject(const RenderRequest& r) {
+  if (r.quilt.wanted) return "{quilt}";
+  return r.display.empty() ? "<built-in display>" : r.display;
+}
+
 // Once every check has passed: the depth summary, and a warning if the content reaches beyond
 // the budget.
 void reportFraming(const BuiltDisplay& display, Reporter& reporter) {
@@ -245,6 +251,7 @@ void runRender(const RenderRequest& r, Reporter& reporter) {
   if (r.sequence.given()) prepareFraming(scene, sequence);
   noteAnimation(r.sequence, scene, reporter);
   const BuiltDisplay display = makeFramedDisplay(plan.description, plan.camera, r.framing, scene);
+  checkRenderMemory(r, plan, *display, scene, memorySubject(r), false);
   reportFraming(display, reporter);
 
   FrameTarget target{&r, &plan, &display, nullptr, 0, r.output};
@@ -279,6 +286,7 @@ RenderResult renderInMemory(const RenderRequest& r, const Scene& loaded, Reporte
   Scene scene = loaded;
   const BuiltDisplay display =
       makeFramedDisplay(plan.description, plan.camera, request.framing, scene);
+  checkRenderMemory(request, plan, *display, scene, memorySubject(request), true);
   const Accelerator accelerator(scene, cameraRayAccelerator(request, plan, *display));
   const FrameTarget target{&request, &plan, &display, nullptr, 0, ""};
   return renderFrameInMemory(target, scene, accelerator, reporter);

@@ -15,6 +15,7 @@
 #include "parallax/jobs/distributed.h"
 #include "parallax/jobs/layer_output.h"
 #include "parallax/jobs/limits.h"
+#include "parallax/layers/training.h"
 #include "parallax/render/display_render.h"
 
 namespace parallax::jobs {
@@ -66,6 +67,70 @@ void checkPictureWork(const DisplayModel& display, bool directMapping,
                       display.source(), "the panel image", "use a smaller panel");
   checkTimeEstimate(double(film.columns) * film.rows * settings.samplesPerPixel, settings.threads,
                     "spp", std::to_string(settings.samplesPerPixel), "use fewer samples");
+}
+
+namespace {
+
+// What one frame's pictures hold at their peak, in bytes, and what that is.
+std::pair<double, std::string> framePictureBytes(const RenderRequest& r, const RenderPlan& plan,
+                                                 const DisplayModel& display, bool inMemory) {
+  // Per pixel of a finished picture: a PNG's 8-bit codes and the encoder's filtered rows, or the
+  // caller's float copy.
+  const double handedOver = inMemory ? kFloatRgbPixelBytes : 2 * kRgb8PixelBytes;
+  if (r.quilt.wanted) {
+    // The quilt's 8-bit codes and the PNG encoder's filtered rows; with --linear the float quilt
+    // and, as it is written, the PFM's bytes (the PNG's codes and rows are freed before). Beside
+    // them, one view's film and its copy in the tile.
+    const double views = plan.layout.views(), w = plan.tileWidth, h = plan.tileHeight;
+    const double perPixel = r.linear ? 2 * kFloatRgbPixelBytes : 2 * kRgb8PixelBytes;
+    return {imageBytes(w, h, perPixel, views) + imageBytes(w, h, kFloatRgbPixelBytes, 2),
+            "the quilt"};
+  }
+  const FilmLayout film = display.film();
+  const DisplayDesign* design = display.barrierDesign();
+  if (!design) {
+    // A lenticular panel: the film, then the panel picture, its 8-bit codes and the encoder's
+    // rows.
+    return {
+        std::max(imageBytes(film.columns, film.rows),
+                 imageBytes(film.panelWidth, film.panelHeight, kFloatRgbPixelBytes + handedOver)) +
+            imageBytes(film.panelWidth, film.panelHeight),
+        "the panel image"};
+  }
+  const Panel &image = design->spec.imagePanel, &mask = design->spec.maskPanel;
+  const double subpixel = design->camera.subpixelRays ? 3.0 : 1.0;
+  const double views =
+      r.directMapping ? std::max(1.0, std::round(design->screenPeriodPx * subpixel)) : 1.0;
+  // While rendering: the film (one per view with direct mapping) and the image layer made from
+  // it. Then each layer as rendered, its copy in the frame set, its 8-bit codes and the PNG
+  // encoder's rows, and the image layer's picture once more (72 bytes a pixel of a display
+  // without subpixel rays, measured at 480x270 to 4000x4000, whatever the film).
+  // In memory the same, measured: the caller's copy is made once the frame set's copies are gone.
+  const double perLayerPixel = 2 * kFloatRgbPixelBytes + 2 * kRgb8PixelBytes;
+  const double layers =
+      std::max(imageBytes(film.columns, film.rows, kFloatRgbPixelBytes, views) +
+                   imageBytes(image.width, image.height, kFloatRgbPixelBytes,
+                              r.directMapping ? 2.0 : 1.0),  // direct mapping: interleaved too
+               imageBytes(image.width, image.height, perLayerPixel + kFloatRgbPixelBytes) +
+                   imageBytes(mask.width, mask.height, perLayerPixel));
+  if (!r.layers.solved()) return {layers, "the layers"};
+  // Solved layers: the slits' layers stay while the solver holds its training views (their
+  // ideal images and the eyes' sampling tables) and per frame two layers and their gradients.
+  const double solver =
+      trainingBytes(*design, plan.training) +
+      imageBytes(image.width, image.height, kFloatRgbPixelBytes, 4.0 * r.layers.rank + 6.0) +
+      imageBytes(image.width, image.height) + imageBytes(mask.width, mask.height);
+  return {std::max(layers, solver), "the training views of {layers} " + r.layers.method};
+}
+
+}  // namespace
+
+void checkRenderMemory(const RenderRequest& r, const RenderPlan& plan, const DisplayModel& display,
+                       const Scene& scene, const std::string& subject, bool inMemory) {
+  const auto [bytes, what] = framePictureBytes(r, plan, display, inMemory);
+  checkPeakMemory(acceleratorBytes(scene) + bytes, subject, "the scene's BVH and " + what,
+                  r.quilt.wanted ? "use fewer views or a smaller {size}"
+                                 : "use a smaller display or a simpler scene");
 }
 
 AcceleratorOptions cameraRayAccelerator(const RenderRequest& r, const RenderPlan& plan,

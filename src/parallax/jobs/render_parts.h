@@ -49,6 +49,14 @@ void planQuilt(const RenderRequest& request, const DisplayModel& display, Render
 void checkPictureWork(const DisplayModel& display, bool directMapping,
                       const RenderSettings& settings, const std::string& subject);
 
+// The whole render's estimate (docs/inputs.md, "Memory"), once the scene is loaded and before
+// the BVH is built: what the process holds, Embree's BVH and one frame's pictures at their peak.
+// Refuses over the memory limit naming `subject`; under --estimate it stops here. `inMemory`: the
+// pictures are handed to the caller, who copies them (Python's arrays), instead of PNG files.
+void checkRenderMemory(const RenderRequest& request, const RenderPlan& plan,
+                       const DisplayModel& display, const Scene& scene, const std::string& subject,
+                       bool inMemory);
+
 // The accelerator for the camera rays the request traces (their count picks its build).
 AcceleratorOptions cameraRayAccelerator(const RenderRequest& request, const RenderPlan& plan,
                                         const DisplayModel& display);

@@ -131,9 +131,7 @@ void checkLayerValues(const LayerImages& layers) {
   check(layers.mask, "mask", true);
 }
 
-void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
-                         const SimulatorRequest& r, size_t eyes, int sweep, int referenceSpp) {
-  checkLayerValues(layers);
+std::pair<double, double> seenPictureSize(const DisplayModel& display, const SimulatorRequest& r) {
   double w = display.film().panelWidth, h = display.film().panelHeight;
   if (const DisplayDesign* d = display.barrierDesign()) {
     const Panel& front =
@@ -141,6 +139,14 @@ void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
     w = r.size ? (*r.size)[0] : front.width;
     h = r.size ? (*r.size)[1] : front.height;
   }
+  return {w, h};
+}
+
+void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
+                         const SimulatorRequest& r, size_t eyes, int sweep, int referenceSpp,
+                         int keptCopies) {
+  checkLayerValues(layers);
+  const auto [w, h] = seenPictureSize(display, r);
   const double layerBytes = imageBytes(layers.image.width(), layers.image.height()) +
                             imageBytes(layers.mask.width(), layers.mask.height());
   // Eyes are seen one at a time: one view and its picture at once, and per eye only what is
@@ -151,9 +157,21 @@ void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
       sweep > 0 ? "{sweep} " + std::to_string(sweep)
       : r.size  ? "{size} " + std::to_string((*r.size)[0]) + "x" + std::to_string((*r.size)[1])
                 : "{eye}";
-  checkMemoryEstimate(2 * layerBytes + oneEye + double(eyes) * perEye, subject,
-                      std::to_string(eyes) + " simulated views",
-                      sweep > 0 ? "use fewer steps" : "use a smaller size or fewer eyes");
+  // Eyes alone (no sweep, no reference): the whole estimate, the layers loaded (the simulator
+  // holds its own copy). A sweep's is
+  // made at its first picture, the dense measure's with its scene; this one refuses early.
+  if (sweep == 0 && referenceSpp == 0)
+    checkPeakMemory(
+        keptCopies == 0 ? layerBytes + oneEye
+                        // In memory (Python): the layers are moved into the simulator; the
+                        // pictures are kept as made, then copied for the caller.
+                        : std::max(oneEye + double(eyes - 1) * imageBytes(w, h),
+                                   double(keptCopies) * double(eyes) * imageBytes(w, h)),
+        subject, std::to_string(eyes) + " simulated views", "use a smaller size or fewer eyes");
+  else
+    checkMemoryEstimate(2 * layerBytes + oneEye + double(eyes) * perEye, subject,
+                        std::to_string(eyes) + " simulated views",
+                        sweep > 0 ? "use fewer steps" : "use a smaller size or fewer eyes");
   checkPixelCount(w * h, subject);
   // The exact integral costs about as much as 3 x 3 point samples (the pieces between the two
   // layers' pixel edges: 2 to 3 along each axis).
@@ -179,7 +197,7 @@ std::vector<Image> simulatedPictures(const DisplayModel& display, LayerImages la
                                      const std::vector<Vec3d>& eyes) {
   const SimulationOptions sim = simulationOptions(request, display);
   const std::vector<Vec3d> checked = simulatedEyes(display, eyes);
-  checkSimulationWork(display, layers, request, checked.size());
+  checkSimulationWork(display, layers, request, checked.size(), 0, 0, 2);
   const std::unique_ptr<SimulatedDisplay> simulator =
       simulateDisplay(display, std::move(layers), sim);
   std::vector<Image> pictures;

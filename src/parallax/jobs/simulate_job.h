@@ -8,6 +8,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
@@ -63,19 +64,26 @@ std::vector<Vec3d> sweepEyes(const DisplayModel& display, const SweepRequest& sw
 std::vector<Vec3d> simulatedEyes(const DisplayModel& display, const std::vector<Vec3d>& given,
                                  const SweepRequest& sweep = {});
 
-// Before the simulator allocates: memory for one eye's view and picture, each eye's encoded
-// copy and two copies of the layers; the time of every sample (spp x pupil samples per output
-// pixel, and referenceSpp per pixel of the ideal views; 0: none). The refusals name {sweep}
-// (sweep > 0), {size} or {eye}.
 // Refuses layers no panel shows, naming the first bad pixel: NaN, infinite or negative values
 // (field image or mask), and a mask's transmittance above 1. The image layer may exceed 1
 // (a render's linear layer keeps the scene's highlights).
 void checkLayerValues(const LayerImages& layers);
 
+// Before the simulator allocates: memory for one eye's view and picture, each eye's encoded
+// copy and two copies of the layers; the time of every sample (spp x pupil samples per output
+// pixel, and referenceSpp per pixel of the ideal views; 0: none). The refusals name {sweep}
+// (sweep > 0), {size} or {eye}. Eyes alone (no sweep, no reference): the whole estimate
+// (checkPeakMemory), with `keptCopies` copies of every eye's picture kept to the end (Python's
+// simulate: the pictures and their arrays).
 // Also checks the layers' values (checkLayerValues).
 void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,
                          const SimulatorRequest& request, size_t eyes, int sweep = 0,
-                         int referenceSpp = 0);
+                         int referenceSpp = 0, int keptCopies = 0);
+
+// The size of the pictures an eye sees: the request's size, else the barrier's front panel or the
+// lenticular panel.
+std::pair<double, double> seenPictureSize(const DisplayModel& display,
+                                          const SimulatorRequest& request);
 
 // The picture an eye sees in `view`: at the display's resolution (one screen period, one lens
 // around each output pixel, as a viewer at the design distance perceives it), or raw.

@@ -6,7 +6,9 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/jobs/limits.h"
 #include "parallax/jobs/simulate_parts.h"
 #include "parallax/quality/viewer_quality.h"
 #include "parallax/sim/simulated_display.h"
@@ -130,6 +132,28 @@ void reportMeasure(const SimulateRequest& r, const DisplayModel& display,
 
 }  // namespace
 
+namespace {
+
+// The dense measure's estimate, its scene loaded: the BVH; the layers of every set (the first
+// one's copied again, each --compare's read) held by its simulator; per eye the ideal view and
+// the one before it (flicker), and per set the eye's view, its picture and the one before, and
+// the comparison's temporaries (measured: six and a half pictures).
+void checkDenseMemory(const SimulateInputs& in, const SimulateRequest& r, const Scene& scene) {
+  double frames = 0;
+  for (const LayerImages& f : in.frames)
+    frames +=
+        imageBytes(f.image.width(), f.image.height()) + imageBytes(f.mask.width(), f.mask.height());
+  const double sets = 1.0 + double(r.compare.size());
+  const auto [w, h] = seenPictureSize(*in.display, r.simulator);
+  checkPeakMemory(acceleratorBytes(scene) + sets * frames +
+                      imageBytes(w, h, kFloatRgbPixelBytes, 2.0 + 3.0 * sets + 6.5),
+                  "{reference}",
+                  "the dense measure's views and " + std::to_string(int(sets)) + " layer sets",
+                  "use a smaller size or fewer {compare}");
+}
+
+}  // namespace
+
 void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
                        const SimulationOptions& sim, Reporter& reporter) {
   const DisplayModel& display = *in.display;
@@ -138,6 +162,7 @@ void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
                        "expected 1 to 64 eyes per view, got " + std::to_string(r.eyesPerView));
   const std::vector<double> distances = parseDistances(r.distances);
   const Scene scene = renderedScene(in, r);
+  checkDenseMemory(in, r, scene);
   const Accelerator accelerator(scene);
   // compare: more renders of the same scene for the same display, scored at the same eyes
   // against the same ideal views (rendered once).

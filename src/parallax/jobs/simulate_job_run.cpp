@@ -1,11 +1,14 @@
 // runSimulate (jobs/simulate_job.h): the inputs of a render folder, the pictures of one or more
 // eyes or a sweep (contact sheet, animation, slider page, video), a sequence's frames, and the
 // figures at the eyes.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 
 #include "parallax/core/error.h"
+#include "parallax/core/memory.h"
 #include "parallax/core/output_path.h"
 #include "parallax/image/contact_sheet.h"
 #include "parallax/io/animation.h"
@@ -182,6 +185,38 @@ void reportFigures(const std::vector<Vec3d>& eyes, const std::vector<EyeFigures>
 
 }  // namespace
 
+namespace {
+
+// The contact sheet's thumbnail width: at most 480 pixels and the picture's width, and small
+// enough that the thumbnails of all `eyes` hold at most kSweepSheetPixels, so that a long sweep's
+// sheet stays bounded (its PNGs are what grows with the eyes).
+constexpr double kSweepSheetPixels = 4e6;
+int sweepThumbnailWidth(int width, int height, size_t eyes) {
+  const double fit = std::sqrt(kSweepSheetPixels / double(eyes) * double(width) / double(height));
+  return std::max(1, std::min({480, width, int(fit)}));
+}
+
+// The sweep's estimate, made once its first picture's PNG is known (the others compress alike):
+// per eye its PNG and thumbnail, kept to the end; then the contact sheet (the thumbnails again,
+// the sheet and its PNG codes) or, after it, the animated PNG (the PNGs again) and the
+// slider page (the PNGs in base64, 4/3 their size).
+void checkSweepMemory(size_t eyes, double pngBytes, int width, int height, int thumbnailWidth,
+                      int sweep) {
+  const double n = double(eyes);
+  const double thumbnailHeight = std::max(1.0, std::round(double(height) * thumbnailWidth / width));
+  const double thumbnails = n * imageBytes(thumbnailWidth, thumbnailHeight);
+  const double sheetRows = std::ceil(n / std::min(n, 3.0));
+  const double sheetPixels = (std::min(n, 3.0) * (thumbnailWidth + 4) + 4) * sheetRows *
+                             (thumbnailHeight + kLabelStripHeight + 4);
+  const double sheet = thumbnails + sheetPixels * (kFloatRgbPixelBytes + kRgb8PixelBytes);
+  const double pages = std::max(sheet, n * pngBytes * 4.0 / 3.0);
+  checkPeakMemory(n * pngBytes + thumbnails + pages, "{sweep} " + std::to_string(sweep),
+                  std::to_string(eyes) + " simulated views (their PNGs, contact sheet and page)",
+                  "use fewer steps");
+}
+
+}  // namespace
+
 void runSimulate(const SimulateRequest& r, Reporter& reporter) {
   // The measure's own inputs without the measure: refused, not ignored.
   if (!r.compare.empty() && !(r.reference && r.eyes.empty() && r.sweep.count == 0))
@@ -236,6 +271,7 @@ void runSimulate(const SimulateRequest& r, Reporter& reporter) {
   const std::string path = r.output.empty() ? "out/simulated.png" : r.output;
   std::vector<std::string> written, labels, pngs;
   std::vector<Image> thumbnails;
+  int thumbnailWidth = 1;
   std::vector<EyeFigures> figures;
   // A sweep's video: each picture is encoded as it is made (the file is moved into place at the
   // end, with the sweep's other files).
@@ -255,8 +291,14 @@ void runSimulate(const SimulateRequest& r, Reporter& reporter) {
     if (sweep) {
       labels.push_back(eyeLabel(eyes[i]));
       pngs.push_back(pngBytes(picture, false));
+      if (i == 0) {
+        thumbnailWidth = sweepThumbnailWidth(picture.width(), picture.height(), eyes.size());
+        // The first picture's PNG tells the others' size: the estimate of the whole sweep.
+        checkSweepMemory(eyes.size(), double(pngs[0].size()), picture.width(), picture.height(),
+                         thumbnailWidth, r.sweep.count);
+      }
       // The contact sheet's thumbnail now, so the picture need not be kept.
-      thumbnails.push_back(contactThumbnail(picture, std::min(480, picture.width())));
+      thumbnails.push_back(contactThumbnail(picture, thumbnailWidth));
       if (video) video->add(picture);
     } else {
       writeImage(numbered(path, i, eyes.size()), picture);
@@ -267,6 +309,7 @@ void runSimulate(const SimulateRequest& r, Reporter& reporter) {
     writeImage(prefix + "-sheet.png",
                contactSheet(thumbnails, std::min<int>(int(thumbnails.size()), 3),
                             thumbnails.front().width(), labels));
+    std::vector<Image>().swap(thumbnails);  // the sheet is written: free before the page
     writeFileAtomically(prefix + "-anim.png", encodeApngFromPngs(pngs, 250));
     writeFileAtomically(prefix + ".html",
                         sliderPage("parallax: eye sweep across " + display.source(), pngs, labels));

@@ -84,13 +84,16 @@ std::unique_ptr<Camera> viewCamera(const ViewRequest& r, const Scene& scene, Rep
 
 namespace {
 
-// Before anything is allocated: the film and the writer's 8-bit copy, and the time.
-void checkViewWork(const ViewRequest& r, const Camera& camera) {
+// Before anything is allocated, the scene loaded: Embree's BVH, the film, the writer's 8-bit
+// codes and its filtered rows (the compressed PNG is small beside them), or in memory the
+// caller's copy of the film (Python's array), and the time.
+void checkViewWork(const ViewRequest& r, const Scene& scene, const Camera& camera, bool inMemory) {
   const std::string size = std::to_string(camera.width()) + "x" + std::to_string(camera.height());
-  checkMemoryEstimate(imageBytes(camera.width(), camera.height()) +
-                          imageBytes(camera.width(), camera.height(), kRgba8PixelBytes),
-                      (r.width > 0 ? "{size} " : "image ") + size, "the film",
-                      "use a smaller size");
+  const double perPixel =
+      kFloatRgbPixelBytes + (inMemory ? kFloatRgbPixelBytes : 2 * kRgb8PixelBytes);
+  checkPeakMemory(acceleratorBytes(scene) + imageBytes(camera.width(), camera.height(), perPixel),
+                  (r.width > 0 ? "{size} " : "image ") + size, "the scene's BVH and the film",
+                  "use a smaller size");
   checkPixelCount(double(camera.width()) * camera.height(), "{size} " + size);
   r.sampling.checkWork(camera.width(), camera.height());
 }
@@ -162,7 +165,7 @@ void runView(const ViewRequest& r, Reporter& reporter) {
   Scene scene = loadScene(r.scene, reporter);
   noteAnimation(r.sequence, scene, reporter);
   const std::unique_ptr<Camera> camera = viewCamera(r, scene, reporter);
-  checkViewWork(r, *camera);
+  checkViewWork(r, scene, *camera, false);
   checkVideoFrames(r.sequence.videoOptions(), camera->width(), camera->height());
   // One picture under mpirun: each rank renders its bands, rank 0 writes (docs/distributed.md);
   // a sequence's pictures are whole frames of one rank.
@@ -208,7 +211,7 @@ void runView(const ViewRequest& r, Reporter& reporter) {
 Image viewInMemory(const ViewRequest& r, const Scene& scene, Reporter& reporter) {
   const RenderSettings settings = r.sampling.settings();
   const std::unique_ptr<Camera> camera = viewCamera(r, scene, reporter);
-  checkViewWork(r, *camera);
+  checkViewWork(r, scene, *camera, true);
   const Accelerator accelerator(scene, viewAccelerator(r, *camera));
   return render(scene, accelerator, *camera, settings);
 }

@@ -95,9 +95,15 @@ PYBIND11_MODULE(_parallax, module) {
   // the interpreter is gone.
   static const auto* const error =
       new py::exception<parallax::InputError>(module, "Error", PyExc_ValueError);
+  // estimate_memory's stop: the estimate in bytes, then what it is for.
+  static const auto* const estimated =
+      new py::exception<parallax::jobs::EstimateOnly>(module, "_Estimated", PyExc_Exception);
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
       if (thrown) std::rethrow_exception(thrown);
+    } catch (const parallax::jobs::EstimateOnly& e) {
+      const py::tuple args = py::make_tuple(e.estimate().bytes, e.estimate().what);
+      PyErr_SetObject(estimated->ptr(), args.ptr());
     } catch (const parallax::InputError& e) {
       // One line, naming a request's field by its keyword ("spp: ...", "spp=16: ...").
       const std::string prefix = "command line: ";
@@ -120,10 +126,15 @@ PYBIND11_MODULE(_parallax, module) {
         if (!(maxMemoryGiB >= 0) || !(maxSeconds >= 0))
           throw parallax::RequestError(maxMemoryGiB >= 0 ? "max_time" : "max_memory",
                                        "must be 0 (the default) or above");
-        parallax::jobs::limits() = {maxMemoryGiB, maxSeconds};
+        parallax::jobs::limits().maxMemoryGiB = maxMemoryGiB;
+        parallax::jobs::limits().maxSeconds = maxSeconds;
       },
       py::kw_only(), py::arg("max_memory") = 0.0, py::arg("max_time") = 0.0,
       "Limits for what every later call allocates (GiB) and takes (seconds); 0: the default");
+  // estimate_memory: the next call stops at its whole estimate (the CLI's --estimate).
+  module.def(
+      "_set_estimate_only", [](bool on) { parallax::jobs::limits().estimateOnly = on; },
+      py::arg("on"));
   module.def(
       "_to_srgb8",
       [](const py::array_t<float, py::array::c_style | py::array::forcecast>& linear) {

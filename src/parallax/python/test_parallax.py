@@ -284,6 +284,22 @@ def test_solved_layers_and_direct_mapping_in_memory(scene, small, tmp_path):
         parallax.render(scene, small, rank=2)
 
 
+def test_estimate_memory_is_the_clis_estimate(scene, small, tmp_path):
+    # The same figure as `parallax --estimate`, within what the two processes hold besides
+    # (the interpreter and numpy, about 10-60 MiB); a bigger picture needs more, by its pixels.
+    result = cli("--estimate", "view", "--size", "1000x1000", "--spp", 1, "-o", str(tmp_path / "v.png"))
+    assert result.returncode == 0 and not (tmp_path / "v.png").exists()
+    cli_bytes = int(result.stdout.split("memory, ")[1].split(" bytes")[0])
+    small_view = parallax.estimate_memory(parallax.view, size=(1000, 1000), spp=1)
+    assert isinstance(small_view, int) and abs(small_view - cli_bytes) < 300 * 2**20
+    big_view = parallax.estimate_memory(parallax.view, size=(2000, 2000), spp=1)
+    assert 3e6 * 12 < big_view - small_view < 3e6 * 30  # float film and its array, per pixel
+    assert parallax.estimate_memory(parallax.render, scene, small, spp=1) > 0
+    with pytest.raises(parallax.Error, match="makes no memory estimate"):
+        parallax.estimate_memory(parallax.design, small)
+    assert parallax.view(size=(8, 8), spp=1).shape == (8, 8, 3)  # estimate-only is off again
+
+
 def test_limits_are_the_clis(scene, small):
     # --max-time's refusal, spelled as Python's keywords; 0 restores the default.
     result = cli("render", "--display", SMALL, "--spp", 4096, "--max-time", "0.001", "-o", "/nonexistent")

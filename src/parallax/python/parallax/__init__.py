@@ -22,10 +22,26 @@ from ._parallax import (Display, Error, Scene, __version__, load_display, load_s
 __all__ = [
     "Display", "Error", "Scene", "RenderResult", "QuiltResult", "load_scene", "load_display",
     "design", "render", "render_files", "view", "ideal_view", "quilt", "simulate", "sweep_eyes", "sweep",
-    "quality", "to_srgb8", "version", "__version__", "set_limits", "interlace", "interlace_files", "CalibrationPatterns", "calibration_patterns", "calibration_patterns_files", "lenticular_simulate",
+    "quality", "to_srgb8", "version", "__version__", "set_limits", "estimate_memory", "interlace", "interlace_files", "CalibrationPatterns", "calibration_patterns", "calibration_patterns_files", "lenticular_simulate",
 ]
 
 Eye = Tuple[float, float, float]
+
+
+def estimate_memory(function, *args, **kwargs) -> int:
+    """What `function(*args, **kwargs)` would need: its estimated peak resident memory in bytes
+    (this process's, as `parallax --estimate` prints the command's), checked against
+    set_limits(max_memory=...) as the call itself would be. The call stops at its estimate,
+    before its work allocates; nothing is written. For render, render_files, view, quilt,
+    simulate and sweep (docs/inputs.md, "Memory")."""
+    _parallax._set_estimate_only(True)
+    try:
+        function(*args, **kwargs)
+    except _parallax._Estimated as stop:
+        return int(stop.args[0])
+    finally:
+        _parallax._set_estimate_only(False)
+    raise Error(f"{getattr(function, '__name__', function)}: makes no memory estimate")
 
 
 def _display(display: Optional[Display]) -> Display:
