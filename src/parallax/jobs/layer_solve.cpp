@@ -12,9 +12,6 @@ namespace parallax::jobs {
 
 namespace {
 
-// Measured (docs/content-adaptive.md): the image layer settles within 8 iterations.
-constexpr int kDefaultIterations = 10;
-
 // nmf aims 5 % above max(2, rank) times the slits' brightness: a least-squares fit comes out a
 // little darker than its target (measured: 1.97x for a target of 2 on the built-in scene).
 double defaultBrightness(const std::string& method, int rank) {
@@ -38,7 +35,7 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   }
   const double trainSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const int iterations = o.iterations.value_or(kDefaultIterations);
+  const int iterations = o.iterations.value_or(kDefaultLayerIterations);
   SolveReport report;
   std::vector<LayerFrame> frames;
   if (o.method == "optimized-image") {

@@ -165,27 +165,28 @@ void reportFraming(const BuiltDisplay& display, Reporter& reporter) {
 // frames, threads and the video change none), and the contents of the files they come from.
 MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
   MadeFrom made = sceneMadeFrom(r.scene, scene);
-  made.insert(made.end(),
-              {{"{display}", r.display.empty() ? "<built-in>" : r.display},
-               {"{filter}", r.filter.kind},
-               {"{filter_width}", madeFromNumber(r.filter.widthViews)},
-               {"{fit}", r.framing.fit},
-               {"{focus}", r.framing.focus},
-               {"{depth_budget}", r.framing.depthBudget},
-               {"{subpixels}", r.subpixels ? "on" : "off"},
-               {"{direct_mapping}", r.directMapping ? "on" : "off"},
-               {"{linear}", r.linear ? "on" : "off"},
-               {"{distance}", madeFromNumber(r.distance)},
-               {"{quilt}", r.quilt.wanted ? std::to_string(r.quilt.columns) + "x" +
-                                                std::to_string(r.quilt.rows)
-                                          : "off"},
-               {"{size}", std::to_string(r.quilt.width) + "x" + std::to_string(r.quilt.height)},
-               {"{layers}", r.layers.method},
-               {"{rank}", std::to_string(r.layers.rank)},
-               {"{iterations}", std::to_string(r.layers.iterations)},
-               {"{brightness}", madeFromNumber(r.layers.brightness)},
-               {"{train_eyes}", std::to_string(r.layers.trainEyes)},
-               {"{layer_error}", r.layers.error}});
+  made.insert(
+      made.end(),
+      {{"{display}", r.display.empty() ? "<built-in>" : r.display},
+       {"{filter}", r.filter.kind},
+       {"{filter_width}", madeFromNumber(r.filter.widthViews)},
+       {"{fit}", r.framing.fit},
+       {"{focus}", r.framing.focus},
+       {"{depth_budget}", r.framing.depthBudget},
+       {"{subpixels}", r.subpixels ? "on" : "off"},
+       {"{direct_mapping}", r.directMapping ? "on" : "off"},
+       {"{linear}", r.linear ? "on" : "off"},
+       {"{distance}", madeFromNumber(r.distance)},
+       {"{quilt}", r.quilt.wanted
+                       ? std::to_string(r.quilt.columns) + "x" + std::to_string(r.quilt.rows)
+                       : "off"},
+       {"{size}", std::to_string(r.quilt.width) + "x" + std::to_string(r.quilt.height)},
+       {"{layers}", r.layers.method},
+       {"{rank}", std::to_string(r.layers.rank)},
+       {"{iterations}", std::to_string(r.layers.iterations.value_or(kDefaultLayerIterations))},
+       {"{brightness}", madeFromNumber(r.layers.brightness)},
+       {"{train_eyes}", std::to_string(r.layers.trainEyes)},
+       {"{layer_error}", r.layers.error}});
   addSamplingMadeFrom(made, r.sampling);
   addSequenceMadeFrom(made, r.sequence);
   addFileContent(made, r.display);

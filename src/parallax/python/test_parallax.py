@@ -331,7 +331,12 @@ def test_assimp_crashes_are_refused_and_the_interpreter_goes_on():
             assert str(caught.value).startswith(f"{files / name}: {what}")
             result = cli("--max-memory", "1", "info", files / name)
             assert result.returncode == 2
-            assert str(caught.value) == as_keywords(result.stderr.strip()[len("error: "):])
+            # Which signal a heap corruption ends in depends on the heap the child inherits
+            # (Python's or the CLI's): a double free may abort or crash. The line is the same.
+            def without_signal(text):
+                return re.sub(r"\(signal \d+, SIG[A-Z]+\)", "(signal)", text)
+            assert without_signal(str(caught.value)) == without_signal(
+                as_keywords(result.stderr.strip()[len("error: "):]))
     finally:
         parallax.set_limits()
 
