@@ -481,17 +481,23 @@ class Child {
   struct rusage usage_ {};
 };
 
+// The first `size - 1` bytes of /proc/PID/NAME, NUL-terminated in `text`; false if unreadable.
+bool readProcFile(pid_t pid, const char* name, char* text, size_t size) {
+  const std::string file = "/proc/" + std::to_string(pid) + "/" + name;
+  const int fd = open(file.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const ssize_t n = read(fd, text, size - 1);
+  close(fd);
+  if (n <= 0) return false;
+  text[n] = 0;
+  return true;
+}
+
 // The memory the child has of its own (what it wrote or allocated since the fork, not the
 // pages it still shares with the parent), from /proc/PID/smaps_rollup; 0 if unknown.
 uint64_t privateBytes(pid_t pid) {
-  const std::string file = "/proc/" + std::to_string(pid) + "/smaps_rollup";
-  const int fd = open(file.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return 0;
   char text[4096];
-  const ssize_t n = read(fd, text, sizeof(text) - 1);
-  close(fd);
-  if (n <= 0) return 0;
-  text[n] = 0;
+  if (!readProcFile(pid, "smaps_rollup", text, sizeof(text))) return 0;
   uint64_t kib = 0;
   for (const char* key : {"Private_Clean:", "Private_Dirty:"})
     if (const char* at = std::strstr(text, key))
@@ -501,14 +507,8 @@ uint64_t privateBytes(pid_t pid) {
 
 // User and system CPU time of a process in clock ticks (/proc/PID/stat), 0 if unknown.
 uint64_t cpuTicksOf(pid_t pid) {
-  const std::string file = "/proc/" + std::to_string(pid) + "/stat";
-  const int fd = open(file.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return 0;
   char text[1024];
-  const ssize_t n = read(fd, text, sizeof(text) - 1);
-  close(fd);
-  if (n <= 0) return 0;
-  text[n] = 0;
+  if (!readProcFile(pid, "stat", text, sizeof(text))) return 0;
   // After the command name's closing parenthesis: state (field 3) ... utime (14), stime (15).
   const char* at = std::strrchr(text, ')');
   if (!at) return 0;
