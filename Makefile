@@ -56,7 +56,7 @@ test-asan: data deps
 	  -DPARALLAX_SANITIZE=ON -DPARALLAX_NATIVE=OFF $(CMAKE_FLAGS)
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1 \
-	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan-suppressions.txt \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan-suppressions.txt:print_suppressions=0 \
 	  ctest --output-on-failure -j $(JOBS)
 
 # Every fuzz target of fuzz/ for FUZZ_SECONDS seconds (clang, libFuzzer, ASan + UBSan; fuzz/README.md).
