@@ -129,6 +129,32 @@ TEST(InterlaceInMemory, ALenticularSubpixelBlendsTheViewsAroundItsFraction) {
       }
 }
 
+// view_resampling nearest on a lenticular panel: each subpixel shows the one view whose window
+// holds its view fraction (brute force: floor(f N)), not the blend; the record says which.
+TEST(InterlaceInMemory, ALenticularSubpixelTakesTheNearestViewWhenAsked) {
+  DisplayDescription description = loadDisplay("lkg:portrait", silentReporter());
+  LenticularCalibration& calibration = description.lenticular;
+  calibration.screenW /= 8, calibration.screenH /= 8;
+  InterlaceRequest r;
+  r.loaded = description;
+  const int count = 12;
+  std::vector<Image> views;
+  for (int k = 0; k < count; ++k) views.emplace_back(16, 16, Vec3f(float(k) / (count - 1)));
+  const InterlaceResult linear = interlaceInMemory(r, views, {}, silentReporter());
+  r.viewResampling = "nearest";
+  const InterlaceResult nearest = interlaceInMemory(r, views, {}, silentReporter());
+  EXPECT_NE(nearest.image.pixels(), linear.image.pixels());
+  EXPECT_NE(nearest.record.find("\"view_resampling\": \"nearest\""), std::string::npos);
+  const LenticularDesign design = designLenticular(calibration);
+  for (int y = 0; y < nearest.image.height(); ++y)
+    for (int x = 0; x < nearest.image.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const int view =
+            std::clamp(int(std::floor(viewFraction(design, x, y, c) * count)), 0, count - 1);
+        ASSERT_FLOAT_EQ(nearest.image.at(x, y)[c], float(view) / (count - 1)) << x << "," << y;
+      }
+}
+
 TEST(InterlaceRequestChecks, NameTheirFields) {
   const std::vector<Image> views = constantViews(9, 32, 18);
   InterlaceRequest r = smallRequest();

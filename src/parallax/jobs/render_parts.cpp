@@ -43,15 +43,18 @@ void planQuilt(const RenderRequest& r, const DisplayModel& display, RenderPlan& 
   checkQuiltWork(layout.columns, layout.rows, width, height, plan.settings.samplesPerPixel,
                  plan.settings.threads,
                  sized ? std::to_string(width) + "x" + std::to_string(height) : "", r.linear);
-  layout.aspect = double(width) / height;
   plan.tileWidth = width, plan.tileHeight = height;
   const DisplayWindow window = display.window();
   const double windowAspect = window.widthMm / window.heightMm;
-  if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01 && writesJobOutputs())
+  // The name's aspect is the display's (Looking Glass's convention), whatever the tiles' shape.
+  layout.aspect = windowAspect;
+  const double tileAspect = double(width) / height;
+  if (std::abs(tileAspect / windowAspect - 1.0) > 0.01 && writesJobOutputs())
     reporter.note(
         printed("tiles of %dx%d have aspect %.4f, the display's window %.4f: the views "
-                "are stretched to fill them, as Looking Glass quilts are",
-                width, height, layout.aspect, windowAspect));
+                "are stretched to fill them, as Looking Glass quilts are (the name says a%s, "
+                "the display's aspect)",
+                width, height, tileAspect, windowAspect, formatQuiltAspect(windowAspect).c_str()));
 }
 
 void checkPictureWork(const DisplayModel& display, bool directMapping,
@@ -294,6 +297,7 @@ bool renderQuiltFrame(const FrameTarget& t, const Scene& scene, const Accelerato
   record.set("/quilt/columns", layout.columns);
   record.set("/quilt/rows", layout.rows);
   record.set("/quilt/view_size", std::to_string(width) + "x" + std::to_string(height));
+  record.set("/quilt/aspect", layout.aspect);  // the display's, as the name's `a` (docs/quilts.md)
   record.set("/quilt/order", "view 0 = leftmost camera = bottom-left tile, rightward then upward");
   for (int k = 0; k < layout.views(); ++k) {
     const Vec3d eye = quiltEyePosition(display, k, layout.views());
