@@ -118,9 +118,9 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
     if (plan.settings.samplesPerPixel < r.sampling.spp && writesJobOutputs())
       reporter.note(printed(
           "{filter} none casts each film pixel's central ray only (on a lenticular panel the "
-          "formula's one ray a subpixel), so {spp} %d renders as 1 sample a pixel: every sample "
-          "would be that ray; a view filter (view, box, tent, gaussian) spreads the %d samples "
-          "over the pixel and its view window",
+          "formula's one ray a subpixel), so {spp} %d renders as 1 sample a pixel: every "
+          "sample would be that ray; another filter (view, tent, gaussian, period) spreads the "
+          "%d samples over the pixel and its view window",
           r.sampling.spp, r.sampling.spp));
   }
 

@@ -99,7 +99,7 @@ TEST(RenderRunner, FilterNoneSaysWhatItDoesWithSpp) {
     renderInMemory(request, scene, quiet);
     EXPECT_TRUE(filterNotes(quiet).empty());
     request.sampling.spp = 4;
-    request.filter.kind = "box";
+    request.filter.kind = "view";
     renderInMemory(request, scene, quiet);
     EXPECT_TRUE(filterNotes(quiet).empty());
   }

@@ -58,8 +58,13 @@ TEST(RenderParts, AUnitsOwnFileGetsItsDevicesQuilt) {
   EXPECT_EQ(plan.tileHeight, 5999 / 7);
   EXPECT_EQ(quiltFileName("quilt", plan.layout, ".png"), "quilt_qs7x7a1.7778.png");
   EXPECT_EQ(panel->viewCount(), 49);
-  ASSERT_EQ(reporter.notes.size(), 1u);  // square tiles on a 16:9 panel: stretched, as LKG's
-  EXPECT_NE(reporter.notes[0].find("a1.7778"), std::string::npos) << reporter.notes[0];
+  // Which device, and why; then square tiles on a 16:9 panel: stretched, as Looking Glass's.
+  ASSERT_EQ(reporter.notes.size(), 2u);
+  EXPECT_NE(reporter.notes[0].find("(lkg:16-gen3, by its serial LKG-J00332): its default quilt "
+                                   "7x7 views on 5999x5999"),
+            std::string::npos)
+      << reporter.notes[0];
+  EXPECT_NE(reporter.notes[1].find("a1.7778"), std::string::npos) << reporter.notes[1];
 }
 
 TEST(RenderParts, TilesOfAnotherAspectAreNoted) {

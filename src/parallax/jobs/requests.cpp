@@ -7,7 +7,6 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
-#include "parallax/display/lenticular_presets.h"
 #include "parallax/io/rgbd_file.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/limits.h"
@@ -226,22 +225,6 @@ void recordScene(JsonWriter& record, const SceneRequest& request, const Scene& s
 DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& reporter) {
   DisplayDescription description = loadDisplayDescription(pathOrPreset);
   for (const std::string& warning : description.lenticular.warnings) reporter.warning(warning);
-  const LenticularCalibration& c = description.lenticular;
-  if (description.kind == DisplayKind::Lenticular && pathOrPreset.rfind("lkg:", 0) != 0) {
-    // A unit's own file: which device it is decides its default quilt (and views).
-    const std::string quilt = printed("%dx%d views on %dx%d", c.quilt.columns, c.quilt.rows,
-                                      c.quilt.width, c.quilt.height);
-    if (!c.device.empty())
-      reporter.note(printed("%s is a %s (lkg:%s, by its %s): its default quilt %s",
-                            c.source.c_str(), lenticularPresetDescription(c.device).c_str(),
-                            c.device.c_str(), c.deviceBasis.c_str(), quilt.c_str()));
-    else
-      reporter.note(
-          printed("%s (%dx%d pixels at %g DPI%s) is no Looking Glass device parallax "
-                  "knows: its default quilt is derived from the panel, %s",
-                  c.source.c_str(), c.screenW, c.screenH, c.dpi,
-                  c.serial.empty() ? "" : (", serial " + c.serial).c_str(), quilt.c_str()));
-  }
   return description;
 }
 
