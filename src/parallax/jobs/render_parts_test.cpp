@@ -11,14 +11,22 @@
 namespace parallax::jobs {
 namespace {
 
+// planQuilt of `request` (a quilt, auto unless it says) at one sample a pixel.
+RenderPlan plannedQuilt(RenderRequest request, const DisplayModel& display,
+                        RecordingReporter& reporter) {
+  request.quilt.wanted = true;
+  RenderPlan plan;
+  plan.settings.samplesPerPixel = 1;
+  planQuilt(request, display, plan, reporter);
+  return plan;
+}
+
 TEST(RenderParts, AQuiltTakesTheDevicesOwnLayoutAndTiles) {
   const BuiltDisplay panel = makeDisplay(portrait());
   RenderRequest request;
   request.quilt.wanted = true;
-  RenderPlan plan;
-  plan.settings.samplesPerPixel = 1;
   RecordingReporter reporter;
-  planQuilt(request, *panel, plan, reporter);
+  const RenderPlan plan = plannedQuilt(request, *panel, reporter);
   const QuiltFormat& device = panel->lenticularDesign()->calibration.quilt;
   EXPECT_EQ(plan.layout.columns, device.columns);
   EXPECT_EQ(plan.layout.rows, device.rows);
@@ -46,12 +54,9 @@ TEST(RenderParts, AUnitsOwnFileGetsItsDevicesQuilt) {
   description.lenticular =
       parseLenticularCalibration(lenticularCalibrationText(unit), "visual.json");
   const BuiltDisplay panel = makeDisplay(description);
-  RenderRequest request;
-  request.quilt.wanted = true;
-  RenderPlan plan;
-  plan.settings.samplesPerPixel = 1;
+  const RenderRequest request;
   RecordingReporter reporter;
-  planQuilt(request, *panel, plan, reporter);
+  const RenderPlan plan = plannedQuilt(request, *panel, reporter);
   EXPECT_EQ(plan.layout.columns, 7);
   EXPECT_EQ(plan.layout.rows, 7);
   EXPECT_EQ(plan.tileWidth, 5999 / 7);
