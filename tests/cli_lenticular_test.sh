@@ -146,5 +146,8 @@ check "the note names both options" grep -qF \
 check "and what --spp 4 does" grep -qF "so --spp 4 renders as 1 sample a pixel" "$tmp/err"
 check "design reads a calibration" run 0 design "$tmp/small.json"
 check "design prints the lens figures" grep -q 'pixels per lens' "$tmp/out"
+check "design of a unit's file" run 0 design "$tmp/gen3.json"
+check "names its device" grep -qF "device               lkg:16-gen3, by its serial LKG-J00332" \
+  "$tmp/out"
 
 cli_summary

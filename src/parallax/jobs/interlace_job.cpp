@@ -131,6 +131,7 @@ void recordInputs(JsonWriter& record, const InterlaceRequest& r, const Views& gi
     record.set("/inputs/quilt", quiltName(r));
     record.set("/inputs/columns", given.layout.columns);
     record.set("/inputs/rows", given.layout.rows);
+    if (given.layout.aspect > 0) record.set("/inputs/aspect", given.layout.aspect);  // its name's
   } else {
     record.set("/inputs/views", given.names);
   }

@@ -40,7 +40,8 @@ QuiltLayout parseQuiltName(const std::string& path);
 
 // The aspect as written in quilt names: at most four decimals, no trailing zeros ("1.7778").
 std::string formatQuiltAspect(double aspect);
-// stem + "_qs{C}x{R}a{aspect}" + extension, e.g. ("quilt", 3x3 a1.7778, ".png").
+// stem + "_qs{C}x{R}a{aspect}" + extension, e.g. ("quilt", 3x3 a1.7778, ".png"); without the
+// `a` part when the aspect is not known (0).
 std::string quiltFileName(const std::string& stem, const QuiltLayout& layout,
                           const std::string& extension);
 // A quilt video's path as Looking Glass Studio imports it: `path` with the layout's

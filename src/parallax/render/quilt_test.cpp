@@ -59,7 +59,8 @@ TEST(QuiltName, ReadsNamesAsLookingGlassWritesThem) {
   a = parseQuiltName("Space_Nap_qs8x6.webp");
   EXPECT_EQ(a.columns, 8);
   EXPECT_EQ(a.rows, 6);
-  EXPECT_EQ(a.aspect, 0.0);  // left to the display
+  EXPECT_EQ(a.aspect, 0.0);                                                   // left to the display
+  EXPECT_EQ(quiltFileName("Space_Nap", a, ".webp"), "Space_Nap_qs8x6.webp");  // and written back
   // Square tiles (a 16" Gen3's 7x7 on 5999 x 5999) under a 16:9 name are taken as they are.
   const std::vector<Image> views = splitQuilt(Image(70, 70), a, "x");
   EXPECT_EQ(splitQuilt(Image(70, 70), parseQuiltName("quilt_qs7x7a1.7778.png"), "q").size(), 49u);
