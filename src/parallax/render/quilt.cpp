@@ -88,9 +88,10 @@ std::string formatQuiltAspect(double aspect) {
 std::string quiltFileName(const std::string& stem, const QuiltLayout& layout,
                           const std::string& extension) {
   // No aspect known: no `a` ending (the display's, as when Looking Glass leaves it out).
-  const std::string aspect = layout.aspect > 0 ? "a" + formatQuiltAspect(layout.aspect) : "";
-  return stem + "_qs" + std::to_string(layout.columns) + "x" + std::to_string(layout.rows) +
-         aspect + extension;
+  std::string name =
+      stem + "_qs" + std::to_string(layout.columns) + "x" + std::to_string(layout.rows);
+  if (layout.aspect > 0) name += 'a' + formatQuiltAspect(layout.aspect);
+  return name + extension;
 }
 
 std::string quiltVideoPath(const std::string& path, const QuiltLayout& layout) {
