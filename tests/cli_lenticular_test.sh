@@ -97,6 +97,33 @@ check "an unknown preset lists the presets" \
 check "render --quilt auto uses the device's quilt" run 0 render --display lkg:portrait \
   --quilt auto --size 42x56 --spp 1 -o "$tmp/q"
 check "the quilt is named for the device's 8x6 views" test -e "$tmp/q/quilt_qs8x6a0.75.png"
+# A 16" Gen3 owner's own visual.json (its serial and measured figures): that device's quilt,
+# 7x7, named for the panel's 16:9 whatever its tiles' shape, as Looking Glass names it.
+cat >"$tmp/gen3.json" <<'JSON'
+{"configVersion": "3.0", "serial": "LKG-J00332", "pitch": {"value": 44.61},
+ "slope": {"value": -6.93}, "center": {"value": 0.137}, "viewCone": {"value": 50},
+ "invView": {"value": 1}, "DPI": {"value": 283}, "screenW": {"value": 3840},
+ "screenH": {"value": 2160}, "flipImageX": {"value": 0}, "flipImageY": {"value": 0},
+ "flipSubp": {"value": 0}, "CellPatternMode": {"value": 2},
+ "subpixelCells": [
+   {"ROffsetX": -0.31, "ROffsetY": 0.25, "GOffsetX": 0.28, "GOffsetY": 0.25, "BOffsetX": 0,
+    "BOffsetY": -0.25},
+   {"ROffsetX": -0.31, "ROffsetY": -0.25, "GOffsetX": 0.28, "GOffsetY": -0.25, "BOffsetX": 0,
+    "BOffsetY": 0.25}]}
+JSON
+check "a 16\" Gen3's own file, --quilt auto" run 0 render --display "$tmp/gen3.json" \
+  --quilt auto --size 16x9 --spp 1 -o "$tmp/q3"
+check "is recognised by its serial" grep -qF "(lkg:16-gen3, by its serial LKG-J00332)" "$tmp/err"
+check "its quilt is the device's 7x7, a1.7778" test -e "$tmp/q3/quilt_qs7x7a1.7778.png"
+check "render.json names the device" grep -qF '"device": "lkg:16-gen3"' "$tmp/q3/render.json"
+check "the copy beside it keeps the serial" grep -qF '"serial": "LKG-J00332"' "$tmp/q3/visual.json"
+check "a Looking Glass quilt name is read" run 0 interlace "$tmp/q3/quilt_qs7x7a1.7778.png" \
+  --display "$tmp/gen3.json" -o "$tmp/iq3"
+check "an unknown panel's quilt" run 0 render --display "$tmp/small.json" --quilt auto \
+  --size 12x16 --spp 1 -o "$tmp/qd"
+check "is derived from the panel, said" grep -qF \
+  "is no Looking Glass device parallax knows: its default quilt is derived from the panel, 8x6" \
+  "$tmp/err"
 check "view --display-eye with a calibration" run 0 view --display "$tmp/small.json" \
   --display-eye 0,0,1374 --spp 1 -o "$tmp/ideal.png"
 check "the ideal view has the panel's size" test "$(png_size "$tmp/ideal.png")" = "96x128"
@@ -108,7 +135,19 @@ check "interlace a quilt onto the panel" run 0 interlace "$tmp/q/quilt_qs8x6a0.7
 check "the interlaced panel has the Portrait's size" \
   test "$(png_size "$tmp/iq/image.png")" = "1536x2048"
 check "the interlaced panel carries its calibration" grep -q '"value"' "$tmp/iq/visual.json"
+check "interlace --view-resampling nearest onto the panel" run 0 interlace \
+  "$tmp/q/quilt_qs8x6a0.75.png" --display lkg:portrait --view-resampling nearest -o "$tmp/iqn"
+check "nearest is not the linear blend" bash -c "! cmp -s '$tmp/iq/image.png' '$tmp/iqn/image.png'"
+check "the record says nearest" grep -q '"view_resampling": "nearest"' "$tmp/iqn/render.json"
+check "--filter none with --spp 4 says what it does" run 0 lenticular render "$tmp/small.json" \
+  --filter none --spp 4 -o "$tmp/rn4"
+check "the note names both options" grep -qF \
+  "note: --filter none casts each film pixel's central ray only" "$tmp/err"
+check "and what --spp 4 does" grep -qF "so --spp 4 renders as 1 sample a pixel" "$tmp/err"
 check "design reads a calibration" run 0 design "$tmp/small.json"
 check "design prints the lens figures" grep -q 'pixels per lens' "$tmp/out"
+check "design of a unit's file" run 0 design "$tmp/gen3.json"
+check "names its device" grep -qF "device               lkg:16-gen3, by its serial LKG-J00332" \
+  "$tmp/out"
 
 cli_summary

@@ -34,7 +34,8 @@ check "8-bit quilt = float quilt's PNG" cmp -s "$tmp/q/quilt_qs3x3a1.7778.png" \
 check "no linear quilt without --linear" test ! -e "$tmp/q8/quilt_qs3x3a1.7778.pfm"
 check "quilt with another view size" run 0 render "${small[@]}" --quilt 5x2 --size 40x30 --spp 1 \
   -o "$tmp/q2"
-check "5x2 of 40x30: aspect 1.3333" is_png "$tmp/q2/quilt_qs5x2a1.3333.png"
+# The name's aspect is the display's (Looking Glass's convention), whatever the tiles' shape.
+check "5x2 of 40x30 on a 16:9 display: a1.7778" is_png "$tmp/q2/quilt_qs5x2a1.7778.png"
 check "a stretched view size is reported" grep -q "stretched" "$tmp/err"
 check "bad --quilt exits 2" run 2 render --quilt 3by3 -o "$tmp/bq"
 check "bad --quilt names the option" one_line_naming "--quilt"
@@ -93,14 +94,20 @@ check "an unknown resampling names the option" one_line_naming "--view-resamplin
 cp "$tmp/q/quilt_qs3x3a1.7778.png" "$tmp/plain.png"
 check "quilt without a layout exits 2" run 2 interlace "$tmp/plain.png" "${small[@]}" -o "$tmp/e3"
 check "missing layout names the file" one_line_naming "plain.png: no quilt layout"
+cp "$tmp/plain.png" "$tmp/shot_qs3by3a1.png"
+check "malformed layout exits 2" run 2 interlace "$tmp/shot_qs3by3a1.png" "${small[@]}" \
+  -o "$tmp/e4"
+check "malformed layout names the file" one_line_naming "shot_qs3by3a1.png: malformed quilt layout"
+# As Looking Glass names quilts: no aspect (its example quilts), or another display's aspect,
+# whatever the tiles' shape: read, the views stretched to this display with a note.
 cp "$tmp/plain.png" "$tmp/shot_qs3x3.png"
-check "malformed layout exits 2" run 2 interlace "$tmp/shot_qs3x3.png" "${small[@]}" -o "$tmp/e4"
-check "malformed layout names the file" one_line_naming "shot_qs3x3.png: malformed quilt layout"
-cp "$tmp/plain.png" "$tmp/wrong_qs3x3a1.png"
-check "tile aspect against the name exits 2" run 2 interlace "$tmp/wrong_qs3x3a1.png" \
+check "a name without an aspect is read" run 0 interlace "$tmp/shot_qs3x3.png" "${small[@]}" \
+  -o "$tmp/na"
+cp "$tmp/plain.png" "$tmp/other_qs3x3a1.png"
+check "another display's aspect is read" run 0 interlace "$tmp/other_qs3x3a1.png" \
   "${small[@]}" -o "$tmp/e5"
-check "tile aspect names the file" one_line_naming "wrong_qs3x3a1.png"
-check "a quilt of ten views is resampled" run 0 interlace "$tmp/q2/quilt_qs5x2a1.3333.png" \
+check "and noted" grep -q "named for a display of aspect 1, this one's is 1.7778" "$tmp/err"
+check "a quilt of ten views is resampled" run 0 interlace "$tmp/q2/quilt_qs5x2a1.7778.png" \
   "${small[@]}" -o "$tmp/e6"
 check "the quilt's resampling is noted" grep -q "10 views given, the display takes 9 views" \
   "$tmp/err"
@@ -109,6 +116,8 @@ check "--quilt-layout reads an unnamed quilt" run 0 interlace "$tmp/plain.png" "
 check "interlace the PNG quilt" run 0 interlace "$tmp/q/quilt_qs3x3a1.7778.png" "${small[@]}" \
   -o "$tmp/iqp"
 check "--quilt-layout gives the same image" cmp -s "$tmp/il/image.png" "$tmp/iqp/image.png"
-check "no output after the errors" bash -c "! ls -d '$tmp'/e[2345] 2>/dev/null | grep -q ."
+check "a name without an aspect gives the same image" cmp -s "$tmp/na/image.png" \
+  "$tmp/iqp/image.png"
+check "no output after the errors" bash -c "! ls -d '$tmp'/e[234] 2>/dev/null | grep -q ."
 
 cli_summary

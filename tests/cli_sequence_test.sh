@@ -110,6 +110,17 @@ check "names the folder" one_line_naming "no rendered frames"
 check "quilt sequence" run 0 render --display "$tmp/small.json" --spp 1 --quilt 3x1 --size 48x12 \
   --turntable 360 --duration 0.2 --fps 20 --frames 1:2 -o "$tmp/quilts"
 check "one quilt per frame" bash -c "ls '$tmp/quilts/frame-0001/'quilt_qs3x1*.png && ls '$tmp/quilts/frame-0002/'quilt_qs3x1*.png" 
+# A quilt video carries the layout Looking Glass Studio imports it by, the display's aspect.
+aspect=$(sed -n 's/.*quilt_qs3x1a\([0-9.]*\)\.png.*/\1/p' "$tmp/quilts/frame-0001/render.json" | head -1)
+check "quilt video" run 0 render --display "$tmp/small.json" --spp 1 --quilt 3x1 --size 48x12 \
+  --turntable 360 --duration 0.2 --fps 20 --frames 1:2 -o "$tmp/quilts" --video "$tmp/turn.mp4"
+check "the video is named for its quilt" test -s "$tmp/turn_qs3x1a$aspect.mp4"
+check "the result line names it" grep -qF "turn_qs3x1a$aspect.mp4: 2 frames" "$tmp/out"
+check "no video under the bare name" test ! -e "$tmp/turn.mp4"
+check "a video named for another quilt exits 2" run 2 render --display "$tmp/small.json" --spp 1 \
+  --quilt 3x1 --size 48x12 --turntable 360 --duration 0.2 --fps 20 --frames 1:2 \
+  -o "$tmp/quilts" --video "$tmp/turn_qs8x6a0.75.mp4"
+check "and names --video" one_line_naming "--video"
 
 # view: numbered pictures.
 check "view sequence" run 0 view --size 64x36 --spp 1 --turntable 180 --duration 0.1 --fps 20 -o "$tmp/v/view.png"

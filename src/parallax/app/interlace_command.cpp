@@ -56,11 +56,12 @@ void registerInterlaceCommand(CLI::App& cli) {
   cmd->add_option("--display", request.display,
                   "Display file of any kind, or lkg:NAME (built-in display if omitted)");
   cmd->add_option("--view-resampling", request.viewResampling,
-                  "When the views given are not the barrier's count: nearest or linear (blend "
-                  "the two views around each needed one)")
+                  "Views between the given ones: nearest or linear (blend the two around "
+                  "each needed one); for a barrier when the views are not its count, for a "
+                  "lenticular panel at every subpixel")
       ->capture_default_str();
   cmd->add_option("--quilt-layout", options->quiltLayout,
-                  "The quilt's tiles, when its name does not say (no aspect check)")
+                  "The quilt's tiles, when its name does not say")
       ->type_name("CxR");
   cmd->add_option("-o,--output", request.output, "Output folder")->required();
   cmd->add_flag("--subpixels", request.subpixels,

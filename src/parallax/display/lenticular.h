@@ -55,7 +55,10 @@ struct LenticularCalibration {
   int cellPatternMode = 0;
   std::vector<SubpixelCell> subpixelCells;  // empty: RGB (or BGR) stripes a third of a pixel wide
   QuiltFormat quilt;                        // the device's default quilt (a preset's, or 8x6)
-  std::vector<std::string> warnings;        // what the reader defaulted or ignored, one line each
+  // The unit and its device (display/lenticular_presets.h): the file's serial ("" none), the
+  // preset recognised ("portrait"; "" none), and how it was recognised ("serial LKG-P0123").
+  std::string serial, device, deviceBasis;
+  std::vector<std::string> warnings;  // what the reader defaulted or ignored, one line each
 };
 
 inline constexpr int kCellPatternModes = 5;

@@ -1,5 +1,10 @@
 #include "parallax/display/lenticular_presets.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
 namespace parallax {
 
 namespace {
@@ -7,6 +12,7 @@ namespace {
 struct Template {
   const char* name;
   const char* description;
+  const char* serialPrefix;
   int screenW, screenH;
   double dpi, pitch, slope, center, viewCone;
   QuiltFormat quilt;
@@ -28,7 +34,8 @@ LenticularPreset make(const Template& t) {
   c.cellPatternMode = t.cellPatternMode;
   c.subpixelCells = t.cells;
   c.quilt = t.quilt;
-  return {t.name, t.description, c};
+  c.device = t.name;
+  return {t.name, t.description, t.serialPrefix, c};
 }
 
 // The OLED panels' subpixel layouts (pixels, y up). 16" Gen3 landscape (and the 32" Gen3
@@ -44,6 +51,7 @@ std::vector<LenticularPreset> build() {
   const std::vector<Template> templates = {
       {"portrait",
        "Looking Glass Portrait (LKG-P)",
+       "LKG-P",
        1536,
        2048,
        324,
@@ -56,6 +64,7 @@ std::vector<LenticularPreset> build() {
        {}},
       {"go",
        "Looking Glass Go (LKG-E)",
+       "LKG-E",
        1440,
        2560,
        491,
@@ -68,6 +77,7 @@ std::vector<LenticularPreset> build() {
        {}},
       {"16-gen2",
        "Looking Glass 16\" Gen2 (LKG-A)",
+       "LKG-A",
        3840,
        2160,
        283,
@@ -80,6 +90,7 @@ std::vector<LenticularPreset> build() {
        {}},
       {"32-gen2",
        "Looking Glass 32\" Gen2 (LKG-B)",
+       "LKG-B",
        7680,
        4320,
        280,
@@ -92,6 +103,7 @@ std::vector<LenticularPreset> build() {
        {}},
       {"65-gen2",
        "Looking Glass 65\" Gen2 (LKG-D)",
+       "LKG-D",
        7680,
        4320,
        136,
@@ -104,6 +116,7 @@ std::vector<LenticularPreset> build() {
        {}},
       {"16-gen3",
        "Looking Glass 16\" Spatial Display, landscape (LKG-J)",
+       "LKG-J",
        3840,
        2160,
        283,
@@ -116,6 +129,7 @@ std::vector<LenticularPreset> build() {
        kGen3LandscapeCells},
       {"16-gen3-portrait",
        "Looking Glass 16\" Spatial Display, portrait (LKG-H)",
+       "LKG-H",
        2160,
        3840,
        283,
@@ -128,6 +142,7 @@ std::vector<LenticularPreset> build() {
        kGen3PortraitCells},
       {"32-gen3",
        "Looking Glass 32\" Spatial Display, landscape (LKG-L)",
+       "LKG-L",
        7680,
        4320,
        280,
@@ -140,6 +155,7 @@ std::vector<LenticularPreset> build() {
        {}},
       {"32-gen3-portrait",
        "Looking Glass 32\" Spatial Display, portrait (LKG-K)",
+       "LKG-K",
        4320,
        7680,
        280,
@@ -169,11 +185,69 @@ std::optional<LenticularCalibration> lenticularPreset(const std::string& name) {
   return std::nullopt;
 }
 
+std::string lenticularPresetDescription(const std::string& name) {
+  for (const LenticularPreset& p : lenticularPresets())
+    if (p.name == name) return p.description;
+  return "";
+}
+
 std::string lenticularPresetNames() {
   std::string names;
   for (const LenticularPreset& p : lenticularPresets())
     names += (names.empty() ? "" : ", ") + p.name;
   return names;
+}
+
+RecognisedDevice recogniseLenticularDevice(const LenticularCalibration& c) {
+  const auto samePanel = [&c](const LenticularCalibration& p) {
+    return p.screenW == c.screenW && p.screenH == c.screenH;
+  };
+  // The serial names the product line (Looking Glass's own readers pick the quilt by it); its
+  // resolution must agree, or the prefix is another product's (a Go turned landscape).
+  for (const LenticularPreset& p : lenticularPresets())
+    if (!c.serial.empty() && c.serial.rfind(p.serialPrefix, 0) == 0 && samePanel(p.calibration))
+      return {&p, "serial " + c.serial};
+  const LenticularPreset* nearest = nullptr;
+  double nearestDistance = 0;
+  for (const LenticularPreset& p : lenticularPresets()) {
+    if (!samePanel(p.calibration) || !(std::abs(c.dpi / p.calibration.dpi - 1.0) <= 0.01)) continue;
+    const double distance = std::abs(std::log(c.pitch / p.calibration.pitch));
+    if (!nearest || distance < nearestDistance) nearest = &p, nearestDistance = distance;
+  }
+  if (!nearest) return {};
+  char basis[128];
+  std::snprintf(basis, sizeof basis, "%dx%d pixels at %g DPI, pitch %g", c.screenW, c.screenH,
+                c.dpi, c.pitch);
+  return {nearest, basis};
+}
+
+QuiltFormat derivedQuilt(int screenW, int screenH) {
+  const double aspect = double(screenW) / screenH;
+  QuiltFormat q;
+  double best = 1e9;
+  for (int views = 40; views <= 66; ++views)
+    for (int columns = 1; columns <= views; ++columns) {
+      if (views % columns) continue;
+      const int rows = views / columns;
+      // Square quilt: a tile's aspect is rows / columns. A view more or less than 48 weighs as
+      // much as a 0.2% error in aspect.
+      const double score =
+          std::abs(std::log(double(rows) / columns / aspect)) + 0.002 * std::abs(views - 48);
+      if (score < best) best = score, q.columns = columns, q.rows = rows;
+    }
+  const int step = std::lcm(q.columns, q.rows);
+  int side = int(std::lround(q.columns * screenW / 4.0));
+  side = std::clamp(side, 2048, 8192) / step * step;  // whole tiles, no padding
+  if (side < 2048) side += step;
+  q.width = q.height = side;
+  return q;
+}
+
+void applyDeviceConventions(LenticularCalibration& c) {
+  const RecognisedDevice device = recogniseLenticularDevice(c);
+  c.device = device.preset ? device.preset->name : "";
+  c.deviceBasis = device.basis;
+  c.quilt = device.preset ? device.preset->calibration.quilt : derivedQuilt(c.screenW, c.screenH);
 }
 
 }  // namespace parallax

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "parallax/core/error.h"
+#include "parallax/display/lenticular_presets.h"
 #include "parallax/io/json_reader.h"
 
 namespace parallax {
@@ -117,7 +118,14 @@ LenticularCalibration readCalibration(const JsonReader& root) {
     }
   if (const auto cells = root.find("subpixelCells"))
     for (const JsonReader& cell : cells->elements()) c.subpixelCells.push_back(readCell(cell));
+  // The serial is a string in device files; some tools write it as {"value": "..."}.
+  if (const auto serial = root.find("serial")) {
+    const JsonReader text = serial->isObject() ? (*serial)["value"] : *serial;
+    if (text.isString()) c.serial = text.string();
+  }
   designLenticular(c);  // the relations between fields, reported against this file
+  // The unit's device, and with it its default quilt (not in visual.json).
+  applyDeviceConventions(c);
   return c;
 }
 
@@ -137,6 +145,9 @@ LenticularCalibration loadLenticularCalibration(const std::string& path) {
 
 std::string lenticularCalibrationText(const LenticularCalibration& c) {
   JsonWriter json;
+  // The serial is the unit's name (and its device's: display/lenticular_presets.h), kept so the
+  // copy written beside the pictures is recognised as the same device.
+  if (!c.serial.empty()) json.set("/serial", c.serial);
   const auto value = [&json](const char* key, double v) {
     json.set(std::string("/") + key + "/value", v);
   };
@@ -184,6 +195,13 @@ void writeLenticularDesignJson(JsonWriter& json, const std::string& at, const Le
   json.set(at + "/view_distance_mm", d.viewDistanceMm);
   json.set(at + "/view_zone_width_mm", d.viewZoneWidthMm);
   json.set(at + "/subpixel_cells", int(d.calibration.subpixelCells.size()));
+  const LenticularCalibration& c = d.calibration;
+  if (!c.serial.empty()) json.set(at + "/serial", c.serial);
+  json.set(at + "/device", c.device.empty() ? "unknown" : "lkg:" + c.device);
+  if (!c.deviceBasis.empty()) json.set(at + "/device_recognised_by", c.deviceBasis);
+  json.set(at + "/default_quilt",
+           std::to_string(c.quilt.columns) + "x" + std::to_string(c.quilt.rows) + " on " +
+               std::to_string(c.quilt.width) + "x" + std::to_string(c.quilt.height));
 }
 
 }  // namespace parallax

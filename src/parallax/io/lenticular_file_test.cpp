@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "parallax/core/error.h"
+#include "parallax/display/lenticular_presets.h"
 
 namespace parallax {
 namespace {
@@ -159,6 +160,42 @@ TEST(LenticularFile, WrittenTextReadsBack) {
       EXPECT_DOUBLE_EQ(a.subpixelCells[i].offsetY[ch], b.subpixelCells[i].offsetY[ch]);
     }
   EXPECT_NE(lenticularCalibrationText(a).find("\"value\""), std::string::npos);
+  EXPECT_EQ(b.serial, "TEST-0001");  // kept: the copy beside the pictures is the same unit
+}
+
+// Each preset's visual.json, written and loaded back as a unit's own file, is that device, with
+// its device's default quilt (a 16" Gen3's 7x7 on 5999 x 5999, not the Portrait's 8x6); with a
+// serial of its line, by the serial.
+TEST(LenticularFile, AUnitsFileGetsItsDevicesQuilt) {
+  for (const LenticularPreset& p : lenticularPresets()) {
+    for (const std::string& serial : {std::string(), p.serialPrefix + "00332"}) {
+      LenticularCalibration written = p.calibration;
+      written.serial = serial;
+      const LenticularCalibration c =
+          parseLenticularCalibration(lenticularCalibrationText(written), "visual.json");
+      EXPECT_EQ(c.serial, serial);
+      EXPECT_EQ(c.device, p.name) << serial;
+      EXPECT_NE(c.deviceBasis.find(serial.empty() ? "pixels at" : "serial LKG-"), std::string::npos)
+          << c.deviceBasis;
+      EXPECT_EQ(c.quilt.columns, p.calibration.quilt.columns) << p.name;
+      EXPECT_EQ(c.quilt.rows, p.calibration.quilt.rows) << p.name;
+      EXPECT_EQ(c.quilt.width, p.calibration.quilt.width) << p.name;
+      EXPECT_EQ(c.quilt.height, p.calibration.quilt.height) << p.name;
+      EXPECT_EQ(designLenticular(c).quiltViews, p.calibration.quilt.views()) << p.name;
+    }
+  }
+  const LenticularCalibration gen3 = parseLenticularCalibration(
+      lenticularCalibrationText(*lenticularPreset("16-gen3")), "visual.json");
+  EXPECT_EQ(gen3.quilt.columns, 7);
+  EXPECT_EQ(gen3.quilt.rows, 7);
+  // A panel no preset has: a quilt derived from it.
+  LenticularCalibration odd = *lenticularPreset("portrait");
+  odd.screenW = 1200, odd.screenH = 1920, odd.serial = "ACME-1";
+  const LenticularCalibration c =
+      parseLenticularCalibration(lenticularCalibrationText(odd), "visual.json");
+  EXPECT_EQ(c.device, "");
+  EXPECT_EQ(c.quilt.views(), derivedQuilt(1200, 1920).views());
+  EXPECT_EQ(c.quilt.width, derivedQuilt(1200, 1920).width);
 }
 
 TEST(LenticularFile, EveryExampleLoads) {

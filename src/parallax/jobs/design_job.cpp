@@ -67,6 +67,12 @@ std::string lenticularText(const LenticularDesign& d) {
                   d.viewDistanceMm, d.viewZoneWidthMm);
   text += printed("default quilt        %dx%d views, %dx%d px\n", c.quilt.columns, c.quilt.rows,
                   c.quilt.width, c.quilt.height);
+  // Which device a unit's own file is, which chose that quilt (display/lenticular_presets.h).
+  if (!c.deviceBasis.empty())
+    text += printed("device               lkg:%s, by its %s\n", c.device.c_str(),
+                    c.deviceBasis.c_str());
+  else if (c.device.empty())
+    text += "device               none known: the quilt is derived from the panel\n";
   return text;
 }
 

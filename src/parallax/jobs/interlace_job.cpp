@@ -2,6 +2,7 @@
 // mapping onto the display; the picture set written or kept. And lenticular simulate.
 #include "parallax/jobs/interlace_job.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "parallax/core/error.h"
@@ -64,7 +65,7 @@ QuiltLayout givenLayout(const QuiltLayout& layout) {
     throw RequestError("quilt_layout", "expected columns and rows from 1 to 1024, got " +
                                            std::to_string(layout.columns) + "x" +
                                            std::to_string(layout.rows));
-  return {layout.columns, layout.rows, 0.0};
+  return {layout.columns, layout.rows, 0.0};  // the aspect: the display's
 }
 
 std::string quiltName(const InterlaceRequest& r) {
@@ -130,6 +131,7 @@ void recordInputs(JsonWriter& record, const InterlaceRequest& r, const Views& gi
     record.set("/inputs/quilt", quiltName(r));
     record.set("/inputs/columns", given.layout.columns);
     record.set("/inputs/rows", given.layout.rows);
+    if (given.layout.aspect > 0) record.set("/inputs/aspect", given.layout.aspect);  // its name's
   } else {
     record.set("/inputs/views", given.names);
   }
@@ -150,13 +152,30 @@ std::string viewsNeeded(const DisplayDesign& design) {
 // as Looking Glass's interlacing shader does (render/quilt.h, interlaceQuiltLenticular).
 Image interlaceLenticular(const InterlaceRequest& r, const LenticularDesign& design,
                           const Views& given, JsonWriter& record) {
-  Image panel = interlaceQuiltLenticular(design, given.images);
+  const ViewResampling resampling = viewResampling(r.viewResampling);
+  Image panel = interlaceQuiltLenticular(design, given.images, resampling);
   startRenderRecord(record, "interlace", r.display, {}, {});
   record.set("/display_kind", "lenticular");
   recordInputs(record, r, given);
+  record.set("/inputs/view_resampling", r.viewResampling);
   record.set("/inputs/view_mapping",
-             "each subpixel's view fraction f between views f N - 1/2, blended linearly");
+             resampling == ViewResampling::Nearest
+                 ? "each subpixel's view fraction f picks view floor(f N), the nearest"
+                 : "each subpixel's view fraction f between views f N - 1/2, blended linearly");
   return panel;
+}
+
+// A quilt named for a display of another shape: its views are stretched to this one's.
+void noteQuiltAspect(const Views& given, const DisplayModel& display, Reporter& reporter) {
+  const DisplayWindow window = display.window();
+  const double aspect = window.widthMm / window.heightMm;
+  if (!given.quilt || !(given.layout.aspect > 0) ||
+      std::abs(given.layout.aspect / aspect - 1.0) <= 0.01)
+    return;
+  reporter.note(
+      printed("the quilt is named for a display of aspect %s, this one's is %s: its "
+              "views are stretched to the display",
+              formatQuiltAspect(given.layout.aspect).c_str(), formatQuiltAspect(aspect).c_str()));
 }
 
 // A barrier: the views resampled to its count if need be, then interleaved by direct mapping.
@@ -200,6 +219,7 @@ struct Interlaced {
 
 void interlace(const InterlaceRequest& r, const BuiltDisplay& display, Views given, Interlaced& out,
                Reporter& reporter) {
+  noteQuiltAspect(given, *display, reporter);
   if (const LenticularDesign* lenticular = display->lenticularDesign()) {
     out.image = interlaceLenticular(r, *lenticular, given, out.record);
     return;

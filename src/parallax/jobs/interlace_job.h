@@ -21,7 +21,7 @@ namespace parallax::jobs {
 struct InterlaceRequest {
   std::vector<std::string> views;  // view files, leftmost camera first, all of one size
   std::string quilt;               // or one quilt file (NAME_qs{C}x{R}a{aspect}.png)
-  // quilt_layout: the quilt's tiles when its name does not say (no aspect check).
+  // quilt_layout: the quilt's tiles when its name does not say (the aspect: the display's).
   std::optional<QuiltLayout> quiltLayout;
   std::string display;  // "" the built-in barrier, a display file of any kind, lkg:NAME
   std::optional<DisplayDescription> loaded;  // the display already loaded (else `display`'s)

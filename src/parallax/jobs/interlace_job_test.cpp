@@ -107,25 +107,54 @@ TEST(InterlaceInMemory, OtherCountsAreResampledWithANote) {
 
 // A lenticular panel blends the two views around f N - 1/2 (f the subpixel's view fraction):
 // with view k grey k / (N - 1), each subpixel is that position over N - 1.
-TEST(InterlaceInMemory, ALenticularSubpixelBlendsTheViewsAroundItsFraction) {
+// A Portrait shrunk eightfold, and `count` flat views, view k grey k / (count - 1).
+struct SmallPanel {
+  InterlaceRequest request;
+  LenticularDesign design;
+  std::vector<Image> views;
+};
+SmallPanel smallPanel(int count) {
   DisplayDescription description = loadDisplay("lkg:portrait", silentReporter());
   LenticularCalibration& calibration = description.lenticular;
   calibration.screenW /= 8, calibration.screenH /= 8;
-  InterlaceRequest r;
-  r.loaded = description;
+  SmallPanel panel;
+  panel.request.loaded = description;
+  panel.design = designLenticular(calibration);
+  for (int k = 0; k < count; ++k) panel.views.emplace_back(16, 16, Vec3f(float(k) / (count - 1)));
+  return panel;
+}
+
+TEST(InterlaceInMemory, ALenticularSubpixelBlendsTheViewsAroundItsFraction) {
   const int count = 12;
-  std::vector<Image> views;
-  for (int k = 0; k < count; ++k) views.emplace_back(16, 16, Vec3f(float(k) / (count - 1)));
+  const auto [r, design, views] = smallPanel(count);
   const InterlaceResult result = interlaceInMemory(r, views, {}, silentReporter());
   EXPECT_TRUE(result.mask.empty());
-  const LenticularDesign design = designLenticular(calibration);
-  ASSERT_EQ(result.image.width(), calibration.screenW);
+  ASSERT_EQ(result.image.width(), design.calibration.screenW);
   for (int y = 0; y < result.image.height(); y += 7)
     for (int x = 0; x < result.image.width(); x += 3)
       for (int c = 0; c < 3; ++c) {
         const double at =
             std::clamp(viewFraction(design, x, y, c) * count - 0.5, 0.0, double(count - 1));
         ASSERT_NEAR(result.image.at(x, y)[c], at / (count - 1), 1e-5) << x << "," << y;
+      }
+}
+
+// view_resampling nearest on a lenticular panel: each subpixel shows the one view whose window
+// holds its view fraction (brute force: floor(f N)), not the blend; the record says which.
+TEST(InterlaceInMemory, ALenticularSubpixelTakesTheNearestViewWhenAsked) {
+  const int count = 12;
+  auto [r, design, views] = smallPanel(count);
+  const InterlaceResult linear = interlaceInMemory(r, views, {}, silentReporter());
+  r.viewResampling = "nearest";
+  const InterlaceResult nearest = interlaceInMemory(r, views, {}, silentReporter());
+  EXPECT_NE(nearest.image.pixels(), linear.image.pixels());
+  EXPECT_NE(nearest.record.find("\"view_resampling\": \"nearest\""), std::string::npos);
+  for (int y = 0; y < nearest.image.height(); ++y)
+    for (int x = 0; x < nearest.image.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const int view =
+            std::clamp(int(std::floor(viewFraction(design, x, y, c) * count)), 0, count - 1);
+        ASSERT_FLOAT_EQ(nearest.image.at(x, y)[c], float(view) / (count - 1)) << x << "," << y;
       }
 }
 

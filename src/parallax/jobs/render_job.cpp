@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/cluster/process_group.h"
@@ -57,6 +58,19 @@ void LayersRequest::check() const {
 
 namespace {
 
+// The sequence as its video is written: a quilt video's name carries the quilt's layout
+// (_qs{C}x{R}a{aspect}), by which Looking Glass Studio imports it.
+SequenceRequest videoOfFrames(const RenderRequest& r, const RenderPlan& plan) {
+  SequenceRequest sequence = r.sequence;
+  if (!r.quilt.wanted || !sequence.video.wanted()) return sequence;
+  try {
+    sequence.video.file = quiltVideoPath(sequence.video.file, plan.layout);
+  } catch (const std::invalid_argument& e) {
+    throw RequestError("video", e.what(), sequence.video.file);
+  }
+  return sequence;
+}
+
 // Everything the request asks that can be refused without the scene, refused in the order the
 // command line has always refused it.
 RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
@@ -99,8 +113,16 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
                        "a lenticular panel's sequence is a sequence of quilts: add {quilt} auto");
   // The settings the display camera renders with (render/display_render.h): one sample per
   // pixel when each is the central ray.
-  if (!r.directMapping && !r.quilt.wanted)
+  if (!r.directMapping && !r.quilt.wanted) {
     plan.settings = displayRenderSettings(*display, plan.settings);
+    if (plan.settings.samplesPerPixel < r.sampling.spp && writesJobOutputs())
+      reporter.note(printed(
+          "{filter} none casts each film pixel's central ray only (on a lenticular panel the "
+          "formula's one ray a subpixel), so {spp} %d renders as 1 sample a pixel: every "
+          "sample would be that ray; another filter (view, tent, gaussian, period) spreads the "
+          "%d samples over the pixel and its view window",
+          r.sampling.spp, r.sampling.spp));
+  }
 
   const std::string subject =
       plan.description.source() == "<built-in>" ? "<built-in display>" : plan.description.source();
@@ -122,6 +144,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   if (r.sequence.video.wanted())  // the encoder's limits, before the frames are rendered
     checkVideoFrames(r.sequence.videoOptions(), plan.pictureWidth, plan.pictureHeight);
   if (r.quilt.wanted) {
+    videoOfFrames(r, plan);  // a video named for another quilt, refused before any work
     plan.outputNames = {quiltFileName("quilt", plan.layout, ".png")};
     if (r.linear) plan.outputNames.push_back(quiltFileName("quilt", plan.layout, ".pfm"));
     plan.outputNames.insert(plan.outputNames.end(), {display.file.name, "render.json"});
@@ -275,7 +298,8 @@ void runRender(const RenderRequest& r, Reporter& reporter) {
   };
   runSequence(sequence, scene, job);
   writeSequenceVideo(
-      r.sequence, sequence, [&](int frame) { return framePicture(r, frame); }, reporter);
+      videoOfFrames(r, plan), sequence, [&](int frame) { return framePicture(r, frame); },
+      reporter);
 }
 
 RenderResult renderInMemory(const RenderRequest& r, const Scene& loaded, Reporter& reporter) {

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/camera/camera.h"
@@ -65,6 +66,43 @@ TEST(RenderRunner, RefusesBeforeAnyWork) {
   request.directMapping = false;
   request.layers.method = "nmf";
   EXPECT_EQ(fieldOf([&] { renderInMemory(request, scene, silentReporter()); }), "layers");
+}
+
+// `{filter} none` casts each pixel's central ray, so more samples would trace it again: the
+// runner says so, naming both fields, on either display kind, and renders one sample a pixel.
+TEST(RenderRunner, FilterNoneSaysWhatItDoesWithSpp) {
+  const Scene scene = defaultScene();
+  DisplayDescription smallPanel = portrait();
+  smallPanel.lenticular.screenW /= 8, smallPanel.lenticular.screenH /= 8;
+  for (const DisplayDescription& display : {smallBarrier(), smallPanel}) {
+    RenderRequest request;
+    request.loaded = display;
+    request.filter.kind = "none";
+    request.sampling.spp = 4;
+    RecordingReporter reporter;
+    const RenderResult result = renderInMemory(request, scene, reporter);
+    const auto filterNotes = [](const RecordingReporter& said) {
+      std::vector<std::string> notes;
+      for (const std::string& n : said.notes)
+        if (n.find("{filter} none") != std::string::npos) notes.push_back(n);
+      return notes;
+    };
+    ASSERT_EQ(filterNotes(reporter).size(), 1u) << display.source();
+    const std::string note = filterNotes(reporter)[0];
+    EXPECT_NE(note.find("{filter} none casts each film pixel's central ray"), std::string::npos)
+        << note;
+    EXPECT_NE(note.find("{spp} 4 renders as 1 sample a pixel"), std::string::npos) << note;
+    EXPECT_NE(result.record.find("\"spp\": 1"), std::string::npos);
+    // Said only when it changes something: one sample, or a filter that spreads them.
+    request.sampling.spp = 1;
+    RecordingReporter quiet;
+    renderInMemory(request, scene, quiet);
+    EXPECT_TRUE(filterNotes(quiet).empty());
+    request.sampling.spp = 4;
+    request.filter.kind = "view";
+    renderInMemory(request, scene, quiet);
+    EXPECT_TRUE(filterNotes(quiet).empty());
+  }
 }
 
 TEST(RenderRunner, AQuiltInMemoryTakesTheDisplaysOwnLayout) {

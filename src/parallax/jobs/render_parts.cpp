@@ -10,6 +10,7 @@
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/core/parallel.h"
+#include "parallax/display/lenticular_presets.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/png_encoder.h"
 #include "parallax/jobs/distributed.h"
@@ -20,11 +21,33 @@
 
 namespace parallax::jobs {
 
+namespace {
+
+// A unit's own file (not a preset): which device it was recognised as decides its quilt.
+void noteDevice(const LenticularCalibration& c, Reporter& reporter) {
+  if (c.source.rfind("lkg:", 0) == 0 || !writesJobOutputs()) return;
+  const std::string quilt =
+      printed("%dx%d views on %dx%d", c.quilt.columns, c.quilt.rows, c.quilt.width, c.quilt.height);
+  if (!c.device.empty())
+    reporter.note(printed("%s is a %s (lkg:%s, by its %s): its default quilt %s", c.source.c_str(),
+                          lenticularPresetDescription(c.device).c_str(), c.device.c_str(),
+                          c.deviceBasis.c_str(), quilt.c_str()));
+  else
+    reporter.note(
+        printed("%s (%dx%d pixels at %g DPI%s) is no Looking Glass device parallax "
+                "knows: its default quilt is derived from the panel, %s",
+                c.source.c_str(), c.screenW, c.screenH, c.dpi,
+                c.serial.empty() ? "" : (", serial " + c.serial).c_str(), quilt.c_str()));
+}
+
+}  // namespace
+
 void planQuilt(const RenderRequest& r, const DisplayModel& display, RenderPlan& plan,
                Reporter& reporter) {
   const LenticularDesign* lenticular = display.lenticularDesign();
   QuiltLayout& layout = plan.layout;
   layout.columns = r.quilt.columns, layout.rows = r.quilt.rows;
+  if (layout.columns == 0 && lenticular) noteDevice(lenticular->calibration, reporter);
   if (layout.columns == 0) {  // auto: the device's quilt, or one row of the barrier's views
     layout.columns = lenticular ? lenticular->calibration.quilt.columns : display.viewCount();
     layout.rows = lenticular ? lenticular->calibration.quilt.rows : 1;
@@ -43,15 +66,18 @@ void planQuilt(const RenderRequest& r, const DisplayModel& display, RenderPlan& 
   checkQuiltWork(layout.columns, layout.rows, width, height, plan.settings.samplesPerPixel,
                  plan.settings.threads,
                  sized ? std::to_string(width) + "x" + std::to_string(height) : "", r.linear);
-  layout.aspect = double(width) / height;
   plan.tileWidth = width, plan.tileHeight = height;
   const DisplayWindow window = display.window();
   const double windowAspect = window.widthMm / window.heightMm;
-  if (std::abs(layout.aspect / windowAspect - 1.0) > 0.01 && writesJobOutputs())
+  // The name's aspect is the display's (Looking Glass's convention), whatever the tiles' shape.
+  layout.aspect = windowAspect;
+  const double tileAspect = double(width) / height;
+  if (std::abs(tileAspect / windowAspect - 1.0) > 0.01 && writesJobOutputs())
     reporter.note(
         printed("tiles of %dx%d have aspect %.4f, the display's window %.4f: the views "
-                "are stretched to fill them, as Looking Glass quilts are",
-                width, height, layout.aspect, windowAspect));
+                "are stretched to fill them, as Looking Glass quilts are (the name says a%s, "
+                "the display's aspect)",
+                width, height, tileAspect, windowAspect, formatQuiltAspect(windowAspect).c_str()));
 }
 
 void checkPictureWork(const DisplayModel& display, bool directMapping,
@@ -294,6 +320,7 @@ bool renderQuiltFrame(const FrameTarget& t, const Scene& scene, const Accelerato
   record.set("/quilt/columns", layout.columns);
   record.set("/quilt/rows", layout.rows);
   record.set("/quilt/view_size", std::to_string(width) + "x" + std::to_string(height));
+  record.set("/quilt/aspect", layout.aspect);  // the display's, as the name's `a` (docs/quilts.md)
   record.set("/quilt/order", "view 0 = leftmost camera = bottom-left tile, rightward then upward");
   for (int k = 0; k < layout.views(); ++k) {
     const Vec3d eye = quiltEyePosition(display, k, layout.views());

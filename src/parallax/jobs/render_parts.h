@@ -18,7 +18,7 @@ struct RenderPlan {
   ViewFilter filter;
   DisplayDescription description;
   DisplayCameraRequest camera;
-  QuiltLayout layout;  // a quilt's: resolved (auto: the display's own), with its tiles' aspect
+  QuiltLayout layout;  // a quilt's: resolved (auto: the display's own), with the display's aspect
   int tileWidth = 0, tileHeight = 0;
   TrainingOptions training;  // content-adaptive layers' training eyes
   // The files one picture set writes (OutputSet::check, before the scene is loaded).

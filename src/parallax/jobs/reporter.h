@@ -1,7 +1,8 @@
 // How a runner talks to the person who asked (docs/architecture.md, "Requests"): notes and
 // warnings, the result lines (what was written, how fast), and the progress of long steps. The
 // command line prints them (notes and warnings on stderr, results on stdout, a progress bar on a
-// terminal); Python keeps them quiet. Texts may name request fields as {field}
+// terminal); Python prints the notes and warnings of loading, design and render on stderr and
+// keeps the rest quiet. Texts may name request fields as {field}
 // (core/error.h, spellFields): the front end spells them.
 #pragma once
 

@@ -150,7 +150,8 @@ renderInMemory(const Scene& scene, const DisplayDescription& display, const py::
   jobs::RenderResult result;
   {
     py::gil_scoped_release released;
-    result = jobs::renderInMemory(request, scene, jobs::silentReporter());
+    // Notes and warnings on stderr with keywords (what --filter none does with spp, framing).
+    result = jobs::renderInMemory(request, scene, pythonReporter());
   }
   std::vector<std::tuple<py::array_t<float>, py::object>> frames;
   for (const LayerFrame& frame : result.frames)
@@ -172,7 +173,7 @@ void renderToFiles(const std::string& output, const std::optional<std::string>& 
   request.scene.load.camera = camera;
   request.output = output;
   py::gil_scoped_release released;
-  jobs::runRender(request, jobs::silentReporter());
+  jobs::runRender(request, pythonReporter());
 }
 
 std::optional<Vec3f> vec3(const std::optional<std::array<float, 3>>& v) {

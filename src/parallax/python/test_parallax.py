@@ -609,6 +609,30 @@ def test_interlace_is_the_cli_interlace(small, cli_quilt, tmp_path):
     same_tool_files(tmp_path / "py", tmp_path / "cli")
 
 
+def test_filter_none_with_spp_says_so_with_keywords(scene, small, capfd):
+    """The CLI's note, the keywords where the CLI names its options."""
+    parallax.render(scene, small, filter="none", spp=4)
+    err = capfd.readouterr().err
+    assert "note: filter none casts each film pixel's central ray only" in err
+    assert "so spp 4 renders as 1 sample a pixel" in err
+    assert "--filter" not in err and "--spp" not in err
+
+
+def test_interlace_nearest_onto_a_lenticular_panel(cli_quilt, tmp_path):
+    """view_resampling="nearest": each subpixel's nearest view, not the blend (as the CLI)."""
+    path, display = quarter_portrait(tmp_path)
+    quilt = rgb(read_png(cli_quilt))
+    linear = parallax.interlace(quilt=quilt, display=display, quilt_layout=(3, 3))
+    nearest = parallax.interlace(quilt=quilt, display=display, quilt_layout=(3, 3),
+                                 view_resampling="nearest")
+    assert not np.array_equal(nearest.image, linear.image)
+    assert nearest.record["inputs"]["view_resampling"] == "nearest"
+    result = cli("interlace", cli_quilt, "--display", path, "--view-resampling", "nearest",
+                 "-o", tmp_path / "cli")
+    assert result.returncode == 0, result.stderr
+    assert np.array_equal(nearest.image_srgb8, rgb(read_png(tmp_path / "cli" / "image.png")))
+
+
 def test_interlace_onto_a_lenticular_panel_is_the_cli_interlace(cli_quilt, tmp_path):
     path, display = quarter_portrait(tmp_path)
     result = cli("interlace", cli_quilt, "--display", path, "--linear", "-o", tmp_path / "cli")

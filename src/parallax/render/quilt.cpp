@@ -48,11 +48,17 @@ QuiltLayout parseQuiltName(const std::string& path) {
   if (at == std::string::npos)
     throw InputError(path, "", "no quilt layout: " + std::string(kNameConvention));
   const std::string ending = stem.substr(at);
-  // The whole ending, to the extension: _qs, columns, x, rows, a, a positive decimal number
-  // (digits, optionally a point and more digits).
+  // The whole ending, to the extension: _qs, columns, x, rows, then optionally a and a positive
+  // decimal number (digits, optionally a point and more digits).
   const size_t a = ending.find('a', 3);
-  const std::string counts = a == std::string::npos ? "" : ending.substr(3, a - 3);
-  const std::string aspect = a == std::string::npos ? "" : ending.substr(a + 1);
+  const std::string counts = ending.substr(3, a == std::string::npos ? std::string::npos : a - 3);
+  QuiltLayout layout;
+  if (a == std::string::npos) {  // _qs8x6: the aspect left to the display, as Looking Glass does
+    if (!parseColumnsByRows(counts, layout.columns, layout.rows))
+      throw InputError(path, "", "malformed quilt layout '" + ending + "': " + kNameConvention);
+    return layout;
+  }
+  const std::string aspect = ending.substr(a + 1);
   const size_t point = aspect.find('.');
   const auto digits = [](const std::string& t) {
     return !t.empty() && t.find_first_not_of("0123456789") == std::string::npos;
@@ -60,7 +66,6 @@ QuiltLayout parseQuiltName(const std::string& path) {
   const bool aspectOk = point == std::string::npos
                             ? digits(aspect)
                             : digits(aspect.substr(0, point)) && digits(aspect.substr(point + 1));
-  QuiltLayout layout;
   if (!aspectOk || !parseColumnsByRows(counts, layout.columns, layout.rows))
     throw InputError(path, "", "malformed quilt layout '" + ending + "': " + kNameConvention);
   // strtod, not stod: a long run of digits overflows (or underflows) to a value we refuse
@@ -82,8 +87,37 @@ std::string formatQuiltAspect(double aspect) {
 
 std::string quiltFileName(const std::string& stem, const QuiltLayout& layout,
                           const std::string& extension) {
-  return stem + "_qs" + std::to_string(layout.columns) + "x" + std::to_string(layout.rows) + "a" +
-         formatQuiltAspect(layout.aspect) + extension;
+  // No aspect known: no `a` ending (the display's, as when Looking Glass leaves it out).
+  std::string name =
+      stem + "_qs" + std::to_string(layout.columns) + "x" + std::to_string(layout.rows);
+  if (layout.aspect > 0) name += 'a' + formatQuiltAspect(layout.aspect);
+  return name + extension;
+}
+
+std::string quiltVideoPath(const std::string& path, const QuiltLayout& layout) {
+  const std::filesystem::path p(path);
+  const std::string stem = p.stem().string();
+  if (stem.rfind("_qs") != std::string::npos) {
+    QuiltLayout named;
+    try {
+      named = parseQuiltName(path);
+    } catch (const InputError&) {
+      return quiltFileName((p.parent_path() / stem).string(), layout, p.extension().string());
+    }
+    const bool same = named.columns == layout.columns && named.rows == layout.rows &&
+                      (named.aspect == 0 || std::abs(named.aspect / layout.aspect - 1.0) < 0.005);
+    if (!same)
+      throw std::invalid_argument("the name says a " + std::to_string(named.columns) + "x" +
+                                  std::to_string(named.rows) + " quilt" +
+                                  (named.aspect > 0 ? " a" + formatQuiltAspect(named.aspect) : "") +
+                                  ", the render makes " + quiltFileName("", layout, "").substr(1) +
+                                  ": leave the _qs ending out, parallax adds it");
+    if (named.aspect > 0) return path;
+    // _qs7x7 without the aspect: completed, so that Looking Glass Studio reads the display's.
+    const std::string bare = stem.substr(0, stem.rfind("_qs"));
+    return quiltFileName((p.parent_path() / bare).string(), layout, p.extension().string());
+  }
+  return quiltFileName((p.parent_path() / stem).string(), layout, p.extension().string());
 }
 
 Image assembleQuilt(const std::vector<Image>& views, int columns, int rows) {
@@ -109,12 +143,6 @@ std::vector<Image> splitQuilt(const Image& quilt, const QuiltLayout& layout,
   const std::string grid = std::to_string(layout.columns) + "x" + std::to_string(layout.rows);
   if (w < 1 || h < 1)
     throw InputError(source, "", size + " pixels are too few for " + grid + " tiles");
-  if (layout.aspect > 0 && std::abs(double(w) / h / layout.aspect - 1.0) > 0.05)
-    throw InputError(source, "",
-                     grid + " tiles are " + std::to_string(w) + "x" + std::to_string(h) +
-                         " (aspect " + formatQuiltAspect(double(w) / h) + "), the name says a" +
-                         formatQuiltAspect(layout.aspect) +
-                         " (is the layout right? {quilt_layout} overrides the name)");
   std::vector<Image> views;
   for (int k = 0; k < layout.views(); ++k) {
     const int left = (k % layout.columns) * w;
@@ -239,7 +267,8 @@ float bilinear(const Image& image, double x, double y, int c) {
 
 }  // namespace
 
-Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views) {
+Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views,
+                               ViewResampling resampling) {
   if (views.empty()) throw std::invalid_argument("interlaceQuiltLenticular: no views");
   const int w = design.calibration.screenW, h = design.calibration.screenH;
   const int n = int(views.size());
@@ -257,7 +286,11 @@ Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector
         const double a = bilinear(views[size_t(below)], px, py, c);
         const double b = bilinear(views[size_t(above)], px, py, c);
         const bool outside = position < 0 || position > n - 1;
-        panel.at(x, y)[c] = float(outside ? (position < 0 ? a : b) : a * (1 - t) + b * t);
+        // Nearest: the view whose centre is nearer, floor(f N) (t = 1/2 rounds up, as floor does).
+        const bool nearest = resampling == ViewResampling::Nearest;
+        panel.at(x, y)[c] = float(outside   ? (position < 0 ? a : b)
+                                  : nearest ? (t < 0.5 ? a : b)
+                                            : a * (1 - t) + b * t);
       }
   return panel;
 }

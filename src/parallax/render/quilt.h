@@ -4,7 +4,9 @@
 // Conventions (docs/quilts.md): camera views are ordered from the leftmost camera (view 0) to
 // the rightmost. A quilt holds them as tiles row by row from the bottom-left: view 0 is the
 // bottom-left tile, views increase to the right and then upward. Its file name ends in
-// `_qs{columns}x{rows}a{aspect}` before the extension, aspect = width / height of one view.
+// `_qs{columns}x{rows}a{aspect}` before the extension, aspect = width / height of the display the
+// views are for (Looking Glass's convention: a 16:9 panel's quilt is a1.7778 whatever its tiles'
+// shape; the views are stretched to fill their tiles).
 #pragma once
 
 #include <string>
@@ -23,30 +25,39 @@ namespace parallax {
 
 struct QuiltLayout {
   int columns = 1, rows = 1;
-  double aspect = 0;  // width / height of one view; 0 when not known
+  double aspect = 0;  // width / height of the display the views fill; 0 when not known
   int views() const { return columns * rows; }
 };
 
 // "CxR" with both counts positive (and at most 1024); false if malformed.
 bool parseColumnsByRows(std::string_view text, int& columns, int& rows);
 
-// The layout in a quilt file's name ("scene_qs5x9a1.7778.png"). Throws InputError naming the
-// file when the `_qs{C}x{R}a{aspect}` ending is absent or malformed.
+// The layout in a quilt file's name ("scene_qs5x9a1.7778.png", any number of decimals as
+// Looking Glass's tools write them; "scene_qs8x6.png" without an aspect, as in Looking Glass's
+// own examples, gives aspect 0). Throws InputError naming the file when the `_qs{C}x{R}` ending
+// is absent or malformed.
 QuiltLayout parseQuiltName(const std::string& path);
 
 // The aspect as written in quilt names: at most four decimals, no trailing zeros ("1.7778").
 std::string formatQuiltAspect(double aspect);
-// stem + "_qs{C}x{R}a{aspect}" + extension, e.g. ("quilt", 3x3 a1.7778, ".png").
+// stem + "_qs{C}x{R}a{aspect}" + extension, e.g. ("quilt", 3x3 a1.7778, ".png"); without the
+// `a` part when the aspect is not known (0).
 std::string quiltFileName(const std::string& stem, const QuiltLayout& layout,
                           const std::string& extension);
+// A quilt video's path as Looking Glass Studio imports it: `path` with the layout's
+// _qs{C}x{R}a{aspect} before its extension ("out/turn.mp4" -> "out/turn_qs7x7a1.7778.mp4"), kept
+// as it is when its name already ends in that layout (an aspect within 0.5%: a1.78 for 16:9).
+// Throws std::invalid_argument (the message, for the caller to put under its own field) when its
+// name ends in another quilt's layout.
+std::string quiltVideoPath(const std::string& path, const QuiltLayout& layout);
 
 // Tiles `views` (all the same size, leftmost camera first, columns * rows of them) into a quilt.
 Image assembleQuilt(const std::vector<Image>& views, int columns, int rows);
 
 // Cuts a quilt into its views (leftmost camera first). Tiles are floor(W / C) x floor(H / R)
-// pixels from the bottom-left corner; leftover pixels at the right and top are padding. When
-// layout.aspect > 0 the tiles' aspect must agree with it within 5% (quilts squeezed onto a
-// square texture round their tiles); otherwise throws InputError naming `source`.
+// pixels from the bottom-left corner; leftover pixels at the right and top are padding. Their
+// shape is free (layout.aspect is the display's, not the tiles'); throws InputError naming
+// `source` when the quilt has fewer pixels than tiles.
 std::vector<Image> splitQuilt(const Image& quilt, const QuiltLayout& layout,
                               const std::string& source);
 
@@ -91,16 +102,22 @@ void renderQuiltTiles(const Scene& scene, const Accelerator& accelerator,
                       const QuiltTileSink& sink, RenderStats* stats = nullptr,
                       const ProgressCallback& progress = {});
 
+// How views between two given ones are made: the nearest given view, or the two around it
+// blended linearly.
+enum class ViewResampling { Nearest, Linear };
+
 // Maps a quilt's views onto a lenticular panel as Looking Glass's interlacing shader does: each
 // subpixel's view fraction f (viewFraction) picks the views f N - 1/2 lies between (N the
 // quilt's views; beyond the first and last view the nearest), blended linearly, each sampled
-// where the subpixel sits on the screen. Returns the panel's picture (linear RGB).
-Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views);
+// where the subpixel sits on the screen. Nearest takes the one view whose window holds f,
+// floor(f N) (the shader's unblended mode, "old, studio style"). Returns the panel's picture
+// (linear RGB).
+Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views,
+                               ViewResampling resampling = ViewResampling::Linear);
 
 // Resamples camera views (leftmost first) to `count` views across the same zone: view k of
 // `count` at (k + 1/2) / count of the way across takes the nearest camera view, or blends the
 // two around it linearly.
-enum class ViewResampling { Nearest, Linear };
 std::vector<Image> resampleViews(const std::vector<Image>& views, int count,
                                  ViewResampling resampling);
 
