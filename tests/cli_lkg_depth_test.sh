@@ -12,12 +12,6 @@ if [ ! -f "$box" ]; then
   echo "skipped: $box is missing (tools/fetch-data)"
   exit 0
 fi
-json() {  # json FILE POINTER: the value at a JSON pointer
-  python3 -c 'import json, sys
-v = json.load(open(sys.argv[1]))
-for k in sys.argv[2].strip("/").split("/"): v = v[int(k)] if isinstance(v, list) else v[k]
-print(v)' "$1" "$2"
-}
 true_that() { python3 -c "import sys; sys.exit(0 if ($1) else 1)"; }
 
 # The lens's depth of field: 12.8 mm on a Portrait (by hand in docs/lenticular.md), 11.8 on a 16".
@@ -25,19 +19,19 @@ check "design prints the lens's depth of field" run 0 design lkg:portrait
 check "+-12.8 mm on a Portrait" grep -q "depth of field       +-12.8 mm around the panel" "$tmp/out"
 check "design --scene on a Portrait" run 0 design lkg:portrait --scene "$box" --json
 cp "$tmp/out" "$tmp/design.json"
-check "the depth fit by default" test "$(json "$tmp/design.json" /scene/fit)" = depth
-check "within the budget" test "$(json "$tmp/design.json" /scene/within_budget)" = True
+check "the depth fit by default" test "$(json_at "$tmp/design.json" /scene/fit)" = depth
+check "within the budget" test "$(json_at "$tmp/design.json" /scene/within_budget)" = True
 check "the shown depth lies within +-the depth of field" true_that \
-  "max($(json "$tmp/design.json" /scene/shown_near_mm), -($(json "$tmp/design.json" /scene/shown_far_mm))) <= 1.005 * $(json "$tmp/design.json" /scene/depth_of_field_mm)"
+  "max($(json_at "$tmp/design.json" /scene/shown_near_mm), -($(json_at "$tmp/design.json" /scene/shown_far_mm))) <= 1.005 * $(json_at "$tmp/design.json" /scene/depth_of_field_mm)"
 check "the box is deeper than that, so it is scaled" true_that \
-  "$(json "$tmp/design.json" /scene/depth_scale) < 0.5"
+  "$(json_at "$tmp/design.json" /scene/depth_scale) < 0.5"
 check "the window fit on a 16-inch warns" run 0 design lkg:16-gen3 --scene "$box" --fit window
 check "the warning's words and figures" grep -q \
   "warning: the content spans -81 to +81 mm; the display is sharp within ±12 mm (the lens's depth of field); --fit depth compresses it" "$tmp/out"
 check "focus and budget on a 16-inch" run 0 design lkg:16-gen3 --scene "$box" --focus 10 --depth-budget 20 --json
-check "the given focus" test "$(json "$tmp/out" /scene/focus_mm)" = 10.0
+check "the given focus" test "$(json_at "$tmp/out" /scene/focus_mm)" = 10.0
 check "the given budget bounds the deeper side" true_that \
-  "abs(max($(json "$tmp/out" /scene/shown_near_mm), -($(json "$tmp/out" /scene/shown_far_mm))) - 20) < 1e-6"
+  "abs(max($(json_at "$tmp/out" /scene/shown_near_mm), -($(json_at "$tmp/out" /scene/shown_far_mm))) - 20) < 1e-6"
 check "framing needs a scene" run 2 design lkg:portrait --fit depth
 check "bad --focus on a lenticular panel" run 2 render "$box" --display lkg:portrait --focus near -o "$tmp/bad"
 check "named in one line" one_line_naming "--focus"
@@ -48,42 +42,22 @@ check "render a glTF on a Portrait" run 0 render "$box" --display lkg:portrait -
 check "render reports the framing" grep -q "depth (fit depth)" "$tmp/out"
 check "and does not warn" bash -c "! grep -q 'warning: the content spans' '$tmp/err'"
 check "render.json records the depth scale" true_that \
-  "0 < $(json "$tmp/p/render.json" /framing/depth_scale) < 0.5"
+  "0 < $(json_at "$tmp/p/render.json" /framing/depth_scale) < 0.5"
 check "the calibration written is the device's" run 0 design "$tmp/p/visual.json" --scene "$box" --json
-check "its visual.json frames alike" test "$(json "$tmp/out" /scene/depth_scale)" = \
-  "$(json "$tmp/p/render.json" /framing/depth_scale)"
+check "its visual.json frames alike" test "$(json_at "$tmp/out" /scene/depth_scale)" = \
+  "$(json_at "$tmp/p/render.json" /framing/depth_scale)"
 check "simulate --reference from the centre eye" run 0 simulate "$tmp/p" --reference --eye 0,0,1374 \
   --reference-spp 1 -o "$tmp/p-seen.png"
 check "a PSNR figure" grep -q "dB" "$tmp/out"
 check "render with focus and budget" run 0 render "$box" --display lkg:portrait --spp 1 --filter none \
   --focus -20 --depth-budget 25 -o "$tmp/pf"
-check "the focus recorded" test "$(json "$tmp/pf/render.json" /framing/focus)" = -20.0
-check "the budget recorded" test "$(json "$tmp/pf/render.json" /framing/depth_budget)" = 25.0
+check "the focus recorded" test "$(json_at "$tmp/pf/render.json" /framing/focus)" = -20.0
+check "the budget recorded" test "$(json_at "$tmp/pf/render.json" /framing/depth_budget)" = 25.0
 
 # An RGB-D photo with the Portrait's aspect (3:4) covers the panel: no black border column or row
 # in the framebuffer (every colour of the photo is at least 60/255).
-python3 - "$tmp" <<'PY'
-import struct, sys, zlib
-def write(path, w, h, kind):
-    rows = []
-    for y in range(h):
-        row = bytearray([0])
-        for x in range(w):
-            if kind == "colour":
-                row += bytes([60 + int(195 * x / (w - 1)), 60 + int(195 * y / (h - 1)), 128])
-            else:
-                near = (x - w / 2) ** 2 + (y - h / 2) ** 2 < (w / 3) ** 2
-                row += struct.pack(">H", 60000 if near else 8000)
-        rows.append(bytes(row))
-    depth, ctype = (8, 2) if kind == "colour" else (16, 0)
-    def chunk(t, d):
-        return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
-    png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, depth, ctype, 0, 0, 0))
-    png += chunk(b"IDAT", zlib.compress(b"".join(rows))) + chunk(b"IEND", b"")
-    open(path, "wb").write(png)
-write(sys.argv[1] + "/photo.png", 96, 128, "colour")
-write(sys.argv[1] + "/depth.png", 96, 128, "depth16")
-PY
+write_png "$tmp/photo.png" 96 128 bright
+write_png "$tmp/depth.png" 96 128 depth16
 check "render a 3:4 photo on the Portrait" run 0 render --rgbd "$tmp/photo.png" "$tmp/depth.png" \
   --display lkg:portrait --spp 1 --filter none --linear -o "$tmp/rgbd"
 check "its depth fitted" grep -q "depth (fit depth)" "$tmp/out"

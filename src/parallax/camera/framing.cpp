@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "parallax/camera/display_camera.h"
-#include "parallax/display/depth_scaled_display.h"
 #include "parallax/core/error.h"
+#include "parallax/display/depth_scaled_display.h"
 
 namespace parallax {
 
@@ -196,8 +196,8 @@ Framing frameContent(const Scene& scene, const DisplayWindow& window, double dep
       // A picture that should fill the window (an RGB-D photo): the smallest scale at which it
       // covers the window for every ray, from the inside fit up.
       if (given.fillWindow && !given.contentHull.empty())
-        if (const double cover = smallestCoveringScale(corners, window, shiftAt, scale,
-                                                       zoneHalfWidthMm, f.budgetMm))
+        if (const double cover =
+                smallestCoveringScale(corners, window, shiftAt, scale, zoneHalfWidthMm, f.budgetMm))
           scale = cover;
       shift = shiftAt(scale);
     } else {
@@ -347,15 +347,15 @@ std::string depthSummary(const Framing& f) {
   else
     std::snprintf(shown, sizeof shown, "g' %.2f mm, g %.2f mm", f.virtualGapMm, f.gapMm);
   char text[320];
-  std::snprintf(text, sizeof text,
-                "depth (fit %s): the content spans %s to %s mm, shown %s to %s mm (%s); focus %s "
-                "mm (%s); sharp within ±%.1f mm (%s), budget ±%.1f mm",
-                displayFitName(f.fit), millimetres(f.farMm).c_str(), millimetres(f.nearMm).c_str(),
-                millimetres(f.shownFarMm).c_str(), millimetres(f.shownNearMm).c_str(), shown,
-                millimetres(f.focusMm).c_str(),
-                f.focusAuto ? (f.fit == DisplayFit::Depth ? "auto: harmonic mean" : "auto: 0")
-                            : "given",
-                f.depthOfFieldMm, f.lenticular ? "lens" : "G4", f.budgetMm);
+  std::snprintf(
+      text, sizeof text,
+      "depth (fit %s): the content spans %s to %s mm, shown %s to %s mm (%s); focus %s "
+      "mm (%s); sharp within ±%.1f mm (%s), budget ±%.1f mm",
+      displayFitName(f.fit), millimetres(f.farMm).c_str(), millimetres(f.nearMm).c_str(),
+      millimetres(f.shownFarMm).c_str(), millimetres(f.shownNearMm).c_str(), shown,
+      millimetres(f.focusMm).c_str(),
+      f.focusAuto ? (f.fit == DisplayFit::Depth ? "auto: harmonic mean" : "auto: 0") : "given",
+      f.depthOfFieldMm, f.lenticular ? "lens" : "G4", f.budgetMm);
   return text;
 }
 

@@ -32,7 +32,8 @@ class DepthScaledDisplay final : public DisplayModel {
   void rays16(const float filmX[16], const float filmY[16], const float u[16], const float v[16],
               double origin[3][16], double direction[3][16]) const override {
     inner_->rays16(filmX, filmY, u, v, origin, direction);
-    for (int i = 0; i < 16; ++i) scale(origin[0][i], origin[2][i], direction[0][i], direction[2][i]);
+    for (int i = 0; i < 16; ++i)
+      scale(origin[0][i], origin[2][i], direction[0][i], direction[2][i]);
   }
   bool centralRayOnly() const override { return inner_->centralRayOnly(); }
   bool columnFans() const override { return inner_->columnFans(); }

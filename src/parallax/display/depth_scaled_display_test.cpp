@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "parallax/display/lenticular_presets.h"
 
@@ -37,8 +38,8 @@ TEST(LensDepthOfField, PortraitMatchesAHandComputation) {
   // The 16" Gen3: 44.72 lenses per inch, slope -6.9, 283 DPI, 50 degrees.
   const double ph16 = 25.4 / 44.72 / std::cos(std::atan(1 / 6.9));
   const double s16 = 3 * ph16 * 283 / 25.4;
-  EXPECT_NEAR(lensDepthOfFieldMm(preset("16-gen3")),
-              s16 * ph16 / (2 * std::tan(25 * kPi / 180)), 1e-9);
+  EXPECT_NEAR(lensDepthOfFieldMm(preset("16-gen3")), s16 * ph16 / (2 * std::tan(25 * kPi / 180)),
+              1e-9);
 }
 
 // Brute force: every subpixel of a band of columns on every row of the panel, with the ray the
@@ -75,6 +76,8 @@ TEST(LensDepthOfField, APointAtTheLimitSpreadsOverOneLens) {
   for (const Vec3d eye : {Vec3d{0, 0, d.viewDistanceMm}, Vec3d{200, 0, d.viewDistanceMm}}) {
     for (const double depth : {z, -z}) {
       const double width = imageWidthInLenses(d, depth, eye);
+      std::printf("eye x %+.0f mm, z %+.2f mm: the point's image spans %.3f lenses\n", eye.x, depth,
+                  width);
       // One lens: the window's angle is the model's (f - 1/2) cone, 0.96 of the lens's
       // 2 tan(cone / 2) at the centre, and seen from D the panel magnifies depth by D / (D - z).
       EXPECT_GT(width, 0.85) << "z " << depth << " eye x " << eye.x;
@@ -123,14 +126,16 @@ TEST(DepthScaledDisplay, ItsRaysPassThroughTheIntendedEyeAndShowZAtKZ) {
   for (const double fx : {10.5, 2300.5, 4600.5})
     for (const double fy : {3.5, 1500.5})
       for (const double u : {0.1, 0.5, 0.9}) {
-        const DisplayRay physical = plain->ray(fx, fy, u, 0.5), camera = scaled->ray(fx, fy, u, 0.5);
+        const DisplayRay physical = plain->ray(fx, fy, u, 0.5),
+                         camera = scaled->ray(fx, fy, u, 0.5);
         for (const double eyeZ : {700.0, 1374.0}) {
           const Vec3d eye{xAt(physical, eyeZ), 0, eyeZ};
           const Vec3d seen = scaled->intendedEye(eye);
           EXPECT_NEAR(seen.z, eyeZ / k, 1e-9);
           EXPECT_NEAR(xAt(camera, seen.z), seen.x, 1e-6);
         }
-        for (const double z : {-60.0, 40.0}) EXPECT_NEAR(xAt(camera, z), xAt(physical, k * z), 1e-9);
+        for (const double z : {-60.0, 40.0})
+          EXPECT_NEAR(xAt(camera, z), xAt(physical, k * z), 1e-9);
       }
 }
 

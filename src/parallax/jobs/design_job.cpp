@@ -68,9 +68,10 @@ std::string lenticularText(const LenticularDesign& d) {
                   d.viewDistanceMm, d.viewZoneWidthMm);
   text += printed("default quilt        %dx%d views, %dx%d px\n", c.quilt.columns, c.quilt.rows,
                   c.quilt.width, c.quilt.height);
-  text += printed("depth of field       +-%.4g mm around the panel (a point spreads over %g lens "
-                  "through a %g-subpixel window)\n",
-                  lensDepthOfFieldMm(d), kSharpLenses, kLensWindowSubpixels);
+  text += printed(
+      "depth of field       +-%.4g mm around the panel (a point spreads over %g lens "
+      "through a %g-subpixel window)\n",
+      lensDepthOfFieldMm(d), kSharpLenses, kLensWindowSubpixels);
   return text;
 }
 

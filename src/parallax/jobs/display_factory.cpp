@@ -66,8 +66,7 @@ DisplayDesign barrierDesignOf(const DisplayDescription& description) {
   return designDisplay(description.barrier, description.camera);
 }
 
-void checkFramingApplies(const DisplayDescription& /*description*/,
-                         const FramingRequest& framing) {
+void checkFramingApplies(const DisplayDescription& /*description*/, const FramingRequest& framing) {
   framing.check();  // every kind frames: a barrier by its virtual gap, a lens by a depth scale
 }
 

@@ -76,7 +76,8 @@ TEST(DisplayFactory, AFramedLenticularPanelScalesItsCameraByTheFraming) {
   const double D = built->lenticularDesign()->viewDistanceMm;
   EXPECT_NEAR(built->intendedEye({0, 0, D}).z, D / f.depthScale, 1e-9);
   const BuiltDisplay plain = makeDisplay(portrait());
-  const DisplayRay a = plain->ray(2300.5, 1000.5, 0.5, 0.5), b = built->ray(2300.5, 1000.5, 0.5, 0.5);
+  const DisplayRay a = plain->ray(2300.5, 1000.5, 0.5, 0.5),
+                   b = built->ray(2300.5, 1000.5, 0.5, 0.5);
   EXPECT_NEAR(b.direction.x, f.depthScale * a.direction.x, 1e-12);
   // The file a render writes is the physical calibration.
   EXPECT_EQ(built.file.text, plain.file.text);

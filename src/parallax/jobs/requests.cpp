@@ -117,8 +117,7 @@ void recordFraming(JsonWriter& record, const Framing& f) {
   else
     record.set("/framing/depth_budget", f.budgetMm);
   setFramingFigures(record, "/framing", f);
-  if (!f.lenticular)
-    record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
+  if (!f.lenticular) record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
   record.set("/framing/scale_mm_per_unit", f.scaleMmPerUnit);
 }
 
