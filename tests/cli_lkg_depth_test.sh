@@ -25,6 +25,9 @@ check "the shown depth lies within +-the depth of field" true_that \
   "max($(json_at "$tmp/design.json" /scene/shown_near_mm), -($(json_at "$tmp/design.json" /scene/shown_far_mm))) <= 1.005 * $(json_at "$tmp/design.json" /scene/depth_of_field_mm)"
 check "the box is deeper than that, so it is scaled" true_that \
   "$(json_at "$tmp/design.json" /scene/depth_scale) < 0.5"
+check "a glTF on a 16-inch: framed by default" run 0 design lkg:16-gen3 --scene "$box" --json
+check "within its +-11.8 mm" test "$(json_at "$tmp/out" /scene/within_budget)" = True
+check "the 16-inch's lens depth of field" true_that "abs($(json_at "$tmp/out" /depth_of_field_mm) - 11.8) < 0.05"
 check "the window fit on a 16-inch warns" run 0 design lkg:16-gen3 --scene "$box" --fit window
 check "the warning's words and figures" grep -q \
   "warning: the content spans -81 to +81 mm; the display is sharp within ±12 mm (the lens's depth of field); --fit depth compresses it" "$tmp/out"
