@@ -13,30 +13,6 @@ v = json.load(open(sys.argv[1]))
 for k in sys.argv[2:]: v = v[k]
 print(v)' "$@"
 }
-# write_png FILE WIDTH HEIGHT KIND: a small PNG written by hand (zlib, no filters).
-#   colour: an RGB gradient; depth16: a 16-bit grey disc near the camera on a far background.
-write_png() {
-  python3 - "$@" <<'PY'
-import struct, sys, zlib
-path, w, h, kind = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
-rows = []
-for y in range(h):
-    row = bytearray([0])
-    for x in range(w):
-        if kind == "colour":
-            row += bytes([int(255 * x / (w - 1)), int(255 * y / (h - 1)), 128])
-        else:
-            near = (x - w / 2) ** 2 + (y - h / 2) ** 2 < (h / 3) ** 2
-            row += struct.pack(">H", 60000 if near else 8000)
-    rows.append(bytes(row))
-depth, ctype = (8, 2) if kind == "colour" else (16, 0)
-def chunk(t, d):
-    return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
-png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, depth, ctype, 0, 0, 0))
-png += chunk(b"IDAT", zlib.compress(b"".join(rows))) + chunk(b"IEND", b"")
-open(path, "wb").write(png)
-PY
-}
 
 # A turntable of 3 frames as an MP4 of the image layers.
 check "render a sequence with --video" run 0 render --display "$tmp/small.json" --spp 1 \

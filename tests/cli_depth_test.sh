@@ -11,12 +11,6 @@ if [ ! -f "$box" ]; then
   echo "skipped: $box is missing (tools/fetch-data)"
   exit 0
 fi
-json_number() {  # json_number FILE POINTER: the number at a JSON pointer
-  python3 -c 'import json, sys
-v = json.load(open(sys.argv[1]))
-for k in sys.argv[2].strip("/").split("/"): v = v[int(k)] if isinstance(v, list) else v[k]
-print(v)' "$1" "$2"
-}
 at_least() { python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) >= float(sys.argv[2]) else 1)' "$1" "$2"; }
 
 check "render frames a bare mesh in depth by default" run 0 render "$box" --spp 4 -o "$tmp/depth"
@@ -26,8 +20,8 @@ check "render.json records the framing" grep -q '"fit": "depth"' "$tmp/depth/ren
 check "render.json records g'" bash -c "grep -q '\"virtual_gap_mm\"' '$tmp/depth/render.json'"
 check "the display file carries g'" grep -q '"virtual"' "$tmp/depth/display.json"
 check "shown depth within the depth of field" at_least \
-  "$(json_number "$tmp/depth/render.json" /framing/depth_budget_mm)" \
-  "$(json_number "$tmp/depth/render.json" /framing/shown_near_mm)"
+  "$(json_at "$tmp/depth/render.json" /framing/depth_budget_mm)" \
+  "$(json_at "$tmp/depth/render.json" /framing/shown_near_mm)"
 check "the window fit warns with numbers" run 0 render "$box" --spp 1 --fit window -o "$tmp/window"
 check "warning names the depth of field" grep -q "the display is sharp within ±27 mm (G4); --fit depth compresses it" "$tmp/err"
 check "central-ray render" run 0 render "$box" --filter none -o "$tmp/none"
@@ -46,18 +40,18 @@ check "view --display-eye frames the same way" run 0 view "$box" --display-eye 0
 # The centre eye against the ideal view from (0, 0, 600): at least 28 dB.
 check "simulate the centre eye" run 0 simulate "$tmp/depth" --reference --eye 0,0,600 --json --reference-spp 4
 cp "$tmp/out" "$tmp/centre.json"
-check "centre eye at least 28 dB" at_least "$(json_number "$tmp/centre.json" /mean/psnr)" 28
+check "centre eye at least 28 dB" at_least "$(json_at "$tmp/centre.json" /mean/psnr)" 28
 check "simulate the window fit's centre eye" run 0 simulate "$tmp/window" --reference --eye 0,0,600 --json --reference-spp 4
-check "the depth fit beats the window fit" at_least "$(json_number "$tmp/centre.json" /mean/psnr)" "$(json_number "$tmp/out" /mean/psnr)"
+check "the depth fit beats the window fit" at_least "$(json_at "$tmp/centre.json" /mean/psnr)" "$(json_at "$tmp/out" /mean/psnr)"
 
 # No worse than the central ray: one eye in every view at D (the quick dense measure), both
 # renders against the same ideal views.
 check "dense measure, both renders" run 0 simulate "$tmp/depth" --reference --eyes-per-view 1 --distances 1 --compare "$tmp/none" --json --reference-spp 4
 cp "$tmp/out" "$tmp/dense.json"
 check "dense mean no worse than --filter none" at_least \
-  "$(json_number "$tmp/dense.json" /renders/0/mean/psnr)" "$(json_number "$tmp/dense.json" /renders/1/mean/psnr)"
+  "$(json_at "$tmp/dense.json" /renders/0/mean/psnr)" "$(json_at "$tmp/dense.json" /renders/1/mean/psnr)"
 check "dense worst eye no worse than --filter none" at_least \
-  "$(json_number "$tmp/dense.json" /renders/0/mean/worst_psnr)" "$(json_number "$tmp/dense.json" /renders/1/mean/worst_psnr)"
+  "$(json_at "$tmp/dense.json" /renders/0/mean/worst_psnr)" "$(json_at "$tmp/dense.json" /renders/1/mean/worst_psnr)"
 
 if [ "${PARALLAX_SLOW:-0}" = 1 ]; then
   eyes=()
@@ -66,6 +60,6 @@ if [ "${PARALLAX_SLOW:-0}" = 1 ]; then
   cp "$tmp/out" "$tmp/nine-depth.json"
   check "nine eyes, none" run 0 simulate "$tmp/none" --reference "${eyes[@]}" --json --reference-spp 4
   check "nine eyes: no worse than --filter none" at_least \
-    "$(json_number "$tmp/nine-depth.json" /mean/psnr)" "$(json_number "$tmp/out" /mean/psnr)"
+    "$(json_at "$tmp/nine-depth.json" /mean/psnr)" "$(json_at "$tmp/out" /mean/psnr)"
 fi
 cli_summary

@@ -32,6 +32,38 @@ png_size() {  # WIDTHxHEIGHT from the IHDR chunk
   od -An -tu1 -j16 -N8 "$1" | awk '{printf "%dx%d", $1*16777216+$2*65536+$3*256+$4,
                                                     $5*16777216+$6*65536+$7*256+$8}'
 }
+# write_png FILE WIDTH HEIGHT KIND: a small PNG written by hand (zlib, no filters).
+#   colour: an RGB gradient; bright: the same, no channel below 60/255 (never black);
+#   depth16: a 16-bit grey disc near the camera on a far background.
+write_png() {
+  python3 - "$@" <<'PY'
+import struct, sys, zlib
+path, w, h, kind = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
+rows = []
+for y in range(h):
+    row = bytearray([0])
+    for x in range(w):
+        if kind in ("colour", "bright"):
+            low = 60 if kind == "bright" else 0
+            row += bytes([low + int((255 - low) * x / (w - 1)), low + int((255 - low) * y / (h - 1)), 128])
+        else:
+            near = (x - w / 2) ** 2 + (y - h / 2) ** 2 < (h / 3) ** 2
+            row += struct.pack(">H", 60000 if near else 8000)
+    rows.append(bytes(row))
+depth, ctype = (16, 0) if kind == "depth16" else (8, 2)
+def chunk(t, d):
+    return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
+png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, depth, ctype, 0, 0, 0))
+png += chunk(b"IDAT", zlib.compress(b"".join(rows))) + chunk(b"IEND", b"")
+open(path, "wb").write(png)
+PY
+}
+json_at() {  # json_at FILE POINTER: the value at a JSON pointer (/framing/depth_scale)
+  python3 -c 'import json, sys
+v = json.load(open(sys.argv[1]))
+for k in sys.argv[2].strip("/").split("/"): v = v[int(k)] if isinstance(v, list) else v[k]
+print(v)' "$1" "$2"
+}
 cli_summary() {
   echo "$passes passed, $failures failed"
   [ "$failures" -eq 0 ]

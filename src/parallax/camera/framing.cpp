@@ -9,6 +9,7 @@
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
+#include "parallax/display/depth_scaled_display.h"
 
 namespace parallax {
 
@@ -73,6 +74,58 @@ double harmonicShift(double a, double b, double eyeZ) {
   return u - eyeZ;
 }
 
+// Whether the content's frustum hull (its corners at the nearest z and at the farthest z, each a
+// rectangle), at `scale` and moved by -shift, covers the window for every ray of the display:
+// rays from every window point toward any eye of the zone (half-width zoneHalfWidth about
+// window.eyeMm's x at its z), whose horizontal slopes the camera multiplies by the depth scale
+// min(1, budget / deepest). A ray inside both end rectangles runs inside the hull between them
+// and so crosses a height field that spans it (a photo's mesh parts the near cap from the far
+// cap): every such ray meets the content.
+bool coversWindow(const std::vector<Vec3d>& corners, const DisplayWindow& window, double scale,
+                  double shift, double zoneHalfWidth, double budget) {
+  double lo = corners[0].z, hi = corners[0].z;
+  for (const Vec3d& c : corners) lo = std::min(lo, c.z), hi = std::max(hi, c.z);
+  const double deepest = std::max(scale * hi - shift, shift - scale * lo);
+  const double k = deepest > budget ? budget / deepest : 1.0;
+  const Vec3d& e = window.eyeMm;
+  const double slope = (0.5 * window.widthMm + std::abs(e.x) + zoneHalfWidth) / e.z;
+  for (const double end : {hi, lo}) {
+    double xl = 1e300, xr = -1e300, yl = 1e300, yr = -1e300;
+    for (const Vec3d& c : corners)
+      if (std::abs(c.z - end) <= 1e-6 * (std::abs(hi) + std::abs(lo) + 1))
+        xl = std::min(xl, c.x * scale), xr = std::max(xr, c.x * scale),
+        yl = std::min(yl, c.y * scale), yr = std::max(yr, c.y * scale);
+    const double z = scale * end - shift;
+    const double spread = k * std::abs(z) * slope;
+    if (xl > -0.5 * window.widthMm - spread || xr < 0.5 * window.widthMm + spread) return false;
+    // Vertically a ray from the window's edge runs toward the eye's height at the eye's depth.
+    for (const double y : {-0.5 * window.heightMm, 0.5 * window.heightMm}) {
+      const double at = y + (e.y - y) * z / e.z;
+      if (at < yl || at > yr) return false;
+    }
+  }
+  return true;
+}
+
+// The smallest scale at which coversWindow holds (bisection from a scale that does not, `from`,
+// to one that does); 0 when none up to 2^40 times `from` does.
+double smallestCoveringScale(const std::vector<Vec3d>& corners, const DisplayWindow& window,
+                             const std::function<double(double)>& shiftAt, double from,
+                             double zoneHalfWidth, double budget) {
+  const auto covers = [&](double s) {
+    return coversWindow(corners, window, s, shiftAt(s), zoneHalfWidth, budget);
+  };
+  double bad = from, good = from;
+  for (int i = 0; i < 40 && !covers(good); ++i) good *= 2;
+  if (!covers(good)) return 0;
+  if (covers(bad)) return bad;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (good + bad);
+    (covers(mid) ? good : bad) = mid;
+  }
+  return good;
+}
+
 std::string millimetres(double mm) {
   char text[32];
   std::snprintf(text, sizeof text, "%+.0f", std::abs(mm) < 0.5 ? 0.0 : mm);
@@ -90,19 +143,21 @@ bool Framing::withinBudget() const {
   return std::max(shownNearMm, -shownFarMm) <= budgetMm * 1.005;
 }
 
-Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
+namespace {
+
+// What both kinds share: the mode, the width fit and the focus for `window`, the budget (auto:
+// `depthOfFieldMm`) and the content's near and far z in the camera's frame; the placement
+// resolved. The depth compression (and the shown range) is the kind's own.
+Framing frameContent(const Scene& scene, const DisplayWindow& window, double depthOfFieldMm,
+                     double zoneHalfWidthMm) {
   const DisplayPlacement& given = scene.display;
-  const DisplayWindow window = displayWindow(design);
   Framing f;
   f.fit = given.fitMode;
   if (f.fit == DisplayFit::Auto) f.fit = given.fit ? DisplayFit::Depth : DisplayFit::None;
   f.focusAuto = !given.focusMm;
   f.budgetAuto = !given.depthBudgetMm;
-  f.depthOfFieldMm = design.depthOfFieldMm;
-  f.budgetMm = given.depthBudgetMm.value_or(design.depthOfFieldMm);
-  f.gapMm = design.gapMm;
-  f.virtualGapFixed = design.camera.virtualGapMm.has_value();
-  f.design = design;
+  f.depthOfFieldMm = depthOfFieldMm;
+  f.budgetMm = given.depthBudgetMm.value_or(depthOfFieldMm);
 
   const Bounds3f bounds = given.content ? *given.content : scene.bounds();
   f.hasContent = !bounds.empty();
@@ -138,6 +193,12 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
       // shift being a function of the scale, for the largest scale that fits.
       const auto shiftAt = [&](double s) { return harmonicShift(s * hi, s * lo, eyeZ); };
       scale = largestScale(corners, window, shiftAt, fallback);
+      // A picture that should fill the window (an RGB-D photo): the smallest scale at which it
+      // covers the window for every ray, from the inside fit up.
+      if (given.fillWindow && !given.contentHull.empty())
+        if (const double cover =
+                smallestCoveringScale(corners, window, shiftAt, scale, zoneHalfWidthMm, f.budgetMm))
+          scale = cover;
       shift = shiftAt(scale);
     } else {
       scale = window.widthMm / double(given.width);  // None: the block as it is
@@ -147,6 +208,28 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
   }
   f.scaleMmPerUnit = scale;
   f.focusMm = shift;
+  f.shownNearMm = f.nearMm;
+  f.shownFarMm = f.farMm;
+
+  f.placement = given;
+  const Vec3f normal = normalize(given.normal);
+  f.placement.center = given.center + normal * float(shift / scale);
+  f.placement.width = float(window.widthMm / scale);
+  f.placement.fit.reset();
+  f.placement.fitMode = DisplayFit::None;  // framing the framed placement again changes nothing
+  f.placement.focusMm.reset();
+  f.placement.content = bounds;
+  return f;
+}
+
+}  // namespace
+
+Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
+  Framing f = frameContent(scene, displayWindow(design), design.depthOfFieldMm,
+                           0.5 * design.viewZoneWidthMm);
+  f.gapMm = design.gapMm;
+  f.virtualGapFixed = design.camera.virtualGapMm.has_value();
+  f.design = design;
 
   // g': fixed by the display file, or for Depth just enough to flatten the content into the
   // budget (never below g: shallow content keeps its depth).
@@ -163,17 +246,25 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
     }
   }
   f.virtualGapMm = virtualGap;
-  f.shownNearMm = f.nearMm * design.gapMm / virtualGap;
-  f.shownFarMm = f.farMm * design.gapMm / virtualGap;
+  f.depthScale = design.gapMm / virtualGap;
+  f.shownNearMm = f.nearMm * f.depthScale;
+  f.shownFarMm = f.farMm * f.depthScale;
+  return f;
+}
 
-  f.placement = given;
-  const Vec3f normal = normalize(given.normal);
-  f.placement.center = given.center + normal * float(shift / scale);
-  f.placement.width = float(window.widthMm / scale);
-  f.placement.fit.reset();
-  f.placement.fitMode = DisplayFit::None;  // framing the framed placement again changes nothing
-  f.placement.focusMm.reset();
-  f.placement.content = bounds;
+Framing frameForDisplay(const Scene& scene, const LenticularDesign& design) {
+  Framing f = frameContent(scene, displayWindow(design), lensDepthOfFieldMm(design),
+                           0.5 * design.viewZoneWidthMm);
+  f.lenticular = true;
+  // The scale flattens the deeper side exactly onto the budget (a ray's slope can turn toward
+  // the normal without limit, unlike g', so the content always fits); shallow content keeps its
+  // depth.
+  if (f.fit == DisplayFit::Depth && f.hasContent) {
+    const double deepest = std::max(f.nearMm, -f.farMm);
+    if (deepest > f.budgetMm) f.depthScale = f.budgetMm / deepest;
+  }
+  f.shownNearMm = f.nearMm * f.depthScale;
+  f.shownFarMm = f.farMm * f.depthScale;
   return f;
 }
 
@@ -228,12 +319,16 @@ std::string depthWarning(const Framing& f) {
   if (!f.hasContent || f.withinBudget()) return {};
   std::string line = "the content spans " + millimetres(f.shownFarMm) + " to " +
                      millimetres(f.shownNearMm) + " mm";
-  if (f.virtualGapMm != f.gapMm)
+  char text[96];
+  if (f.lenticular && f.depthScale != 1) {
+    std::snprintf(text, sizeof text, " as shown (depth x%.2f)", f.depthScale);
+    line += text;
+  } else if (!f.lenticular && f.virtualGapMm != f.gapMm) {
     line += " as shown (g' = " + millimetres(f.virtualGapMm).substr(1) + " mm)";
-  char sharp[96];
-  std::snprintf(sharp, sizeof sharp, "; the display is sharp within ±%.0f mm (G4)",
-                f.depthOfFieldMm);
-  line += sharp;
+  }
+  std::snprintf(text, sizeof text, "; the display is sharp within ±%.0f mm (%s)", f.depthOfFieldMm,
+                f.lenticular ? "the lens's depth of field" : "G4");
+  line += text;
   if (!f.budgetAuto) line += ", the budget is ±" + millimetres(f.budgetMm).substr(1) + " mm";
   if (f.fit != DisplayFit::Depth)
     line += "; {fit} depth compresses it";
@@ -246,16 +341,21 @@ std::string depthWarning(const Framing& f) {
 
 std::string depthSummary(const Framing& f) {
   if (!f.hasContent) return "depth: no content to frame";
+  char shown[96];
+  if (f.lenticular)
+    std::snprintf(shown, sizeof shown, "depth x%.3f", f.depthScale);
+  else
+    std::snprintf(shown, sizeof shown, "g' %.2f mm, g %.2f mm", f.virtualGapMm, f.gapMm);
   char text[320];
   std::snprintf(
       text, sizeof text,
-      "depth (fit %s): the content spans %s to %s mm, shown %s to %s mm (g' %.2f mm, "
-      "g %.2f mm); focus %s mm (%s); sharp within ±%.1f mm (G4), budget ±%.1f mm",
+      "depth (fit %s): the content spans %s to %s mm, shown %s to %s mm (%s); focus %s "
+      "mm (%s); sharp within ±%.1f mm (%s), budget ±%.1f mm",
       displayFitName(f.fit), millimetres(f.farMm).c_str(), millimetres(f.nearMm).c_str(),
-      millimetres(f.shownFarMm).c_str(), millimetres(f.shownNearMm).c_str(), f.virtualGapMm,
-      f.gapMm, millimetres(f.focusMm).c_str(),
+      millimetres(f.shownFarMm).c_str(), millimetres(f.shownNearMm).c_str(), shown,
+      millimetres(f.focusMm).c_str(),
       f.focusAuto ? (f.fit == DisplayFit::Depth ? "auto: harmonic mean" : "auto: 0") : "given",
-      f.depthOfFieldMm, f.budgetMm);
+      f.depthOfFieldMm, f.lenticular ? "lens" : "G4", f.budgetMm);
   return text;
 }
 

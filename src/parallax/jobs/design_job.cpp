@@ -4,6 +4,7 @@
 
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
+#include "parallax/display/depth_scaled_display.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/io/lenticular_file.h"
 #include "parallax/jobs/display_factory.h"
@@ -73,6 +74,10 @@ std::string lenticularText(const LenticularDesign& d) {
                     c.deviceBasis.c_str());
   else if (c.device.empty())
     text += "device               none known: the quilt is derived from the panel\n";
+  text += printed(
+      "depth of field       +-%.4g mm around the panel (a point spreads over %g lens "
+      "through a %g-subpixel window)\n",
+      lensDepthOfFieldMm(d), kSharpLenses, kLensWindowSubpixels);
   return text;
 }
 
@@ -84,40 +89,44 @@ DesignReport designReport(const DesignRequest& r, Reporter& reporter, const Scen
   DesignReport report;
   JsonWriter json;
   const DisplayDesign* barrier = display->barrierDesign();
-  if (!barrier) {
-    if (r.scene || r.framing.given())
-      throw RequestError("scene", "frames a scene for a barrier display's depth of field");
-    json.set("/kind", "lenticular");
-    writeLenticularDesignJson(json, "", *display->lenticularDesign());
-    return {lenticularText(*display->lenticularDesign()), json.dump()};
-  }
-  const DisplayDesign& d = *barrier;
+  const LenticularDesign* lenticular = display->lenticularDesign();
+  // The framing of the scene, as render frames it for this display.
   std::optional<Framing> framing;
   std::string sceneSource;
   if (r.scene) {
     Scene scene = given ? *given : loadSceneQuietly(*r.scene);
     sceneSource = given ? given->source : r.scene->path;
     r.framing.apply(scene.display);
-    framing = frameForDisplay(scene, d);
+    framing = barrier ? frameForDisplay(scene, *barrier) : frameForDisplay(scene, *lenticular);
   } else if (r.framing.given()) {
     throw RequestError("fit", "{fit}, {focus} and {depth_budget} need {scene}");
   }
+  const auto addFraming = [&] {
+    if (!framing) return;
+    report.text += depthSummary(*framing) + "\n";
+    const std::string warning = depthWarning(*framing);
+    if (!warning.empty()) report.text += "warning: " + warning + "\n";
+    json.set("/scene/source", sceneSource);
+    setFramingFigures(json, "/scene", *framing);
+  };
+  if (!barrier) {
+    json.set("/kind", "lenticular");
+    writeLenticularDesignJson(json, "", *lenticular);
+    json.set("/depth_of_field_mm", lensDepthOfFieldMm(*lenticular));
+    report.text = lenticularText(*lenticular);
+    addFraming();
+    report.json = json.dump();
+    return report;
+  }
+  const DisplayDesign& d = *barrier;
   const double depth = r.depth != 0.0 ? r.depth : d.depthOfFieldMm;
   if (!(std::abs(depth) < d.viewDistanceMm))
     throw RequestError("depth", "must lie between the viewer and -D");
   report.text = barrierText(d, depth);
-  if (framing) {
-    report.text += depthSummary(*framing) + "\n";
-    const std::string warning = depthWarning(*framing);
-    if (!warning.empty()) report.text += "warning: " + warning + "\n";
-  }
   writeDesignJson(json, "", d);
   json.set("/disparity_depth_mm", depth);
   json.set("/disparity_mm", d.adjacentViewDisparityMm(depth));
-  if (framing) {
-    json.set("/scene/source", sceneSource);
-    setFramingFigures(json, "/scene", *framing);
-  }
+  addFraming();
   report.json = json.dump();
   return report;
 }

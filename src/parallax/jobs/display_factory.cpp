@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "parallax/core/error.h"
+#include "parallax/display/depth_scaled_display.h"
 #include "parallax/io/lenticular_file.h"
 
 namespace parallax::jobs {
@@ -65,19 +66,24 @@ DisplayDesign barrierDesignOf(const DisplayDescription& description) {
   return designDisplay(description.barrier, description.camera);
 }
 
-void checkFramingApplies(const DisplayDescription& description, const FramingRequest& framing) {
-  framing.check();
-  if (description.kind != DisplayKind::Barrier && framing.given())
-    throw RequestError("framing",
-                       "apply to barrier displays (their depth budget is the virtual gap)");
+void checkFramingApplies(const DisplayDescription& /*description*/, const FramingRequest& framing) {
+  framing.check();  // every kind frames: a barrier by its virtual gap, a lens by a depth scale
 }
 
 BuiltDisplay makeFramedDisplay(const DisplayDescription& description,
                                const DisplayCameraRequest& camera, const FramingRequest& framing,
                                Scene& scene) {
   checkFramingApplies(description, framing);
-  if (description.kind != DisplayKind::Barrier) return makeDisplay(description, camera);
   framing.apply(scene.display);
+  if (description.kind == DisplayKind::Lenticular) {
+    const LenticularDesign design = lenticularDesign(description, camera);
+    const Framing framed = frameForDisplay(scene, design);
+    scene.display = framed.placement;
+    BuiltDisplay built = lenticularDisplay(design, camera.filter);
+    built.model = scaleDisplayedDepth(std::move(built.model), framed.depthScale);
+    built.framing = framed;
+    return built;
+  }
   const Framing framed = frameForDisplay(scene, barrierDesign(description, camera));
   scene.display = framed.placement;
   BuiltDisplay built = barrierDisplay(framed.design, camera.filter);

@@ -30,7 +30,7 @@ struct BuiltDisplay {
   std::unique_ptr<DisplayModel> model;
   // The display as its file (display.json, or a calibration's visual.json), for output sets.
   DisplayFile file;
-  std::optional<Framing> framing;  // how the scene was framed for it (framed barriers)
+  std::optional<Framing> framing;  // how the scene was framed for it (makeFramedDisplay)
   // Every given and derived figure of its design under the JSON pointer `at`.
   void recordDesign(JsonWriter& record, const std::string& at) const;
 
@@ -47,15 +47,15 @@ DisplayDesign barrierDesignOf(const DisplayDescription& description);
 BuiltDisplay makeDisplay(const DisplayDescription& description,
                          const DisplayCameraRequest& camera = {});
 
-// The same for a render of `scene`: a barrier frames the scene for itself first (camera/
-// framing.h: the placement's width, the zero-parallax plane, the virtual gap for the depth
-// budget) and `scene`'s placement becomes the framing's; a lenticular panel shows the scene as
-// placed and refuses a framing request (field "framing").
+// The same for a render of `scene`: the display frames the scene for itself first (camera/
+// framing.h: the placement's width, the zero-parallax plane, and for the depth budget a
+// barrier's virtual gap or a lenticular panel's depth scale, display/depth_scaled_display.h)
+// and `scene`'s placement becomes the framing's.
 BuiltDisplay makeFramedDisplay(const DisplayDescription& description,
                                const DisplayCameraRequest& camera, const FramingRequest& framing,
                                Scene& scene);
 
-// The refusal of a framing request for a display that cannot use one (before any work).
+// The checks of a framing request before any work (every kind of display takes one).
 void checkFramingApplies(const DisplayDescription& description, const FramingRequest& framing);
 
 }  // namespace parallax::jobs

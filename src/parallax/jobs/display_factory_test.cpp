@@ -51,8 +51,36 @@ TEST(DisplayFactory, BuildsEveryKindAndRefusesWhatAKindLacks) {
   EXPECT_NEAR(makeDisplay(portrait(), distance)->window().eyeMm.z, 800, 1e-9);
   FramingRequest framing;
   framing.fit = "depth";
-  EXPECT_EQ(fieldOf([&] { checkFramingApplies(portrait(), framing); }), "framing");
+  EXPECT_EQ(fieldOf([&] { checkFramingApplies(portrait(), framing); }), "");
   EXPECT_EQ(fieldOf([&] { checkFramingApplies(smallBarrier(), framing); }), "");
+  framing.focus = "near";
+  EXPECT_EQ(fieldOf([&] { checkFramingApplies(portrait(), framing); }), "focus");
+}
+
+// A lenticular panel frames the scene as a barrier does, with the lens's depth of field and a
+// depth scale instead of g': the built display's camera rays turn by that scale, and the
+// ideal views (intendedEye) look from where the camera looked.
+TEST(DisplayFactory, AFramedLenticularPanelScalesItsCameraByTheFraming) {
+  Scene scene = defaultScene();
+  scene.display.fit = scene.bounds();  // a bare scene: no width given, so the depth fit
+  scene.display.content = scene.bounds();
+  FramingRequest framing;
+  const BuiltDisplay built = makeFramedDisplay(portrait(), {}, framing, scene);
+  ASSERT_TRUE(built.framing.has_value());
+  const Framing& f = *built.framing;
+  EXPECT_TRUE(f.lenticular);
+  EXPECT_EQ(f.fit, DisplayFit::Depth);
+  ASSERT_LT(f.depthScale, 1);
+  EXPECT_TRUE(f.withinBudget());
+  EXPECT_EQ(scene.display.width, f.placement.width);
+  const double D = built->lenticularDesign()->viewDistanceMm;
+  EXPECT_NEAR(built->intendedEye({0, 0, D}).z, D / f.depthScale, 1e-9);
+  const BuiltDisplay plain = makeDisplay(portrait());
+  const DisplayRay a = plain->ray(2300.5, 1000.5, 0.5, 0.5),
+                   b = built->ray(2300.5, 1000.5, 0.5, 0.5);
+  EXPECT_NEAR(b.direction.x, f.depthScale * a.direction.x, 1e-12);
+  // The file a render writes is the physical calibration.
+  EXPECT_EQ(built.file.text, plain.file.text);
 }
 
 TEST(DisplayFactory, AFramedBarrierIsTheFramingOfItsDesign) {

@@ -90,9 +90,14 @@ void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f
   json.set(at + "/focus_mm", f.focusMm);
   json.set(at + "/depth_budget_mm", f.budgetMm);
   json.set(at + "/depth_of_field_mm", f.depthOfFieldMm);
-  json.set(at + "/gap_mm", f.gapMm);
-  json.set(at + "/virtual_gap_mm", f.virtualGapMm);
-  json.set(at + "/virtual_depth_of_field_mm", f.depthOfFieldMm * f.virtualGapMm / f.gapMm);
+  json.set(at + "/depth_scale", f.depthScale);
+  if (f.lenticular) {
+    json.set(at + "/virtual_depth_of_field_mm", f.depthOfFieldMm / f.depthScale);
+  } else {
+    json.set(at + "/gap_mm", f.gapMm);
+    json.set(at + "/virtual_gap_mm", f.virtualGapMm);
+    json.set(at + "/virtual_depth_of_field_mm", f.depthOfFieldMm * f.virtualGapMm / f.gapMm);
+  }
   if (!f.hasContent) return;
   json.set(at + "/content_near_mm", f.nearMm);
   json.set(at + "/content_far_mm", f.farMm);
@@ -112,7 +117,7 @@ void recordFraming(JsonWriter& record, const Framing& f) {
   else
     record.set("/framing/depth_budget", f.budgetMm);
   setFramingFigures(record, "/framing", f);
-  record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
+  if (!f.lenticular) record.set("/framing/virtual_gap_from_display_file", f.virtualGapFixed);
   record.set("/framing/scale_mm_per_unit", f.scaleMmPerUnit);
 }
 

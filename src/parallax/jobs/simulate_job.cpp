@@ -9,6 +9,7 @@
 #include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/display/depth_scaled_display.h"
 #include "parallax/image/metrics.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/quality/viewer_quality.h"
@@ -206,11 +207,25 @@ std::vector<Image> simulatedPictures(const DisplayModel& display, LayerImages la
   return pictures;
 }
 
-Scene referenceScene(Scene scene, const DisplayModel& display, const FramingRequest& framing) {
-  const DisplayDesign* barrier = display.barrierDesign();
-  if (!barrier) return scene;
+RenderedReference referenceScene(Scene scene, const DisplayModel& display,
+                                 const FramingRequest& framing) {
+  RenderedReference reference;
+  reference.display = &display;
   framing.apply(scene.display);
-  return framedScene(std::move(scene), *barrier);
+  if (const DisplayDesign* barrier = display.barrierDesign()) {
+    reference.scene = framedScene(std::move(scene), *barrier);
+  } else if (const LenticularDesign* lenticular = display.lenticularDesign()) {
+    const Framing framed = frameForDisplay(scene, *lenticular);
+    scene.display = framed.placement;
+    reference.scene = std::move(scene);
+    if (framed.depthScale != 1) {
+      reference.scaled = depthScaledView(display, framed.depthScale);
+      reference.display = reference.scaled.get();
+    }
+  } else {
+    reference.scene = std::move(scene);
+  }
+  return reference;
 }
 
 EyeFigures eyeFigures(const QualityReference& r, const Vec3d& eye, const Image& view,

@@ -94,10 +94,19 @@ std::vector<Image> simulatedPictures(const DisplayModel& display, LayerImages la
                                      const SimulatorRequest& request,
                                      const std::vector<Vec3d>& eyes);
 
-// The scene the layers were rendered from as they framed it: a barrier frames it for itself
-// (camera/framing.h) with `framing` set first (Python's fit, focus, depth_budget; a render
-// folder's scene has the render's already); a lenticular panel shows the scene as placed.
-Scene referenceScene(Scene scene, const DisplayModel& display, const FramingRequest& framing = {});
+// The scene the layers were rendered from as they framed it, and the display as its camera saw
+// it: the display frames the scene for itself (camera/framing.h) with `framing` set first
+// (Python's fit, focus, depth_budget; a render folder's scene has the render's already). A
+// lenticular panel's camera compressed depth by the framing's depth scale: `display` is then a
+// view of the given display with that scale (display/depth_scaled_display.h), whose ideal views
+// are those the render meant; otherwise the given display itself.
+struct RenderedReference {
+  Scene scene;
+  const DisplayModel* display = nullptr;
+  std::unique_ptr<DisplayModel> scaled;  // what `display` points to when it is not the given
+};
+RenderedReference referenceScene(Scene scene, const DisplayModel& display,
+                                 const FramingRequest& framing = {});
 
 // The quality figures at one eye: PSNR and SSIM against the ideal view, and (barriers) the raw
 // brightness and cross-talk, averaged over time-multiplexed frames.

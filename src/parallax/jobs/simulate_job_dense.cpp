@@ -161,7 +161,8 @@ void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
     throw RequestError("eyes_per_view",
                        "expected 1 to 64 eyes per view, got " + std::to_string(r.eyesPerView));
   const std::vector<double> distances = parseDistances(r.distances);
-  const Scene scene = renderedScene(in, r);
+  const RenderedReference rendered = renderedScene(in, r);
+  const Scene& scene = rendered.scene;
   checkDenseMemory(in, r, scene);
   const Accelerator accelerator(scene);
   // compare: more renders of the same scene for the same display, scored at the same eyes
@@ -194,7 +195,7 @@ void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
   std::vector<ViewerQuality> results;
   {
     const std::unique_ptr<Progress> progress = reporter.progress("measure");
-    results = measureViewerQuality(scene, accelerator, display, pointers, eyes,
+    results = measureViewerQuality(scene, accelerator, *rendered.display, pointers, eyes,
                                    {r.referenceSpp, r.simulator.threads}, progress->callback());
   }
   if (results.size() > 1) {

@@ -86,7 +86,7 @@ SimulateInputs loadSimulateInputs(const SimulateRequest& r, Reporter& reporter) 
   return in;
 }
 
-Scene renderedScene(const SimulateInputs& in, const SimulateRequest& r) {
+RenderedReference renderedScene(const SimulateInputs& in, const SimulateRequest& r) {
   applyImporterLimits();
   return referenceScene(loadSceneAsRendered(in.scene, r.dir), *in.display);
 }
@@ -250,16 +250,16 @@ void runSimulate(const SimulateRequest& r, Reporter& reporter) {
   if (r.reference && r.eyes.empty() && r.sweep.count == 0)
     return runDenseReference(r, in, sim, reporter);
   // reference: the scene is read (and checked) before any picture is written.
-  std::optional<Scene> scene;
+  std::optional<RenderedReference> scene;
   if (r.reference) scene = renderedScene(in, r);
   if (sim.normalise) sim.normalisation = in.normalisation;
   const std::unique_ptr<SimulatedDisplay> simulator = simulateDisplay(display, in.frames, sim);
   std::optional<Accelerator> accelerator;
   std::optional<QualityReference> reference;
   if (r.reference) {
-    accelerator.emplace(*scene);
-    reference.emplace(QualityReference{*scene, *accelerator, display, *simulator, in.frames, sim,
-                                       r.referenceSpp});
+    accelerator.emplace(scene->scene);
+    reference.emplace(QualityReference{scene->scene, *accelerator, *scene->display, *simulator,
+                                       in.frames, sim, r.referenceSpp});
   }
 
   // One eye at a time: its view, the picture, the figures, then only the encoded picture (and a

@@ -32,8 +32,9 @@ struct SimulateInputs {
 };
 SimulateInputs loadSimulateInputs(const SimulateRequest& request, Reporter& reporter);
 
-// The scene the layers were rendered from, as they framed it (referenceScene).
-Scene renderedScene(const SimulateInputs& in, const SimulateRequest& request);
+// The scene the layers were rendered from, as they framed it, and the display as the render's
+// camera saw it (referenceScene; its display views in.display).
+RenderedReference renderedScene(const SimulateInputs& in, const SimulateRequest& request);
 
 // reference without eyes or a sweep: the dense measure (docs/simulator.md), K eyes inside
 // every view's window at several distances and the design eyes as their own column; with

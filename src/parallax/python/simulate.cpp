@@ -83,11 +83,12 @@ std::string quality(const Scene& loaded, const DisplayDescription& description,
   LayerImages layers = layerImages(image, mask, *display);
   jobs::FramingRequest framing;
   framing.fit = fit, framing.focus = focus, framing.depthBudget = depthBudget;
-  const Scene scene = jobs::referenceScene(loaded, *display, framing);
+  const jobs::RenderedReference reference = jobs::referenceScene(loaded, *display, framing);
   std::vector<jobs::EyeFigures> figures;
   {
     py::gil_scoped_release released;
-    figures = jobs::qualityFigures(scene, *display, std::move(layers), o, eyes, referenceSpp);
+    figures = jobs::qualityFigures(reference.scene, *reference.display, std::move(layers), o, eyes,
+                                   referenceSpp);
   }
   JsonWriter json;
   json.set("/display", display->source());

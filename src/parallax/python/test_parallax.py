@@ -343,12 +343,7 @@ def test_assimp_crashes_are_refused_and_the_interpreter_goes_on():
 
 def test_lenticular_render_is_the_cli_render(scene, tmp_path):
     # A Looking Glass calibration on a quarter-size panel (fast), read by both paths.
-    calibration = json.loads((SOURCE / "displays" / "lenticular" / "portrait-like.json").read_text())
-    calibration["screenW"]["value"] /= 4
-    calibration["screenH"]["value"] /= 4
-    path = tmp_path / "visual.json"
-    path.write_text(json.dumps(calibration))
-    display = parallax.load_display(str(path))
+    path, display = quarter_portrait(tmp_path)
     assert display.kind == "lenticular"
     result = cli("render", "--display", path, "--spp", 1, "-o", tmp_path / "out")
     assert result.returncode == 0, result.stderr
@@ -361,6 +356,29 @@ def test_lenticular_render_is_the_cli_render(scene, tmp_path):
     assert seen.shape == (512, 384, 3)
     with pytest.raises(parallax.Error, match="^" + as_keywords("--pupil: applies to the two-layer")):
         parallax.simulate(made.image, None, display, eye=(0, 0, 600), pupil=3)
+
+
+def test_lenticular_framing_is_the_cli_framing(scene, tmp_path):
+    # fit, focus and depth_budget on a Looking Glass panel, refused before (docs/lenticular.md,
+    # "Depth of field"): design's figures are the CLI's, and a render's framing is the CLI's.
+    spheres = SOURCE / "scenes" / "spheres.json"
+    portrait = parallax.load_display("lkg:portrait")
+    expected = json.loads(cli("design", "lkg:portrait", "--json", "--scene", spheres,
+                              "--fit", "depth", "--focus", 5).stdout)
+    got = parallax.design(portrait, scene=parallax.load_scene(str(spheres)), fit="depth", focus=5)
+    assert got == expected
+    assert got["depth_of_field_mm"] == pytest.approx(12.799, abs=1e-3)
+    assert got["scene"]["focus_mm"] == 5 and got["scene"]["within_budget"]
+    path, display = quarter_portrait(tmp_path)
+    made = parallax.render(scene, display, spp=1, fit="depth", depth_budget=8)
+    framing = made.record["framing"]
+    assert 0 < framing["depth_scale"] < 1
+    assert max(framing["shown_near_mm"], -framing["shown_far_mm"]) == pytest.approx(8)
+    result = cli("render", "--display", path, "--spp", 1, "--fit", "depth", "--depth-budget", 8,
+                 "-o", tmp_path / "out")
+    assert result.returncode == 0, result.stderr
+    assert np.array_equal(made.image_srgb8, rgb(read_png(tmp_path / "out" / "image.png")))
+    assert json.loads((tmp_path / "out" / "render.json").read_text())["framing"] == framing
 
 
 def cli_error(*args):

@@ -252,6 +252,7 @@ Scene makeRgbdScene(const Image& colour, const DepthMap& depth, const RgbdOption
       scene.display.contentHull.push_back(unprojectFilm((corner & 1) ? float(width) : 0.0f,
                                                         (corner & 2) ? float(height) : 0.0f, zEnd,
                                                         width, height, options.fovDegrees));
+  scene.display.fillWindow = true;
   // `parallax view` sees it from the photo's own viewpoint, with the photo's field of view.
   CameraSpec camera;
   camera.eye = {0, 0, 0};

@@ -109,6 +109,11 @@ struct DisplayPlacement {
   // frustum: its box's near corners are as wide as its far end). The Depth and Window fits
   // (with a focus) then fit these instead of the box's corners; the depth range stays the box's.
   std::vector<Vec3f> contentHull;
+  // The content is a picture that should fill the window (an RGB-D photo, whose hull is the
+  // frustum between its nearest and farthest depth): the Depth fit then covers the window, so
+  // that every ray of the display from the window meets the content, instead of fitting the
+  // content inside it (camera/framing.h).
+  bool fillWindow = false;
 };
 
 // An ordinary pinhole camera for `parallax view`.
