@@ -2,6 +2,7 @@
 // the quilt's slices of the view fraction, its eyes evenly in angle across the cone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "parallax/display/display_model.h"
@@ -31,6 +32,37 @@ TEST(LenticularDisplay, CentralRaysAreTheFormulasAndViewsSliceTheFraction) {
   }
   EXPECT_FALSE(display->hasMaskLayer());
   EXPECT_TRUE(display->maskLayer().empty());
+}
+
+// The prefilter (filter view) is what an eye integrates: a sample's place across its subpixel
+// moves its view across the subpixel's span delta, its angular sample across the spot W delta,
+// so the views of a subpixel's samples are the box delta convolved with the box W delta around
+// its own view: mean the own view, variance (1 + W^2) delta^2 / 12, within (1 + W) delta / 2.
+TEST(LenticularDisplay, ViewFilterSpreadsTheRaysOverWhatAnEyeIntegrates) {
+  const LenticularDesign base = smallLenticularDesign();
+  for (const double spot : {0.0, 1.0, 3.0}) {
+    LensOptics o;
+    o.spotWidthSubpixels = spot;
+    const LenticularDesign d = withOptics(base, o);
+    const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(d);
+    const double delta = subpixelViewWidth(d), D = d.viewDistanceMm;
+    const int column = 3 * 90 + 1, row = 60, n = 64;
+    const double own = viewFraction(d, 90, row, 1);
+    double mean = 0, square = 0, widest = 0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const DisplayRay r = display->ray(column + (i + 0.5) / n, row + 0.5, (j + 0.5) / n, 0.5);
+        // Converging at D: the ray crosses the design line at its view's eye point.
+        const double f = viewFractionOfAngle(d, std::atan(r.origin.x / D)) - own;
+        mean += f / (n * n), square += f * f / (n * n);
+        widest = std::max(widest, std::fabs(f));
+      }
+    EXPECT_NEAR(mean, 0.0, 1e-9 * delta) << spot;
+    const double variance = (1 + spot * spot) * delta * delta / 12;
+    EXPECT_NEAR(square - mean * mean, variance, 0.01 * variance) << spot;
+    EXPECT_LE(widest, 0.5 * (1 + spot) * delta + 1e-12) << spot;
+    EXPECT_GT(widest, 0.45 * (1 + spot) * delta) << spot;
+  }
 }
 
 }  // namespace

@@ -184,6 +184,12 @@ void writeLenticularDesignJson(JsonWriter& json, const std::string& at, const Le
   json.set(at + "/view_distance_mm", d.viewDistanceMm);
   json.set(at + "/view_zone_width_mm", d.viewZoneWidthMm);
   json.set(at + "/subpixel_cells", int(d.calibration.subpixelCells.size()));
+  json.set(at + "/quilt_views", d.quiltViews);
+  // The optics the pictures were made for (docs/lenticular.md, "The optics").
+  json.set(at + "/optics/bundles", std::string(lensBundlesName(d.optics.bundles)));
+  if (d.optics.bundles == LensBundles::Converging)
+    json.set(at + "/optics/convergence_distance_mm", d.optics.convergenceDistanceMm);
+  json.set(at + "/optics/lens_spot_subpixels", d.optics.spotWidthSubpixels);
 }
 
 }  // namespace parallax

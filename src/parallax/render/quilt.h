@@ -92,9 +92,11 @@ void renderQuiltTiles(const Scene& scene, const Accelerator& accelerator,
                       const ProgressCallback& progress = {});
 
 // Maps a quilt's views onto a lenticular panel as Looking Glass's interlacing shader does: each
-// subpixel's view fraction f (viewFraction) picks the views f N - 1/2 lies between (N the
+// subpixel's view fraction f (viewFraction) picks the views q N - 1/2 lies between (N the
 // quilt's views; beyond the first and last view the nearest), blended linearly, each sampled
-// where the subpixel sits on the screen. Returns the panel's picture (linear RGB).
+// where the subpixel sits on the screen. q is the cone fraction of the quilt camera on the design
+// line that the subpixel's light reaches (lensQuiltFraction): q = f with the default optics,
+// bundles converging at D where the cameras stand. Returns the panel's picture (linear RGB).
 Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views);
 
 // Resamples camera views (leftmost first) to `count` views across the same zone: view k of
