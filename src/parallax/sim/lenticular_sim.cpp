@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
 #include "parallax/image/metrics.h"
 
 namespace parallax {
@@ -19,7 +20,7 @@ double wrapped(double difference) {
 
 // One pixel row's subpixels, 3 x + channel: their view fractions and where they sit (x, mm).
 struct Row {
-  std::vector<double> fraction, positionMm;
+  const float *fraction, *positionMm;
   double viewsPerWidth = 0;  // how the view changes across a subpixel: +-delta (invView, flips)
   double pixelStepMm = 0;    // from one pixel to the next along the row: +-pitch (flipImageX)
 };
@@ -88,7 +89,30 @@ Vec3f seenThroughLens(const LenticularDesign& d, const Row& row, const Image& pa
 
 }  // namespace
 
-Image simulateLenticularView(const LenticularDesign& d, const Image& panel, const Vec3d& eyeMm) {
+LenticularSubpixels lenticularSubpixels(const LenticularDesign& d) {
+  const int w = d.calibration.screenW, h = d.calibration.screenH;
+  LenticularSubpixels t;
+  t.fraction.resize(size_t(3 * w) * size_t(h));
+  t.positionMm.resize(t.fraction.size());
+  // The sign from two neighbouring subpixels of one pixel: their views step by +-delta.
+  const double step = wrapped(viewFraction(d, 0, 0, 1) - viewFraction(d, 0, 0, 0));
+  const double apart = subpixelPointMm(d, 0.5, 0.5, 1).x - subpixelPointMm(d, 0.5, 0.5, 0).x;
+  t.viewsPerWidth = (step * apart >= 0 ? 1.0 : -1.0) * subpixelViewWidth(d);
+  t.pixelStepMm = subpixelPointMm(d, 1.5, 0.5, 1).x - subpixelPointMm(d, 0.5, 0.5, 1).x;
+  parallelFor(h, 0, 16, [&](int64_t begin, int64_t end) {
+    for (int y = int(begin); y < int(end); ++y)
+      for (int x = 0; x < w; ++x)
+        for (int ch = 0; ch < 3; ++ch) {
+          const size_t i = size_t(3 * w) * size_t(y) + size_t(3 * x + ch);
+          t.fraction[i] = float(viewFraction(d, x, y, ch));
+          t.positionMm[i] = float(subpixelPointMm(d, x + 0.5, y + 0.5, ch).x);
+        }
+  });
+  return t;
+}
+
+Image simulateLenticularView(const LenticularDesign& d, const Image& panel, const Vec3d& eyeMm,
+                             const LenticularSubpixels* subpixels) {
   const LenticularCalibration& c = d.calibration;
   const int w = c.screenW, h = c.screenH;
   if (panel.width() != w || panel.height() != h)
@@ -98,32 +122,29 @@ Image simulateLenticularView(const LenticularDesign& d, const Image& panel, cons
                          std::to_string(w) + "x" + std::to_string(h));
   if (!(eyeMm.z > 0)) throw std::invalid_argument("the eye must be in front of the panel (z > 0)");
 
+  const LenticularSubpixels own = subpixels ? LenticularSubpixels{} : lenticularSubpixels(d);
+  const LenticularSubpixels& table = subpixels ? *subpixels : own;
   Image view(w, h);
-  Row row{std::vector<double>(size_t(3 * w)), std::vector<double>(size_t(3 * w)), 0, 0};
-  // The sign from two neighbouring subpixels of one pixel: their views step by +-delta.
-  {
-    const double step = wrapped(viewFraction(d, 0, 0, 1) - viewFraction(d, 0, 0, 0));
-    const double apart = subpixelPointMm(d, 0.5, 0.5, 1).x - subpixelPointMm(d, 0.5, 0.5, 0).x;
-    row.viewsPerWidth = (step * apart >= 0 ? 1.0 : -1.0) * subpixelViewWidth(d);
-    row.pixelStepMm = subpixelPointMm(d, 1.5, 0.5, 1).x - subpixelPointMm(d, 0.5, 0.5, 1).x;
-  }
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x)
-      for (int ch = 0; ch < 3; ++ch) {
-        row.fraction[size_t(3 * x + ch)] = viewFraction(d, x, y, ch);
-        row.positionMm[size_t(3 * x + ch)] = subpixelPointMm(d, x + 0.5, y + 0.5, ch).x;
+  // Rows in parallel: each is computed the same way whichever worker runs it.
+  parallelFor(h, 0, 16, [&](int64_t begin, int64_t end) {
+    for (int y = int(begin); y < int(end); ++y) {
+      const Row row{table.fraction.data() + size_t(3 * w) * size_t(y),
+                    table.positionMm.data() + size_t(3 * w) * size_t(y), table.viewsPerWidth,
+                    table.pixelStepMm};
+      for (int x = 0; x < w; ++x) {
+        // The pixel's centre (its subpixels' mean): the point of the panel the eye looks at.
+        const double centreMm =
+            (double(row.positionMm[size_t(3 * x)]) + row.positionMm[size_t(3 * x + 1)] +
+             row.positionMm[size_t(3 * x + 2)]) /
+            3.0;
+        const double eyeView = lensFractionSeen(d, centreMm, eyeMm);
+        const Vec3f seen = seenThroughLens(d, row, panel, y, x, centreMm, eyeView);
+        // Into the viewer's frame: mirrored panels show column 0 on the right or row 0 at the
+        // bottom.
+        view.at(c.flipImageX ? w - 1 - x : x, c.flipImageY ? h - 1 - y : y) = seen;
       }
-    for (int x = 0; x < w; ++x) {
-      // The pixel's centre (its subpixels' mean): the point of the panel the eye looks at.
-      const double centreMm = (row.positionMm[size_t(3 * x)] + row.positionMm[size_t(3 * x + 1)] +
-                               row.positionMm[size_t(3 * x + 2)]) /
-                              3.0;
-      const double eyeView = lensFractionSeen(d, centreMm, eyeMm);
-      const Vec3f seen = seenThroughLens(d, row, panel, y, x, centreMm, eyeView);
-      // Into the viewer's frame: mirrored panels show column 0 on the right or row 0 at the bottom.
-      view.at(c.flipImageX ? w - 1 - x : x, c.flipImageY ? h - 1 - y : y) = seen;
     }
-  }
+  });
   return view;
 }
 

@@ -6,6 +6,8 @@
 // eye sees the neighbouring lens's views, the repeat zones of these displays.
 #pragma once
 
+#include <vector>
+
 #include "parallax/display/lenticular.h"
 #include "parallax/image/image.h"
 
@@ -21,8 +23,19 @@ namespace parallax {
 // withOptics(design, optics).
 // Throws InputError naming the calibration and "/screenW" when the panel's size differs, and
 // std::invalid_argument for an eye not in front of the panel.
-Image simulateLenticularView(const LenticularDesign& design, const Image& panel,
-                             const Vec3d& eyeMm);
+// `subpixels`: the panel's table (lenticularSubpixels), made once for many eyes; none: made here.
+struct LenticularSubpixels;
+Image simulateLenticularView(const LenticularDesign& design, const Image& panel, const Vec3d& eyeMm,
+                             const LenticularSubpixels* subpixels = nullptr);
+
+// What the simulator looks up for every eye: each subpixel's view fraction and where it sits
+// along its row (x, mm), row by row (3 screenW a row), and how views run along a row.
+struct LenticularSubpixels {
+  std::vector<float> fraction, positionMm;
+  double viewsPerWidth = 0;  // the view's change across one subpixel: +-1 / subpixelsPerLens
+  double pixelStepMm = 0;    // from one pixel to the next along a row (negative when mirrored)
+};
+LenticularSubpixels lenticularSubpixels(const LenticularDesign& design);
 
 // What an eye resolves of a view: one lens along a row, and along a column the rows over which
 // the slanted lenses cycle the three colours (|slope| rows: each row moves the lens's phase by

@@ -27,9 +27,9 @@ class SimulatedBarrier final : public SimulatedDisplay {
 class SimulatedLenticular final : public SimulatedDisplay {
  public:
   SimulatedLenticular(const LenticularDesign& design, Image panel)
-      : design_(design), panel_(std::move(panel)) {}
+      : design_(design), panel_(std::move(panel)), subpixels_(lenticularSubpixels(design_)) {}
   Image view(const Vec3d& eyeMm) const override {
-    return simulateLenticularView(design_, panel_, eyeMm);
+    return simulateLenticularView(design_, panel_, eyeMm, &subpixels_);
   }
   // One lens along a pixel row, one colour cycle of the slanted lenses along a column.
   Image atDisplayResolution(const Image& image) const override {
@@ -39,6 +39,7 @@ class SimulatedLenticular final : public SimulatedDisplay {
  private:
   LenticularDesign design_;
   Image panel_;
+  LenticularSubpixels subpixels_;  // made once: the same for every eye
 };
 
 // Frames seen in turn: the average of their views.
