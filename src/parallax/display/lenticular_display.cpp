@@ -12,7 +12,11 @@ namespace {
 class LenticularDisplay final : public DisplayModel {
  public:
   LenticularDisplay(const LenticularDesign& design, const ViewFilter& filter)
-      : design_(design), filterKind_(filter.kind), warp_(filter) {}
+      : design_(design), filterKind_(filter.kind), warp_(filter) {
+    // Which way views run along a row (+1: the view grows with the column): a pixel's step.
+    const double step = viewFraction(design_, 1, 0, 0) - viewFraction(design_, 0, 0, 0);
+    viewsAlongRow_ = step - std::round(step) >= 0 ? 1.0 : -1.0;
+  }
 
   DisplayKind kind() const override { return DisplayKind::Lenticular; }
   const std::string& source() const override { return design_.calibration.source; }
@@ -30,7 +34,7 @@ class LenticularDisplay final : public DisplayModel {
   // over the lens's focal spot, shaped by the filter (docs/lenticular.md, "Prefilter"). The two
   // together are what an eye integrates (lensSpotWeight): the render is prefiltered for the
   // optics it is seen through. The column's centre casts exactly the published formula's ray.
-  DisplayRay ray(double filmX, double filmY, double u, double /*v*/) const override {
+  DisplayRay ray(double filmX, double filmY, double u, double v) const override {
     const int column = int(std::floor(filmX));
     const int x = column / 3, channel = column % 3;
     const double rowCentre = std::floor(filmY) + 0.5;
@@ -40,7 +44,11 @@ class LenticularDisplay final : public DisplayModel {
       r = lenticularRay(design_, x + 0.5, rowCentre, channel, ownView);
     } else {
       const double across = filmX - column - 0.5;  // [-1/2, 1/2) across the subpixel
-      const double panelX = x + 0.5 + across / 3.0;
+      // The second angular sample places the ray across the lens the subpixel sits under: an
+      // eye sees the subpixel over that lens's whole width (from view 0 to view 1 along the
+      // row), so its light is the average over the lens of what those eyes should see there.
+      const double lensOffset = viewsAlongRow_ * (v - ownView) * design_.pixelsPerLens;
+      const double panelX = x + 0.5 + across / 3.0 + lensOffset;
       const double delta = subpixelViewWidth(design_);
       // Period: anywhere in the lens's cone (the old cell's analogue, for comparison).
       const double view =
@@ -87,6 +95,7 @@ class LenticularDisplay final : public DisplayModel {
  private:
   LenticularDesign design_;
   ViewFilterKind filterKind_;
+  double viewsAlongRow_ = 1;
 
  public:
   bool centralRayOnly() const override { return filterKind_ == ViewFilterKind::None; }

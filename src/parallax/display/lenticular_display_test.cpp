@@ -63,6 +63,27 @@ TEST(LenticularDisplay, ViewFilterSpreadsTheRaysOverWhatAnEyeIntegrates) {
     EXPECT_LE(widest, 0.5 * (1 + spot) * delta + 1e-12) << spot;
     EXPECT_GT(widest, 0.45 * (1 + spot) * delta) << spot;
   }
+  // And the rays leave from across the whole lens the subpixel sits under (an eye sees it over
+  // that lens's width): where along the lens, t from view 0 to view 1, covers [0, 1) and no more
+  // than the subpixel's own width beyond.
+  const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(base);
+  const double delta = subpixelViewWidth(base), lens = base.horizontalLensPitchMm;
+  const Vec3d p0 = subpixelPointMm(base, 90.5, 60.5, 1), p1 = subpixelPointMm(base, 91.5, 60.5, 1);
+  const double step = viewFraction(base, 91, 60, 1) - viewFraction(base, 90, 60, 1);
+  const double sign = (step - std::round(step)) * (p1.x - p0.x) > 0 ? 1.0 : -1.0;
+  const double own = viewFraction(base, 90, 60, 1);
+  double lowest = 2, highest = -2;
+  for (int i = 0; i < 32; ++i)
+    for (int j = 0; j < 32; ++j) {
+      const DisplayRay r = display->ray(3 * 90 + 1 + (i + 0.5) / 32, 60.5, 0.5, (j + 0.5) / 32);
+      const double panelX = r.origin.x + r.direction.x * r.origin.z;  // where it leaves, z = 0
+      const double t = own + sign * (panelX - p0.x) / lens;
+      lowest = std::min(lowest, t), highest = std::max(highest, t);
+    }
+  EXPECT_GT(lowest, -0.5 * delta - 1e-9);
+  EXPECT_LT(highest, 1 + 0.5 * delta + 1e-9);
+  EXPECT_LT(lowest, 0.05);
+  EXPECT_GT(highest, 0.95);
 }
 
 }  // namespace
