@@ -144,6 +144,29 @@ check "--filter none with --spp 4 says what it does" run 0 lenticular render "$t
 check "the note names both options" grep -qF \
   "note: --filter none casts each film pixel's central ray only" "$tmp/err"
 check "and what --spp 4 does" grep -qF "so --spp 4 renders as 1 sample a pixel" "$tmp/err"
+# The lens optics (docs/lenticular.md, "The optics"): stated, and readable other ways.
+check "render.json states the optics it rendered for" \
+  bash -c "grep -q '\"bundles\": \"converging\"' '$tmp/r/render.json' &&
+           grep -q '\"lens_spot_subpixels\": 1' '$tmp/r/render.json'"
+check "simulate under another reading" run 0 simulate "$tmp/r" --lens-spot 0 --bundles parallel \
+  -o "$tmp/ideal-lens.png"
+check "simulate says the reading it used" \
+  grep -q "0-subpixel focal spot, bundles parallel" "$tmp/err"
+check "lenticular simulate takes the readings too" run 0 lenticular simulate "$tmp/r" \
+  --lens-spot 3 --bundles converging -o "$tmp/pixel-spot.png"
+check "the two readings see the panel differently" bash -c "! cmp -s '$tmp/ideal-lens.png' '$tmp/pixel-spot.png'"
+check "an unknown --bundles exits 2" run 2 simulate "$tmp/r" --bundles sideways -o "$tmp/bad1.png"
+check "an unknown --bundles names the option" one_line_naming "--bundles"
+check "a spot past 12 subpixels exits 2" run 2 simulate "$tmp/r" --lens-spot 20 -o "$tmp/bad2.png"
+check "--all-readings needs the dense measure" run 2 simulate "$tmp/r" --all-readings \
+  -o "$tmp/bad3.png"
+check "--all-readings names itself" one_line_naming "--all-readings"
+check "the dense measure under every reading" run 0 simulate "$tmp/r" --reference --all-readings \
+  --eyes-per-view 1 --distances 1 --reference-spp 1 --json
+check "one row per reading, the display's own last" bash -c "
+  python3 -c 'import json,sys; r=json.load(open(sys.argv[1]))[\"renders\"];
+assert len(r)==5, r; assert \"spot 0, parallel\" in r[0][\"dir\"]; assert \"display\" in r[4][\"dir\"]' '$tmp/out'"
+
 check "design reads a calibration" run 0 design "$tmp/small.json"
 check "design prints the lens figures" grep -q 'pixels per lens' "$tmp/out"
 check "design of a unit's file" run 0 design "$tmp/gen3.json"

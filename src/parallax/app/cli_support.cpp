@@ -16,6 +16,7 @@
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
+#include "parallax/display/lenticular.h"
 #include "parallax/io/display_file.h"
 #include "parallax/io/scene_file.h"
 #include "parallax/jobs/layer_output.h"
@@ -247,6 +248,21 @@ void addFilterOptions(CLI::App& cmd, FilterRequest& options, const std::string& 
                  scope + "The filter's width in views (" + viewUnit +
                      "; box width; tent and Gaussian: full width at half maximum)")
       ->capture_default_str();
+}
+
+void addLensReadingOptions(CLI::App& cmd, std::optional<double>& lensSpot, std::string& bundles) {
+  cmd.add_option_function<double>(
+         "--lens-spot", [&lensSpot](const double& w) { lensSpot = w; },
+         "Lenticular: read the panel through lenses whose focal spot is W subpixels wide (0: an "
+         "ideal lens, one subpixel seen per lens; 3: a pixel-wide spot); default: the "
+         "display's optics (docs/lenticular.md, \"The optics\")")
+      ->type_name("W")
+      ->check(realIn(0, kMaxLensSpotSubpixels));
+  cmd.add_option("--bundles", bundles,
+                 "Lenticular: read the panel with the light of one view leaving parallel, or "
+                 "converging at the design distance; default: the display's optics")
+      ->type_name("parallel|converging")
+      ->check(CLI::IsMember({"parallel", "converging"}));
 }
 
 namespace {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "parallax/camera/framing.h"
@@ -104,6 +105,10 @@ void addFramingOptions(CLI::App& cmd, FramingRequest& options, const std::string
 // `viewUnit` says what one view is for this display.
 void addFilterOptions(CLI::App& cmd, FilterRequest& options, const std::string& scope,
                       const std::string& viewUnit);
+
+// --lens-spot W and --bundles parallel|converging: the lenticular optics a simulator reads a panel
+// under (jobs::SimulatorRequest::lensSpot, bundles); unset when not given.
+void addLensReadingOptions(CLI::App& cmd, std::optional<double>& lensSpot, std::string& bundles);
 
 // --up auto|y|z (also --mesh-up; only that on view, whose --up is the camera's) and --crease
 // DEGREES (docs/import.md): how the scene's mesh files are imported (a scene file's mesh

@@ -31,6 +31,8 @@ struct LenticularSimulateOptions {
   std::vector<std::string> inputs;  // DIR [CALIBRATION], or CALIBRATION with --image
   std::string image, eye, output = "out/lenticular-view.png";
   double distance = 0;
+  std::optional<double> lensSpot;
+  std::string bundles;
 };
 
 // `lenticular render CALIBRATION`: `render --display CALIBRATION` with a viewer distance.
@@ -67,6 +69,8 @@ void runSimulate(const LenticularSimulateOptions& o) {
     r.eye = Vec3d{e.x, e.y, e.z};
   }
   r.distance = o.distance;
+  r.lensSpot = o.lensSpot;
+  r.bundles = o.bundles;
   r.output = o.output;
   jobs::runLenticularSimulate(r, cliReporter());
 }
@@ -88,8 +92,8 @@ void registerLenticularCommand(CLI::App& cli) {
       *render, r->sampling,
       "Rays per subpixel (n*n over its area and its view window; 1: the formula's ray)");
   addFilterOptions(*render, r->filter, "",
-                   "one view: a pixel's step of view fraction, pitch_px / screenW, the spacing "
-                   "of one colour channel's views");
+                   "one view: the lens's focal spot (docs/lenticular.md, \"Prefilter\"); each "
+                   "subpixel's own span of views is always integrated");
   render
       ->add_option("--distance", r->distance,
                    "Design viewer distance in mm, above 0 (default: the cone spans 1 m)")
@@ -109,6 +113,7 @@ void registerLenticularCommand(CLI::App& cli) {
   simulate
       ->add_option("--distance", s->distance, "Design viewer distance in mm, above 0 (default eye)")
       ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open));
+  addLensReadingOptions(*simulate, s->lensSpot, s->bundles);
   addLimitOptions(*simulate);
   simulate->add_option("-o,--output", s->output, "Output image (.png or .pfm)")
       ->capture_default_str();

@@ -53,7 +53,10 @@ void registerRenderCommand(CLI::App& cli) {
                   "Looking Glass preset lkg:NAME (built-in barrier display if omitted)");
   addSamplingOptions(*cmd, request.sampling,
                      "Rays per pixel: n*n stratified over pixel and aperture");
-  addFilterOptions(*cmd, request.filter, "", "one view: a pixel column's angle at the gap");
+  addFilterOptions(
+      *cmd, request.filter, "",
+      "one view: a pixel column's angle at the gap; on a lenticular panel, the lens's focal "
+      "spot");
   addFramingOptions(*cmd, request.framing, "");
   cmd->add_option("-o,--output", request.output, "Output folder")->capture_default_str();
   cmd->add_flag("--linear", request.linear, "Also write image.pfm, linear float");

@@ -125,6 +125,11 @@ void registerSimulateCommand(CLI::App& cli) {
                   "of the design distance D")
       ->capture_default_str()
       ->needs(reference);
+  addLensReadingOptions(*cmd, r.simulator.lensSpot, r.simulator.bundles);
+  cmd->add_flag("--all-readings", r.allReadings,
+                "With the dense measure on a lenticular display: score every render under each "
+                "reading of the optics (ideal and pixel-wide spot, parallel and converging "
+                "bundles, and the display's own), against the same ideal views");
   cmd->add_option("--threads", r.simulator.threads, "Worker threads (0: all cores)")
       ->check(threadCount());
   // As many frames a second as the sweep's APNG (250 ms a frame).

@@ -33,7 +33,8 @@ TEST(LenticularDisplayCamera, OneColumnPerSubpixel) {
 TEST(LenticularDisplayCamera, RayPassesThroughItsSubpixelInItsViewDirection) {
   const LenticularDesign d = smallDesign();
   const DisplayPlacement placement = tiltedPlacement();
-  const DisplayCamera camera(makeLenticularDisplay(d), placement);
+  // The central ray (filter none): from the subpixel itself.
+  const DisplayCamera camera(makeLenticularDisplay(d, {ViewFilterKind::None, 1.0}), placement);
   const Transform world = worldFromDisplay(placement, displayWindow(d));
   const Transform display = world.inverse();
   for (const auto& [x, y, channel] : {std::array<int, 3>{0, 0, 0}, std::array<int, 3>{90, 60, 1},
@@ -48,8 +49,9 @@ TEST(LenticularDisplayCamera, RayPassesThroughItsSubpixelInItsViewDirection) {
     const Vec3d p = subpixelPointMm(d, x + 0.5, y + 0.5, channel);
     EXPECT_NEAR(o.x + t * dir.x, p.x, 1e-3);
     EXPECT_NEAR(o.y + t * dir.y, p.y, 1e-3);
-    // Horizontally it leaves the panel at the angle of its view fraction.
-    EXPECT_NEAR(std::atan2(-dir.x, -dir.z), viewAngle(d, viewFraction(d, x, y, channel)), 1e-5);
+    // Horizontally it heads for its view's eye point on the design line (converging bundles).
+    EXPECT_NEAR(o.x, d.viewDistanceMm * std::tan(viewAngle(d, viewFraction(d, x, y, channel))),
+                1e-3);
   }
 }
 
@@ -58,8 +60,10 @@ TEST(LenticularDisplayCamera, SamplesSpreadOverTheSubpixel) {
   const DisplayCamera camera(makeLenticularDisplay(d), DisplayPlacement{});
   const Transform display = worldFromDisplay(DisplayPlacement{}, displayWindow(d)).inverse();
   const Vec3d centre = subpixelPointMm(d, 40.5, 30.5, 1);
+  // The second angular sample at the subpixel's own view: no move across its lens.
+  const float own = float(viewFraction(d, 40, 30, 1));
   for (const float within : {0.01f, 0.99f}) {
-    const Ray ray = camera.generateRay({3 * 40 + 1 + within, 30.5f, 0.5f, 0.5f});
+    const Ray ray = camera.generateRay({3 * 40 + 1 + within, 30.5f, 0.5f, own});
     const Vec3f o = display.point(ray.origin), dir = display.vector(ray.direction);
     const float hitX = o.x - o.z / dir.z * dir.x;
     // Within a third of a pixel (the subpixel's width) of its centre, on the sample's side.
@@ -69,9 +73,10 @@ TEST(LenticularDisplayCamera, SamplesSpreadOverTheSubpixel) {
   }
 }
 
-// The prefilter's footprint: a sub-ray's view is the subpixel's own plus the filter's offset in
-// channel view steps (pitch_px / screenW), whatever its position on the subpixel; none is the
-// central ray for any sample, and period spreads over the whole lens period.
+// The prefilter's footprint: a sub-ray's view is the subpixel's own, plus its position across
+// the subpixel times the subpixel's span delta (a third of the channel view step), plus the
+// filter's offset in spots (W delta, W = 1 by default); none is the central ray for any sample,
+// and period spreads over the whole lens period.
 TEST(LenticularDisplayCamera, FilterFootprintMatchesItsFormula) {
   const LenticularDesign d = smallDesign();
   const Transform display = worldFromDisplay(DisplayPlacement{}, displayWindow(d)).inverse();
@@ -80,12 +85,15 @@ TEST(LenticularDisplayCamera, FilterFootprintMatchesItsFormula) {
   EXPECT_NEAR(step, 1.0 / d.pixelsPerLens, 1e-12);
   const int x = 70, y = 40, channel = 2;
   const double own = viewFraction(d, x, y, channel);
-  // The horizontal angle a ray leaves the panel at, as a view fraction (not wrapped).
+  // The view a ray carries: where it crosses the design line (bundles converging at D), as a
+  // view fraction (not wrapped).
   const auto viewOf = [&](const DisplayCamera& camera, float within, float u) {
     const Ray ray = camera.generateRay({3.0f * x + channel + within, y + 0.3f, u, 0.5f});
-    const Vec3f dir = display.vector(ray.direction);
-    return viewFractionOfAngle(d, std::atan2(-double(dir.x), -double(dir.z)));
+    const Vec3f o = display.point(ray.origin), dir = display.vector(ray.direction);
+    const double t = (d.viewDistanceMm - o.z) / dir.z;
+    return viewFractionOfAngle(d, std::atan((o.x + t * dir.x) / d.viewDistanceMm));
   };
+  const double delta = step / 3;
   // viewFractionOfAngle is not wrapped: compare with the own view modulo whole lens periods.
   const auto offset = [&](double view) { return view - own - std::round(view - own); };
   const DisplayCamera box(makeLenticularDisplay(d, {ViewFilterKind::View, 1.0}), {});
@@ -95,11 +103,12 @@ TEST(LenticularDisplayCamera, FilterFootprintMatchesItsFormula) {
   const DisplayCamera period(makeLenticularDisplay(d, {ViewFilterKind::Period, 1.0}), {});
   for (const float within : {0.05f, 0.5f, 0.95f})
     for (const float u : {0.0f, 0.25f, 0.5f, 0.75f, 0.999f}) {
-      EXPECT_NEAR(offset(viewOf(box, within, u)), (u - 0.5) * step, 1e-5);
-      EXPECT_NEAR(offset(viewOf(wideBox, within, u)), 2.5 * (u - 0.5) * step, 1e-5);
-      // The tent's inverse CDF: half of its rays within 1 - sqrt(1/2) of a step of the centre.
+      const double across = (within - 0.5) * delta;
+      EXPECT_NEAR(offset(viewOf(box, within, u)), across + (u - 0.5) * delta, 1e-5);
+      EXPECT_NEAR(offset(viewOf(wideBox, within, u)), across + 2.5 * (u - 0.5) * delta, 1e-5);
+      // The tent's inverse CDF: half of its rays within 1 - sqrt(1/2) of a spot of the centre.
       const double t = u < 0.5 ? std::sqrt(2.0 * u) - 1 : 1 - std::sqrt(2.0 * (1 - u));
-      EXPECT_NEAR(offset(viewOf(tent, within, u)), t * step, 1e-5);
+      EXPECT_NEAR(offset(viewOf(tent, within, u)), across + t * delta, 1e-5);
       EXPECT_NEAR(offset(viewOf(none, within, u)), 0.0, 1e-5);
       // (+-1/2 are the same place in the period.)
       EXPECT_NEAR(std::remainder(offset(viewOf(period, within, u)) - (u - 0.5), 1.0), 0.0, 1e-5);
@@ -130,7 +139,9 @@ TEST(LenticularDisplayCamera, AgreesWithTheWindowCameraAtTheRaysEye) {
   const float filmX = float((r.panelPoint.x + 0.5 * d.widthMm) / d.pixelPitchMm);
   const float filmY = float((0.5 * d.heightMm - r.panelPoint.y) / d.pixelPitchMm);
   const Ray expected = eye.generateRay({filmX, filmY, 0.5f, 0.5f});
-  const Ray got = camera.generateRay({3.0f * x + channel + 0.5f, y + 0.5f, 0.5f, 0.5f});
+  // The second angular sample at the subpixel's own view: from the subpixel's point.
+  const Ray got =
+      camera.generateRay({3.0f * x + channel + 0.5f, y + 0.5f, 0.5f, float(r.viewFraction)});
   const Vec3f gotDirection = normalize(got.direction),
               expectedDirection = normalize(expected.direction);
   for (int k = 0; k < 3; ++k) {

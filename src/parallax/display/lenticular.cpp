@@ -1,7 +1,9 @@
 #include "parallax/display/lenticular.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include "parallax/core/error.h"
@@ -71,7 +73,40 @@ int cellIndex(const LenticularCalibration& c, int x, int yUp) {
   return cell % int(c.subpixelCells.size());
 }
 
-LenticularDesign designLenticular(const LenticularCalibration& c, double viewDistanceMm) {
+bool parseLensBundles(const std::string& text, LensBundles& bundles) {
+  for (const LensBundles b : {LensBundles::Parallel, LensBundles::Converging})
+    if (text == lensBundlesName(b)) {
+      bundles = b;
+      return true;
+    }
+  return false;
+}
+
+const char* lensBundlesName(LensBundles bundles) {
+  return bundles == LensBundles::Parallel ? "parallel" : "converging";
+}
+
+std::string lensOpticsProblem(const LensOptics& o) {
+  if (!(o.spotWidthSubpixels >= 0 && o.spotWidthSubpixels <= kMaxLensSpotSubpixels))
+    return "the focal spot must be from 0 to " + shortNumber(kMaxLensSpotSubpixels) +
+           " subpixels wide (got " + shortNumber(o.spotWidthSubpixels) + ")";
+  if (!(o.convergenceDistanceMm >= 0 && o.convergenceDistanceMm <= 1e6))
+    return "the convergence distance must be from 0 (the view distance) to 1e6 mm (got " +
+           shortNumber(o.convergenceDistanceMm) + ")";
+  return "";
+}
+
+LenticularDesign withOptics(const LenticularDesign& design, LensOptics optics) {
+  const std::string problem = lensOpticsProblem(optics);
+  if (!problem.empty()) throw std::invalid_argument(problem);
+  if (!(optics.convergenceDistanceMm > 0)) optics.convergenceDistanceMm = design.viewDistanceMm;
+  LenticularDesign d = design;
+  d.optics = optics;
+  return d;
+}
+
+LenticularDesign designLenticular(const LenticularCalibration& c, double viewDistanceMm,
+                                  const LensOptics& optics) {
   const auto fail = [&c](const char* key, const std::string& message) {
     return InputError(c.source, key, message);
   };
@@ -128,7 +163,7 @@ LenticularDesign designLenticular(const LenticularCalibration& c, double viewDis
       viewDistanceMm > 0 ? viewDistanceMm : 0.5 * kLenticularZoneWidthMm / std::tan(halfCone);
   d.viewZoneWidthMm = 2.0 * d.viewDistanceMm * std::tan(halfCone);
   d.quiltViews = std::max(1, c.quilt.views());
-  return d;
+  return withOptics(d, optics);
 }
 
 double viewFractionAt(const LenticularDesign& d, double filmX, double filmY, int channel) {
@@ -176,6 +211,55 @@ double viewFractionOfAngle(const LenticularDesign& d, double angle) {
   return angle / radians(d.calibration.viewConeDegrees) + 0.5;
 }
 
+double lensSlope(const LenticularDesign& d, double panelX, double fraction) {
+  const double t = std::tan(viewAngle(d, fraction));
+  if (d.optics.bundles == LensBundles::Parallel) return t;
+  const double C = d.optics.convergenceDistanceMm;
+  return (C * t - panelX) / C;
+}
+
+double lensFractionSeen(const LenticularDesign& d, double panelX, const Vec3d& eye) {
+  const double slope = (eye.x - panelX) / eye.z;
+  if (d.optics.bundles == LensBundles::Parallel) return viewFractionOfAngle(d, std::atan(slope));
+  const double C = d.optics.convergenceDistanceMm;
+  return viewFractionOfAngle(d, std::atan((panelX + slope * C) / C));
+}
+
+double lensQuiltFraction(const LenticularDesign& d, double panelX, double fraction) {
+  // Converging at D: the subpixel's light reaches the design line at view f's own camera.
+  if (d.optics.bundles == LensBundles::Converging &&
+      d.optics.convergenceDistanceMm == d.viewDistanceMm)
+    return fraction;
+  const double D = d.viewDistanceMm;
+  return viewFractionOfAngle(d, std::atan((panelX + lensSlope(d, panelX, fraction) * D) / D));
+}
+
+Vec3d lensEyeOnDesignLine(const LenticularDesign& d, double t) {
+  return {d.viewDistanceMm * std::tan(viewAngle(d, t)), 0.0, d.viewDistanceMm};
+}
+
+double subpixelViewWidth(const LenticularDesign& d) {
+  return 1.0 / d.subpixelsPerLens;
+}
+
+double lensSpotHalfSupport(const LenticularDesign& d) {
+  return 0.5 * (1.0 + d.optics.spotWidthSubpixels) * subpixelViewWidth(d);
+}
+
+double lensSpotWeight(const LenticularDesign& d, double low, double high) {
+  const double spot = d.optics.spotWidthSubpixels * subpixelViewWidth(d);
+  // An ideal lens: the (part of a) subpixel whose half-open span holds the eye's view, so that
+  // of two neighbours exactly one is seen.
+  if (!(spot > 0)) return low <= 0 && 0 < high ? 1.0 : 0.0;
+  const double overlap = std::min(high, 0.5 * spot) - std::max(low, -0.5 * spot);
+  return std::max(0.0, overlap) / spot;
+}
+
+double lensSpotWeight(const LenticularDesign& d, double difference) {
+  const double half = 0.5 * subpixelViewWidth(d);
+  return lensSpotWeight(d, difference - half, difference + half);
+}
+
 LenticularRay lenticularRay(const LenticularDesign& d, double filmX, double filmY, int channel) {
   return lenticularRay(d, filmX, filmY, channel, viewFractionAt(d, filmX, filmY, channel));
 }
@@ -186,7 +270,7 @@ LenticularRay lenticularRay(const LenticularDesign& d, double filmX, double film
   r.viewFraction = viewFraction;
   r.panelPoint = subpixelPointMm(d, filmX, filmY, channel);
   const double D = d.viewDistanceMm;
-  r.origin = {r.panelPoint.x + D * std::tan(viewAngle(d, r.viewFraction)), 0.0, D};
+  r.origin = {r.panelPoint.x + D * lensSlope(d, r.panelPoint.x, r.viewFraction), 0.0, D};
   r.direction = {(r.panelPoint.x - r.origin.x) / D, (r.panelPoint.y - r.origin.y) / D, -1.0};
   return r;
 }

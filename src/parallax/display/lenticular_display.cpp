@@ -12,7 +12,11 @@ namespace {
 class LenticularDisplay final : public DisplayModel {
  public:
   LenticularDisplay(const LenticularDesign& design, const ViewFilter& filter)
-      : design_(design), filterKind_(filter.kind), warp_(filter) {}
+      : design_(design), filterKind_(filter.kind), warp_(filter) {
+    // Which way views run along a row (+1: the view grows with the column): a pixel's step.
+    const double step = viewFraction(design_, 1, 0, 0) - viewFraction(design_, 0, 0, 0);
+    viewsAlongRow_ = step - std::round(step) >= 0 ? 1.0 : -1.0;
+  }
 
   DisplayKind kind() const override { return DisplayKind::Lenticular; }
   const std::string& source() const override { return design_.calibration.source; }
@@ -25,11 +29,12 @@ class LenticularDisplay final : public DisplayModel {
 
   // Film column 3x + c is channel c of panel column x, wherever the calibration puts that
   // subpixel. A sample's position inside its column moves the ray's panel point across the
-  // subpixel's third of the pixel; its angular sample spreads the ray's view around the
-  // subpixel's own (the formula at the pixel's centre) by the filter, whose width is in the
-  // channel's view steps (channelViewStep, docs/lenticular.md "Prefilter"). The column's centre
-  // casts exactly the published formula's ray.
-  DisplayRay ray(double filmX, double filmY, double u, double /*v*/) const override {
+  // subpixel's third of the pixel and its view across the subpixel's span of the views (under a
+  // lens, where a subpixel sits is where its light goes); its angular sample spreads the view
+  // over the lens's focal spot, shaped by the filter (docs/lenticular.md, "Prefilter"). The two
+  // together are what an eye integrates (lensSpotWeight): the render is prefiltered for the
+  // optics it is seen through. The column's centre casts exactly the published formula's ray.
+  DisplayRay ray(double filmX, double filmY, double u, double v) const override {
     const int column = int(std::floor(filmX));
     const int x = column / 3, channel = column % 3;
     const double rowCentre = std::floor(filmY) + 0.5;
@@ -38,11 +43,18 @@ class LenticularDisplay final : public DisplayModel {
     if (filterKind_ == ViewFilterKind::None) {
       r = lenticularRay(design_, x + 0.5, rowCentre, channel, ownView);
     } else {
-      const double panelX = x + 0.5 + (filmX - column - 0.5) / 3.0;
+      const double across = filmX - column - 0.5;  // [-1/2, 1/2) across the subpixel
+      // The second angular sample places the ray across the lens the subpixel sits under: an
+      // eye sees the subpixel over that lens's whole width (from view 0 to view 1 along the
+      // row), so its light is the average over the lens of what those eyes should see there.
+      const double lensOffset = viewsAlongRow_ * (v - ownView) * design_.pixelsPerLens;
+      const double panelX = x + 0.5 + across / 3.0 + lensOffset;
+      const double delta = subpixelViewWidth(design_);
       // Period: anywhere in the lens's cone (the old cell's analogue, for comparison).
-      const double view = filterKind_ == ViewFilterKind::Period
-                              ? ownView + (u - 0.5)
-                              : ownView + warp_(u) * channelViewStep(design_);
+      const double view =
+          filterKind_ == ViewFilterKind::Period
+              ? ownView + (u - 0.5)
+              : ownView + across * delta + warp_(u) * design_.optics.spotWidthSubpixels * delta;
       r = lenticularRay(design_, panelX, filmY, channel, view);
     }
     return {r.origin, r.direction};
@@ -62,8 +74,8 @@ class LenticularDisplay final : public DisplayModel {
   // Beyond the cone (t outside [0, 1], a sweep wider than the zone) the angle goes on, up to
   // 80 degrees to either side, where the panel is seen edge-on.
   Vec3d eyeAcrossZone(double t) const override {
-    const double d = design_.viewDistanceMm, limit = 80.0 * 3.14159265358979323846 / 180.0;
-    return {d * std::tan(std::clamp(viewAngle(design_, t), -limit, limit)), 0.0, d};
+    const double limit = 80.0 / design_.calibration.viewConeDegrees;
+    return lensEyeOnDesignLine(design_, std::clamp(t, 0.5 - limit, 0.5 + limit));
   }
   double viewZoneWidthMm() const override { return design_.viewZoneWidthMm; }
   bool horizontalParallaxOnly() const override { return true; }
@@ -75,13 +87,15 @@ class LenticularDisplay final : public DisplayModel {
             {"view_cone", d.calibration.viewConeDegrees, "deg"},
             {"view_distance", d.viewDistanceMm, "mm"},
             {"view_zone_width", d.viewZoneWidthMm, "mm"},
-            {"views", double(d.quiltViews), ""}};
+            {"views", double(d.quiltViews), ""},
+            {"lens_spot", d.optics.spotWidthSubpixels, "subpixels"}};
   }
   const LenticularDesign* lenticularDesign() const override { return &design_; }
 
  private:
   LenticularDesign design_;
   ViewFilterKind filterKind_;
+  double viewsAlongRow_ = 1;
 
  public:
   bool centralRayOnly() const override { return filterKind_ == ViewFilterKind::None; }

@@ -2,6 +2,7 @@
 // the quilt's slices of the view fraction, its eyes evenly in angle across the cone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "parallax/display/display_model.h"
@@ -31,6 +32,58 @@ TEST(LenticularDisplay, CentralRaysAreTheFormulasAndViewsSliceTheFraction) {
   }
   EXPECT_FALSE(display->hasMaskLayer());
   EXPECT_TRUE(display->maskLayer().empty());
+}
+
+// The prefilter (filter view) is what an eye integrates: a sample's place across its subpixel
+// moves its view across the subpixel's span delta, its angular sample across the spot W delta,
+// so the views of a subpixel's samples are the box delta convolved with the box W delta around
+// its own view: mean the own view, variance (1 + W^2) delta^2 / 12, within (1 + W) delta / 2.
+TEST(LenticularDisplay, ViewFilterSpreadsTheRaysOverWhatAnEyeIntegrates) {
+  const LenticularDesign base = smallLenticularDesign();
+  for (const double spot : {0.0, 1.0, 3.0}) {
+    LensOptics o;
+    o.spotWidthSubpixels = spot;
+    const LenticularDesign d = withOptics(base, o);
+    const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(d);
+    const double delta = subpixelViewWidth(d), D = d.viewDistanceMm;
+    const int column = 3 * 90 + 1, row = 60, n = 64;
+    const double own = viewFraction(d, 90, row, 1);
+    double mean = 0, square = 0, widest = 0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const DisplayRay r = display->ray(column + (i + 0.5) / n, row + 0.5, (j + 0.5) / n, 0.5);
+        // Converging at D: the ray crosses the design line at its view's eye point.
+        const double f = viewFractionOfAngle(d, std::atan(r.origin.x / D)) - own;
+        mean += f / (n * n), square += f * f / (n * n);
+        widest = std::max(widest, std::fabs(f));
+      }
+    EXPECT_NEAR(mean, 0.0, 1e-9 * delta) << spot;
+    const double variance = (1 + spot * spot) * delta * delta / 12;
+    EXPECT_NEAR(square - mean * mean, variance, 0.01 * variance) << spot;
+    EXPECT_LE(widest, 0.5 * (1 + spot) * delta + 1e-12) << spot;
+    EXPECT_GT(widest, 0.45 * (1 + spot) * delta) << spot;
+  }
+  // And the rays leave from across the whole lens the subpixel sits under (an eye sees it over
+  // that lens's width): where along the lens, t from view 0 to view 1, covers [0, 1) and no more
+  // than the subpixel's own width beyond.
+  const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(base);
+  const double delta = subpixelViewWidth(base), lens = base.horizontalLensPitchMm;
+  const Vec3d p0 = subpixelPointMm(base, 90.5, 60.5, 1), p1 = subpixelPointMm(base, 91.5, 60.5, 1);
+  const double step = viewFraction(base, 91, 60, 1) - viewFraction(base, 90, 60, 1);
+  const double sign = (step - std::round(step)) * (p1.x - p0.x) > 0 ? 1.0 : -1.0;
+  const double own = viewFraction(base, 90, 60, 1);
+  double lowest = 2, highest = -2;
+  for (int i = 0; i < 32; ++i)
+    for (int j = 0; j < 32; ++j) {
+      const DisplayRay r = display->ray(3 * 90 + 1 + (i + 0.5) / 32, 60.5, 0.5, (j + 0.5) / 32);
+      const double panelX = r.origin.x + r.direction.x * r.origin.z;  // where it leaves, z = 0
+      const double t = own + sign * (panelX - p0.x) / lens;
+      lowest = std::min(lowest, t), highest = std::max(highest, t);
+    }
+  EXPECT_GT(lowest, -0.5 * delta - 1e-9);
+  EXPECT_LT(highest, 1 + 0.5 * delta + 1e-9);
+  EXPECT_LT(lowest, 0.05);
+  EXPECT_GT(highest, 0.95);
 }
 
 }  // namespace

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "parallax/core/error.h"
 
@@ -200,8 +203,12 @@ TEST(Lenticular, AngleMapsTheViewConeAcross) {
   EXPECT_NEAR(viewFractionOfAngle(d, 1.5 * half), 1.25, 1e-12);  // beyond the cone
 }
 
-TEST(Lenticular, RayLeavesTheSubpixelInItsViewDirection) {
-  const LenticularDesign d = designLenticular(landscapeLike());
+// Parallel bundles: every subpixel of view f sends its light at the angle theta(f), wherever it
+// is (the old direction).
+TEST(Lenticular, ParallelBundlesLeaveInTheViewsDirection) {
+  LensOptics parallel;
+  parallel.bundles = LensBundles::Parallel;
+  const LenticularDesign d = designLenticular(landscapeLike(), 0, parallel);
   const double D = d.viewDistanceMm;
   for (const auto& p : {std::array<double, 2>{0.5, 0.5}, std::array<double, 2>{1919.2, 1080.7}}) {
     for (int ch = 0; ch < 3; ++ch) {
@@ -214,6 +221,94 @@ TEST(Lenticular, RayLeavesTheSubpixelInItsViewDirection) {
       EXPECT_DOUBLE_EQ(r.viewFraction, viewFractionAt(d, p[0], p[1], ch));
     }
   }
+}
+
+// Converging bundles (the default): the light of view f, from anywhere on the panel, passes
+// through one eye point, (C tan theta(f), y, C); so from that point every subpixel of view f is
+// seen, and an eye nearer or farther sees different views at the panel's two edges.
+TEST(Lenticular, ConvergingBundlesMeetAtTheirEyePoint) {
+  const LenticularDesign d = designLenticular(landscapeLike());
+  ASSERT_EQ(d.optics.bundles, LensBundles::Converging);
+  const double C = d.optics.convergenceDistanceMm;
+  EXPECT_DOUBLE_EQ(C, d.viewDistanceMm);
+  for (const double f : {0.05, 0.3, 0.5, 0.77}) {
+    const double meet = C * std::tan((f - 0.5) * d.calibration.viewConeDegrees * kPi / 180);
+    for (const double filmX : {0.5, 700.2, 1919.2, 3839.5}) {
+      const LenticularRay r = lenticularRay(d, filmX, 1080.5, 1, f);
+      EXPECT_NEAR(r.origin.x, meet, 1e-9) << f << " " << filmX;  // z = D = C
+      EXPECT_NEAR(r.origin.x + r.direction.x * C, r.panelPoint.x, 1e-9);
+      EXPECT_NEAR(lensFractionSeen(d, r.panelPoint.x, {meet, 40, C}), f, 1e-12);
+      EXPECT_NEAR(lensQuiltFraction(d, r.panelPoint.x, f), f, 1e-15);  // the camera at D
+    }
+    // At half the distance the two edges show views differing by the edges' angle apart.
+    const Vec3d nearer{0.5 * meet, 0, 0.5 * C};
+    const double left = lensFractionSeen(d, -0.5 * d.widthMm, nearer);
+    const double right = lensFractionSeen(d, 0.5 * d.widthMm, nearer);
+    EXPECT_GT(left - right, 0.05);
+  }
+  // Another convergence distance: the eye point moves there.
+  LensOptics far;
+  far.convergenceDistanceMm = 3 * d.viewDistanceMm;
+  const LenticularDesign f = withOptics(d, far);
+  EXPECT_NEAR(lensFractionSeen(f, -100, {3 * C * std::tan(0.1), 0, 3 * C}),
+              lensFractionSeen(f, 100, {3 * C * std::tan(0.1), 0, 3 * C}), 1e-12);
+  // Parallel bundles reach the design line elsewhere: the quilt camera there.
+  LensOptics parallel;
+  parallel.bundles = LensBundles::Parallel;
+  const LenticularDesign p = withOptics(d, parallel);
+  const double x = 0.4 * d.widthMm, D = d.viewDistanceMm;
+  const double reach = x + D * std::tan(viewAngle(p, 0.6));
+  EXPECT_NEAR(lensQuiltFraction(p, x, 0.6), viewFractionOfAngle(p, std::atan(reach / D)), 1e-12);
+  EXPECT_GT(lensQuiltFraction(p, x, 0.6), 0.6);
+}
+
+// What an eye integrates: a subpixel spans delta = 1 / subpixelsPerLens of the views; the spot's
+// weight is the box delta convolved with the box W delta over W delta, whose integral over the
+// view difference is delta (the box's area) and whose peak is min(1, 1 / W).
+TEST(Lenticular, SpotWeightIsTheSubpixelBoxSeenThroughTheSpot) {
+  const LenticularDesign base = designLenticular(portraitLike());
+  const double delta = subpixelViewWidth(base);
+  EXPECT_NEAR(delta, 1 / base.subpixelsPerLens, 1e-15);
+  for (const double spot : {0.0, 0.5, 1.0, 3.0, 7.5}) {
+    LensOptics o;
+    o.spotWidthSubpixels = spot;
+    const LenticularDesign d = withOptics(base, o);
+    const double half = lensSpotHalfSupport(d);
+    EXPECT_NEAR(half, 0.5 * (1 + spot) * delta, 1e-15);
+    // Numerical integral (midpoint rule) against the analytic area.
+    const int n = 200000;
+    double area = 0, peak = 0;
+    for (int i = 0; i < n; ++i) {
+      const double x = -1.5 * half + 3 * half * (i + 0.5) / n;
+      const double w = lensSpotWeight(d, x);
+      area += w * 3 * half / n;
+      peak = std::max(peak, w);
+      if (std::fabs(x) >= half) {
+        EXPECT_EQ(w, 0.0) << spot << " " << x;
+      }
+    }
+    EXPECT_NEAR(area, delta, 1e-4 * delta) << spot;
+    EXPECT_NEAR(peak, spot > 1 ? 1 / spot : 1.0, 1e-3) << spot;
+    // Subpixels tiling the lens's period (every delta) sum to 1 wherever the eye looks.
+    for (const double eye : {0.0, 0.123, 0.37 * delta}) {
+      double sum = 0;
+      for (int k = -40; k <= 40; ++k) sum += lensSpotWeight(d, k * delta - eye);
+      EXPECT_NEAR(sum, 1.0, 1e-12) << spot << " " << eye;
+    }
+  }
+  // A pixel-wide spot sees each colour channel (every third subpixel) a third of the time.
+  LensOptics pixel;
+  pixel.spotWidthSubpixels = 3;
+  const LenticularDesign d = withOptics(base, pixel);
+  for (const double eye : {0.0, 0.2 * delta, 0.5 * delta, 1.7 * delta}) {
+    double red = 0;
+    for (int k = -12; k <= 12; ++k) red += lensSpotWeight(d, 3 * k * delta - eye);
+    EXPECT_NEAR(red, 1.0 / 3, 1e-12) << eye;
+  }
+  EXPECT_EQ(lensOpticsProblem(pixel), "");
+  pixel.spotWidthSubpixels = -1;
+  EXPECT_NE(lensOpticsProblem(pixel), "");
+  EXPECT_THROW(withOptics(base, pixel), std::invalid_argument);
 }
 
 TEST(Lenticular, SubpixelPointsSitOnTheirPixel) {

@@ -202,6 +202,12 @@ void writeLenticularDesignJson(JsonWriter& json, const std::string& at, const Le
   json.set(at + "/default_quilt",
            std::to_string(c.quilt.columns) + "x" + std::to_string(c.quilt.rows) + " on " +
                std::to_string(c.quilt.width) + "x" + std::to_string(c.quilt.height));
+  json.set(at + "/quilt_views", d.quiltViews);
+  // The optics the pictures were made for (docs/lenticular.md, "The optics").
+  json.set(at + "/optics/bundles", std::string(lensBundlesName(d.optics.bundles)));
+  if (d.optics.bundles == LensBundles::Converging)
+    json.set(at + "/optics/convergence_distance_mm", d.optics.convergenceDistanceMm);
+  json.set(at + "/optics/lens_spot_subpixels", d.optics.spotWidthSubpixels);
 }
 
 }  // namespace parallax

@@ -14,6 +14,7 @@
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/layer_output.h"
 #include "parallax/jobs/limits.h"
+#include "parallax/jobs/simulate_job.h"
 #include "parallax/sim/lenticular_sim.h"
 
 namespace parallax::jobs {
@@ -289,7 +290,9 @@ LenticularDesign simulatedPanel(const LenticularSimulateRequest& r, Reporter& re
                      "is a barrier display, not a lenticular calibration (visual.json, lkg:NAME)");
   DisplayCameraRequest camera;
   camera.viewDistanceMm = r.distance;
-  const LenticularDesign design = *makeDisplay(description, camera)->lenticularDesign();
+  LenticularDesign design = *makeDisplay(description, camera)->lenticularDesign();
+  if (const std::optional<LensOptics> optics = lensReading(design, r.lensSpot, r.bundles))
+    design = withOptics(design, *optics);
   const double w = design.calibration.screenW, h = design.calibration.screenH;
   checkMemoryEstimate(imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
                       r.loaded ? description.source() : r.calibration, "the panel and the view",

@@ -60,6 +60,9 @@ struct LenticularSimulateRequest {
   // view cone at the design distance.
   std::optional<Vec3d> eye;
   double distance = 0;  // the design viewer distance in mm (0: the cone spans 1 m)
+  // The optics to read the panel under (SimulatorRequest's lens_spot and bundles).
+  std::optional<double> lensSpot;
+  std::string bundles;
   std::string output = "out/lenticular-view.png";
 };
 

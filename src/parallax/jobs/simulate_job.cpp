@@ -47,6 +47,14 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
     if (r.colorFilters) refuse("color_filters");
     if (r.raw) refuse("raw");
   }
+  std::optional<LensOptics> optics;
+  if (const LenticularDesign* lenticular = display.lenticularDesign()) {
+    optics = lensReading(*lenticular, r.lensSpot, r.bundles);
+  } else if (r.lensSpot || !r.bundles.empty()) {
+    throw RequestError(r.lensSpot ? "lens_spot" : "bundles",
+                       "applies to lenticular displays (the lenses' optics); a barrier display "
+                       "has no lenses");
+  }
   SimulationOptions sim;
   if (r.size) {
     if ((*r.size)[0] < 1 || (*r.size)[1] < 1)
@@ -64,7 +72,50 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
   sim.colourFilters = r.colorFilters;
   sim.normalise = !r.raw;
   sim.threads = r.threads;
+  sim.lensOptics = optics;
   return sim;
+}
+
+std::vector<std::pair<std::string, LensOptics>> lensReadings(const LenticularDesign& design) {
+  std::vector<std::pair<std::string, LensOptics>> readings;
+  const auto label = [](const LensOptics& o) {
+    return printed("spot %g, %s", o.spotWidthSubpixels, lensBundlesName(o.bundles));
+  };
+  for (const double spot : {0.0, 3.0})
+    for (const LensBundles bundles : {LensBundles::Parallel, LensBundles::Converging}) {
+      LensOptics o = design.optics;
+      o.spotWidthSubpixels = spot, o.bundles = bundles;
+      readings.push_back({label(o), o});
+    }
+  readings.push_back({label(design.optics) + " (the display's)", design.optics});
+  return readings;
+}
+
+std::string lensReadingLine(const DisplayModel& display, const SimulationOptions& options) {
+  const LenticularDesign* lenticular = display.lenticularDesign();
+  if (!lenticular) return "";
+  const LensOptics o =
+      withOptics(*lenticular, options.lensOptics.value_or(lenticular->optics)).optics;
+  return printed("seen through lenses with a %g-subpixel focal spot, bundles ",
+                 o.spotWidthSubpixels) +
+         (o.bundles == LensBundles::Parallel
+              ? std::string("parallel")
+              : printed("converging at %.0f mm", o.convergenceDistanceMm));
+}
+
+std::optional<LensOptics> lensReading(const LenticularDesign& design,
+                                      const std::optional<double>& lensSpot,
+                                      const std::string& bundles) {
+  if (!lensSpot && bundles.empty()) return std::nullopt;
+  LensOptics optics = design.optics;
+  if (lensSpot) {
+    optics.spotWidthSubpixels = *lensSpot;
+    const std::string problem = lensOpticsProblem(optics);
+    if (!problem.empty()) throw RequestError("lens_spot", problem);
+  }
+  if (!bundles.empty() && !parseLensBundles(bundles, optics.bundles))
+    throw RequestError("bundles", "expected parallel or converging", bundles);
+  return optics;
 }
 
 void checkMaskLayer(const DisplayModel& display, bool maskGiven) {

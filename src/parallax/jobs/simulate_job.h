@@ -38,7 +38,28 @@ struct SimulatorRequest {
   bool raw = false;        // raw brightness (not normalised by the aperture ratio)
   bool rawPixels = false;  // the eye's samples as they are (not at the display's resolution)
   int threads = 0;
+  // Lenticular panels: the optics to read the panel under (docs/lenticular.md, "The optics"),
+  // each unset: the display's own. lens_spot: the focal spot in subpixels (0: an ideal lens);
+  // bundles: parallel or converging.
+  std::optional<double> lensSpot;
+  std::string bundles;
 };
+
+// The readings --all-readings scores under: an ideal lens and a pixel-wide spot (0 and 3
+// subpixels), each with parallel and with converging bundles, then the design's own; with a
+// label each ("spot 0, parallel").
+std::vector<std::pair<std::string, LensOptics>> lensReadings(const LenticularDesign& design);
+
+// The reading a lenticular simulator uses, in words ("seen through lenses with a 1-subpixel
+// focal spot, bundles converging at 1374 mm"); "" for other kinds.
+std::string lensReadingLine(const DisplayModel& display, const SimulationOptions& options);
+
+// The lenticular optics that lens_spot and bundles ask for, over the design's own; unset when
+// neither is given. Throws RequestError naming lens_spot (outside 0 to 12 subpixels) or bundles
+// (neither parallel nor converging).
+std::optional<LensOptics> lensReading(const LenticularDesign& design,
+                                      const std::optional<double>& lensSpot,
+                                      const std::string& bundles);
 
 // The simulator's options for `display`. Throws RequestError naming spp (not 0 or a square),
 // pupil, pupil_samples, diffuser (also one wider than the display) or size, and refuses the
@@ -162,6 +183,9 @@ struct SimulateRequest {
   int eyesPerView = 4;                   // the dense measure's eyes inside each view's window
   std::string distances = "0.8,1,1.25";  // its distances in units of D
   std::vector<std::string> compare;      // more render folders scored at the same eyes
+  // The dense measure on a lenticular display: every render under each reading of the optics
+  // (lensReadings), against the same ideal views.
+  bool allReadings = false;
   // The outputs: a picture (several eyes: FILE-K; "": out/simulated.png), or the prefix of a
   // sweep's files ("": out/sweep); a sweep's video; one JSON object instead of the lines.
   std::string output;

@@ -3,6 +3,7 @@
 // eyes as their own column, and other renders of the same scene side by side (compare).
 #include <cstdlib>
 #include <memory>
+#include <optional>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/core/error.h"
@@ -79,11 +80,11 @@ void reportComparison(const SimulateRequest& r, const std::vector<std::string>& 
     }
     return reporter.result(json.dump());
   }
-  reporter.result(printed("%-28s %5s %9s %7s %9s %9s %12s %11s", "render", "eyes", "mean dB",
+  reporter.result(printed("%-48s %5s %9s %7s %9s %9s %12s %11s", "render", "eyes", "mean dB",
                           "SSIM", "worst dB", "flicker", "design eyes", "brightness"));
   for (size_t k = 0; k < results.size(); ++k) {
     const QualitySummary& s = results[k].all;
-    reporter.result(printed("%-28s %5d %9.2f %7.4f %9.2f %9.4f %12.2f %10.2fx", labels[k].c_str(),
+    reporter.result(printed("%-48s %5d %9.2f %7.4f %9.2f %9.4f %12.2f %10.2fx", labels[k].c_str(),
                             s.eyes, s.meanPsnr, s.meanSsim, s.worstPsnr, s.meanFlicker,
                             results[k].designOnly.meanPsnr, brightness[k]));
   }
@@ -143,7 +144,11 @@ void checkDenseMemory(const SimulateInputs& in, const SimulateRequest& r, const 
   for (const LayerImages& f : in.frames)
     frames +=
         imageBytes(f.image.width(), f.image.height()) + imageBytes(f.mask.width(), f.mask.height());
-  const double sets = 1.0 + double(r.compare.size());
+  // Each reading of --all-readings is one more simulator holding its copy of the layers.
+  const double readings = r.allReadings && in.display->lenticularDesign()
+                              ? double(lensReadings(*in.display->lenticularDesign()).size())
+                              : 1.0;
+  const double sets = (1.0 + double(r.compare.size())) * readings;
   const auto [w, h] = seenPictureSize(*in.display, r.simulator);
   checkPeakMemory(acceleratorBytes(scene) + sets * frames +
                       imageBytes(w, h, kFloatRgbPixelBytes, 2.0 + 3.0 * sets + 6.5),
@@ -173,10 +178,19 @@ void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
     labels.push_back(other);
     sets.push_back(loadLayerSet(other, display.hasMaskLayer()));
   }
+  // all_readings: each render under each reading of the lens optics, as more rows.
+  std::vector<std::pair<std::string, std::optional<LensOptics>>> readings{{"", sim.lensOptics}};
+  if (r.allReadings) {
+    readings.clear();
+    for (const auto& [label, optics] : lensReadings(*display.lenticularDesign()))
+      readings.push_back({" [" + label + "]", optics});
+  }
+  std::vector<std::string> rowLabels;
   std::vector<std::unique_ptr<SimulatedDisplay>> simulators;
   std::vector<const SimulatedDisplay*> pointers;
   std::vector<double> normalisers;  // what each simulator divided its views by
-  for (LayerSet& set : sets) {
+  for (size_t k = 0; k < sets.size(); ++k) {
+    LayerSet& set = sets[k];
     SimulationOptions options = sim;
     if (options.normalise) options.normalisation = set.normalisation;
     double maskMean = 0;
@@ -184,11 +198,19 @@ void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
       for (const Vec3f& p : f.mask.pixels()) maskMean += (double(p.x) + p.y + p.z) / 3.0;
     const size_t maskPixels = set.frames.front().mask.pixels().size() * set.frames.size();
     maskMean = maskPixels > 0 ? maskMean / double(maskPixels) : 1.0;
-    normalisers.push_back(!options.normalise          ? 1.0
-                          : options.normalisation > 0 ? options.normalisation
-                                                      : maskMean);
-    simulators.push_back(simulateDisplay(display, std::move(set.frames), options));
-    pointers.push_back(simulators.back().get());
+    for (size_t i = 0; i < readings.size(); ++i) {
+      options.lensOptics = readings[i].second;
+      normalisers.push_back(!options.normalise          ? 1.0
+                            : options.normalisation > 0 ? options.normalisation
+                                                        : maskMean);
+      // The last reading takes the layers, the others a copy.
+      simulators.push_back(simulateDisplay(
+          display,
+          i + 1 < readings.size() ? std::vector<LayerImages>(set.frames) : std::move(set.frames),
+          options));
+      pointers.push_back(simulators.back().get());
+      rowLabels.push_back(labels[k] + readings[i].first);
+    }
   }
   std::vector<DenseEye> eyes = denseEyes(display, r.eyesPerView, distances);
   for (const DenseEye& eye : designEyes(display)) eyes.push_back(eye);
@@ -203,7 +225,7 @@ void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
     const double first = results[0].all.meanLuminance * normalisers[0];
     for (size_t k = 0; k < results.size(); ++k)
       brightness.push_back(first > 0 ? results[k].all.meanLuminance * normalisers[k] / first : 0);
-    return reportComparison(r, labels, results, brightness, reporter);
+    return reportComparison(r, rowLabels, results, brightness, reporter);
   }
   reportMeasure(r, display, results.front(), reporter);
 }

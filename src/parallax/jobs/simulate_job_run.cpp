@@ -247,6 +247,14 @@ void runSimulate(const SimulateRequest& r, Reporter& reporter) {
   const std::vector<Vec3d> eyes = simulatedEyes(display, r.eyes, r.sweep);
   checkSimulationWork(display, in.layers, r.simulator, eyes.size(), r.sweep.count,
                       r.reference ? r.referenceSpp : 0);
+  if (r.allReadings && !(r.reference && r.eyes.empty() && r.sweep.count == 0))
+    throw RequestError("all_readings",
+                       "applies to the dense measure ({reference} without {eye} "
+                       "or {sweep})");
+  if (r.allReadings && !display.lenticularDesign())
+    throw RequestError("all_readings", "applies to lenticular displays (the lenses' optics)");
+  if (const std::string line = lensReadingLine(display, sim); !line.empty() && !r.allReadings)
+    reporter.note(line);
   if (r.reference && r.eyes.empty() && r.sweep.count == 0)
     return runDenseReference(r, in, sim, reporter);
   // reference: the scene is read (and checked) before any picture is written.

@@ -692,6 +692,25 @@ def test_lenticular_simulate_is_the_cli_simulate(cli_quilt, tmp_path):
         seen = parallax.lenticular_simulate(panel, display, eye=eye, distance=distance)
         assert seen.shape == (512, 384, 3)
         assert np.array_equal(parallax.to_srgb8(seen), rgb(read_png(out)))
+    # The lens optics' readings (docs/lenticular.md, "The optics"): the same keywords as the
+    # options, the same pictures, and a reading other than the display's sees another picture.
+    readings = {}
+    for spot, bundles in [(0, "parallel"), (3, "converging")]:
+        out = tmp_path / f"seen-{spot}.png"
+        result = cli("lenticular", "simulate", tmp_path / "set", "--lens-spot", spot,
+                     "--bundles", bundles, "-o", out)
+        assert result.returncode == 0, result.stderr
+        seen = parallax.lenticular_simulate(panel, display, lens_spot=spot, bundles=bundles)
+        assert np.array_equal(parallax.to_srgb8(seen), rgb(read_png(out)))
+        readings[spot] = seen
+        pictures = parallax.simulate(panel, None, display, eye=(0, 0, 1374), lens_spot=spot,
+                                     bundles=bundles)
+        assert pictures.shape == (512, 384, 3)
+    assert not np.array_equal(readings[0], readings[3])
+    with pytest.raises(parallax.Error, match=r"^bundles.*expected parallel or converging"):
+        parallax.lenticular_simulate(panel, display, bundles="sideways")
+    with pytest.raises(parallax.Error, match="^lens_spot: "):
+        parallax.simulate(panel, None, display, eye=(0, 0, 900), lens_spot=20)
 
 
 def test_tool_errors_name_their_keywords(small, cli_quilt, tmp_path):

@@ -122,11 +122,14 @@ void calibrationPatternsFiles(const std::string& output, const std::string& disp
 // `lenticular simulate` in memory: the panel picture seen from the eye through the lenses.
 py::array_t<float> lenticularSimulate(const py::array& image, const DisplayDescription& display,
                                       const std::optional<std::array<double, 3>>& eye,
-                                      double distance) {
+                                      double distance, const std::optional<double>& lensSpot,
+                                      const std::string& bundles) {
   jobs::LenticularSimulateRequest r;
   r.loaded = display;
   if (eye) r.eye = Vec3d{(*eye)[0], (*eye)[1], (*eye)[2]};
   r.distance = distance;
+  r.lensSpot = lensSpot;
+  r.bundles = bundles;
   const Image panel = arrayToImage(image, "image");
   Image view;
   {
@@ -150,7 +153,8 @@ void bindTools(py::module_& module) {
   module.def("_calibration_patterns_files", &calibrationPatternsFiles, py::arg("output"),
              py::arg("display"));
   module.def("_lenticular_simulate", &lenticularSimulate, py::arg("image"), py::arg("display"),
-             py::kw_only(), py::arg("eye") = py::none(), py::arg("distance") = 0.0);
+             py::kw_only(), py::arg("eye") = py::none(), py::arg("distance") = 0.0,
+             py::arg("lens_spot") = py::none(), py::arg("bundles") = "");
 }
 
 }  // namespace parallax::python

@@ -45,35 +45,47 @@ TEST(LenticularRender, EachSubpixelKeepsItsOwnRaysChannel) {
       for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(out.image.at(x, y)[ch], film.at(3 * x + ch, y)[ch]);
 }
 
+// Under every reading of the optics (ideal and pixel-wide spot, parallel and converging
+// bundles), a panel rendered for that reading and seen under it shows an eye what the window
+// shows it, at what an eye resolves (a lens, a colour cycle of rows).
 TEST(LenticularRender, SeenFromInsideTheConeItIsTheWindowView) {
-  const LenticularDesign d = smallDesign();
   const Scene scene = smallScene();
   const Accelerator accel(scene);
-  const Image panel = renderDisplay(scene, accel, *makeLenticularDisplay(d), {}).image;
-  const std::unique_ptr<DisplayModel> window = makeLenticularDisplay(d);
   RenderSettings reference;
   reference.samplesPerPixel = 4;
-  const auto error = [&](const Vec3d& seenFrom, const Vec3d& windowFrom) {
-    const Image seen = simulateLenticularView(d, panel, seenFrom);
-    const WindowCamera camera(windowFrom, *window, scene.display, 180, 120, true);
-    return meanSquaredError(seen, render(scene, accel, camera, reference));
-  };
-  const double D = d.viewDistanceMm, cone = 40 * kPi / 180;
-  const Vec3d centre{0, 0, D}, inside{D * std::tan(0.3 * cone), 0, D};
-  const Vec3d outside{D * std::tan(0.8 * cone), 0, D};  // 12 degrees past the cone's edge
-  const Vec3d repeat{D * std::tan(-0.2 * cone), 0, D};  // where outside's views were meant to go
-  const double centreError = error(centre, centre), insideError = error(inside, inside);
-  const double outsideError = error(outside, outside);
-  EXPECT_LT(centreError, 0.01);
-  EXPECT_LT(insideError, 0.01);
-  EXPECT_GT(outsideError, 3 * centreError);
-  EXPECT_GT(outsideError, 3 * insideError);
-  // Past the cone's edge the eye sees the views meant for the other side.
-  EXPECT_LT(error(outside, repeat), outsideError / 3);
-  // And an eye above the eye line sees the same views (horizontal parallax only).
-  const Image level = simulateLenticularView(d, panel, centre);
-  const Image raised = simulateLenticularView(d, panel, {0, 80, D});
-  EXPECT_EQ(meanSquaredError(level, raised), 0.0);
+  for (const double spot : {0.0, 3.0})
+    for (const LensBundles bundles : {LensBundles::Parallel, LensBundles::Converging}) {
+      LensOptics optics;
+      optics.spotWidthSubpixels = spot, optics.bundles = bundles;
+      const LenticularDesign d = withOptics(smallDesign(), optics);
+      const Image panel = renderDisplay(scene, accel, *makeLenticularDisplay(d), {}).image;
+      const std::unique_ptr<DisplayModel> window = makeLenticularDisplay(d);
+      const auto error = [&](const Vec3d& seenFrom, const Vec3d& windowFrom) {
+        const Image seen = simulateLenticularView(d, panel, seenFrom);
+        const WindowCamera camera(windowFrom, *window, scene.display, 180, 120, true);
+        return meanSquaredError(
+            lenticularAtDisplayResolution(d, seen),
+            lenticularAtDisplayResolution(d, render(scene, accel, camera, reference)));
+      };
+      const double D = d.viewDistanceMm, cone = 40 * kPi / 180;
+      const Vec3d centre{0, 0, D}, inside{D * std::tan(0.3 * cone), 0, D};
+      const Vec3d outside{D * std::tan(0.8 * cone), 0, D};  // 12 degrees past the cone's edge
+      const Vec3d repeat{D * std::tan(-0.2 * cone), 0,
+                         D};  // where outside's views were meant to go
+      const double centreError = error(centre, centre), insideError = error(inside, inside);
+      const double outsideError = error(outside, outside);
+      const std::string reading = std::to_string(spot) + " " + lensBundlesName(bundles);
+      EXPECT_LT(centreError, 0.01) << reading;
+      EXPECT_LT(insideError, 0.01) << reading;
+      EXPECT_GT(outsideError, 3 * centreError) << reading;
+      EXPECT_GT(outsideError, 3 * insideError) << reading;
+      // Past the cone's edge the eye sees the views meant for the other side.
+      EXPECT_LT(error(outside, repeat), outsideError / 3) << reading;
+      // And an eye above the eye line sees the same views (horizontal parallax only).
+      const Image level = simulateLenticularView(d, panel, centre);
+      const Image raised = simulateLenticularView(d, panel, {0, 80, D});
+      EXPECT_EQ(meanSquaredError(level, raised), 0.0) << reading;
+    }
 }
 
 // What viewers see: eyes spread evenly over the cone (not only where a subpixel's ray points)
@@ -102,10 +114,13 @@ TEST(LenticularRender, TheViewFilterShowsEyesAcrossTheConeMoreThanTheCentralRay)
     const double angle = (-0.4 + 0.8 * i / (eyes - 1)) * cone;
     const Vec3d eye{D * std::tan(angle), 0, D};
     const WindowCamera camera(eye, *window, scene.display, 180, 120, true);
-    const Image ideal = render(scene, accel, camera, reference);
-    noneError += meanSquaredError(simulateLenticularView(d, none, eye), ideal) / eyes;
-    viewError += meanSquaredError(simulateLenticularView(d, view, eye), ideal) / eyes;
-    periodError += meanSquaredError(simulateLenticularView(d, period, eye), ideal) / eyes;
+    const Image ideal = lenticularAtDisplayResolution(d, render(scene, accel, camera, reference));
+    const auto error = [&](const Image& panel) {
+      return meanSquaredError(
+                 lenticularAtDisplayResolution(d, simulateLenticularView(d, panel, eye)), ideal) /
+             eyes;
+    };
+    noneError += error(none), viewError += error(view), periodError += error(period);
   }
   std::printf("mean squared error over %d eyes: none %.5f, view %.5f, period %.5f\n", eyes,
               noneError, viewError, periodError);
@@ -141,8 +156,11 @@ TEST(LenticularQuilt, InterlacedQuiltShowsEachEyeItsView) {
     const Vec3d eye = display->eyeAcrossZone(t);
     const WindowCamera camera(eye, *display, scene.display, 180, 120, true);
     const Image ideal = render(scene, accel, camera, reference);
-    const double good = psnr(simulateLenticularView(d, panel, eye), ideal);
-    const double bad = psnr(simulateLenticularView(d, reversed, eye), ideal);
+    const auto seen = [&](const Image& picture) {
+      return lenticularAtDisplayResolution(d, simulateLenticularView(d, picture, eye));
+    };
+    const double good = psnr(seen(panel), lenticularAtDisplayResolution(d, ideal));
+    const double bad = psnr(seen(reversed), lenticularAtDisplayResolution(d, ideal));
     EXPECT_GT(good, 24.0) << "t " << t;
     EXPECT_GT(good, bad + 2.0) << "t " << t;
   }

@@ -277,8 +277,11 @@ Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c) {
-        // View fraction f covers view i over [i / N, (i + 1) / N); its centre is view i.
-        const double position = viewFraction(design, x, y, c) * n - 0.5;
+        // The quilt camera on the design line that the subpixel's light reaches (the optics:
+        // view f's own with bundles converging at D); camera i covers [i / N, (i + 1) / N).
+        const double panelX = subpixelPointMm(design, x + 0.5, y + 0.5, c).x;
+        const double position =
+            lensQuiltFraction(design, panelX, viewFraction(design, x, y, c)) * n - 0.5;
         const int below = std::clamp(int(std::floor(position)), 0, n - 1);
         const int above = std::clamp(below + 1, 0, n - 1);
         const double t = std::clamp(position - std::floor(position), 0.0, 1.0);

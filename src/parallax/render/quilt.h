@@ -107,10 +107,12 @@ void renderQuiltTiles(const Scene& scene, const Accelerator& accelerator,
 enum class ViewResampling { Nearest, Linear };
 
 // Maps a quilt's views onto a lenticular panel as Looking Glass's interlacing shader does: each
-// subpixel's view fraction f (viewFraction) picks the views f N - 1/2 lies between (N the
+// subpixel's view fraction f (viewFraction) picks the views q N - 1/2 lies between (N the
 // quilt's views; beyond the first and last view the nearest), blended linearly, each sampled
-// where the subpixel sits on the screen. Nearest takes the one view whose window holds f,
-// floor(f N) (the shader's unblended mode, "old, studio style"). Returns the panel's picture
+// where the subpixel sits on the screen. q is the cone fraction of the quilt camera on the design
+// line that the subpixel's light reaches (lensQuiltFraction): q = f with the default optics,
+// bundles converging at D where the cameras stand. Nearest takes the one view whose window holds
+// q, floor(q N) (the shader's unblended mode, "old, studio style"). Returns the panel's picture
 // (linear RGB).
 Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views,
                                ViewResampling resampling = ViewResampling::Linear);

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
+#include "parallax/image/metrics.h"
 
 namespace parallax {
 
@@ -16,37 +18,101 @@ double wrapped(double difference) {
   return difference - std::round(difference);
 }
 
-// What channel `ch` of a row shows toward view `eyeView` in the lens around pixel x: the views of
-// the row's channel-ch subpixels, unwrapped along the row from pixel x, are searched for the pair
-// that brackets the eye's view nearest pixel x's own, and the pair's values interpolated linearly
-// in view. Past the panel's edge the last subpixel is held.
-float seenThroughLens(const std::vector<double>& fractions, const Image& panel, int y, int x,
-                      int ch, double eyeView) {
+// One pixel row's subpixels, 3 x + channel: their view fractions and where they sit (x, mm).
+struct Row {
+  const float *fraction, *positionMm;
+  double viewsPerWidth = 0;  // how the view changes across a subpixel: +-delta (invView, flips)
+  double pixelStepMm = 0;    // from one pixel to the next along the row: +-pitch (flipImageX)
+};
+
+// What an eye looking at panel point `centreMm` (x, mm) sees through the lens there, toward view
+// `eyeView`: the subpixels of row `y` under the lens that covers the point, from view 0 to view 1
+// (cut at its edges: a lens period holds a fractional number of subpixels, and every view once),
+// each weighted by the optics for its span of views relative to the eye's (lensSpotWeight),
+// their colours summed channel by channel. A subpixel lights a third of its pixel, so a channel's
+// sum is scaled by 3 over the total weight: a panel of one colour, seen through a pixel-wide spot,
+// looks that colour; through a narrower spot, each colour where its subpixels are seen. Near the
+// panel's edge, where the lens is cut, the nearest view holds.
+Vec3f seenThroughLens(const LenticularDesign& d, const Row& row, const Image& panel, int y, int x,
+                      double centreMm, double eyeView) {
   const int w = panel.width();
-  const auto view = [&](int k) { return fractions[size_t(3 * k + ch)]; };
-  const double target = wrapped(eyeView - view(x));  // relative to pixel x's view
-  if (target == 0) return panel.at(x, y)[ch];
-  // Walk toward the target: the side whose neighbour's view moves the same way.
-  const int probe = x + 1 < w ? x + 1 : x - 1;
-  const bool sameWay = (wrapped(view(probe) - view(x)) > 0) == (target > 0);
-  const int dir = (probe > x) == sameWay ? 1 : -1;
-  double here = 0;
-  for (int k = x; k + dir >= 0 && k + dir < w; k += dir) {
-    const double next = here + wrapped(view(k + dir) - view(k));
-    if ((next - target) * (here - target) <= 0) {
-      const double a = (target - here) / (next - here);
-      return float((1 - a) * panel.at(k, y)[ch] + a * panel.at(k + dir, y)[ch]);
-    }
-    if (std::fabs(next) > 1) break;  // a whole lens searched (only with degenerate steps)
-    here = next;
+  const double lens = d.horizontalLensPitchMm, width = d.pixelPitchMm / 3;
+  const double delta = subpixelViewWidth(d), support = lensSpotHalfSupport(d);
+  // The point's own view (from its pixel's green subpixel, views running along the row), and
+  // so the lens around it: from where the view is 0 to where it is 1.
+  const size_t green = size_t(3 * x + 1);
+  double own = row.fraction[green] + row.viewsPerWidth * (centreMm - row.positionMm[green]) / width;
+  own -= std::floor(own);
+  const double lowest = (row.viewsPerWidth > 0 ? -own : own - 1) * lens, highest = lowest + lens;
+  // Only the subpixels whose views the spot reaches: around where under this lens the view is
+  // the eye's (and one lens over, should the spot reach across the lens's edge).
+  const double target = eyeView - std::floor(eyeView);
+  const double at = (row.viewsPerWidth > 0 ? 1.0 : -1.0) * (target - own) * lens;  // from the point
+  const double span = (support + delta) * lens + d.pixelPitchMm;
+  double first = highest, last = lowest;  // the stretch of the lens to search, mm from the point
+  for (const double centre : {at - lens, at, at + lens}) {
+    first = std::min(first, std::max(lowest, centre - span));
+    last = std::max(last, std::min(highest, centre + span));
   }
-  const int edge = dir > 0 ? w - 1 : 0;
-  return panel.at(edge, y)[ch];
+  double acc[3] = {0, 0, 0}, total = 0, nearest = 2;
+  int nearestK = -1;
+  if (first > last) return {};
+  const double k0 = x + first / row.pixelStepMm, k1 = x + last / row.pixelStepMm;
+  const int from = std::max(0, int(std::floor(std::min(k0, k1))) - 1);
+  const int to = std::min(w - 1, int(std::ceil(std::max(k0, k1))) + 1);
+  for (int k = from; k <= to; ++k)
+    for (int ch = 0; ch < 3; ++ch) {
+      const size_t i = size_t(3 * k + ch);
+      const double offset = row.positionMm[i] - centreMm;
+      // The part of the subpixel under this lens, [a, b] in subpixel widths from its centre.
+      const double a = std::max(-0.5, (lowest - offset) / width);
+      const double b = std::min(0.5, (highest - offset) / width);
+      if (!(a < b)) continue;
+      const double difference = wrapped(row.fraction[i] - eyeView);
+      if (std::fabs(difference) < nearest) nearest = std::fabs(difference), nearestK = int(i);
+      if (std::fabs(difference) > support + 0.5 * delta) continue;
+      // Where a subpixel sits under the lens is where its light goes: its views run along it.
+      const double low = difference + row.viewsPerWidth * (row.viewsPerWidth > 0 ? a : b);
+      const double high = difference + row.viewsPerWidth * (row.viewsPerWidth > 0 ? b : a);
+      const double weight = lensSpotWeight(d, low, high);
+      acc[ch] += weight * panel.at(k, y)[ch];
+      total += weight;
+    }
+  Vec3f seen;
+  if (total > 0) {
+    for (int ch = 0; ch < 3; ++ch) seen[ch] = float(3.0 * acc[ch] / total);
+  } else if (nearestK >= 0) {
+    seen[nearestK % 3] = 3.0f * panel.at(nearestK / 3, y)[nearestK % 3];
+  }
+  return seen;
 }
 
 }  // namespace
 
-Image simulateLenticularView(const LenticularDesign& d, const Image& panel, const Vec3d& eyeMm) {
+LenticularSubpixels lenticularSubpixels(const LenticularDesign& d) {
+  const int w = d.calibration.screenW, h = d.calibration.screenH;
+  LenticularSubpixels t;
+  t.fraction.resize(size_t(3 * w) * size_t(h));
+  t.positionMm.resize(t.fraction.size());
+  // The sign from two neighbouring subpixels of one pixel: their views step by +-delta.
+  const double step = wrapped(viewFraction(d, 0, 0, 1) - viewFraction(d, 0, 0, 0));
+  const double apart = subpixelPointMm(d, 0.5, 0.5, 1).x - subpixelPointMm(d, 0.5, 0.5, 0).x;
+  t.viewsPerWidth = (step * apart >= 0 ? 1.0 : -1.0) * subpixelViewWidth(d);
+  t.pixelStepMm = subpixelPointMm(d, 1.5, 0.5, 1).x - subpixelPointMm(d, 0.5, 0.5, 1).x;
+  parallelFor(h, 0, 16, [&](int64_t begin, int64_t end) {
+    for (int y = int(begin); y < int(end); ++y)
+      for (int x = 0; x < w; ++x)
+        for (int ch = 0; ch < 3; ++ch) {
+          const size_t i = size_t(3 * w) * size_t(y) + size_t(3 * x + ch);
+          t.fraction[i] = float(viewFraction(d, x, y, ch));
+          t.positionMm[i] = float(subpixelPointMm(d, x + 0.5, y + 0.5, ch).x);
+        }
+  });
+  return t;
+}
+
+Image simulateLenticularView(const LenticularDesign& d, const Image& panel, const Vec3d& eyeMm,
+                             const LenticularSubpixels* subpixels) {
   const LenticularCalibration& c = d.calibration;
   const int w = c.screenW, h = c.screenH;
   if (panel.width() != w || panel.height() != h)
@@ -56,22 +122,36 @@ Image simulateLenticularView(const LenticularDesign& d, const Image& panel, cons
                          std::to_string(w) + "x" + std::to_string(h));
   if (!(eyeMm.z > 0)) throw std::invalid_argument("the eye must be in front of the panel (z > 0)");
 
+  const LenticularSubpixels own = subpixels ? LenticularSubpixels{} : lenticularSubpixels(d);
+  const LenticularSubpixels& table = subpixels ? *subpixels : own;
   Image view(w, h);
-  std::vector<double> fractions(size_t(3 * w));
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x)
-      for (int ch = 0; ch < 3; ++ch) fractions[size_t(3 * x + ch)] = viewFraction(d, x, y, ch);
-    for (int x = 0; x < w; ++x) {
-      const Vec3d p = subpixelPointMm(d, x + 0.5, y + 0.5, 1);
-      const double eyeView = viewFractionOfAngle(d, std::atan2(eyeMm.x - p.x, eyeMm.z));
-      Vec3f seen;
-      for (int ch = 0; ch < 3; ++ch)
-        seen[ch] = seenThroughLens(fractions, panel, y, x, ch, eyeView);
-      // Into the viewer's frame: mirrored panels show column 0 on the right or row 0 at the bottom.
-      view.at(c.flipImageX ? w - 1 - x : x, c.flipImageY ? h - 1 - y : y) = seen;
+  // Rows in parallel: each is computed the same way whichever worker runs it.
+  parallelFor(h, 0, 16, [&](int64_t begin, int64_t end) {
+    for (int y = int(begin); y < int(end); ++y) {
+      const Row row{table.fraction.data() + size_t(3 * w) * size_t(y),
+                    table.positionMm.data() + size_t(3 * w) * size_t(y), table.viewsPerWidth,
+                    table.pixelStepMm};
+      for (int x = 0; x < w; ++x) {
+        // The pixel's centre (its subpixels' mean): the point of the panel the eye looks at.
+        const double centreMm =
+            (double(row.positionMm[size_t(3 * x)]) + row.positionMm[size_t(3 * x + 1)] +
+             row.positionMm[size_t(3 * x + 2)]) /
+            3.0;
+        const double eyeView = lensFractionSeen(d, centreMm, eyeMm);
+        const Vec3f seen = seenThroughLens(d, row, panel, y, x, centreMm, eyeView);
+        // Into the viewer's frame: mirrored panels show column 0 on the right or row 0 at the
+        // bottom.
+        view.at(c.flipImageX ? w - 1 - x : x, c.flipImageY ? h - 1 - y : y) = seen;
+      }
     }
-  }
+  });
   return view;
+}
+
+Image lenticularAtDisplayResolution(const LenticularDesign& d, const Image& image) {
+  const double lensPx = d.horizontalLensPitchMm / (d.widthMm / image.width());
+  const double rows = std::fabs(d.calibration.slope) * image.height() / d.calibration.screenH;
+  return boxFilterY(boxFilterX(image, lensPx), std::max(1.0, rows));
 }
 
 }  // namespace parallax

@@ -27,19 +27,19 @@ class SimulatedBarrier final : public SimulatedDisplay {
 class SimulatedLenticular final : public SimulatedDisplay {
  public:
   SimulatedLenticular(const LenticularDesign& design, Image panel)
-      : design_(design), panel_(std::move(panel)) {}
+      : design_(design), panel_(std::move(panel)), subpixels_(lenticularSubpixels(design_)) {}
   Image view(const Vec3d& eyeMm) const override {
-    return simulateLenticularView(design_, panel_, eyeMm);
+    return simulateLenticularView(design_, panel_, eyeMm, &subpixels_);
   }
-  // One lens along a pixel row: the panel's horizontal sampling of a view.
+  // One lens along a pixel row, one colour cycle of the slanted lenses along a column.
   Image atDisplayResolution(const Image& image) const override {
-    const double lensPx = design_.horizontalLensPitchMm / (design_.widthMm / image.width());
-    return boxFilterX(image, lensPx);
+    return lenticularAtDisplayResolution(design_, image);
   }
 
  private:
   LenticularDesign design_;
   Image panel_;
+  LenticularSubpixels subpixels_;  // made once: the same for every eye
 };
 
 // Frames seen in turn: the average of their views.
@@ -85,7 +85,9 @@ std::unique_ptr<SimulatedDisplay> simulateDisplay(const DisplayModel& display, L
   if (!lenticular) throw std::invalid_argument("simulateDisplay: an unknown display kind");
   if (!layers.mask.empty())
     throw InputError(display.source(), "", "a lenticular display has no mask layer");
-  return std::make_unique<SimulatedLenticular>(*lenticular, std::move(layers.image));
+  return std::make_unique<SimulatedLenticular>(
+      options.lensOptics ? withOptics(*lenticular, *options.lensOptics) : *lenticular,
+      std::move(layers.image));
 }
 
 Image atDisplayResolution(const DisplayDesign& d, const Image& image) {

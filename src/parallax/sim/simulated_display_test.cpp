@@ -48,9 +48,18 @@ TEST(SimulatedDisplay, TheLenticularSeesThroughItsLensesAtOneLensAcross) {
   const Vec3d eye{-120, 10, d.viewDistanceMm};
   const Image a = seen->view(eye), b = simulateLenticularView(d, panel, eye);
   for (size_t i = 0; i < a.pixels().size(); ++i) ASSERT_EQ(a.pixels()[i], b.pixels()[i]);
-  // One lens along a row: pixelsPerLens panel pixels at the panel's resolution.
-  const Image ra = seen->atDisplayResolution(a), rb = boxFilterX(b, d.pixelsPerLens);
+  // One lens along a row (pixelsPerLens panel pixels at the panel's resolution), and along a
+  // column the |slope| rows over which the lenses cycle the three colours.
+  const Image ra = seen->atDisplayResolution(a), rb = boxFilterY(boxFilterX(b, d.pixelsPerLens), 6);
   for (size_t i = 0; i < ra.pixels().size(); ++i) ASSERT_EQ(ra.pixels()[i], rb.pixels()[i]);
+  // Other optics read the same panel differently (the simulator's readings).
+  SimulationOptions ideal;
+  ideal.lensOptics = LensOptics{LensBundles::Parallel, 0, 0.0};
+  const Image c = simulateDisplay(*display, {panel, Image()}, ideal)->view(eye);
+  LensOptics parallelIdeal = ideal.lensOptics.value();
+  const Image expected = simulateLenticularView(withOptics(d, parallelIdeal), panel, eye);
+  for (size_t i = 0; i < c.pixels().size(); ++i) ASSERT_EQ(c.pixels()[i], expected.pixels()[i]);
+  EXPECT_GT(meanSquaredError(a, c), 1e-4);
   // A mask layer has no place on a lenticular: refused, naming the display.
   try {
     simulateDisplay(*display, {panel, Image(180, 120)});

@@ -9,11 +9,13 @@
 // transmittance is 0. Frame and layer order as in docs/display-geometry.md.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "parallax/display/barrier_rays.h"
 #include "parallax/display/display.h"
 #include "parallax/display/display_model.h"  // maskLayerImage
+#include "parallax/display/lenticular.h"
 #include "parallax/image/image.h"
 
 namespace parallax {
@@ -49,6 +51,9 @@ struct SimulationOptions {
   double normalisation = 0.0;
   Vec3f backlight{1.0f};
   int threads = 0;  // 0 = hardware concurrency; the result does not depend on it
+  // Lenticular panels: read the panel under these optics instead of its design's (the readings
+  // of docs/lenticular.md, "The optics"); unset: the design's own.
+  std::optional<LensOptics> lensOptics;
 };
 
 // Layer contents as linear transmittance in [0, 1], at the layers' native resolutions.

@@ -183,7 +183,9 @@ def simulate(image: np.ndarray, mask: Optional[np.ndarray] = None,
     """`parallax simulate --eye X,Y,Z`: what one eye (or each of `eyes`) sees, float32 linear.
 
     One eye gives an (H, W, 3) array, `eyes` an (N, H, W, 3) stack. Options: size, spp,
-    pupil, pupil_samples, diffuser, color_filters, raw, raw_pixels, threads.
+    pupil, pupil_samples, diffuser, color_filters, raw, raw_pixels, threads; on a lenticular
+    panel lens_spot (the focal spot in subpixels, 0: an ideal lens) and bundles ("parallel" or
+    "converging"), the optics it is read under (default: the display's).
     """
     if (eye is None) == (eyes is None):
         raise ValueError("simulate: give either eye=(x, y, z) or eyes=[...]")
@@ -288,10 +290,13 @@ def calibration_patterns_files(output: str = "calibration", display: Optional[st
 
 def lenticular_simulate(image: np.ndarray, display: Display, *,
                         eye: Optional[Sequence[float]] = None,
-                        distance: float = 0.0) -> np.ndarray:
-    """`parallax lenticular simulate --image FILE CALIBRATION [--eye X,Y,Z] [--distance MM]`:
-    the panel picture seen from the eye through the lenses (default eye: the centre of the view
-    cone at the design distance), float32 linear."""
+                        distance: float = 0.0, lens_spot: Optional[float] = None,
+                        bundles: str = "") -> np.ndarray:
+    """`parallax lenticular simulate --image FILE CALIBRATION [--eye X,Y,Z] [--distance MM]
+    [--lens-spot W] [--bundles parallel|converging]`: the panel picture seen from the eye through
+    the lenses (default eye: the centre of the view cone at the design distance; default optics:
+    the display's), float32 linear."""
     return _parallax._lenticular_simulate(image, display,
                                           eye=None if eye is None else tuple(eye),
-                                          distance=distance)
+                                          distance=distance, lens_spot=lens_spot,
+                                          bundles=bundles)
