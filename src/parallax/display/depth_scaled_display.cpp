@@ -1,11 +1,17 @@
 #include "parallax/display/depth_scaled_display.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace parallax {
 
-double lensDepthOfFieldMm(const LenticularDesign& design, double lenses, double windowSubpixels) {
+double lensWindowSubpixels(const LensOptics& optics) {
+  return std::max(1.0, optics.spotWidthSubpixels);
+}
+
+double lensDepthOfFieldMm(const LenticularDesign& design, double lenses) {
+  const double windowSubpixels = lensWindowSubpixels(design.optics);
   const double halfCone = 0.5 * design.calibration.viewConeDegrees * 3.14159265358979323846 / 180;
   return lenses * design.horizontalLensPitchMm * design.subpixelsPerLens /
          (windowSubpixels * 2 * std::tan(halfCone));

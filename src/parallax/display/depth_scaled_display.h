@@ -14,21 +14,21 @@ namespace parallax {
 // footprint equals the spatial sample, docs/lenticular.md "Depth of field").
 inline constexpr double kSharpLenses = 1.0;
 
-// The lens's angular window, in subpixels along a row: what one eye sees through a lens of a
-// panel whose subpixels are a third of a pixel wide. An ideal lens focuses the eye's direction to
-// a line along the lens axis; the subpixels that line crosses are those whose phase lies within
-// half a subpixel of it, so the eye sees one subpixel's width of view fraction.
-inline constexpr double kLensWindowSubpixels = 1.0;
+// The lens's angular window, in subpixels along a row: the width at half height of what one eye
+// integrates through a lens (lensSpotWeight: a subpixel's box convolved with the focal spot's box
+// of W subpixels, a trapezoid max(1, W) subpixels wide at half height). An ideal lens (W = 0) or
+// the default spot of one subpixel shows the eye one subpixel's width of view fraction.
+double lensWindowSubpixels(const LensOptics& optics);
 
 // The depth (mm either side of the panel) at which a point's image, seen through the lens's
-// angular window of `windowSubpixels` subpixels, spreads over `lenses` horizontal lens pitches:
-//   |z| = lenses * p_h * S / (windowSubpixels * 2 tan(viewCone / 2))
+// angular window of w = lensWindowSubpixels(design.optics) subpixels, spreads over `lenses`
+// horizontal lens pitches:
+//   |z| = lenses * p_h * S / (w * 2 tan(viewCone / 2))
 // with p_h the lens pitch along a row and S the subpixels per lens: the lens maps a panel
 // offset u under it to the direction tan(theta) = u / F with p_h / F = 2 tan(viewCone / 2), so
 // a window of w subpixels spans w (p_h / S) / F in tan(theta), which spreads over |z| times that
 // at depth z.
-double lensDepthOfFieldMm(const LenticularDesign& design, double lenses = kSharpLenses,
-                          double windowSubpixels = kLensWindowSubpixels);
+double lensDepthOfFieldMm(const LenticularDesign& design, double lenses = kSharpLenses);
 
 // The display with its camera's rays turned toward the panel's normal by `depthScale` k in
 // (0, 1]: each ray keeps its panel point and its vertical slope, and its horizontal slope is

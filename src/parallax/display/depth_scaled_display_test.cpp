@@ -33,8 +33,14 @@ TEST(LensDepthOfField, PortraitMatchesAHandComputation) {
   EXPECT_NEAR(byHand, 12.799, 0.001);
   const LenticularDesign portrait = preset("portrait");
   EXPECT_NEAR(lensDepthOfFieldMm(portrait), byHand, 1e-9);
-  // N lenses, a wider window: linear in N, inverse in the window.
-  EXPECT_NEAR(lensDepthOfFieldMm(portrait, 3, 2), 1.5 * byHand, 1e-9);
+  // N lenses, a wider window: linear in N, inverse in the window, which is the lens optics'
+  // spot where that is wider than a subpixel (the ideal lens's window is one subpixel too).
+  LensOptics wideSpot = portrait.optics;
+  wideSpot.spotWidthSubpixels = 2;
+  EXPECT_NEAR(lensDepthOfFieldMm(withOptics(portrait, wideSpot), 3), 1.5 * byHand, 1e-9);
+  LensOptics ideal = portrait.optics;
+  ideal.spotWidthSubpixels = 0;
+  EXPECT_NEAR(lensDepthOfFieldMm(withOptics(portrait, ideal)), byHand, 1e-9);
   // The 16" Gen3: 44.72 lenses per inch, slope -6.9, 283 DPI, 50 degrees.
   const double ph16 = 25.4 / 44.72 / std::cos(std::atan(1 / 6.9));
   const double s16 = 3 * ph16 * 283 / 25.4;
@@ -45,8 +51,10 @@ TEST(LensDepthOfField, PortraitMatchesAHandComputation) {
 // Brute force: every subpixel of a band of columns on every row of the panel, with the ray the
 // direct route traces for it (lenticularRay at its centre, its own view). An ideal lens shows an
 // eye the subpixels whose view lies within half a subpixel's worth of view (1 / (2 S)) of the
-// eye's own at that place; of those, the ones whose ray passes through a small point P at depth
-// z show P. The panel positions that show P are P's image; its width, in lenses along a row.
+// view whose light from that place reaches the eye under the display's optics (lensFractionSeen:
+// bundles converging at D by default); of those, the ones whose ray passes through a small point P
+// at depth z show P. The panel positions that show P are P's image; its width, in lenses along a
+// row.
 double imageWidthInLenses(const LenticularDesign& d, double z, const Vec3d& eye) {
   const double halfWindow = 0.5 / d.subpixelsPerLens;
   // P on the line from the eye through the panel's centre.
@@ -58,7 +66,7 @@ double imageWidthInLenses(const LenticularDesign& d, double z, const Vec3d& eye)
       for (int c = 0; c < 3; ++c) {
         const LenticularRay r = lenticularRay(d, x + 0.5, y + 0.5, c);
         const Vec3d p = r.panelPoint;
-        const double eyeView = viewFractionOfAngle(d, std::atan((eye.x - p.x) / eye.z));
+        const double eyeView = lensFractionSeen(d, p.x, eye);
         double off = r.viewFraction - eyeView;
         off -= std::round(off);
         if (std::abs(off) > halfWindow) continue;
@@ -67,7 +75,9 @@ double imageWidthInLenses(const LenticularDesign& d, double z, const Vec3d& eye)
         if (std::abs(hit - pointX) > tolerance) continue;
         lo = std::min(lo, p.x), hi = std::max(hi, p.x);
       }
-  return (hi - lo) / d.horizontalLensPitchMm;
+  // Each showing subpixel covers its own width (a lens pitch over S) of the image, so the image
+  // spans from the first one's left edge to the last one's right edge.
+  return (hi - lo) / d.horizontalLensPitchMm + 1.0 / d.subpixelsPerLens;
 }
 
 TEST(LensDepthOfField, APointAtTheLimitSpreadsOverOneLens) {

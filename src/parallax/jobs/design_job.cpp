@@ -77,7 +77,7 @@ std::string lenticularText(const LenticularDesign& d) {
   text += printed(
       "depth of field       +-%.4g mm around the panel (a point spreads over %g lens "
       "through a %g-subpixel window)\n",
-      lensDepthOfFieldMm(d), kSharpLenses, kLensWindowSubpixels);
+      lensDepthOfFieldMm(d), kSharpLenses, lensWindowSubpixels(d.optics));
   return text;
 }
 
