@@ -293,7 +293,13 @@ def test_estimate_memory_is_the_clis_estimate(scene, small, tmp_path):
     small_view = parallax.estimate_memory(parallax.view, size=(1000, 1000), spp=1)
     assert isinstance(small_view, int) and abs(small_view - cli_bytes) < 300 * 2**20
     big_view = parallax.estimate_memory(parallax.view, size=(2000, 2000), spp=1)
-    assert 3e6 * 12 < big_view - small_view < 3e6 * 30  # float film and its array, per pixel
+    # Float film and its array, per pixel; the estimate is the process's peak so far where that is
+    # larger (under ASan the peak hides a 1000x1000 view's work): the lower bound only when the
+    # smaller view's work shows above a 1x1 view's.
+    tiny_view = parallax.estimate_memory(parallax.view, size=(1, 1), spp=1)
+    assert tiny_view <= small_view <= big_view < small_view + 3e6 * 30
+    if small_view - tiny_view > 1e6 * 12:
+        assert big_view - small_view > 3e6 * 12
     assert parallax.estimate_memory(parallax.render, scene, small, spp=1) > 0
     with pytest.raises(parallax.Error, match="makes no memory estimate"):
         parallax.estimate_memory(parallax.design, small)
