@@ -9,9 +9,21 @@ source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
 files="$src/fuzz/regressions/fuzz_assimp"
 # The Collada file grows without bound: a 1 GiB budget keeps the test small and quick.
 limit=(--max-memory 1)
-for case in "crash-2c65eb78.fbx|the FBX importer (assimp) crashed reading it (" \
-            "crash-cb1d3a87.x|the X importer (assimp) crashed reading it (signal 11, SIGSEGV)" \
-            "timeout-25565c.dae|the DAE importer (assimp) ran out of its memory budget reading it (1 GiB, --max-memory)"; do
+# Debian 12's assimp (5.2) frees twice reading the FBX; 5.4 (Debian 13's 5.4.3) reads it, and
+# then it is an ordinary model (`parallax --version` names the assimp it runs).
+assimp=$("$bin" --version | sed -n 's/.*assimp \([0-9]*\)\.\([0-9]*\)\..*/\1 \2/p')
+check "--version names assimp" test -n "$assimp"
+read -r major minor <<<"$assimp"
+cases=()
+if [ "${major:-0}" -lt 5 ] || { [ "${major:-0}" -eq 5 ] && [ "${minor:-0}" -lt 4 ]; }; then
+  cases+=("crash-2c65eb78.fbx|the FBX importer (assimp) crashed reading it (")
+else
+  check "info crash-2c65eb78.fbx (assimp $major.$minor reads it): exit 0" run 0 info \
+    "$files/crash-2c65eb78.fbx"
+fi
+cases+=("crash-cb1d3a87.x|the X importer (assimp) crashed reading it (signal 11, SIGSEGV)"
+        "timeout-25565c.dae|the DAE importer (assimp) ran out of its memory budget reading it (1 GiB, --max-memory)")
+for case in "${cases[@]}"; do
   file=${case%%|*}
   message=${case#*|}
   check "info $file: exit 2" run 2 "${limit[@]}" info "$files/$file"

@@ -373,7 +373,7 @@ void sanitizerDied() {
 
   // Limits. Soft CPU limit: SIGXCPU; the hard one a second later: SIGKILL.
   const auto set = [](int resource, rlim_t soft, rlim_t hard) {
-    const struct rlimit limit { soft, hard };
+    const rlimit limit = {soft, hard};
     return setrlimit(resource, &limit) == 0;
   };
   const rlim_t budget = rlim_t(limits.memoryBytes);
@@ -478,7 +478,7 @@ class Child {
   bool reaped_ = false;
   bool known_ = false;
   int status_ = 0;
-  struct rusage usage_ {};
+  rusage usage_ = {};
 };
 
 // The first `size - 1` bytes of /proc/PID/NAME, NUL-terminated in `text`; false if unreadable.
@@ -664,9 +664,7 @@ FileContents readIsolated(const std::string& path, const std::string& importer,
     }
     const int waitMs = int(std::min(100.0, 1000 * std::max(wallSeconds - elapsed, 0.0) + 1));
     if (pidfd.fd >= 0) {
-      struct pollfd p {
-        pidfd.fd, POLLIN, 0
-      };
+      pollfd p = {pidfd.fd, POLLIN, 0};
       ::poll(&p, 1, waitMs);  // EINTR: the loop checks again
     } else {
       usleep(useconds_t(1000 * std::min(sleepMs, waitMs)));

@@ -56,8 +56,22 @@ class Isolated : public ::testing::Test {
 
 // ---- the crafted files of issue 28 (../shared/reliability) ---------------------------------
 
+// Debian 12's assimp (5.2) frees twice reading this FBX; 5.4 (Debian 13's 5.4.3) reads it.
+// Where it crashes, the crash is the child's; where it reads, it is an ordinary model.
+bool fbxDoubleFreeCrashesThisAssimp() {
+  const LibraryVersion v = assimpVersion();
+  return v.major < 5 || (v.major == 5 && v.minor < 4);
+}
+
 TEST_F(Isolated, DoubleFreeInTheFbxImporterIsACrashOfTheChild) {
-  const std::string what = refusal(regression("crash-2c65eb78.fbx"));
+  const std::string path = regression("crash-2c65eb78.fbx");
+  if (!fbxDoubleFreeCrashesThisAssimp()) {
+    size_t triangles = 0;
+    for (const auto& part : meshio::readAssimp(path).parts) triangles += part.indices.size() / 3;
+    EXPECT_GT(triangles, 0u);
+    return;
+  }
+  const std::string what = refusal(path);
   EXPECT_CONTAINS(what, "crash-2c65eb78.fbx: the FBX importer (assimp) crashed reading it (");
   EXPECT_CONTAINS(what, "the file is damaged or not supported");
 }
@@ -81,7 +95,8 @@ TEST_F(Isolated, ColladaGrowingWithoutBoundRunsOutOfItsBudget) {
 
 TEST_F(Isolated, CraftedFilesThroughLoadMeshFileLeaveTheSceneUnchanged) {
   for (const char* name : {"crash-2c65eb78.fbx", "crash-cb1d3a87.x", "timeout-25565c.dae"})
-    expectInputError(regression(name), "(assimp)");
+    if (std::string(name) != "crash-2c65eb78.fbx" || fbxDoubleFreeCrashesThisAssimp())
+      expectInputError(regression(name), "(assimp)");
 }
 
 // ---- each kind of failure, made on purpose ---------------------------------------------------
@@ -198,8 +213,8 @@ TEST_F(Isolated, TheChildKeepsNoDescriptorOfTheParentAndHasItsLimits) {
 // A SIGCHLD handler that reaps every child (or SIGCHLD ignored, where the kernel reaps them)
 // takes the child's status from us: the answer still decides, and the wait ends.
 TEST_F(Isolated, ChildrenReapedElsewhereStillGiveTheirAnswer) {
-  struct sigaction reaper {
-  }, previous{};
+  struct sigaction reaper = {};
+  struct sigaction previous = {};
   reaper.sa_handler = [](int) {
     const int saved = errno;
     while (waitpid(-1, nullptr, WNOHANG) > 0) {

@@ -6,6 +6,7 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/version.h>
 #include <assimp/Importer.hpp>
 
 #include <algorithm>
@@ -269,3 +270,11 @@ FileContents readAssimpInProcess(const std::string& path) {
 }
 
 }  // namespace parallax::meshio
+
+namespace parallax {
+
+LibraryVersion assimpVersion() {
+  return {int(aiGetVersionMajor()), int(aiGetVersionMinor()), int(aiGetVersionPatch())};
+}
+
+}  // namespace parallax

@@ -62,6 +62,13 @@ void setImporterLimits(const ImporterLimits& limits);
 // With the defaults filled in.
 ImporterLimits importerLimits();
 
+// The assimp library this build runs, as {major, minor, patch} (`parallax --version` names
+// it): which files crash it is a property of its release (tests read it).
+struct LibraryVersion {
+  int major = 0, minor = 0, patch = 0;
+};
+LibraryVersion assimpVersion();
+
 // Appends the file's triangles to `scene` as world-space meshes (one per material), and its
 // materials, textures and images, and one Scene::ImportRecord saying what was done. Degenerate
 // triangles are dropped with one warning per file in scene.warnings that counts them. A glTF

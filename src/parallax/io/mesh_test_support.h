@@ -232,7 +232,7 @@ inline std::string hierarchyGltf(size_t indexCount = 6, uint16_t lastIndex = 1) 
   return json.str();
 }
 
-// Real models, fetched by tools/fetch-data. The expected figures come from assimp 5.2.5
+// Real models, fetched by tools/fetch-data. The expected figures come from assimp 5.2
 // (Debian package assimp-utils), an independent importer, run in the data folder:
 //
 //   assimp info FILE -ptv            PreTransformVertices only: every mesh instanced once per

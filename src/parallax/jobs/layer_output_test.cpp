@@ -142,7 +142,7 @@ TEST_F(OutputSetTest, TheFolderKeepsItsModeOwnerGroupAndAcl) {
   const bool acls =
       ::setxattr(dir.c_str(), "system.posix_acl_access", acl.data(), acl.size(), 0) == 0 &&
       ::setxattr(dir.c_str(), "system.posix_acl_default", acl.data(), acl.size(), 0) == 0;
-  struct stat before {};
+  struct stat before = {};
   ASSERT_EQ(::stat(dir.c_str(), &before), 0);
   const auto aclOf = [&](const char* name) {
     std::string bytes(256, '\0');
@@ -155,7 +155,7 @@ TEST_F(OutputSetTest, TheFolderKeepsItsModeOwnerGroupAndAcl) {
   writeSet(dir, {"image.png", "render.json"}, "first");
   writeSet(dir, {"image.png", "render.json"}, "second");
 
-  struct stat after {};
+  struct stat after = {};
   ASSERT_EQ(::stat(dir.c_str(), &after), 0);
   EXPECT_EQ(after.st_ino, before.st_ino) << "the folder itself was replaced";
   EXPECT_EQ(after.st_mode & 07777, 02775u);
@@ -166,7 +166,7 @@ TEST_F(OutputSetTest, TheFolderKeepsItsModeOwnerGroupAndAcl) {
     EXPECT_EQ(aclOf("system.posix_acl_default"), acl);
   }
   // The new files were made in the folder (setgid): they have its group, and its default ACL.
-  struct stat file {};
+  struct stat file = {};
   ASSERT_EQ(::stat(at("shared/image.png").c_str(), &file), 0);
   EXPECT_EQ(file.st_gid, before.st_gid);
   if (acls) {
@@ -306,7 +306,10 @@ TEST_F(OutputSetTest, AKilledCommitIsRolledForward) {
   for (const std::string& name : entries(dir)) temporaries += name.rfind(".parallax-tmp-", 0) == 0;
   EXPECT_EQ(temporaries, 1);
 
-  { OutputSet next(dir); }  // recovers; then dropped without a commit
+  {
+    // Recovers; then dropped without a commit.
+    OutputSet next(dir);
+  }
   EXPECT_EQ(readText(at("killed/mask.png")), "mask.png of new");
   EXPECT_EQ(readText(at("killed/render.json")), "render.json of new");
   EXPECT_EQ(entries(dir),
@@ -326,7 +329,10 @@ TEST_F(OutputSetTest, AKilledRunBeforeItsCommitLeavesTheOldSet) {
                 false),
             9);
   EXPECT_EQ(entries(dir).size(), 4u);  // the set, its list and the dead run's folder
-  { OutputSet next(dir); }
+  {
+    // Opening a set recovers from the dead run.
+    OutputSet next(dir);
+  }
   EXPECT_EQ(entries(dir), (std::set<std::string>{".parallax-outputs", "image.png", "render.json"}));
   EXPECT_EQ(readText(at("early/image.png")), "image.png of old");
 }

@@ -7,6 +7,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
+#include "parallax/io/mesh_file.h"
 #include "parallax/io/rgbd_file.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/limits.h"
@@ -14,7 +15,10 @@
 namespace parallax::jobs {
 
 std::string versionText() {
-  return std::string("parallax ") + PARALLAX_VERSION + " (" + embreeLibrary().name() + ")";
+  const LibraryVersion assimp = assimpVersion();
+  return std::string("parallax ") + PARALLAX_VERSION + " (" + embreeLibrary().name() + ", assimp " +
+         std::to_string(assimp.major) + "." + std::to_string(assimp.minor) + "." +
+         std::to_string(assimp.patch) + ")";
 }
 
 namespace {

@@ -21,7 +21,8 @@
 
 namespace parallax::jobs {
 
-// "parallax 0.1.0 (Embree 4.3.3)": this build's version and the Embree it runs on.
+// "parallax 0.1.0 (Embree 4.3.3, assimp 5.4.3)": this build's version and the libraries it
+// runs on.
 std::string versionText();
 
 // Refuses a worker-thread count below 0 (0: all cores) or above this machine's hardware

@@ -115,7 +115,7 @@ PYBIND11_MODULE(_parallax, module) {
       PyErr_SetString(error->ptr(), text.c_str());
     }
   });
-  // As `parallax --version`: this build and the Embree it runs on.
+  // As `parallax --version`: this build and the Embree and assimp it runs on.
   module.attr("__version__") = PARALLAX_VERSION;
   module.def("version", &parallax::jobs::versionText);
   // The CLI's --max-memory GiB and --max-time SECONDS: what every later call is held to before
