@@ -6,7 +6,9 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <cstring>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,11 +46,12 @@ std::vector<Vec3d> givenEyes(const std::vector<std::array<double, 3>>& given) {
 }
 
 // The pictures the eyes see, as `simulate --eye ...` writes them (at the display's resolution
-// unless raw_pixels).
-std::vector<py::array_t<float>> see(const py::array& image, const std::optional<py::array>& mask,
-                                    const DisplayDescription& description,
-                                    const std::vector<std::array<double, 3>>& eyeList,
-                                    const SeeOptions& o) {
+// unless raw_pixels), as one N x H x W x 3 array. Each picture is freed as it is copied in, so the
+// peak is the pictures once plus the array, whatever the allocator keeps (a stack made in Python
+// from N arrays would hold a third copy while the pictures' freed pages are still resident).
+py::array_t<float> see(const py::array& image, const std::optional<py::array>& mask,
+                       const DisplayDescription& description,
+                       const std::vector<std::array<double, 3>>& eyeList, const SeeOptions& o) {
   const jobs::BuiltDisplay display = jobs::makeDisplay(description);
   const std::vector<Vec3d> eyes = givenEyes(eyeList);
   LayerImages layers = layerImages(image, mask, *display);
@@ -57,9 +60,18 @@ std::vector<py::array_t<float>> see(const py::array& image, const std::optional<
     py::gil_scoped_release released;
     pictures = jobs::simulatedPictures(*display, std::move(layers), o, eyes);
   }
-  std::vector<py::array_t<float>> arrays;
-  for (const Image& p : pictures) arrays.push_back(imageToArray(p));
-  return arrays;
+  const int width = pictures.front().width(), height = pictures.front().height();
+  py::array_t<float> stack(
+      {py::ssize_t(pictures.size()), py::ssize_t(height), py::ssize_t(width), py::ssize_t(3)});
+  float* out = stack.mutable_data();
+  for (Image& p : pictures) {
+    if (p.width() != width || p.height() != height)
+      throw std::logic_error("simulate: the eyes' pictures differ in size");
+    std::memcpy(out, p.pixels().data(), p.pixels().size() * sizeof(Vec3f));
+    out += p.pixels().size() * 3;
+    p = Image();
+  }
+  return stack;
 }
 
 // `simulate --sweep N [--sweep-range F] [--sweep-distance MM]`'s eyes, left to right.

@@ -194,7 +194,7 @@ def simulate(image: np.ndarray, mask: Optional[np.ndarray] = None,
         raise ValueError("mask: a barrier display needs the mask layer's array")
     pictures = _parallax._simulate(image, mask, display, eyes=[tuple(eye)] if eye is not None else [tuple(e) for e in eyes],
                                    **options)
-    return pictures[0] if eye is not None else np.stack(pictures)
+    return pictures[0] if eye is not None else pictures
 
 
 def sweep_eyes(display: Optional[Display] = None, count: int = 9, *, sweep_range: float = 1.0,
