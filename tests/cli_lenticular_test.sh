@@ -167,6 +167,28 @@ check "one row per reading, the display's own last" bash -c "
   python3 -c 'import json,sys; r=json.load(open(sys.argv[1]))[\"renders\"];
 assert len(r)==5, r; assert \"spot 0, parallel\" in r[0][\"dir\"]; assert \"display\" in r[4][\"dir\"]' '$tmp/out'"
 
+# A render made for another reading of the optics (the same options as simulate's).
+check "render --lens-spot 0 --bundles parallel" run 0 lenticular render "$tmp/small.json" \
+  --lens-spot 0 --bundles parallel -o "$tmp/r-ideal"
+check "its render.json states the optics it was made for" \
+  bash -c "grep -q '\"bundles\": \"parallel\"' '$tmp/r-ideal/render.json' &&
+           grep -q '\"lens_spot_subpixels\": 0' '$tmp/r-ideal/render.json'"
+check "a render for another spot is another picture" \
+  bash -c "! cmp -s '$tmp/r/image.png' '$tmp/r-ideal/image.png'"
+check "render --display takes them too" run 0 render --display "$tmp/small.json" --spp 1 \
+  --lens-spot 3 -o "$tmp/r-spot3"
+check "and states the spot" grep -q '"lens_spot_subpixels": 3' "$tmp/r-spot3/render.json"
+# A quilt's cameras stand on the design line whatever the optics (interlace maps by them).
+check "a quilt for parallel bundles" run 0 render --display "$tmp/small.json" --spp 1 \
+  --quilt 4x2 --size 24x32 --bundles parallel -o "$tmp/q-par"
+check "a quilt for converging bundles" run 0 render --display "$tmp/small.json" --spp 1 \
+  --quilt 4x2 --size 24x32 --bundles converging -o "$tmp/q-conv"
+check "the same cameras, the same quilt" \
+  cmp "$tmp/q-par/quilt_qs4x2a0.75.png" "$tmp/q-conv/quilt_qs4x2a0.75.png"
+check "--lens-spot on a barrier exits 2" run 2 render --spp 1 --lens-spot 1 -o "$tmp/bad-barrier"
+check "and names the option" one_line_naming "--lens-spot"
+check "nothing written for it" test ! -e "$tmp/bad-barrier"
+
 check "design reads a calibration" run 0 design "$tmp/small.json"
 check "design prints the lens figures" grep -q 'pixels per lens' "$tmp/out"
 check "design of a unit's file" run 0 design "$tmp/gen3.json"

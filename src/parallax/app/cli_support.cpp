@@ -250,17 +250,22 @@ void addFilterOptions(CLI::App& cmd, FilterRequest& options, const std::string& 
       ->capture_default_str();
 }
 
-void addLensReadingOptions(CLI::App& cmd, std::optional<double>& lensSpot, std::string& bundles) {
+void addLensReadingOptions(CLI::App& cmd, std::optional<double>& lensSpot, std::string& bundles,
+                           bool forRender) {
+  const std::string verb = forRender ? "render the panel for" : "read the panel through";
   cmd.add_option_function<double>(
          "--lens-spot", [&lensSpot](const double& w) { lensSpot = w; },
-         "Lenticular: read the panel through lenses whose focal spot is W subpixels wide (0: an "
-         "ideal lens, one subpixel seen per lens; 3: a pixel-wide spot); default: the "
-         "display's optics (docs/lenticular.md, \"The optics\")")
+         "Lenticular: " + verb +
+             " lenses whose focal spot is W subpixels wide (0: an ideal lens, one subpixel seen "
+             "per lens; 3: a pixel-wide spot); default: the display's optics "
+             "(docs/lenticular.md, \"The optics\")")
       ->type_name("W")
       ->check(realIn(0, kMaxLensSpotSubpixels));
   cmd.add_option("--bundles", bundles,
-                 "Lenticular: read the panel with the light of one view leaving parallel, or "
-                 "converging at the design distance; default: the display's optics")
+                 std::string("Lenticular: ") +
+                     (forRender ? "render the panel for" : "read the panel with") +
+                     " the light of one view leaving parallel, or converging at the design "
+                     "distance; default: the display's optics")
       ->type_name("parallel|converging")
       ->check(CLI::IsMember({"parallel", "converging"}));
 }

@@ -107,8 +107,10 @@ void addFilterOptions(CLI::App& cmd, FilterRequest& options, const std::string& 
                       const std::string& viewUnit);
 
 // --lens-spot W and --bundles parallel|converging: the lenticular optics a simulator reads a panel
-// under (jobs::SimulatorRequest::lensSpot, bundles); unset when not given.
-void addLensReadingOptions(CLI::App& cmd, std::optional<double>& lensSpot, std::string& bundles);
+// under (jobs::SimulatorRequest::lensSpot, bundles), or a render renders for (`forRender`,
+// jobs::RenderRequest); unset when not given.
+void addLensReadingOptions(CLI::App& cmd, std::optional<double>& lensSpot, std::string& bundles,
+                           bool forRender = false);
 
 // --up auto|y|z (also --mesh-up; only that on view, whose --up is the camera's) and --crease
 // DEGREES (docs/import.md): how the scene's mesh files are imported (a scene file's mesh

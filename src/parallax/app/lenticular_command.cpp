@@ -25,6 +25,8 @@ struct LenticularRenderOptions {
   SamplingRequest sampling;  // 16 rays per subpixel over its view window, as render
   FilterRequest filter;
   double distance = 0;
+  std::optional<double> lensSpot;
+  std::string bundles;
 };
 
 struct LenticularSimulateOptions {
@@ -45,6 +47,8 @@ void runRender(const LenticularRenderOptions& o) {
   r.sampling = o.sampling;
   r.filter = o.filter;
   r.distance = o.distance;
+  r.lensSpot = o.lensSpot;
+  r.bundles = o.bundles;
   r.output = o.output;
   jobs::runRender(r, cliReporter());
 }
@@ -98,6 +102,7 @@ void registerLenticularCommand(CLI::App& cli) {
       ->add_option("--distance", r->distance,
                    "Design viewer distance in mm, above 0 (default: the cone spans 1 m)")
       ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open));
+  addLensReadingOptions(*render, r->lensSpot, r->bundles, true);
   render->add_option("-o,--output", r->output, "Output folder")->capture_default_str();
   render->callback([r] { runRender(*r); });
 

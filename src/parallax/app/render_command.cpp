@@ -59,6 +59,7 @@ void registerRenderCommand(CLI::App& cli) {
       "spot");
   addFramingOptions(*cmd, request.framing, "");
   cmd->add_option("-o,--output", request.output, "Output folder")->capture_default_str();
+  addLensReadingOptions(*cmd, request.lensSpot, request.bundles, true);
   cmd->add_flag("--linear", request.linear, "Also write image.pfm, linear float");
   CLI::Option* direct =
       cmd->add_flag("--direct-mapping", request.directMapping,

@@ -16,6 +16,10 @@ DisplayDesign barrierDesign(const DisplayDescription& description,
     throw RequestError("distance",
                        "applies to lenticular displays; a barrier's view distance is its "
                        "design's (view_distance_mm in the display file)");
+  if (camera.lensSpot || !camera.bundles.empty())
+    throw RequestError(camera.lensSpot ? "lens_spot" : "bundles",
+                       "applies to lenticular displays (the lenses' optics); a barrier display "
+                       "has no lenses");
   BarrierCameraSettings settings = description.camera;
   settings.subpixelRays = settings.subpixelRays || camera.subpixels;
   return designDisplay(description.barrier, settings);
@@ -29,7 +33,9 @@ LenticularDesign lenticularDesign(const DisplayDescription& description,
                        "per subpixel");
   if (!(camera.viewDistanceMm >= 0 && std::isfinite(camera.viewDistanceMm)))
     throw RequestError("distance", "must be 0 (the calibration's own) or a distance in mm");
-  return designLenticular(description.lenticular, camera.viewDistanceMm);
+  const LenticularDesign design = designLenticular(description.lenticular, camera.viewDistanceMm);
+  const std::optional<LensOptics> optics = lensReading(design, camera.lensSpot, camera.bundles);
+  return optics ? withOptics(design, *optics) : design;
 }
 
 BuiltDisplay barrierDisplay(const DisplayDesign& design, const ViewFilter& filter) {
@@ -47,6 +53,21 @@ BuiltDisplay lenticularDisplay(const LenticularDesign& design, const ViewFilter&
 }
 
 }  // namespace
+
+std::optional<LensOptics> lensReading(const LenticularDesign& design,
+                                      const std::optional<double>& lensSpot,
+                                      const std::string& bundles) {
+  if (!lensSpot && bundles.empty()) return std::nullopt;
+  LensOptics optics = design.optics;
+  if (lensSpot) {
+    optics.spotWidthSubpixels = *lensSpot;
+    const std::string problem = lensOpticsProblem(optics);
+    if (!problem.empty()) throw RequestError("lens_spot", problem);
+  }
+  if (!bundles.empty() && !parseLensBundles(bundles, optics.bundles))
+    throw RequestError("bundles", "expected parallel or converging", bundles);
+  return optics;
+}
 
 BuiltDisplay makeDisplay(const DisplayDescription& description,
                          const DisplayCameraRequest& camera) {

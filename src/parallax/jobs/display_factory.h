@@ -23,7 +23,18 @@ struct DisplayCameraRequest {
   bool subpixels = false;     // subpixels: one ray per R, G, B subpixel (barriers)
   ViewFilter filter;          // how a film sample's rays spread in angle
   double viewDistanceMm = 0;  // distance: a lenticular panel's design viewer (0: its default)
+  // A lenticular panel's optics to render for (docs/lenticular.md, "The optics"), each unset:
+  // the display's own. lens_spot: the focal spot in subpixels; bundles: parallel or converging.
+  std::optional<double> lensSpot;
+  std::string bundles;
 };
+
+// The lenticular optics that lens_spot and bundles ask for, over the design's own; unset when
+// neither is given. Throws RequestError naming lens_spot (outside 0 to 12 subpixels) or bundles
+// (neither parallel nor converging).
+std::optional<LensOptics> lensReading(const LenticularDesign& design,
+                                      const std::optional<double>& lensSpot,
+                                      const std::string& bundles);
 
 // A display built for a camera, and what a render writes beside its pictures.
 struct BuiltDisplay {

@@ -290,9 +290,9 @@ LenticularDesign simulatedPanel(const LenticularSimulateRequest& r, Reporter& re
                      "is a barrier display, not a lenticular calibration (visual.json, lkg:NAME)");
   DisplayCameraRequest camera;
   camera.viewDistanceMm = r.distance;
-  LenticularDesign design = *makeDisplay(description, camera)->lenticularDesign();
-  if (const std::optional<LensOptics> optics = lensReading(design, r.lensSpot, r.bundles))
-    design = withOptics(design, *optics);
+  camera.lensSpot = r.lensSpot;
+  camera.bundles = r.bundles;
+  const LenticularDesign design = *makeDisplay(description, camera)->lenticularDesign();
   const double w = design.calibration.screenW, h = design.calibration.screenH;
   checkMemoryEstimate(imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
                       r.loaded ? description.source() : r.calibration, "the panel and the view",

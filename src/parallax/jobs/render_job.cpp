@@ -93,6 +93,8 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   plan.camera.subpixels = r.subpixels;
   plan.camera.filter = plan.filter;
   plan.camera.viewDistanceMm = r.distance;
+  plan.camera.lensSpot = r.lensSpot;
+  plan.camera.bundles = r.bundles;
   const BuiltDisplay display = makeDisplay(plan.description, plan.camera);
   const bool layered = display->hasMaskLayer();
   if (r.directMapping && !layered)

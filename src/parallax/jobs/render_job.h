@@ -56,6 +56,10 @@ struct RenderRequest {
   bool directMapping = false;  // direct_mapping: N ordinary views, interleaved (Fig. 2)
   bool linear = false;         // also image.pfm (a quilt: its .pfm)
   double distance = 0;         // a lenticular panel's design viewer in mm (0: its default)
+  // A lenticular panel's optics to render for (lens_spot, bundles; unset: the display's own),
+  // as simulate reads them (docs/lenticular.md, "The optics").
+  std::optional<double> lensSpot;
+  std::string bundles;
   QuiltRequest quilt;
   LayersRequest layers;
   SequenceRequest sequence;  // frames, chunk, turntable, duration, fps, video

@@ -11,6 +11,7 @@
 #include "parallax/core/memory.h"
 #include "parallax/display/depth_scaled_display.h"
 #include "parallax/image/metrics.h"
+#include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/quality/viewer_quality.h"
 #include "parallax/sim/crosstalk.h"
@@ -101,21 +102,6 @@ std::string lensReadingLine(const DisplayModel& display, const SimulationOptions
          (o.bundles == LensBundles::Parallel
               ? std::string("parallel")
               : printed("converging at %.0f mm", o.convergenceDistanceMm));
-}
-
-std::optional<LensOptics> lensReading(const LenticularDesign& design,
-                                      const std::optional<double>& lensSpot,
-                                      const std::string& bundles) {
-  if (!lensSpot && bundles.empty()) return std::nullopt;
-  LensOptics optics = design.optics;
-  if (lensSpot) {
-    optics.spotWidthSubpixels = *lensSpot;
-    const std::string problem = lensOpticsProblem(optics);
-    if (!problem.empty()) throw RequestError("lens_spot", problem);
-  }
-  if (!bundles.empty() && !parseLensBundles(bundles, optics.bundles))
-    throw RequestError("bundles", "expected parallel or converging", bundles);
-  return optics;
 }
 
 void checkMaskLayer(const DisplayModel& display, bool maskGiven) {

@@ -54,13 +54,6 @@ std::vector<std::pair<std::string, LensOptics>> lensReadings(const LenticularDes
 // focal spot, bundles converging at 1374 mm"); "" for other kinds.
 std::string lensReadingLine(const DisplayModel& display, const SimulationOptions& options);
 
-// The lenticular optics that lens_spot and bundles ask for, over the design's own; unset when
-// neither is given. Throws RequestError naming lens_spot (outside 0 to 12 subpixels) or bundles
-// (neither parallel nor converging).
-std::optional<LensOptics> lensReading(const LenticularDesign& design,
-                                      const std::optional<double>& lensSpot,
-                                      const std::string& bundles);
-
 // The simulator's options for `display`. Throws RequestError naming spp (not 0 or a square),
 // pupil, pupil_samples, diffuser (also one wider than the display) or size, and refuses the
 // two-layer simulator's options for other kinds by their fields.

@@ -64,6 +64,9 @@ jobs::RenderRequest renderRequest(const DisplayDescription& display, const py::k
   if (kw.contains("direct_mapping")) r.directMapping = kw["direct_mapping"].cast<bool>();
   if (kw.contains("linear")) r.linear = kw["linear"].cast<bool>();
   if (kw.contains("distance")) r.distance = kw["distance"].cast<double>();
+  if (kw.contains("lens_spot") && !kw["lens_spot"].is_none())
+    r.lensSpot = kw["lens_spot"].cast<double>();
+  text("bundles", r.bundles);
   text("layers", r.layers.method);
   if (kw.contains("rank")) r.layers.rank = kw["rank"].cast<int>();
   if (kw.contains("iterations") && !kw["iterations"].is_none())
@@ -115,6 +118,8 @@ std::vector<std::string> knownRenderKeywords() {
           "direct_mapping",
           "linear",
           "distance",
+          "lens_spot",
+          "bundles",
           "layers",
           "rank",
           "iterations",

@@ -369,6 +369,17 @@ def test_lenticular_render_is_the_cli_render(scene, tmp_path):
     assert seen.shape == (512, 384, 3)
     with pytest.raises(parallax.Error, match="^" + as_keywords("--pupil: applies to the two-layer")):
         parallax.simulate(made.image, None, display, eye=(0, 0, 600), pupil=3)
+    # A render made for another reading of the optics: the CLI's, byte for byte.
+    result = cli("render", "--display", path, "--spp", 1, "--lens-spot", 0, "--bundles",
+                 "parallel", "-o", tmp_path / "ideal")
+    assert result.returncode == 0, result.stderr
+    ideal = parallax.render(scene, display, spp=1, lens_spot=0, bundles="parallel")
+    assert np.array_equal(ideal.image_srgb8, rgb(read_png(tmp_path / "ideal" / "image.png")))
+    assert ideal.record["design"]["optics"]["bundles"] == "parallel"
+    assert ideal.record["design"]["optics"]["lens_spot_subpixels"] == 0
+    assert not np.array_equal(ideal.image_srgb8, made.image_srgb8)
+    with pytest.raises(parallax.Error, match="^" + as_keywords("--lens-spot: applies to lenticular")):
+        parallax.render(scene, parallax.load_display(), spp=1, lens_spot=1)
 
 
 def test_lenticular_framing_is_the_cli_framing(scene, tmp_path):

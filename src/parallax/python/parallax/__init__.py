@@ -108,17 +108,20 @@ def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
            direct_mapping: bool = False, layers: str = "slits", rank: int = 1,
            iterations: Optional[int] = None, brightness: float = 0.0, train_eyes: int = 2,
            layer_error: Optional[str] = None, distance: float = 0.0,
+           lens_spot: Optional[float] = None, bundles: Optional[str] = None,
            fit: Optional[str] = None, focus=None, depth_budget=None) -> RenderResult:
     """`parallax render`: the image and mask layers of a barrier display (the slits', direct
     mapping's, or content-adaptive layers solved for eyes across the view zone), or a lenticular
-    panel's interlaced picture (`lenticular render`)."""
+    panel's interlaced picture (`lenticular render`), made for the lens optics lens_spot and
+    bundles (`--lens-spot`, `--bundles`; default: the display's own)."""
     frames, _, record = _parallax._render(
         scene if scene is not None else load_scene(), _display(display),
         **_given(spp=spp, seed=seed, threads=threads, jitter=jitter, bounces=bounces,
                  adaptive=adaptive, adaptive_threshold=adaptive_threshold, filter=filter,
                  filter_width=filter_width, subpixels=subpixels, direct_mapping=direct_mapping,
                  layers=layers, rank=rank, iterations=iterations, brightness=brightness,
-                 train_eyes=train_eyes, layer_error=layer_error, distance=distance),
+                 train_eyes=train_eyes, layer_error=layer_error, distance=distance,
+                 lens_spot=lens_spot, bundles=bundles),
         **_framing(fit, focus, depth_budget))
     image, mask = frames[0]
     return RenderResult(image, mask, json.loads(record), frames)
