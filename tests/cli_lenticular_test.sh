@@ -185,6 +185,17 @@ check "a quilt for converging bundles" run 0 render --display "$tmp/small.json" 
   --quilt 4x2 --size 24x32 --bundles converging -o "$tmp/q-conv"
 check "the same cameras, the same quilt" \
   cmp "$tmp/q-par/quilt_qs4x2a0.75.png" "$tmp/q-conv/quilt_qs4x2a0.75.png"
+check "interlace for parallel bundles" run 0 interlace "$tmp/q-par/quilt_qs4x2a0.75.png" \
+  --display "$tmp/small.json" --bundles parallel -o "$tmp/qi-par"
+check "interlace for converging bundles" run 0 interlace "$tmp/q-par/quilt_qs4x2a0.75.png" \
+  --display "$tmp/small.json" --bundles converging -o "$tmp/qi-conv"
+check "each subpixel takes the views its light reaches: other pictures" \
+  bash -c "! cmp -s '$tmp/qi-par/image.png' '$tmp/qi-conv/image.png'"
+check "the interlaced record states the optics" \
+  grep -q '"bundles": "parallel"' "$tmp/qi-par/render.json"
+check "interlace --bundles on a barrier exits 2" run 2 interlace "$tmp/q-par/quilt_qs4x2a0.75.png" \
+  --bundles parallel -o "$tmp/bad-qi"
+check "and names the option" one_line_naming "--bundles"
 check "--lens-spot on a barrier exits 2" run 2 render --spp 1 --lens-spot 1 -o "$tmp/bad-barrier"
 check "and names the option" one_line_naming "--lens-spot"
 check "nothing written for it" test ! -e "$tmp/bad-barrier"

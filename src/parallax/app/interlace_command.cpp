@@ -63,6 +63,7 @@ void registerInterlaceCommand(CLI::App& cli) {
   cmd->add_option("--quilt-layout", options->quiltLayout,
                   "The quilt's tiles, when its name does not say")
       ->type_name("CxR");
+  addLensReadingOptions(*cmd, request.lensSpot, request.bundles, true);
   cmd->add_option("-o,--output", request.output, "Output folder")->required();
   cmd->add_flag("--subpixels", request.subpixels,
                 "Views per R, G, B subpixel column (three times the views)");

@@ -30,7 +30,10 @@ ViewResampling viewResampling(const std::string& text) {
 // The display, built for interlacing, once its pictures are known to fit in memory.
 BuiltDisplay interlaceDisplay(const InterlaceRequest& r, Reporter& reporter) {
   const DisplayDescription description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
-  BuiltDisplay display = makeDisplay(description);
+  DisplayCameraRequest optics;
+  optics.lensSpot = r.lensSpot;
+  optics.bundles = r.bundles;
+  BuiltDisplay display = makeDisplay(description, optics);  // a barrier refuses lens optics
   if (const LenticularDesign* lenticular = display->lenticularDesign()) {
     if (r.subpixels)
       throw RequestError("subpixels",

@@ -29,6 +29,10 @@ struct InterlaceRequest {
   // view_resampling: nearest or linear, when the views given are not the barrier's count.
   std::string viewResampling = "linear";
   bool linear = false;  // also image.pfm
+  // A lenticular panel's optics to interlace for (lens_spot, bundles; unset: the display's
+  // own): the quilt views each subpixel's light reaches (docs/lenticular.md, "The optics").
+  std::optional<double> lensSpot;
+  std::string bundles;
   std::string output = "out";
 };
 

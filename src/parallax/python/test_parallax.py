@@ -378,6 +378,18 @@ def test_lenticular_render_is_the_cli_render(scene, tmp_path):
     assert ideal.record["design"]["optics"]["bundles"] == "parallel"
     assert ideal.record["design"]["optics"]["lens_spot_subpixels"] == 0
     assert not np.array_equal(ideal.image_srgb8, made.image_srgb8)
+    # A quilt interlaced for those optics: the CLI's too.
+    result = cli("render", "--display", path, "--spp", 1, "--quilt", "4x2", "--size", "96x128",
+                 "-o", tmp_path / "q")
+    assert result.returncode == 0, result.stderr
+    quilt_file = next((tmp_path / "q").glob("quilt_*.png"))
+    result = cli("interlace", quilt_file, "--display", path, "--bundles", "parallel", "-o",
+                 tmp_path / "qi")
+    assert result.returncode == 0, result.stderr
+    interlaced = parallax.interlace(quilt=rgb(read_png(quilt_file)), display=display,
+                                    quilt_layout=(4, 2), bundles="parallel")
+    assert np.array_equal(interlaced.image_srgb8, rgb(read_png(tmp_path / "qi" / "image.png")))
+    assert interlaced.record["design"]["optics"]["bundles"] == "parallel"
     with pytest.raises(parallax.Error, match="^" + as_keywords("--lens-spot: applies to lenticular")):
         parallax.render(scene, parallax.load_display(), spp=1, lens_spot=1)
 

@@ -25,11 +25,15 @@ namespace {
 using Layout = std::optional<std::array<int, 2>>;
 
 jobs::InterlaceRequest interlaceRequest(const Layout& quiltLayout, bool subpixels,
-                                        const std::string& viewResampling) {
+                                        const std::string& viewResampling,
+                                        const std::optional<double>& lensSpot,
+                                        const std::string& bundles) {
   jobs::InterlaceRequest r;
   if (quiltLayout) r.quiltLayout = QuiltLayout{(*quiltLayout)[0], (*quiltLayout)[1], 0.0};
   r.subpixels = subpixels;
   r.viewResampling = viewResampling;
+  r.lensSpot = lensSpot;
+  r.bundles = bundles;
   return r;
 }
 
@@ -38,8 +42,10 @@ jobs::InterlaceRequest interlaceRequest(const Layout& quiltLayout, bool subpixel
 std::tuple<py::array_t<float>, py::object, std::string> interlace(
     const std::optional<std::vector<py::array>>& views, const std::optional<py::array>& quilt,
     const DisplayDescription& display, const Layout& quiltLayout, bool subpixels,
-    const std::string& viewResampling) {
-  jobs::InterlaceRequest r = interlaceRequest(quiltLayout, subpixels, viewResampling);
+    const std::string& viewResampling, const std::optional<double>& lensSpot,
+    const std::string& bundles) {
+  jobs::InterlaceRequest r =
+      interlaceRequest(quiltLayout, subpixels, viewResampling, lensSpot, bundles);
   r.loaded = display;
   r.display = display.source() == "<built-in>" ? "" : display.source();
   std::vector<Image> images;
@@ -58,8 +64,10 @@ std::tuple<py::array_t<float>, py::object, std::string> interlace(
 // `parallax interlace` to files.
 void interlaceFiles(const std::string& output, const std::vector<std::string>& views,
                     const std::string& quilt, const std::string& display, const Layout& quiltLayout,
-                    bool subpixels, const std::string& viewResampling, bool linear) {
-  jobs::InterlaceRequest r = interlaceRequest(quiltLayout, subpixels, viewResampling);
+                    bool subpixels, const std::string& viewResampling, bool linear,
+                    const std::optional<double>& lensSpot, const std::string& bundles) {
+  jobs::InterlaceRequest r =
+      interlaceRequest(quiltLayout, subpixels, viewResampling, lensSpot, bundles);
   r.views = views, r.quilt = quilt, r.display = display, r.linear = linear, r.output = output;
   py::gil_scoped_release released;
   jobs::runInterlace(r, jobs::silentReporter());
@@ -144,11 +152,13 @@ py::array_t<float> lenticularSimulate(const py::array& image, const DisplayDescr
 void bindTools(py::module_& module) {
   module.def("_interlace", &interlace, py::arg("views"), py::arg("quilt"), py::arg("display"),
              py::kw_only(), py::arg("quilt_layout") = py::none(), py::arg("subpixels") = false,
-             py::arg("view_resampling") = "linear");
+             py::arg("view_resampling") = "linear", py::arg("lens_spot") = py::none(),
+             py::arg("bundles") = "");
   module.def("_interlace_files", &interlaceFiles, py::arg("output"), py::arg("views"),
              py::arg("quilt"), py::arg("display"), py::kw_only(),
              py::arg("quilt_layout") = py::none(), py::arg("subpixels") = false,
-             py::arg("view_resampling") = "linear", py::arg("linear") = false);
+             py::arg("view_resampling") = "linear", py::arg("linear") = false,
+             py::arg("lens_spot") = py::none(), py::arg("bundles") = "");
   module.def("_calibration_patterns", &calibrationPatterns, py::arg("display"));
   module.def("_calibration_patterns_files", &calibrationPatternsFiles, py::arg("output"),
              py::arg("display"));

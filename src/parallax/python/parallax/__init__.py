@@ -234,21 +234,25 @@ def _layout(quilt_layout) -> Optional[Tuple[int, int]]:
 
 def interlace(views: Optional[Sequence[np.ndarray]] = None, display: Optional[Display] = None, *,
               quilt: Optional[np.ndarray] = None, quilt_layout: Optional[Tuple[int, int]] = None,
-              subpixels: bool = False, view_resampling: str = "linear") -> RenderResult:
+              subpixels: bool = False, view_resampling: str = "linear",
+              lens_spot: Optional[float] = None, bundles: str = "") -> RenderResult:
     """`parallax interlace VIEW... | QUILT`: camera views (leftmost camera first, all of one
     size) or one quilt array (tiles from the bottom-left, cut by quilt_layout=(columns, rows))
     mapped onto the display: a barrier's image layer by direct mapping, with its mask, or a
-    lenticular panel's picture (mask None)."""
+    lenticular panel's picture (mask None), for the lens optics lens_spot and bundles (default:
+    the display's)."""
     image, mask, record = _parallax._interlace(
         None if views is None else list(views), quilt, _display(display),
-        quilt_layout=_layout(quilt_layout), subpixels=subpixels, view_resampling=view_resampling)
+        quilt_layout=_layout(quilt_layout), subpixels=subpixels, view_resampling=view_resampling,
+        lens_spot=lens_spot, bundles=bundles)
     return RenderResult(image, mask, json.loads(record), [(image, mask)])
 
 
 def interlace_files(output: str, views: Optional[Sequence[str]] = None,
                     display: Optional[str] = None, *, quilt: Optional[str] = None,
                     quilt_layout: Optional[Tuple[int, int]] = None, subpixels: bool = False,
-                    view_resampling: str = "linear", linear: bool = False) -> dict:
+                    view_resampling: str = "linear", linear: bool = False,
+                    lens_spot: Optional[float] = None, bundles: str = "") -> dict:
     """`parallax interlace VIEW... | QUILT --display DISPLAY -o OUTPUT`: the same files, byte for
     byte. `views` are image files, `quilt` one quilt file (its layout from its name unless
     quilt_layout is given), `display` a path (None: the built-in). Returns OUTPUT/render.json."""
@@ -256,7 +260,8 @@ def interlace_files(output: str, views: Optional[Sequence[str]] = None,
                                "" if quilt is None else str(quilt),
                                "" if display is None else str(display),
                                quilt_layout=_layout(quilt_layout), subpixels=subpixels,
-                               view_resampling=view_resampling, linear=linear)
+                               view_resampling=view_resampling, linear=linear,
+                               lens_spot=lens_spot, bundles=bundles)
     return json.load(open(os.path.join(str(output), "render.json")))
 
 
