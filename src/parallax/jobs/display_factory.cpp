@@ -16,10 +16,7 @@ DisplayDesign barrierDesign(const DisplayDescription& description,
     throw RequestError("distance",
                        "applies to lenticular displays; a barrier's view distance is its "
                        "design's (view_distance_mm in the display file)");
-  if (camera.lensSpot || !camera.bundles.empty())
-    throw RequestError(camera.lensSpot ? "lens_spot" : "bundles",
-                       "applies to lenticular displays (the lenses' optics); a barrier display "
-                       "has no lenses");
+  refuseLensReading(camera.lensSpot, camera.bundles);
   BarrierCameraSettings settings = description.camera;
   settings.subpixelRays = settings.subpixelRays || camera.subpixels;
   return designDisplay(description.barrier, settings);
@@ -67,6 +64,13 @@ std::optional<LensOptics> lensReading(const LenticularDesign& design,
   if (!bundles.empty() && !parseLensBundles(bundles, optics.bundles))
     throw RequestError("bundles", "expected parallel or converging", bundles);
   return optics;
+}
+
+void refuseLensReading(const std::optional<double>& lensSpot, const std::string& bundles) {
+  if (lensSpot || !bundles.empty())
+    throw RequestError(lensSpot ? "lens_spot" : "bundles",
+                       "applies to lenticular displays (the lenses' optics); a barrier display "
+                       "has no lenses");
 }
 
 BuiltDisplay makeDisplay(const DisplayDescription& description,

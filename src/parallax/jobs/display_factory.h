@@ -35,6 +35,8 @@ struct DisplayCameraRequest {
 std::optional<LensOptics> lensReading(const LenticularDesign& design,
                                       const std::optional<double>& lensSpot,
                                       const std::string& bundles);
+// A barrier has no lenses: throws RequestError naming lens_spot or bundles when either is given.
+void refuseLensReading(const std::optional<double>& lensSpot, const std::string& bundles);
 
 // A display built for a camera, and what a render writes beside its pictures.
 struct BuiltDisplay {

@@ -49,13 +49,10 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
     if (r.raw) refuse("raw");
   }
   std::optional<LensOptics> optics;
-  if (const LenticularDesign* lenticular = display.lenticularDesign()) {
+  if (const LenticularDesign* lenticular = display.lenticularDesign())
     optics = lensReading(*lenticular, r.lensSpot, r.bundles);
-  } else if (r.lensSpot || !r.bundles.empty()) {
-    throw RequestError(r.lensSpot ? "lens_spot" : "bundles",
-                       "applies to lenticular displays (the lenses' optics); a barrier display "
-                       "has no lenses");
-  }
+  else
+    refuseLensReading(r.lensSpot, r.bundles);
   SimulationOptions sim;
   if (r.size) {
     if ((*r.size)[0] < 1 || (*r.size)[1] < 1)
