@@ -74,45 +74,58 @@ TEST(LenticularDisplayCamera, SamplesSpreadOverTheSubpixel) {
 }
 
 // The prefilter's footprint: a sub-ray's view is the subpixel's own, plus its position across
-// the subpixel times the subpixel's span delta (a third of the channel view step), plus the
-// filter's offset in spots (W delta, W = 1 by default); none is the central ray for any sample,
-// and period spreads over the whole lens period.
+// the subpixel (shaped by the filter, scaled by its width) times the part (1 - W) of the
+// subpixel's span delta (a third of the channel view step) that a spot W subpixels wide leaves
+// unblended: none for the default W = 1. The angular sample u moves the ray across its lens,
+// never its view; none is the central ray for any sample, and period spreads over the whole
+// lens period.
 TEST(LenticularDisplayCamera, FilterFootprintMatchesItsFormula) {
-  const LenticularDesign d = smallDesign();
-  const Transform display = worldFromDisplay(DisplayPlacement{}, displayWindow(d)).inverse();
-  const double step = channelViewStep(d);
-  EXPECT_NEAR(step, d.pitchPx / 180.0, 1e-12);
-  EXPECT_NEAR(step, 1.0 / d.pixelsPerLens, 1e-12);
+  const LenticularDesign base = smallDesign();
+  const Transform display = worldFromDisplay(DisplayPlacement{}, displayWindow(base)).inverse();
+  const double step = channelViewStep(base);
+  EXPECT_NEAR(step, base.pitchPx / 180.0, 1e-12);
+  EXPECT_NEAR(step, 1.0 / base.pixelsPerLens, 1e-12);
   const int x = 70, y = 40, channel = 2;
-  const double own = viewFraction(d, x, y, channel);
-  // The view a ray carries: where it crosses the design line (bundles converging at D), as a
-  // view fraction (not wrapped).
-  const auto viewOf = [&](const DisplayCamera& camera, float within, float u) {
-    const Ray ray = camera.generateRay({3.0f * x + channel + within, y + 0.3f, u, 0.5f});
-    const Vec3f o = display.point(ray.origin), dir = display.vector(ray.direction);
-    const double t = (d.viewDistanceMm - o.z) / dir.z;
-    return viewFractionOfAngle(d, std::atan((o.x + t * dir.x) / d.viewDistanceMm));
-  };
+  const double own = viewFraction(base, x, y, channel);
   const double delta = step / 3;
   // viewFractionOfAngle is not wrapped: compare with the own view modulo whole lens periods.
   const auto offset = [&](double view) { return view - own - std::round(view - own); };
+  for (const double spot : {0.0, 0.25, 1.0, 3.0}) {
+    LensOptics optics = base.optics;
+    optics.spotWidthSubpixels = spot;
+    const LenticularDesign d = withOptics(base, optics);
+    // The view a ray carries: where it crosses the design line (bundles converging at D), as a
+    // view fraction (not wrapped).
+    const auto viewOf = [&](const DisplayCamera& camera, float within, float u) {
+      const Ray ray = camera.generateRay({3.0f * x + channel + within, y + 0.3f, u, 0.5f});
+      const Vec3f o = display.point(ray.origin), dir = display.vector(ray.direction);
+      const double t = (d.viewDistanceMm - o.z) / dir.z;
+      return viewFractionOfAngle(d, std::atan((o.x + t * dir.x) / d.viewDistanceMm));
+    };
+    const DisplayCamera box(makeLenticularDisplay(d, {ViewFilterKind::View, 1.0}), {});
+    const DisplayCamera wideBox(makeLenticularDisplay(d, {ViewFilterKind::View, 2.5}), {});
+    const DisplayCamera tent(makeLenticularDisplay(d, {ViewFilterKind::Tent, 1.0}), {});
+    const DisplayCamera none(makeLenticularDisplay(d, {ViewFilterKind::None, 1.0}), {});
+    const DisplayCamera period(makeLenticularDisplay(d, {ViewFilterKind::Period, 1.0}), {});
+    const double unblended = std::max(0.0, 1 - spot) * delta;
+    for (const float within : {0.05f, 0.25f, 0.5f, 0.95f})
+      for (const float u : {0.0f, 0.25f, 0.5f, 0.75f, 0.999f}) {
+        const double across = within - 0.5;
+        EXPECT_NEAR(offset(viewOf(box, within, u)), across * unblended, 1e-5) << spot;
+        EXPECT_NEAR(offset(viewOf(wideBox, within, u)), 2.5 * across * unblended, 1e-5) << spot;
+        // The tent's inverse CDF: half of its rays within 1 - sqrt(1/2) of a width of the centre.
+        const double t =
+            within < 0.5 ? std::sqrt(2.0 * within) - 1 : 1 - std::sqrt(2.0 * (1 - within));
+        EXPECT_NEAR(offset(viewOf(tent, within, u)), t * unblended, 1e-5) << spot;
+        EXPECT_NEAR(offset(viewOf(none, within, u)), 0.0, 1e-5) << spot;
+        // (+-1/2 are the same place in the period.)
+        EXPECT_NEAR(std::remainder(offset(viewOf(period, within, u)) - (u - 0.5), 1.0), 0.0, 1e-5)
+            << spot;
+      }
+  }
+  const LenticularDesign d = base;
   const DisplayCamera box(makeLenticularDisplay(d, {ViewFilterKind::View, 1.0}), {});
-  const DisplayCamera wideBox(makeLenticularDisplay(d, {ViewFilterKind::View, 2.5}), {});
-  const DisplayCamera tent(makeLenticularDisplay(d, {ViewFilterKind::Tent, 1.0}), {});
   const DisplayCamera none(makeLenticularDisplay(d, {ViewFilterKind::None, 1.0}), {});
-  const DisplayCamera period(makeLenticularDisplay(d, {ViewFilterKind::Period, 1.0}), {});
-  for (const float within : {0.05f, 0.5f, 0.95f})
-    for (const float u : {0.0f, 0.25f, 0.5f, 0.75f, 0.999f}) {
-      const double across = (within - 0.5) * delta;
-      EXPECT_NEAR(offset(viewOf(box, within, u)), across + (u - 0.5) * delta, 1e-5);
-      EXPECT_NEAR(offset(viewOf(wideBox, within, u)), across + 2.5 * (u - 0.5) * delta, 1e-5);
-      // The tent's inverse CDF: half of its rays within 1 - sqrt(1/2) of a spot of the centre.
-      const double t = u < 0.5 ? std::sqrt(2.0 * u) - 1 : 1 - std::sqrt(2.0 * (1 - u));
-      EXPECT_NEAR(offset(viewOf(tent, within, u)), across + t * delta, 1e-5);
-      EXPECT_NEAR(offset(viewOf(none, within, u)), 0.0, 1e-5);
-      // (+-1/2 are the same place in the period.)
-      EXPECT_NEAR(std::remainder(offset(viewOf(period, within, u)) - (u - 0.5), 1.0), 0.0, 1e-5);
-    }
   // The position still moves over the subpixel's area.
   const auto hitX = [&](const DisplayCamera& camera, float within) {
     const Ray ray = camera.generateRay({3.0f * x + channel + within, y + 0.5f, 0.9f, 0.5f});

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <memory>
 #include <thread>
+#include <vector>
 
 namespace parallax {
 
@@ -56,6 +57,17 @@ void parallelFor(int64_t count, int threads, int64_t grain,
   if (threads <= 0 || workerCount(threads) == workerCount(0)) return run();
   tbb::task_arena arena(workerCount(threads));
   arena.execute(run);
+}
+
+double parallelSum(int64_t count, int threads, int64_t grain,
+                   const std::function<double(int64_t)>& term) {
+  std::vector<double> terms(size_t(std::max<int64_t>(0, count)));
+  parallelFor(count, threads, grain, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) terms[size_t(i)] = term(i);
+  });
+  double sum = 0;
+  for (double t : terms) sum += t;
+  return sum;
 }
 
 void parallelInvoke(int threads, const std::function<void()>& first,

@@ -14,6 +14,11 @@ namespace parallax {
 void parallelFor(int64_t count, int threads, int64_t grain,
                  const std::function<void(int64_t begin, int64_t end)>& body);
 
+// The sum of term(i) over i in [0, count), each term computed on some worker (chunks of `grain`
+// items) and the terms added in index order: the same double whatever the thread count.
+double parallelSum(int64_t count, int threads, int64_t grain,
+                   const std::function<double(int64_t i)>& term);
+
 // Runs the tasks at once, on `threads` workers (0: every core), and returns when all are done.
 void parallelInvoke(int threads, const std::function<void()>& first,
                     const std::function<void()>& second);

@@ -28,6 +28,22 @@ TEST(Parallel, EveryItemOnceInChunksOfAtMostTheGrain) {
   }
 }
 
+// Terms whose floating-point sum depends on the order: the parallel sum must be the serial
+// sum in index order, bit for bit, for every thread count and grain.
+TEST(Parallel, SumAddsTheTermsInIndexOrder) {
+  const auto term = [](int64_t i) {
+    return (i % 3 == 0 ? 1e16 : 1.0) * (i % 2 ? -1.0 : 1.0) + 0.1 * double(i);
+  };
+  for (int64_t count : {0, 1, 5, 1000}) {
+    double serial = 0;
+    for (int64_t i = 0; i < count; ++i) serial += term(i);
+    for (int threads : {0, 1, 2, 3})
+      for (int64_t grain : {1, 7, 64})
+        EXPECT_EQ(parallelSum(count, threads, grain, term), serial)
+            << count << " terms, " << threads << " threads, grain " << grain;
+  }
+}
+
 // Two tasks that each wait (up to 10 s) for the other to start: both see the other only if
 // they run at the same time; run one after the other, the first gives up and says so.
 template <class Run>

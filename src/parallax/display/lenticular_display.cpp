@@ -29,11 +29,11 @@ class LenticularDisplay final : public DisplayModel {
 
   // Film column 3x + c is channel c of panel column x, wherever the calibration puts that
   // subpixel. A sample's position inside its column moves the ray's panel point across the
-  // subpixel's third of the pixel and its view across the subpixel's span of the views (under a
-  // lens, where a subpixel sits is where its light goes); its angular sample spreads the view
-  // over the lens's focal spot, shaped by the filter (docs/lenticular.md, "Prefilter"). The two
-  // together are what an eye integrates (lensSpotWeight): the render is prefiltered for the
-  // optics it is seen through. The column's centre casts exactly the published formula's ray.
+  // subpixel's third of the pixel, and its view over the part of the subpixel's span of views
+  // that the lens's focal spot does not already blend: (1 - W) of it for a spot W subpixels
+  // wide, none from W = 1 on (docs/lenticular.md, "Prefilter"). Its second angular sample
+  // places the ray across the lens the subpixel sits under. The column's centre with the
+  // central samples casts exactly the published formula's ray.
   DisplayRay ray(double filmX, double filmY, double u, double v) const override {
     const int column = int(std::floor(filmX));
     const int x = column / 3, channel = column % 3;
@@ -49,12 +49,16 @@ class LenticularDisplay final : public DisplayModel {
       // row), so its light is the average over the lens of what those eyes should see there.
       const double lensOffset = viewsAlongRow_ * (v - ownView) * design_.pixelsPerLens;
       const double panelX = x + 0.5 + across / 3.0 + lensOffset;
-      const double delta = subpixelViewWidth(design_);
+      // Spread in view: what the eye's spot does not integrate by itself. An eye at view f sees
+      // the subpixels' spans blended by the spot: spot (W delta) * span (delta). Rays spread
+      // over that blend again would blur twice; spread over the span only where the spot is
+      // narrower than the subpixel, the render's own box and the spot together make the span.
+      const double unblended =
+          std::max(0.0, 1.0 - design_.optics.spotWidthSubpixels) * subpixelViewWidth(design_);
       // Period: anywhere in the lens's cone (the old cell's analogue, for comparison).
-      const double view =
-          filterKind_ == ViewFilterKind::Period
-              ? ownView + (u - 0.5)
-              : ownView + across * delta + warp_(u) * design_.optics.spotWidthSubpixels * delta;
+      const double view = filterKind_ == ViewFilterKind::Period
+                              ? ownView + (u - 0.5)
+                              : ownView + warp_(across + 0.5) * unblended;
       r = lenticularRay(design_, panelX, filmY, channel, view);
     }
     return {r.origin, r.direction};

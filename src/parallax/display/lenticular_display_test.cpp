@@ -34,13 +34,13 @@ TEST(LenticularDisplay, CentralRaysAreTheFormulasAndViewsSliceTheFraction) {
   EXPECT_TRUE(display->maskLayer().empty());
 }
 
-// The prefilter (filter view) is what an eye integrates: a sample's place across its subpixel
-// moves its view across the subpixel's span delta, its angular sample across the spot W delta,
-// so the views of a subpixel's samples are the box delta convolved with the box W delta around
-// its own view: mean the own view, variance (1 + W^2) delta^2 / 12, within (1 + W) delta / 2.
+// The prefilter (filter view) adds what an eye does not integrate by itself: the eye already
+// blends the subpixels' spans through the spot W delta, so a sample's place across its
+// subpixel moves its view over (1 - W) delta of the span only, none from W = 1 on: mean the own
+// view, variance ((1 - W)+ delta)^2 / 12, within (1 - W)+ delta / 2.
 TEST(LenticularDisplay, ViewFilterSpreadsTheRaysOverWhatAnEyeIntegrates) {
   const LenticularDesign base = smallLenticularDesign();
-  for (const double spot : {0.0, 1.0, 3.0}) {
+  for (const double spot : {0.0, 0.5, 1.0, 3.0}) {
     LensOptics o;
     o.spotWidthSubpixels = spot;
     const LenticularDesign d = withOptics(base, o);
@@ -58,10 +58,13 @@ TEST(LenticularDisplay, ViewFilterSpreadsTheRaysOverWhatAnEyeIntegrates) {
         widest = std::max(widest, std::fabs(f));
       }
     EXPECT_NEAR(mean, 0.0, 1e-9 * delta) << spot;
-    const double variance = (1 + spot * spot) * delta * delta / 12;
-    EXPECT_NEAR(square - mean * mean, variance, 0.01 * variance) << spot;
-    EXPECT_LE(widest, 0.5 * (1 + spot) * delta + 1e-12) << spot;
-    EXPECT_GT(widest, 0.45 * (1 + spot) * delta) << spot;
+    // A box over the part of the subpixel's span that the spot does not blend: (1 - W) delta,
+    // nothing from W = 1 on (every ray then carries the subpixel's own view).
+    const double box = std::max(0.0, 1 - spot) * delta;
+    const double variance = box * box / 12;
+    EXPECT_NEAR(square - mean * mean, variance, 0.01 * variance + 1e-18) << spot;
+    EXPECT_LE(widest, 0.5 * box + 1e-12) << spot;
+    EXPECT_GE(widest, 0.45 * box) << spot;
   }
   // And the rays leave from across the whole lens the subpixel sits under (an eye sees it over
   // that lens's width): where along the lens, t from view 0 to view 1, covers [0, 1) and no more

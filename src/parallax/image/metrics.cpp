@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
 
 namespace parallax {
 
@@ -27,62 +28,74 @@ double encode(float linear, MetricEncoding encoding) {
   return linearToSrgb(std::clamp(linear, 0.0f, 1.0f));
 }
 
-// A row-major grid of doubles, for the SSIM moment maps.
-struct Plane {
-  int width = 0, height = 0;
-  std::vector<double> v;
-  Plane(int w, int h) : width(w), height(h), v(size_t(w) * size_t(h)) {}
-  double& at(int x, int y) { return v[size_t(y) * size_t(width) + size_t(x)]; }
-  double at(int x, int y) const { return v[size_t(y) * size_t(width) + size_t(x)]; }
-};
+// Rows per chunk of work: the metrics run over whole images once per eye of the dense measure.
+constexpr int64_t kRowGrain = 8;
 
-// Separable filter, keeping only the positions where the whole kernel lies inside ("valid").
-Plane filterValid(const Plane& in, const std::vector<double>& kernel) {
-  const int k = int(kernel.size());
-  Plane across(in.width - k + 1, in.height);
-  for (int y = 0; y < in.height; ++y)
-    for (int x = 0; x < across.width; ++x) {
-      double sum = 0;
-      for (int i = 0; i < k; ++i) sum += kernel[size_t(i)] * in.at(x + i, y);
-      across.at(x, y) = sum;
-    }
-  Plane out(across.width, in.height - k + 1);
-  for (int y = 0; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x) {
-      double sum = 0;
-      for (int i = 0; i < k; ++i) sum += kernel[size_t(i)] * across.at(x, y + i);
-      out.at(x, y) = sum;
-    }
-  return out;
-}
+// Output rows of SSIM per chunk of work: each chunk filters its own 10 extra input rows, and
+// holds only its rows' moments, never a whole image of them.
+constexpr int kSsimRowsPerChunk = 32;
 
 }  // namespace
 
+// Output row y is the integral of the box-pixel column over [y + 1/2 - h/2, y + 1/2 + h/2] (as
+// boxFilterX along a row), summed as whole rows: each input row's overlap with the box times the
+// row, so the rows are read in memory order.
 Image boxFilterY(const Image& image, double heightPx) {
-  const auto transpose = [](const Image& in) {
-    Image out(in.height(), in.width());
-    for (int y = 0; y < in.height(); ++y)
-      for (int x = 0; x < in.width(); ++x) out.at(y, x) = in.at(x, y);
-    return out;
-  };
-  return transpose(boxFilterX(transpose(image), heightPx));
+  if (!(heightPx > 0)) throw InputError("", "", "the box filter's height must be positive");
+  const int w = image.width(), h = image.height();
+  Image out(w, h);
+  parallelFor(h, 0, kRowGrain, [&](int64_t begin, int64_t end) {
+    std::vector<double> sum(size_t(w) * 3);
+    for (int y = int(begin); y < int(end); ++y) {
+      const double lo = std::max(0.0, y + 0.5 - 0.5 * heightPx);
+      const double hi = std::min(double(h), y + 0.5 + 0.5 * heightPx);
+      std::fill(sum.begin(), sum.end(), 0.0);
+      for (int row = int(lo); row < h && row < hi; ++row) {
+        const double weight = std::min(hi, row + 1.0) - std::max(lo, double(row));
+        if (!(weight > 0)) continue;
+        const float* in = &image.at(0, row).x;
+        for (size_t i = 0; i < sum.size(); ++i) sum[i] += weight * in[i];
+      }
+      float* o = &out.at(0, y).x;
+      for (size_t i = 0; i < sum.size(); ++i) o[i] = float(sum[i] / (hi - lo));
+    }
+  });
+  return out;
 }
 
 double meanLuminance(const Image& image) {
-  double sum = 0;
-  for (const Vec3f& p : image.pixels()) sum += luminance(p);
+  const double sum = parallelSum(image.height(), 0, kRowGrain, [&](int64_t y) {
+    double row = 0;
+    for (int x = 0; x < image.width(); ++x) row += luminance(image.at(x, int(y)));
+    return row;
+  });
   return image.empty() ? 0.0 : sum / double(image.pixels().size());
 }
 
 double meanSquaredError(const Image& a, const Image& b, MetricEncoding encoding) {
   checkSameSize(a, b, "the mean squared error");
-  double sum = 0;
-  for (size_t i = 0; i < a.pixels().size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double d = encode(a.pixels()[i][c], encoding) - encode(b.pixels()[i][c], encoding);
-      sum += d * d;
-    }
+  const double sum = parallelSum(a.height(), 0, kRowGrain, [&](int64_t y) {
+    double row = 0;
+    for (int x = 0; x < a.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double d =
+            encode(a.at(x, int(y))[c], encoding) - encode(b.at(x, int(y))[c], encoding);
+        row += d * d;
+      }
+    return row;
+  });
   return sum / (3.0 * double(a.pixels().size()));
+}
+
+Image srgbEncoded(const Image& image) {
+  Image out(image.width(), image.height());
+  parallelFor(image.height(), 0, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int y = int(begin); y < int(end); ++y)
+      for (int x = 0; x < image.width(); ++x)
+        for (int c = 0; c < 3; ++c)
+          out.at(x, y)[c] = float(encode(image.at(x, y)[c], MetricEncoding::Srgb));
+  });
+  return out;
 }
 
 double psnr(const Image& a, const Image& b, double peak, MetricEncoding encoding) {
@@ -105,22 +118,48 @@ double ssim(const Image& a, const Image& b) {
   for (double& k : kernel) k /= total;
 
   const int w = a.width(), h = a.height();
-  Plane x(w, h), y(w, h), xx(w, h), yy(w, h), xy(w, h);
-  for (size_t i = 0; i < x.v.size(); ++i) {
-    x.v[i] = encode(luminance(a.pixels()[i]), MetricEncoding::Srgb);
-    y.v[i] = encode(luminance(b.pixels()[i]), MetricEncoding::Srgb);
-    xx.v[i] = x.v[i] * x.v[i], yy.v[i] = y.v[i] * y.v[i], xy.v[i] = x.v[i] * y.v[i];
-  }
-  const Plane mx = filterValid(x, kernel), my = filterValid(y, kernel);
-  const Plane mxx = filterValid(xx, kernel), myy = filterValid(yy, kernel);
-  const Plane mxy = filterValid(xy, kernel);
-  double sum = 0;
-  for (size_t i = 0; i < mx.v.size(); ++i) {
-    const double ux = mx.v[i], uy = my.v[i];
-    const double vx = mxx.v[i] - ux * ux, vy = myy.v[i] - uy * uy, cxy = mxy.v[i] - ux * uy;
-    sum += (2 * ux * uy + kC1) * (2 * cxy + kC2) / ((ux * ux + uy * uy + kC1) * (vx + vy + kC2));
-  }
-  return sum / double(mx.v.size());
+  const int outWidth = w - kWindow + 1, outHeight = h - kWindow + 1;
+  const int chunks = (outHeight + kSsimRowsPerChunk - 1) / kSsimRowsPerChunk;
+  // Per chunk: the five moments (x, y, xx, yy, xy of the encoded luminance) filtered along each
+  // input row it needs, then down each column: the separable window, valid positions only.
+  const double sum = parallelSum(chunks, 0, 1, [&](int64_t chunk) {
+    const int first = int(chunk) * kSsimRowsPerChunk;
+    const int rows = std::min(kSsimRowsPerChunk, outHeight - first);
+    const int inRows = rows + kWindow - 1;
+    std::vector<double> across(size_t(5) * size_t(inRows) * size_t(outWidth));
+    const auto at = [&](int m, int r, int x) -> double& {
+      return across[(size_t(m) * size_t(inRows) + size_t(r)) * size_t(outWidth) + size_t(x)];
+    };
+    std::vector<double> moments(size_t(5) * size_t(w));
+    for (int r = 0; r < inRows; ++r) {
+      for (int x = 0; x < w; ++x) {
+        const double u = encode(luminance(a.at(x, first + r)), MetricEncoding::Srgb);
+        const double v = encode(luminance(b.at(x, first + r)), MetricEncoding::Srgb);
+        double* m = &moments[size_t(5 * x)];
+        m[0] = u, m[1] = v, m[2] = u * u, m[3] = v * v, m[4] = u * v;
+      }
+      for (int x = 0; x < outWidth; ++x)
+        for (int m = 0; m < 5; ++m) {
+          double filtered = 0;
+          for (int k = 0; k < kWindow; ++k)
+            filtered += kernel[size_t(k)] * moments[size_t(5 * (x + k) + m)];
+          at(m, r, x) = filtered;
+        }
+    }
+    double chunkSum = 0;
+    for (int r = 0; r < rows; ++r)
+      for (int x = 0; x < outWidth; ++x) {
+        double mean[5] = {};
+        for (int m = 0; m < 5; ++m)
+          for (int k = 0; k < kWindow; ++k) mean[m] += kernel[size_t(k)] * at(m, r + k, x);
+        const double ux = mean[0], uy = mean[1];
+        const double vx = mean[2] - ux * ux, vy = mean[3] - uy * uy, cxy = mean[4] - ux * uy;
+        chunkSum +=
+            (2 * ux * uy + kC1) * (2 * cxy + kC2) / ((ux * ux + uy * uy + kC1) * (vx + vy + kC2));
+      }
+    return chunkSum;
+  });
+  return sum / (double(outWidth) * double(outHeight));
 }
 
 // A lane kernel: std::floor is a libm call on the x86-64 baseline (no SSE4.1 round).
@@ -128,20 +167,22 @@ PARALLAX_LANE_KERNEL Image boxFilterX(const Image& image, double widthPx) {
   if (!(widthPx > 0)) throw InputError("", "", "the box filter's width must be positive");
   const int w = image.width();
   Image out(w, image.height());
-  std::vector<double> prefix(size_t(w) + 1);  // prefix[i]: integral of one channel over [0, i)
-  for (int y = 0; y < image.height(); ++y)
-    for (int c = 0; c < 3; ++c) {
-      for (int x = 0; x < w; ++x) prefix[size_t(x) + 1] = prefix[size_t(x)] + image.at(x, y)[c];
-      const auto integral = [&](double t) {  // of the box-pixel row over [0, t]
-        const int i = std::min(int(std::floor(t)), w - 1);
-        return prefix[size_t(i)] + (t - i) * image.at(i, y)[c];
-      };
-      for (int x = 0; x < w; ++x) {
-        const double lo = std::max(0.0, x + 0.5 - 0.5 * widthPx);
-        const double hi = std::min(double(w), x + 0.5 + 0.5 * widthPx);
-        out.at(x, y)[c] = float((integral(hi) - integral(lo)) / (hi - lo));
+  parallelFor(image.height(), 0, kRowGrain, [&](int64_t begin, int64_t end) {
+    std::vector<double> prefix(size_t(w) + 1);  // prefix[i]: integral of one channel over [0, i)
+    for (int y = int(begin); y < int(end); ++y)
+      for (int c = 0; c < 3; ++c) {
+        for (int x = 0; x < w; ++x) prefix[size_t(x) + 1] = prefix[size_t(x)] + image.at(x, y)[c];
+        const auto integral = [&](double t) {  // of the box-pixel row over [0, t]
+          const int i = std::min(int(std::floor(t)), w - 1);
+          return prefix[size_t(i)] + (t - i) * image.at(i, y)[c];
+        };
+        for (int x = 0; x < w; ++x) {
+          const double lo = std::max(0.0, x + 0.5 - 0.5 * widthPx);
+          const double hi = std::min(double(w), x + 0.5 + 0.5 * widthPx);
+          out.at(x, y)[c] = float((integral(hi) - integral(lo)) / (hi - lo));
+        }
       }
-    }
+  });
   return out;
 }
 

@@ -23,6 +23,11 @@ double meanSquaredError(const Image& a, const Image& b,
 double psnr(const Image& a, const Image& b, double peak = 1.0,
             MetricEncoding encoding = MetricEncoding::Srgb);
 
+// Each channel clamped to [0, 1] and sRGB-encoded: what PSNR compares. psnr(a, b) equals
+// psnr(srgbEncoded(a), srgbEncoded(b), 1, MetricEncoding::Linear) exactly, so a caller that
+// compares one image with several encodes it once.
+Image srgbEncoded(const Image& image);
+
 // Mean SSIM of the sRGB-encoded luminance (Wang et al. 2004): an 11x11 Gaussian window of
 // sigma 1.5, C1 = 0.01^2, C2 = 0.03^2 for values in [0, 1], averaged over the window positions
 // that lie wholly inside the image. Needs images of at least 11x11 pixels.

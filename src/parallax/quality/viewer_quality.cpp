@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "parallax/camera/display_camera.h"
+#include "parallax/core/parallel.h"
 #include "parallax/display/display_model.h"
 #include "parallax/display/mask.h"
 #include "parallax/image/metrics.h"
@@ -84,22 +85,34 @@ Image idealView(const Scene& scene, const Accelerator& accelerator, const Displa
   return atDisplayResolution(d, render(scene, accelerator, camera, settings));
 }
 
+namespace {
+
+// flickerBetween on images already sRGB-encoded (srgbEncoded), rows summed in order.
+double flickerBetweenEncoded(const Image& simulatedBefore, const Image& idealBefore,
+                             const Image& simulated, const Image& ideal) {
+  const int width = simulated.width();
+  const double sum = parallelSum(simulated.height(), 0, 8, [&](int64_t y) {
+    double row = 0;
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double now = double(simulated.at(x, int(y))[c]) - double(ideal.at(x, int(y))[c]);
+        const double before =
+            double(simulatedBefore.at(x, int(y))[c]) - double(idealBefore.at(x, int(y))[c]);
+        row += (now - before) * (now - before);
+      }
+    return row;
+  });
+  const size_t n = simulated.pixels().size();
+  return n == 0 ? 0.0 : std::sqrt(sum / double(3 * n));
+}
+
+}  // namespace
+
 double flickerBetween(const Image& simulatedBefore, const Image& idealBefore,
                       const Image& simulated, const Image& ideal) {
   // (S_i - S_{i-1}) - (R_i - R_{i-1}) = (S_i - R_i) - (S_{i-1} - R_{i-1}), in sRGB values.
-  const auto encode = [](float linear) {
-    return double(linearToSrgb(std::clamp(linear, 0.f, 1.f)));
-  };
-  double sum = 0;
-  const size_t n = simulated.pixels().size();
-  for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double now = encode(simulated.pixels()[i][c]) - encode(ideal.pixels()[i][c]);
-      const double before =
-          encode(simulatedBefore.pixels()[i][c]) - encode(idealBefore.pixels()[i][c]);
-      sum += (now - before) * (now - before);
-    }
-  return n == 0 ? 0.0 : std::sqrt(sum / double(3 * n));
+  return flickerBetweenEncoded(srgbEncoded(simulatedBefore), srgbEncoded(idealBefore),
+                               srgbEncoded(simulated), srgbEncoded(ideal));
 }
 
 QualitySummary summarise(const std::vector<EyeQuality>& eyes) {
@@ -149,28 +162,34 @@ std::vector<ViewerQuality> measureViewerQuality(
     const ViewerQualityOptions& options, const std::function<void(int, int)>& progress) {
   std::vector<ViewerQuality> results(simulators.size());
   if (simulators.empty()) return results;
+  // Each eye's pictures are sRGB-encoded once, for its PSNR and the next eye's flicker.
   std::vector<Image> previousSimulated(simulators.size());
   Image previousIdeal;
   for (size_t i = 0; i < eyes.size(); ++i) {
     const DenseEye& eye = eyes[i];
-    Image ideal;
+    Image ideal, idealEncoded;
     // A row is one distance, left to right: the eyes a moving viewer passes in turn.
     const bool sameRow =
         i > 0 && eyes[i - 1].distance == eye.distance && !eye.designEye && !eyes[i - 1].designEye;
     for (size_t s = 0; s < simulators.size(); ++s) {
       const Image simulated = simulators[s]->atDisplayResolution(simulators[s]->view(eye.position));
-      if (ideal.empty())
+      if (ideal.empty()) {
         ideal = idealView(scene, accelerator, display, *simulators[s], eye.position,
                           simulated.width(), simulated.height(), options.referenceSamplesPerPixel,
                           options.threads, options.bounces);
-      EyeQuality q{eye, psnr(simulated, ideal), ssim(simulated, ideal),
-                   std::numeric_limits<double>::quiet_NaN(), meanLuminance(simulated)};
+        idealEncoded = srgbEncoded(ideal);
+      }
+      Image simulatedEncoded = srgbEncoded(simulated);
+      EyeQuality q{eye, psnr(simulatedEncoded, idealEncoded, 1.0, MetricEncoding::Linear),
+                   ssim(simulated, ideal), std::numeric_limits<double>::quiet_NaN(),
+                   meanLuminance(simulated)};
       if (sameRow)
-        q.flicker = flickerBetween(previousSimulated[s], previousIdeal, simulated, ideal);
+        q.flicker = flickerBetweenEncoded(previousSimulated[s], previousIdeal, simulatedEncoded,
+                                          idealEncoded);
       results[s].eyes.push_back(q);
-      previousSimulated[s] = simulated;
+      previousSimulated[s] = std::move(simulatedEncoded);
     }
-    previousIdeal = std::move(ideal);
+    previousIdeal = std::move(idealEncoded);
     if (progress) progress(int(i + 1), int(eyes.size()));
   }
   for (ViewerQuality& result : results) summariseAll(result);
