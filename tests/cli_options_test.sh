@@ -193,6 +193,13 @@ refuse "simulate --compare with --eye" --compare \
   simulate "$tmp/set" --reference --eye 0,0,600 --compare "$tmp/set" -o "$o.png"
 refuse "simulate --compare with --sweep" --compare \
   simulate "$tmp/set" --reference --sweep 3 --compare "$tmp/set" -o "$o"
+# A compared render of another size is named as the compared one, not blamed on the first.
+check "render a set for another display" run 0 render --spp 1 --display "$src/displays/small.json" \
+  -o "$tmp/small-set"
+refuse "simulate --compare of another size" \
+  "--compare $tmp/small-set: its image layer is 320x180 pixels, $tmp/set's is 1920x1080" \
+  simulate "$tmp/set" --reference --eyes-per-view 1 --distances 1 --compare "$tmp/small-set" \
+  -o "$o.png"
 refuse "simulate --scene without --reference" "--scene: is the scene --reference" \
   simulate "$tmp/set" --scene "$tmp/nope.json" -o "$o.png"
 for opt in "--reference-spp 4" "--eyes-per-view 3" "--distances 1"; do

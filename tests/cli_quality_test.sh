@@ -47,6 +47,12 @@ check "dense measure runs" run 0 simulate "$tmp/view" --reference --eyes-per-vie
 check "dense measure scores 45 eyes" \
   test "$(tr -d ' \n' <"$tmp/out" | grep -o '"design_eye":' | wc -l)" -eq 45
 check "dense measure has a worst eye" grep -q '"worst_psnr"' "$tmp/out"
+check "dense eyes listed by place: distance, then left to right, design eyes among them" \
+  python3 -c 'import json, sys
+eyes = json.load(open(sys.argv[1]))["eyes"]
+places = [(e["eye"][2], e["eye"][0]) for e in eyes]
+design = [i for i, e in enumerate(eyes) if e["design_eye"]]
+sys.exit(0 if places == sorted(places) and design and design[-1] < len(eyes) - 1 else 1)' "$tmp/out"
 check "dense measure has a flicker figure" grep -q '"flicker"' "$tmp/out"
 check "dense measure reports each distance" grep -q '"by_distance"' "$tmp/out"
 worst=$(json_number '"mean":{[^}]*"worst_psnr":[-0-9.e]*')

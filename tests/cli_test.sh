@@ -124,6 +124,8 @@ check "simulate a sweep" run 0 simulate "$tmp/r" --sweep 3 -o "$tmp/sweep"
 check "sweep contact sheet" is_png "$tmp/sweep-sheet.png"
 check "sweep animation" is_png "$tmp/sweep-anim.png"
 check "sweep page" grep -q 'id="slider"' "$tmp/sweep.html"
+check "sweep page's title names the display file, not its path" \
+  grep -q '<title>parallax: eye sweep across display.json</title>' "$tmp/sweep.html"
 check "simulate --reference --json" run 0 simulate "$tmp/r" --eye 0,0,600 -o "$tmp/q.png" \
   --reference --reference-spp 1 --json
 for key in psnr ssim brightness crosstalk; do

@@ -45,7 +45,9 @@ int main(int argc, char** argv) {
   // Under mpirun, the job's ranks (docs/distributed.md); otherwise this process alone.
   parallax::cluster::Session session(argc, argv);
   parallax::cluster::ProcessGroup& group = session.group();
-  CLI::App cli{"parallax: ray tracing for two-layer parallax-barrier 3-D displays"};
+  CLI::App cli{
+      "parallax: ray tracing for glasses-free 3-D displays: two-layer parallax barriers and "
+      "slanted lenticular (Looking Glass) panels"};
   // The ray tracing library too: Embree 3 or 4, whichever this build runs on.
   cli.set_version_flag("--version", [] { return parallax::app::versionText(); });
   cli.require_subcommand(1);

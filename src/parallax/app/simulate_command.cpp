@@ -59,8 +59,10 @@ void registerSimulateCommand(CLI::App& cli) {
   cmd->add_option("--eye", options->eyes,
                   "Eye position X,Y,Z in display mm (origin: front layer centre, z toward the "
                   "viewer); repeatable. Default: the view-zone centre");
-  cmd->add_option("-o,--output", r.output,
-                  "Output image (several eyes: FILE-K), or the prefix of the sweep's files");
+  cmd->add_option(
+      "-o,--output", r.output,
+      "Output image (several eyes: FILE-K), or the prefix of the sweep's files; default "
+      "out/simulated.png and out/sweep in the working folder, not in DIR");
   cmd->add_option("--size", options->size, "Output size WIDTHxHEIGHT (default: the front layer's)");
   cmd->add_option("--spp", r.simulator.spp,
                   "0: integrate each output pixel's area exactly (the default); n*n: point "
@@ -104,7 +106,10 @@ void registerSimulateCommand(CLI::App& cli) {
   CLI::Option* reference =
       cmd->add_flag("--reference", r.reference,
                     "Quality figures against the ideal view: PSNR, SSIM, brightness, cross-talk at "
-                    "the --eye positions; without --eye, the dense measure over the view zone "
+                    "the --eye positions (cross-talk: the share of the light reaching the eye "
+                    "from other views than its own, 1 - own / all; even at a design eye the "
+                    "mask's pixel raster lets about a third through on the built-in display, "
+                    "docs/simulator.md); without --eye, the dense measure over the view zone "
                     "(--eyes-per-view, --distances): mean, worst eye, flicker");
   cmd->add_option("--scene", r.scene, "Scene for --reference (default: from render.json)");
   cmd->add_option("--reference-spp", r.referenceSpp, "Samples per pixel of the ideal view")

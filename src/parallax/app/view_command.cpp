@@ -52,7 +52,8 @@ void registerViewCommand(CLI::App& cli) {
   CLI::App* cmd = cli.add_subcommand("view", "Render an ordinary pinhole-camera picture");
   CLI::Option* sceneOption = cmd->add_option(
       "scene", request.scene.path,
-      "Scene file (.json) or mesh (.obj .ply .stl .gltf .glb); built-in scene if omitted");
+      "Scene file (.json) or mesh (.obj .ply .stl .gltf .glb, and through assimp .fbx .dae .3ds "
+      ".blend and the rest of docs/import.md); built-in scene if omitted");
   addRgbdOptions(*cmd, request.scene.rgbd)->excludes(sceneOption);
   addSceneLoadOptions(*cmd, request.scene.load);
   cmd->add_option("--eye", options->eye, "Camera position X,Y,Z (scene units)");

@@ -1,6 +1,7 @@
 // The dense quality measure of `simulate` (reference without eyes or a sweep; docs/simulator.md):
 // K eyes inside every view's window at several distances against the ideal views, the design
 // eyes as their own column, and other renders of the same scene side by side (compare).
+#include <algorithm>
 #include <cstdlib>
 #include <memory>
 #include <optional>
@@ -93,12 +94,20 @@ void reportComparison(const SimulateRequest& r, const std::vector<std::string>& 
 // One render's measure: every eye, then the summaries.
 void reportMeasure(const SimulateRequest& r, const DisplayModel& display,
                    const ViewerQuality& result, Reporter& reporter) {
+  // Listed by place: nearest distance first, then left to right, the design eyes among the
+  // others where they stand (they are measured last, after the rows that flicker is taken along).
+  std::vector<const EyeQuality*> byPlace;
+  for (const EyeQuality& q : result.eyes) byPlace.push_back(&q);
+  std::stable_sort(byPlace.begin(), byPlace.end(), [](const EyeQuality* a, const EyeQuality* b) {
+    return std::pair(a->eye.position.z, a->eye.position.x) <
+           std::pair(b->eye.position.z, b->eye.position.x);
+  });
   if (r.json) {
     JsonWriter json;
     json.set("/display", display.source());
     json.set("/eyes_per_view", r.eyesPerView);
-    for (size_t i = 0; i < result.eyes.size(); ++i) {
-      const EyeQuality& q = result.eyes[i];
+    for (size_t i = 0; i < byPlace.size(); ++i) {
+      const EyeQuality& q = *byPlace[i];
       const std::string at = "/eyes/" + std::to_string(i);
       const Vec3d& e = q.eye.position;
       json.set(at + "/eye", Vec3f{float(e.x), float(e.y), float(e.z)});
@@ -116,7 +125,8 @@ void reportMeasure(const SimulateRequest& r, const DisplayModel& display,
   }
   reporter.result(printed("%-22s %5s %9s %7s %4s %9s", "eye (mm)", "dist", "PSNR dB", "SSIM",
                           "view", "flicker"));
-  for (const EyeQuality& q : result.eyes) {
+  for (const EyeQuality* eyeQuality : byPlace) {
+    const EyeQuality& q = *eyeQuality;
     const std::string eye =
         printed("%.1f,%.1f,%.1f", q.eye.position.x, q.eye.position.y, q.eye.position.z);
     reporter.result(printed("%-22s %5.2f %9.2f %7.4f %4d %9.4f%s", eye.c_str(), q.eye.distance,
@@ -175,9 +185,21 @@ void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
   // against the same ideal views (rendered once).
   std::vector<std::string> labels{r.dir};
   std::vector<LayerSet> sets{{in.frames, in.normalisation}};
+  const Image& firstImage = in.frames.front().image;
   for (const std::string& other : r.compare) {
     labels.push_back(other);
     sets.push_back(loadLayerSet(other, display.hasMaskLayer()));
+    // Named here, as the compared folder's: the display is the first folder's, so its check
+    // would blame that folder for this one's size.
+    const Image& image = sets.back().frames.front().image;
+    if (image.width() != firstImage.width() || image.height() != firstImage.height())
+      throw RequestError("compare",
+                         "its image layer is " + std::to_string(image.width()) + "x" +
+                             std::to_string(image.height()) + " pixels, " + r.dir + "'s is " +
+                             std::to_string(firstImage.width()) + "x" +
+                             std::to_string(firstImage.height()) +
+                             ": compare renders made for the same display",
+                         other);
   }
   // all_readings: each render under each reading of the lens optics, as more rows.
   std::vector<std::pair<std::string, std::optional<LensOptics>>> readings{{"", sim.lensOptics}};

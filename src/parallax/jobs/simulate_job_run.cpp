@@ -319,8 +319,10 @@ void runSimulate(const SimulateRequest& r, Reporter& reporter) {
                             thumbnails.front().width(), labels));
     std::vector<Image>().swap(thumbnails);  // the sheet is written: free before the page
     writeFileAtomically(prefix + "-anim.png", encodeApngFromPngs(pngs, 250));
-    writeFileAtomically(prefix + ".html",
-                        sliderPage("parallax: eye sweep across " + display.source(), pngs, labels));
+    // The display file's name, not its path: a page is shared, and the path is the sharer's.
+    const std::string title =
+        "parallax: eye sweep across " + fs::path(display.source()).filename().string();
+    writeFileAtomically(prefix + ".html", sliderPage(title, pngs, labels));
     written = {prefix + "-sheet.png", prefix + "-anim.png", prefix + ".html"};
     if (video) {
       videoLine = video->finish();

@@ -596,6 +596,29 @@ def test_the_installed_package_imports(tmp_path):
     assert Path(where).is_relative_to(site) and float(views) == 9
 
 
+def test_a_user_prefix_install_imports_without_a_path(tmp_path):
+    # docs/install.md's `cmake --install build --prefix ~/.local`: Python's user base, whose
+    # site-packages (not the system prefixes' dist-packages) the interpreter reads by itself.
+    build, cmake = os.environ.get("PARALLAX_BUILD_DIR"), os.environ.get("PARALLAX_CMAKE")
+    assert build and cmake, "CTest sets PARALLAX_BUILD_DIR and PARALLAX_CMAKE"
+    user_base = tmp_path / "home-local"
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "DESTDIR")}
+    env["PYTHONUSERBASE"] = str(user_base)
+    installed = subprocess.run([cmake, "--install", build, "--prefix", user_base, "--component",
+                                "python"], capture_output=True, text=True, env=env)
+    assert installed.returncode == 0, installed.stderr
+    code = "import parallax; print(parallax.__file__)"
+    ran = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                         cwd=tmp_path)
+    assert ran.returncode == 0, ran.stderr
+    assert Path(ran.stdout.strip()).is_relative_to(user_base)
+    # Any other prefix is left as it was: no .pth is written outside the user base.
+    other = tmp_path / "prefix"
+    subprocess.run([cmake, "--install", build, "--prefix", other, "--component", "python"],
+                   capture_output=True, text=True, env=env, check=True)
+    assert not list(other.rglob("*.pth"))
+
+
 def test_the_docs_example_runs(tmp_path, monkeypatch):
     text = (SOURCE / "docs" / "python.md").read_text()
     blocks = re.findall(r"```python\n(.*?)```", text, re.S)

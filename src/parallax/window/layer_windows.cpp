@@ -42,12 +42,20 @@ ShowKey keyOf(SDL_Keycode key) {
 // Starts SDL's video on a real display: X11, Wayland (when its socket is there) or the console's
 // KMS/DRM, never SDL's offscreen fallback, which would "show" the layers nowhere. A driver the
 // user names in SDL_VIDEODRIVER is taken as given.
+// Once per process, and quit only when the process ends: an X server that has no other client
+// resets when the last connection closes, and refuses new ones while it does, so counting the
+// monitors, quitting and starting again for the windows failed about 40 % of the time there.
 bool initVideo() {
+  static bool started = false;
+  if (started) return true;
   if (!std::getenv("SDL_VIDEODRIVER")) {
     const bool wayland = std::getenv("WAYLAND_DISPLAY") && std::getenv("XDG_RUNTIME_DIR");
     SDL_SetHint(SDL_HINT_VIDEODRIVER, wayland ? "wayland,x11,kmsdrm" : "x11,kmsdrm");
   }
-  return SDL_Init(SDL_INIT_VIDEO) == 0;
+  if (SDL_Init(SDL_INIT_VIDEO) != 0) return false;
+  started = true;
+  std::atexit(SDL_Quit);
+  return true;
 }
 
 }  // namespace
@@ -67,7 +75,6 @@ struct LayerWindows::Impl {
       if (w.renderer) SDL_DestroyRenderer(w.renderer);
       if (w.window) SDL_DestroyWindow(w.window);
     }
-    SDL_Quit();
   }
 
   void present(Window& w) {
@@ -83,9 +90,7 @@ struct LayerWindows::Impl {
 
 int LayerWindows::monitorCount() {
   if (!initVideo()) return 0;
-  const int count = std::max(0, SDL_GetNumVideoDisplays());
-  SDL_Quit();
-  return count;
+  return std::max(0, SDL_GetNumVideoDisplays());
 }
 
 LayerWindows::LayerWindows(const std::vector<WindowRequest>& requests)
