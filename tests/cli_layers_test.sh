@@ -16,6 +16,7 @@ check "render --layers slits" run 0 render --display "$tmp/small.json" --spp 4 -
 check "slits are recorded" grep -q '"method": "slits"' "$tmp/slits/render.json"
 check "render --layers optimized-image" run 0 render --display "$tmp/small.json" --spp 4 \
   --layers optimized-image --iterations 6 --train-eyes 2 -o "$tmp/oi"
+check "the summary line says how long the solve took" grep -q "; layers optimized-image solved in" "$tmp/out"
 check "optimized-image writes both layers" bash -c "test -s '$tmp/oi/image.png' && test -s '$tmp/oi/mask.png'"
 check "optimized-image keeps the slit mask" cmp "$tmp/slits/mask.png" "$tmp/oi/mask.png"
 first=$(record_number "$tmp/oi/render.json" objective_first)

@@ -38,10 +38,16 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   const int iterations = o.iterations.value_or(kDefaultLayerIterations);
   SolveReport report;
   std::vector<LayerFrame> frames;
+  // The bar goes before the result line: it lives for the solve only.
+  auto progress = reporter.progress("layers " + o.method);
+  const SolveProgress onIteration = [&](int done, int total, double objective) {
+    progress->detail(printed("objective %.4g", objective));
+    progress->update(done, total);
+  };
   if (o.method == "optimized-image") {
-    frames.push_back(
-        {optimizeImageLayer(views, slits.image, slits.mask, iterations, training.threads, &report),
-         slits.mask});
+    frames.push_back({optimizeImageLayer(views, slits.image, slits.mask, iterations,
+                                         training.threads, &report, onIteration),
+                      slits.mask});
   } else {
     // Start: T copies of the slit image; masks of T slit phases a period / T apart, their closed
     // pixels at 0.2 so that the updates can open them (a zero stays zero under them).
@@ -57,8 +63,10 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
         }
       frames.push_back({slits.image, std::move(mask)});
     }
-    frames = factorizeLayers(views, std::move(frames), iterations, training.threads, &report);
+    frames = factorizeLayers(views, std::move(frames), iterations, training.threads, &report,
+                             onIteration);
   }
+  progress.reset();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   double seen = 0;

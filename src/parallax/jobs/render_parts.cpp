@@ -3,6 +3,7 @@
 #include "parallax/jobs/render_parts.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "parallax/camera/display_camera.h"
@@ -208,6 +209,7 @@ struct FramePictures {
   JsonWriter record;
   RenderStats stats;
   int spp = 0;
+  double solveSeconds = 0;  // the layer solver's, ideal views included (0: not solved)
 };
 
 // The display camera's layers of one (posed) scene, solved if asked. False when this rank does
@@ -243,9 +245,13 @@ bool renderLayers(const FrameTarget& t, const Scene& scene, const Accelerator& a
   startRecord(record, t, method, scene);
   if (layered) record.set("/layers/method", r.layers.method);
   out.frames = {{layers.image, layers.mask}};
-  if (r.layers.solved())
+  if (r.layers.solved()) {
+    const auto solveStart = std::chrono::steady_clock::now();
     out.frames = solveLayers(r.layers, scene, accelerator, *display->barrierDesign(), plan.training,
                              out.frames[0], record, reporter);
+    out.solveSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
+  }
   recordScene(record, r.scene, scene);
   recordSampling(record, r, settings);
   record.set("/adaptive", settings.adaptive);
@@ -376,6 +382,10 @@ void renderFrameToFiles(const FrameTarget& t, const Scene& scene, const Accelera
   reporter.result(
       writePictureSet(t.output, pictures.frames, r.linear, t.display->file, pictures.record));
   std::string speed = speedLine(pictures.spp, pictures.stats);
+  // The solve is most of such a render's time: the summary says so, not only the rays'.
+  if (pictures.solveSeconds > 0)
+    speed +=
+        printed("; layers %s solved in %.1f s", r.layers.method.c_str(), pictures.solveSeconds);
   if (const LenticularDesign* lenticular = (*t.display)->lenticularDesign())
     speed = printed("%.2f pixels per lens, views over %.0f degrees; ", lenticular->pixelsPerLens,
                     lenticular->calibration.viewConeDegrees) +

@@ -18,6 +18,8 @@ class Progress {
  public:
   virtual ~Progress() = default;
   virtual void update(int done, int total) = 0;
+  // A short status shown beside the bar from the next update on (a solver's objective).
+  virtual void detail(const std::string& text) { (void)text; }
   // As the library's progress callbacks take it.
   std::function<void(int, int)> callback() {
     return [this](int done, int total) { update(done, total); };

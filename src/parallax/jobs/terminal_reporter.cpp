@@ -32,9 +32,14 @@ void ProgressBar::update(int done, int total) {
   const int filled = int(fraction * kWidth);
   std::string bar(size_t(filled), '#');
   bar.append(size_t(kWidth - filled), '-');
-  std::fprintf(stderr, "\r%s [%s] %3d%%  %.1fs left\033[K", label_.c_str(), bar.c_str(),
-               int(fraction * 100), remaining);
+  std::fprintf(stderr, "\r%s [%s] %3d%%  %.1fs left%s%s\033[K", label_.c_str(), bar.c_str(),
+               int(fraction * 100), remaining, detail_.empty() ? "" : "  ", detail_.c_str());
   std::fflush(stderr);
+}
+
+void ProgressBar::detail(const std::string& text) {
+  const std::lock_guard lock(mutex_);
+  detail_ = text;
 }
 
 namespace {
@@ -43,6 +48,7 @@ class ProgressBarTask : public Progress {
  public:
   explicit ProgressBarTask(const std::string& label) : bar_(label) {}
   void update(int done, int total) override { bar_.update(done, total); }
+  void detail(const std::string& text) override { bar_.detail(text); }
 
  private:
   ProgressBar bar_;

@@ -19,9 +19,10 @@ class ProgressBar {
   explicit ProgressBar(std::string label);
   ~ProgressBar();
   void update(int done, int total);
+  void detail(const std::string& text);
 
  private:
-  std::string label_;
+  std::string label_, detail_;
   bool enabled_;
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, lastDraw_;

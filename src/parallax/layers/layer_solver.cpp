@@ -155,7 +155,8 @@ double layerObjective(const std::vector<TrainingView>& views, const std::vector<
 }
 
 Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
-                         int iterations, int threads, SolveReport* report) {
+                         int iterations, int threads, SolveReport* report,
+                         const SolveProgress& progress) {
   checkViews(views);
   clampToUnit(image);
   const auto energy = [&](const Image& x) {
@@ -233,6 +234,7 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
     if (!lowered) break;
     local.objective.push_back(e);
     ++local.iterations;
+    if (progress) progress(local.iterations, iterations, e);
   }
   if (report) *report = local;
   return image;
@@ -240,7 +242,7 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
 
 std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                                         std::vector<LayerFrame> frames, int iterations, int threads,
-                                        SolveReport* report) {
+                                        SolveReport* report, const SolveProgress& progress) {
   checkViews(views);
   if (frames.empty()) throw std::invalid_argument("factorizeLayers: no frames");
   for (const TrainingView& v : views)
@@ -287,6 +289,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
     update(false);
     local.objective.push_back(layerObjective(views, frames, threads));
     ++local.iterations;
+    if (progress) progress(local.iterations, iterations, local.objective.back());
   }
   if (report) *report = local;
   return frames;

@@ -20,6 +20,7 @@
 //     increases either.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "parallax/image/image.h"
@@ -53,12 +54,17 @@ double layerObjective(const std::vector<TrainingView>& views, const std::vector<
                       int threads = 0);
 
 // The image layer for the fixed `mask`, starting from `image` (clamped to [0, 1]).
+// Told after each iteration: (iterations done, iterations asked, objective), for progress.
+using SolveProgress = std::function<void(int done, int total, double objective)>;
+
 Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
-                         int iterations, int threads = 0, SolveReport* report = nullptr);
+                         int iterations, int threads = 0, SolveReport* report = nullptr,
+                         const SolveProgress& progress = {});
 
 // Both layers of every frame, starting from `frames` (clamped to [0, 1]).
 std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                                         std::vector<LayerFrame> frames, int iterations,
-                                        int threads = 0, SolveReport* report = nullptr);
+                                        int threads = 0, SolveReport* report = nullptr,
+                                        const SolveProgress& progress = {});
 
 }  // namespace parallax

@@ -255,8 +255,16 @@ TEST(FactorizeLayers, NeverIncreasesAndStaysInTheUnitBoxAtAnyRank) {
         start.push_back(
             {randomImage(27, 2, 20 + t, 0.1f, 0.9f), randomImage(27, 2, 30 + t, 0.1f, 0.9f)});
       SolveReport report;
-      const std::vector<LayerFrame> frames = factorizeLayers(views, start, 25, 2, &report);
+      // The progress callback sees every iteration, in order, with the report's objective.
+      std::vector<double> told;
+      const std::vector<LayerFrame> frames =
+          factorizeLayers(views, start, 25, 2, &report, [&](int done, int total, double objective) {
+            EXPECT_EQ(done, int(told.size()) + 1);
+            EXPECT_EQ(total, 25);
+            told.push_back(objective);
+          });
       ASSERT_EQ(frames.size(), size_t(rank));
+      EXPECT_EQ(told, std::vector<double>(report.objective.begin() + 1, report.objective.end()));
       for (const LayerFrame& f : frames) {
         EXPECT_TRUE(inUnitBox(f.image));
         EXPECT_TRUE(inUnitBox(f.mask));
