@@ -59,7 +59,18 @@ class LenticularDisplay final : public DisplayModel {
       const double view = filterKind_ == ViewFilterKind::Period
                               ? ownView + (u - 0.5)
                               : ownView + warp_(across + 0.5) * unblended;
-      r = lenticularRay(design_, panelX, filmY, channel, view);
+      // Down the panel: with a spot up to a subpixel wide (W <= 1) the eye sees a channel only
+      // in the rows where that channel's subpixel is at its view, a run of rows in every |slope|
+      // (the lenses' colour cycle, which the eye does not resolve: docs/lenticular.md, "What an
+      // eye integrates"). The subpixel's light is then the average over the |slope| rows around
+      // its own of what the eye should see there; a ray from its own row only aliases fine
+      // horizontal detail into colour moire. From W = 2 on every row shows the eye every
+      // channel, and its own acuity does the averaging: the rays stay in their row.
+      const double cycleRows = std::max(1.0, std::fabs(design_.calibration.slope));
+      const double sparse = std::clamp(2.0 - design_.optics.spotWidthSubpixels, 0.0, 1.0);
+      const double rows = 1.0 + (cycleRows - 1.0) * sparse;
+      const double panelY = rowCentre + (filmY - rowCentre) * rows;
+      r = lenticularRay(design_, panelX, panelY, channel, view);
     }
     return {r.origin, r.direction};
   }

@@ -89,5 +89,33 @@ TEST(LenticularDisplay, ViewFilterSpreadsTheRaysOverWhatAnEyeIntegrates) {
   EXPECT_GT(highest, 0.95);
 }
 
+// Down the panel the rays of a subpixel cover the lenses' colour cycle, |slope| rows centred on
+// its own row, while the spot leaves rows in which the eye does not see its channel (W <= 1);
+// from W = 2 on, every row shows every channel and the rays stay in their own row; in between
+// the span shrinks linearly. Where a ray leaves the panel (z = 0), in rows from the subpixel's
+// centre, is uniform over that span: mean 0, half-width rows / 2.
+TEST(LenticularDisplay, RaysCoverTheRowsOfTheColourCycleTheEyeDoesNotSee) {
+  const LenticularDesign base = smallLenticularDesign();
+  const double cycle = std::fabs(base.calibration.slope);
+  ASSERT_GT(cycle, 2.0);
+  for (const double spot : {0.0, 1.0, 1.5, 2.0, 3.0}) {
+    LensOptics o;
+    o.spotWidthSubpixels = spot;
+    const LenticularDesign d = withOptics(base, o);
+    const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(d);
+    const double own = subpixelPointMm(d, 90.5, 60.5, 1).y;
+    const double expected = 1 + (cycle - 1) * std::clamp(2 - spot, 0.0, 1.0);
+    double lowest = 1e9, highest = -1e9, mean = 0;
+    constexpr int n = 64;
+    for (int j = 0; j < n; ++j) {
+      const DisplayRay r = display->ray(3 * 90 + 1.5, 60 + (j + 0.5) / n, 0.5, 0.5);
+      const double rows = (r.origin.y + r.direction.y * r.origin.z - own) / d.pixelPitchMm;
+      lowest = std::min(lowest, rows), highest = std::max(highest, rows), mean += rows / n;
+    }
+    EXPECT_NEAR(mean, 0.0, 1e-6) << spot;
+    EXPECT_NEAR(highest - lowest, expected * (n - 1) / n, 1e-6) << spot;
+  }
+}
+
 }  // namespace
 }  // namespace parallax
