@@ -16,6 +16,13 @@ class LenticularDisplay final : public DisplayModel {
     // Which way views run along a row (+1: the view grows with the column): a pixel's step.
     const double step = viewFraction(design_, 1, 0, 0) - viewFraction(design_, 0, 0, 0);
     viewsAlongRow_ = step - std::round(step) >= 0 ? 1.0 : -1.0;
+    // The prefilter's spans, fixed by the optics (ray() explains them): in view, the part of a
+    // subpixel's span the spot leaves unblended; down the panel, the rows of the colour cycle
+    // while the spot leaves rows without the subpixel's channel (W <= 1), one row from W = 2.
+    const double spot = design_.optics.spotWidthSubpixels;
+    unblendedViews_ = std::max(0.0, 1.0 - spot) * subpixelViewWidth(design_);
+    const double cycleRows = std::max(1.0, std::fabs(design_.calibration.slope));
+    rowsSpread_ = 1.0 + (cycleRows - 1.0) * std::clamp(2.0 - spot, 0.0, 1.0);
   }
 
   DisplayKind kind() const override { return DisplayKind::Lenticular; }
@@ -53,12 +60,10 @@ class LenticularDisplay final : public DisplayModel {
       // the subpixels' spans blended by the spot: spot (W delta) * span (delta). Rays spread
       // over that blend again would blur twice; spread over the span only where the spot is
       // narrower than the subpixel, the render's own box and the spot together make the span.
-      const double unblended =
-          std::max(0.0, 1.0 - design_.optics.spotWidthSubpixels) * subpixelViewWidth(design_);
       // Period: anywhere in the lens's cone (the old cell's analogue, for comparison).
       const double view = filterKind_ == ViewFilterKind::Period
                               ? ownView + (u - 0.5)
-                              : ownView + warp_(across + 0.5) * unblended;
+                              : ownView + warp_(across + 0.5) * unblendedViews_;
       // Down the panel: with a spot up to a subpixel wide (W <= 1) the eye sees a channel only
       // in the rows where that channel's subpixel is at its view, a run of rows in every |slope|
       // (the lenses' colour cycle, which the eye does not resolve: docs/lenticular.md, "What an
@@ -66,10 +71,7 @@ class LenticularDisplay final : public DisplayModel {
       // its own of what the eye should see there; a ray from its own row only aliases fine
       // horizontal detail into colour moire. From W = 2 on every row shows the eye every
       // channel, and its own acuity does the averaging: the rays stay in their row.
-      const double cycleRows = std::max(1.0, std::fabs(design_.calibration.slope));
-      const double sparse = std::clamp(2.0 - design_.optics.spotWidthSubpixels, 0.0, 1.0);
-      const double rows = 1.0 + (cycleRows - 1.0) * sparse;
-      const double panelY = rowCentre + (filmY - rowCentre) * rows;
+      const double panelY = rowCentre + (filmY - rowCentre) * rowsSpread_;
       r = lenticularRay(design_, panelX, panelY, channel, view);
     }
     return {r.origin, r.direction};
@@ -111,6 +113,8 @@ class LenticularDisplay final : public DisplayModel {
   LenticularDesign design_;
   ViewFilterKind filterKind_;
   double viewsAlongRow_ = 1;
+  double unblendedViews_ = 0;  // the prefilter's spread in view (a view fraction)
+  double rowsSpread_ = 1;      // and down the panel (rows)
 
  public:
   bool centralRayOnly() const override { return filterKind_ == ViewFilterKind::None; }
