@@ -18,6 +18,14 @@
 #define PARALLAX_LANE_KERNEL
 #endif
 
+// Marks a loop over the lanes of a packet as free of loop-carried dependencies, so that the
+// compiler vectorises it without proving that the arrays do not alias, and if-converts its
+// selects (the modules with lane loops compile with -fopenmp-simd).
+#define PARALLAX_SIMD _Pragma("omp simd")
+// The same for a loop that also adds up `variable` across the lanes.
+#define PARALLAX_SIMD_PRAGMA(text) _Pragma(#text)
+#define PARALLAX_SIMD_SUM(variable) PARALLAX_SIMD_PRAGMA(omp simd reduction(+ : variable))
+
 namespace parallax {
 
 // Which version of the lane kernels this process runs: "x86-64-v4" (AVX-512), "x86-64-v3"

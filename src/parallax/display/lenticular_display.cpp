@@ -3,11 +3,177 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallax/core/lane_kernel.h"
 #include "parallax/display/display_model.h"
 
 namespace parallax {
 
 namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// What LenticularDisplay::ray reads from the design, fixed per display, so that rays16 can run
+// its formulas lane-wise. A subpixel's offset from its pixel (the calibration's stripes, or its
+// cells) comes from `offsetX/Y[cell * 3 + channel]` (screen fractions), cell
+// `cellOfPattern[pattern]` for the cell pattern of (column, row up); stripes are one cell.
+struct LensRayConstants {
+  double width = 1, height = 1;  // screenW, screenH (pixels)
+  int lastRow = 0;               // screenH - 1
+  double tilt = 0, pitchPx = 0, center = 0;
+  bool flipX = false, flipY = false, invView = false;
+  int cellPatternMode = 0;
+  int cellOfPattern[4] = {0, 0, 0, 0};
+  double offsetX[3 * 4] = {}, offsetY[3 * 4] = {}, meanOffsetX[4] = {};
+  double widthMm = 0, heightMm = 0, viewDistance = 0, convergence = 0, coneRadians = 0;
+  bool parallel = false;
+  // The prefilter (LenticularDisplay's constructor).
+  ViewFilterKind filter = ViewFilterKind::View;
+  double viewsAlongRow = 1, pixelsPerLens = 1, unblendedViews = 0, rowsSpread = 1;
+};
+
+LensRayConstants lensRayConstants(const LenticularDesign& d) {
+  const LenticularCalibration& c = d.calibration;
+  LensRayConstants k;
+  k.width = c.screenW, k.height = c.screenH, k.lastRow = c.screenH - 1;
+  k.tilt = d.tilt, k.pitchPx = d.pitchPx, k.center = c.center;
+  k.flipX = c.flipImageX, k.flipY = c.flipImageY, k.invView = c.invView;
+  const int cells = std::max<int>(1, int(c.subpixelCells.size()));
+  k.cellPatternMode = c.subpixelCells.empty() ? 0 : c.cellPatternMode;
+  for (int pattern = 0; pattern < 4; ++pattern) k.cellOfPattern[pattern] = pattern % cells;
+  for (int cell = 0; cell < std::min(cells, 4); ++cell) {
+    // In the order and the arithmetic of lenticular.cpp's subpixelOffset and subpixelPointMm.
+    double mean = 0;
+    for (int channel = 0; channel < 3; ++channel) {
+      double dx = 0, dy = 0;
+      if (c.subpixelCells.empty()) {
+        dx = (c.flipSubpixels ? 2 - channel : channel) / (3.0 * c.screenW);
+      } else {
+        const SubpixelCell& s = c.subpixelCells[size_t(cell)];
+        dx = s.offsetX[size_t(channel)] / c.screenW;
+        dy = s.offsetY[size_t(channel)] / c.screenH;
+      }
+      k.offsetX[cell * 3 + channel] = dx, k.offsetY[cell * 3 + channel] = dy;
+      mean += dx / 3.0;
+    }
+    k.meanOffsetX[cell] = mean;
+  }
+  k.widthMm = d.widthMm, k.heightMm = d.heightMm;
+  k.viewDistance = d.viewDistanceMm, k.convergence = d.optics.convergenceDistanceMm;
+  k.coneRadians = c.viewConeDegrees * kPi / 180.0;
+  k.parallel = d.optics.bundles == LensBundles::Parallel;
+  return k;
+}
+
+// The calibration's cell pattern (lenticular.cpp's cellIndex) of pixel (x, y up), branch-free.
+// floor(x) as an int, branch-free (GCC turns int(std::floor(x)) into a branchy sequence that
+// stops a lane loop from vectorising).
+inline int floorToInt(double x) {
+  const int truncated = int(x);
+  return truncated - int(double(truncated) > x);
+}
+
+// `modeMask[m]` is all ones for the calibration's mode m and zero for the others.
+inline int cellPattern(const int modeMask[5], int x, int yUp) {
+  return (modeMask[1] & ((x + yUp) & 1)) | (modeMask[2] & (x & 1)) |
+         (modeMask[3] & ((yUp + 2 * (x & 1)) & 3)) | (modeMask[4] & (yUp & 1));
+}
+
+// LenticularDisplay::ray for sixteen lanes: the same formulas (viewFractionAt, subpixelPointMm,
+// lensSlope, lenticularRay in lenticular.cpp) in the same order, lane by lane, so that the lane
+// loops vectorise; only the tangent is taken lane by lane. Outside the class: GCC cannot make
+// ISA clones of a virtual function (core/lane_kernel.h). `warp` is the view filter's warp.
+PARALLAX_LANE_KERNEL void lensRays16(const LensRayConstants& k, const ViewFilterWarp& warp,
+                                     const float filmX[16], const float filmY[16],
+                                     const float sampleU[16], const float sampleV[16],
+                                     double origin[3][16], double direction[3][16]) {
+  alignas(64) double warped[16], acrossColumn[16], panelX[16], panelY[16], angle[16], slope[16];
+  alignas(64) int channel[16];
+  const bool none = k.filter == ViewFilterKind::None;
+  const bool period = k.filter == ViewFilterKind::Period;
+  // The filter's warp is a call (a table for the Gaussian): lane by lane, and only where the
+  // spread in view is not zero (none from the default spot on).
+  const bool spread = !none && !period && k.unblendedViews != 0;
+  for (int i = 0; i < 16; ++i) {
+    const double across = double(filmX[i]) - floorToInt(double(filmX[i])) - 0.5;
+    warped[i] = spread ? warp(across + 0.5) * k.unblendedViews : 0.0;
+  }
+  // The constants as locals and the flips as arithmetic (1 - u as 1 + (-1) u, exact), so that
+  // nothing the loops store can alias what they read and they vectorise.
+  int modeMask[5], cellOfPattern[4];
+  for (int m = 0; m < 5; ++m) modeMask[m] = m == k.cellPatternMode ? -1 : 0;
+  for (int p = 0; p < 4; ++p) cellOfPattern[p] = k.cellOfPattern[p];
+  double offsetX[12], offsetY[12], meanOffsetX[4];
+  for (int j = 0; j < 12; ++j) offsetX[j] = k.offsetX[j], offsetY[j] = k.offsetY[j];
+  for (int j = 0; j < 4; ++j) meanOffsetX[j] = k.meanOffsetX[j];
+  const double width = k.width, height = k.height, tilt = k.tilt, pitchPx = k.pitchPx;
+  const double center = k.center, viewsAlongRow = k.viewsAlongRow;
+  const double pixelsPerLens = k.pixelsPerLens, rowsSpread = k.rowsSpread;
+  const double coneRadians = k.coneRadians, widthMm = k.widthMm, heightMm = k.heightMm;
+  const int lastRow = k.lastRow;
+  const double flipXBase = k.flipX ? 1.0 : 0.0, flipXSign = k.flipX ? -1.0 : 1.0;
+  const double flipYBase = k.flipY ? 1.0 : 0.0, flipYSign = k.flipY ? -1.0 : 1.0;
+  const double invBase = k.invView ? 1.0 : 0.0, invSign = k.invView ? -1.0 : 1.0;
+  const double spreadX = none ? 0.0 : 1.0, spreadY = none ? 0.0 : 1.0;
+  const double periodSpread = period ? 1.0 : 0.0, warpSpread = none || period ? 0.0 : 1.0;
+  // Integer work (columns, rows, cells and their table lookups) in loops of its own, the double
+  // arithmetic in loops of doubles only: mixed int, float and double lanes do not vectorise.
+  alignas(64) double fx[16], fy[16], centreX[16], rowCentre[16], offX[16], offY[16];
+  for (int i = 0; i < 16; ++i) {
+    const int column = floorToInt(double(filmX[i]));
+    const int x = column / 3;
+    channel[i] = column - 3 * x;
+    const int row = floorToInt(double(filmY[i]));
+    const int cell = cellOfPattern[cellPattern(modeMask, x, lastRow - row)];
+    fx[i] = double(filmX[i]), fy[i] = double(filmY[i]);
+    centreX[i] = x + 0.5, rowCentre[i] = row + 0.5;
+    offX[i] = offsetX[cell * 3 + channel[i]], offY[i] = offsetY[cell * 3 + channel[i]];
+    acrossColumn[i] = fx[i] - column - 0.5;
+  }
+  PARALLAX_SIMD
+  for (int i = 0; i < 16; ++i) {
+    // viewFractionAt(x + 1/2, rowCentre, channel): the subpixel's own view.
+    const double u = flipXBase + flipXSign * (centreX[i] / width);
+    const double v = 1.0 - rowCentre[i] / height;
+    const double phase = (u + flipXSign * offX[i] + (v + offY[i]) * tilt) * pitchPx - center;
+    const double f = invBase + invSign * (phase - std::floor(phase));
+    const double ownView = f >= 1.0 ? f - 1.0 : f;
+    const double lensOffset = viewsAlongRow * (double(sampleV[i]) - ownView) * pixelsPerLens;
+    // With the filter none the central ray: x + 1/2 and the row's centre (the additions of
+    // zero are exact).
+    panelX[i] = centreX[i] + spreadX * (acrossColumn[i] / 3.0 + lensOffset);
+    panelY[i] = rowCentre[i] + spreadY * ((fy[i] - rowCentre[i]) * rowsSpread);
+    const double view =
+        ownView + periodSpread * (double(sampleU[i]) - 0.5) + warpSpread * warped[i];
+    angle[i] = (view - 0.5) * coneRadians;
+  }
+  for (int i = 0; i < 16; ++i) slope[i] = std::tan(angle[i]);
+  const double D = k.viewDistance, C = k.convergence;
+  const bool parallel = k.parallel;
+  // subpixelPointMm(panelX, panelY, channel): the cell of the panel point's pixel.
+  for (int i = 0; i < 16; ++i) {
+    const int cell = cellOfPattern[cellPattern(modeMask, floorToInt(panelX[i]),
+                                               lastRow - floorToInt(panelY[i]))];
+    offX[i] = offsetX[cell * 3 + channel[i]] - meanOffsetX[cell];
+    offY[i] = offsetY[cell * 3 + channel[i]];
+  }
+  alignas(64) double ox[16], dx[16], dy[16];
+  PARALLAX_SIMD
+  for (int i = 0; i < 16; ++i) {
+    const double u = panelX[i] / width + offX[i];
+    const double v = 1.0 - panelY[i] / height + offY[i];
+    const double pointX = (flipXBase + flipXSign * u - 0.5) * widthMm;
+    const double pointY = (flipYBase + flipYSign * v - 0.5) * heightMm;
+    // lensSlope, then lenticularRay's origin on the design line and direction.
+    const double lens = parallel ? slope[i] : (C * slope[i] - pointX) / C;
+    ox[i] = pointX + D * lens;
+    dx[i] = (pointX - ox[i]) / D;
+    dy[i] = pointY / D;
+  }
+  for (int i = 0; i < 16; ++i) {
+    origin[0][i] = ox[i], origin[1][i] = 0.0, origin[2][i] = D;
+    direction[0][i] = dx[i], direction[1][i] = dy[i], direction[2][i] = -1.0;
+  }
+}
 
 class LenticularDisplay final : public DisplayModel {
  public:
@@ -23,6 +189,10 @@ class LenticularDisplay final : public DisplayModel {
     unblendedViews_ = std::max(0.0, 1.0 - spot) * subpixelViewWidth(design_);
     const double cycleRows = std::max(1.0, std::fabs(design_.calibration.slope));
     rowsSpread_ = 1.0 + (cycleRows - 1.0) * std::clamp(2.0 - spot, 0.0, 1.0);
+    lanes_ = lensRayConstants(design_);
+    lanes_.filter = filterKind_;
+    lanes_.viewsAlongRow = viewsAlongRow_, lanes_.pixelsPerLens = design_.pixelsPerLens;
+    lanes_.unblendedViews = unblendedViews_, lanes_.rowsSpread = rowsSpread_;
   }
 
   DisplayKind kind() const override { return DisplayKind::Lenticular; }
@@ -76,6 +246,10 @@ class LenticularDisplay final : public DisplayModel {
     }
     return {r.origin, r.direction};
   }
+  void rays16(const float filmX[16], const float filmY[16], const float u[16], const float v[16],
+              double origin[3][16], double direction[3][16]) const override {
+    lensRays16(lanes_, warp_, filmX, filmY, u, v, origin, direction);
+  }
   bool columnFans() const override { return false; }
 
   // The views of a lenticular panel are continuous; its angular samples for quilts, direct
@@ -115,6 +289,7 @@ class LenticularDisplay final : public DisplayModel {
   double viewsAlongRow_ = 1;
   double unblendedViews_ = 0;  // the prefilter's spread in view (a view fraction)
   double rowsSpread_ = 1;      // and down the panel (rows)
+  LensRayConstants lanes_;     // the same, for rays16
 
  public:
   bool centralRayOnly() const override { return filterKind_ == ViewFilterKind::None; }

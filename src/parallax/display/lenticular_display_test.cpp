@@ -117,5 +117,74 @@ TEST(LenticularDisplay, RaysCoverTheRowsOfTheColourCycleTheEyeDoesNotSee) {
   }
 }
 
+// rays16 (the render loop's lane kernel) is ray() written lane-wise: a second code path of the
+// same formulas, checked lane by lane on every calibration feature it reads (subpixel cells in
+// each pattern, mirrored images and subpixels, inverted views, both bundles), every filter and
+// several spots, at film samples anywhere on the panel (edges and lens offsets past them
+// included).
+TEST(LenticularDisplay, SixteenLaneRaysAreTheSingleRays) {
+  std::vector<LenticularDesign> designs;
+  for (const bool flip : {false, true}) designs.push_back(smallLenticularDesign(120, flip));
+  for (int mode = 0; mode <= 4; ++mode) {
+    LenticularCalibration c = smallLenticularDesign().calibration;
+    c.cellPatternMode = mode;
+    c.subpixelCells = {{{-0.31, 0.28, 0.0}, {0.25, 0.25, -0.25}},
+                       {{-0.25, -0.25, 0.25}, {-0.31, 0.28, 0.0}},
+                       {{0.1, -0.2, 0.3}, {0.0, 0.15, -0.1}}};
+    c.flipImageY = mode % 2 == 1;
+    c.invView = mode != 2;
+    designs.push_back(designLenticular(c));
+  }
+  LenticularCalibration bgr = smallLenticularDesign().calibration;
+  bgr.flipSubpixels = true;
+  designs.push_back(designLenticular(bgr));
+  const ViewFilterKind filters[] = {ViewFilterKind::None, ViewFilterKind::View,
+                                    ViewFilterKind::Tent, ViewFilterKind::Gaussian,
+                                    ViewFilterKind::Period};
+  uint32_t state = 12345;
+  const auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);
+  };
+  int checked = 0;
+  for (const LenticularDesign& base : designs)
+    for (const double spot : {0.0, 1.0, 3.0})
+      for (const LensBundles bundles : {LensBundles::Converging, LensBundles::Parallel})
+        for (const ViewFilterKind filter : filters) {
+          LensOptics o;
+          o.spotWidthSubpixels = spot;
+          o.bundles = bundles;
+          const LenticularDesign d = withOptics(base, o);
+          const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(d, {filter, 1.5});
+          const FilmLayout film = display->film();
+          alignas(64) float x[16], y[16], u[16], v[16];
+          alignas(64) double origin[3][16], direction[3][16];
+          for (int lane = 0; lane < 16; ++lane) {
+            // Lanes 0 and 15 on the film's first and last columns and rows.
+            const int column = lane == 0    ? 0
+                               : lane == 15 ? film.columns - 1
+                                            : int(next() * film.columns);
+            const int row = lane == 0 ? 0 : lane == 15 ? film.rows - 1 : int(next() * film.rows);
+            x[lane] = float(column) + next() * 0.999f, y[lane] = float(row) + next() * 0.999f;
+            u[lane] = next(), v[lane] = next();
+          }
+          display->rays16(x, y, u, v, origin, direction);
+          for (int lane = 0; lane < 16; ++lane) {
+            const DisplayRay r = display->ray(x[lane], y[lane], u[lane], v[lane]);
+            const double got[6] = {origin[0][lane],    origin[1][lane],    origin[2][lane],
+                                   direction[0][lane], direction[1][lane], direction[2][lane]};
+            const double want[6] = {r.origin.x,    r.origin.y,    r.origin.z,
+                                    r.direction.x, r.direction.y, r.direction.z};
+            for (int k = 0; k < 6; ++k)
+              ASSERT_NEAR(got[k], want[k], 1e-9 * (1 + std::fabs(want[k])))
+                  << "component " << k << " lane " << lane << " filter " << int(filter) << " spot "
+                  << spot << " cells " << d.calibration.subpixelCells.size() << " mode "
+                  << d.calibration.cellPatternMode;
+            ++checked;
+          }
+        }
+  EXPECT_EQ(checked, int(designs.size()) * 3 * 2 * 5 * 16);
+}
+
 }  // namespace
 }  // namespace parallax

@@ -4,14 +4,8 @@
 
 #include <cstdint>
 
+#include "parallax/core/lane_kernel.h"
 #include "parallax/core/math.h"
-
-// Marks a loop over the lanes of a packet as free of loop-carried dependencies, so that the
-// compiler vectorises it without proving that the arrays do not alias (-fopenmp-simd).
-#define PARALLAX_SIMD _Pragma("omp simd")
-// The same for a loop that also adds up `variable` across the lanes.
-#define PARALLAX_SIMD_PRAGMA(text) _Pragma(#text)
-#define PARALLAX_SIMD_SUM(variable) PARALLAX_SIMD_PRAGMA(omp simd reduction(+ : variable))
 
 namespace parallax {
 
