@@ -6,6 +6,15 @@
 #include "parallax/core/lane_kernel.h"
 #include "parallax/display/display_model.h"
 
+// glibc's vector tangents (libmvec, which libm's link script pulls in as needed): with this
+// declaration GCC calls them from vectorised lane loops (_ZGVeN8v_tan with AVX-512,
+// _ZGVdN4v_tan with AVX2, _ZGVbN2v_tan otherwise), within 4 ulp of libm's scalar tan. glibc
+// declares them itself only under -ffast-math.
+extern "C" {
+#pragma omp declare simd notinbranch
+double tan(double) noexcept;
+}
+
 namespace parallax {
 
 namespace {
@@ -22,6 +31,7 @@ struct LensRayConstants {
   double tilt = 0, pitchPx = 0, center = 0;
   bool flipX = false, flipY = false, invView = false;
   int cellPatternMode = 0;
+  bool hasCells = false;  // the calibration's own cells (else its stripes, as one cell)
   int cellOfPattern[4] = {0, 0, 0, 0};
   double offsetX[3 * 4] = {}, offsetY[3 * 4] = {}, meanOffsetX[4] = {};
   double widthMm = 0, heightMm = 0, viewDistance = 0, convergence = 0, coneRadians = 0;
@@ -39,6 +49,7 @@ LensRayConstants lensRayConstants(const LenticularDesign& d) {
   k.flipX = c.flipImageX, k.flipY = c.flipImageY, k.invView = c.invView;
   const int cells = std::max<int>(1, int(c.subpixelCells.size()));
   k.cellPatternMode = c.subpixelCells.empty() ? 0 : c.cellPatternMode;
+  k.hasCells = !c.subpixelCells.empty();
   for (int pattern = 0; pattern < 4; ++pattern) k.cellOfPattern[pattern] = pattern % cells;
   for (int cell = 0; cell < std::min(cells, 4); ++cell) {
     // In the order and the arithmetic of lenticular.cpp's subpixelOffset and subpixelPointMm.
@@ -65,17 +76,28 @@ LensRayConstants lensRayConstants(const LenticularDesign& d) {
 }
 
 // The calibration's cell pattern (lenticular.cpp's cellIndex) of pixel (x, y up), branch-free.
-// floor(x) as an int, branch-free (GCC turns int(std::floor(x)) into a branchy sequence that
-// stops a lane loop from vectorising).
-inline int floorToInt(double x) {
-  const int truncated = int(x);
-  return truncated - int(double(truncated) > x);
+// Integer arithmetic in doubles (exact below 2^53), so that a lane loop holds one type and
+// vectorises: a mod 2 and a mod 4 as two's complement `& 1` and `& 3` give them.
+inline double parity(double a) {
+  return a - 2.0 * std::floor(a * 0.5);
+}
+inline double modFour(double a) {
+  return a - 4.0 * std::floor(a * 0.25);
 }
 
-// `modeMask[m]` is all ones for the calibration's mode m and zero for the others.
-inline int cellPattern(const int modeMask[5], int x, int yUp) {
-  return (modeMask[1] & ((x + yUp) & 1)) | (modeMask[2] & (x & 1)) |
-         (modeMask[3] & ((yUp + 2 * (x & 1)) & 3)) | (modeMask[4] & (yUp & 1));
+// The cell pattern of pixel (x, y up) (lenticular.cpp's cellIndex before its `% cells`), for the
+// calibration's mode m: `isMode[m]` is 1 for it and 0 for the others.
+inline double cellPattern(const double isMode[5], double x, double yUp) {
+  return isMode[1] * parity(x + yUp) + isMode[2] * parity(x) +
+         isMode[3] * modFour(yUp + 2.0 * parity(x)) + isMode[4] * parity(yUp);
+}
+
+// table[index] for a whole-number index in [0, n), as selects rather than a gather.
+template <int n>
+inline double pick(const double (&table)[n], double index) {
+  double value = table[0];
+  for (int j = 1; j < n; ++j) value = index == double(j) ? table[j] : value;
+  return value;
 }
 
 // LenticularDisplay::ray for sixteen lanes: the same formulas (viewFractionAt, subpixelPointMm,
@@ -86,88 +108,113 @@ PARALLAX_LANE_KERNEL void lensRays16(const LensRayConstants& k, const ViewFilter
                                      const float filmX[16], const float filmY[16],
                                      const float sampleU[16], const float sampleV[16],
                                      double origin[3][16], double direction[3][16]) {
-  alignas(64) double warped[16], acrossColumn[16], panelX[16], panelY[16], angle[16], slope[16];
-  alignas(64) int channel[16];
+  alignas(64) double fx[16], fy[16], channel[16], centreX[16], rowCentre[16], offX[16], offY[16];
+  alignas(64) double warped[16], panelX[16], panelY[16], angle[16], slope[16];
   const bool none = k.filter == ViewFilterKind::None;
   const bool period = k.filter == ViewFilterKind::Period;
+  for (int i = 0; i < 16; ++i) fx[i] = double(filmX[i]), fy[i] = double(filmY[i]);
   // The filter's warp is a call (a table for the Gaussian): lane by lane, and only where the
   // spread in view is not zero (none from the default spot on).
   const bool spread = !none && !period && k.unblendedViews != 0;
-  for (int i = 0; i < 16; ++i) {
-    const double across = double(filmX[i]) - floorToInt(double(filmX[i])) - 0.5;
-    warped[i] = spread ? warp(across + 0.5) * k.unblendedViews : 0.0;
-  }
-  // The constants as locals and the flips as arithmetic (1 - u as 1 + (-1) u, exact), so that
-  // nothing the loops store can alias what they read and they vectorise.
-  int modeMask[5], cellOfPattern[4];
-  for (int m = 0; m < 5; ++m) modeMask[m] = m == k.cellPatternMode ? -1 : 0;
-  for (int p = 0; p < 4; ++p) cellOfPattern[p] = k.cellOfPattern[p];
-  double offsetX[12], offsetY[12], meanOffsetX[4];
+  for (int i = 0; i < 16; ++i)
+    warped[i] = spread ? warp(fx[i] - std::floor(fx[i])) * k.unblendedViews : 0.0;
+  // The constants as locals, the integer work in doubles and the flips as arithmetic (1 - u as
+  // 1 + (-1) u): every loop holds doubles only, nothing it stores can alias what it reads, and
+  // it vectorises. The values are those of the scalar formulas, exactly.
+  double isMode[5], cellOfPattern[4], offsetX[12], offsetY[12], meanOffsetX[4];
+  for (int m = 0; m < 5; ++m) isMode[m] = m == k.cellPatternMode ? 1.0 : 0.0;
+  for (int j = 0; j < 4; ++j) cellOfPattern[j] = k.cellOfPattern[j];
   for (int j = 0; j < 12; ++j) offsetX[j] = k.offsetX[j], offsetY[j] = k.offsetY[j];
   for (int j = 0; j < 4; ++j) meanOffsetX[j] = k.meanOffsetX[j];
+  // Stripes (no cells): one cell, whose offsets depend on the channel only; the loops are
+  // unswitched on `cells`, so that a striped panel pays for no cell pattern.
+  const bool cells = k.cellPatternMode != 0 || k.hasCells;
+  const double stripeX[3] = {offsetX[0], offsetX[1], offsetX[2]};
   const double width = k.width, height = k.height, tilt = k.tilt, pitchPx = k.pitchPx;
   const double center = k.center, viewsAlongRow = k.viewsAlongRow;
   const double pixelsPerLens = k.pixelsPerLens, rowsSpread = k.rowsSpread;
   const double coneRadians = k.coneRadians, widthMm = k.widthMm, heightMm = k.heightMm;
-  const int lastRow = k.lastRow;
+  const double lastRow = k.lastRow;
+  const double inverseWidth = 1.0 / width, inverseHeight = 1.0 / height, third = 1.0 / 3.0;
   const double flipXBase = k.flipX ? 1.0 : 0.0, flipXSign = k.flipX ? -1.0 : 1.0;
   const double flipYBase = k.flipY ? 1.0 : 0.0, flipYSign = k.flipY ? -1.0 : 1.0;
   const double invBase = k.invView ? 1.0 : 0.0, invSign = k.invView ? -1.0 : 1.0;
   const double spreadX = none ? 0.0 : 1.0, spreadY = none ? 0.0 : 1.0;
   const double periodSpread = period ? 1.0 : 0.0, warpSpread = none || period ? 0.0 : 1.0;
-  // Integer work (columns, rows, cells and their table lookups) in loops of its own, the double
-  // arithmetic in loops of doubles only: mixed int, float and double lanes do not vectorise.
-  alignas(64) double fx[16], fy[16], centreX[16], rowCentre[16], offX[16], offY[16];
+  alignas(64) double column[16], panelColumn[16], panelRow[16];
+  PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
-    const int column = floorToInt(double(filmX[i]));
-    const int x = column / 3;
-    channel[i] = column - 3 * x;
-    const int row = floorToInt(double(filmY[i]));
-    const int cell = cellOfPattern[cellPattern(modeMask, x, lastRow - row)];
-    fx[i] = double(filmX[i]), fy[i] = double(filmY[i]);
-    centreX[i] = x + 0.5, rowCentre[i] = row + 0.5;
-    offX[i] = offsetX[cell * 3 + channel[i]], offY[i] = offsetY[cell * 3 + channel[i]];
-    acrossColumn[i] = fx[i] - column - 0.5;
+    // Film column 3x + c: panel column x, channel c (column / 3 rounded down, exact: the
+    // quotient's fraction is at least 1/6 from a whole number).
+    column[i] = std::floor(fx[i]);
+    panelColumn[i] = std::floor((column[i] + 0.5) * third);
+    channel[i] = column[i] - 3.0 * panelColumn[i];
+    panelRow[i] = std::floor(fy[i]);
+    centreX[i] = panelColumn[i] + 0.5, rowCentre[i] = panelRow[i] + 0.5;
+  }
+  // The subpixel's offset in its pixel: by cell and channel, or (stripes) by channel only. Two
+  // loops rather than a branch in one, which stops it vectorising.
+  if (cells) {
+    PARALLAX_SIMD
+    for (int i = 0; i < 16; ++i) {
+      const double cell =
+          pick(cellOfPattern, cellPattern(isMode, panelColumn[i], lastRow - panelRow[i]));
+      offX[i] = pick(offsetX, cell * 3.0 + channel[i]);
+      offY[i] = pick(offsetY, cell * 3.0 + channel[i]);
+    }
+  } else {
+    PARALLAX_SIMD
+    for (int i = 0; i < 16; ++i) offX[i] = pick(stripeX, channel[i]), offY[i] = 0.0;
   }
   PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
     // viewFractionAt(x + 1/2, rowCentre, channel): the subpixel's own view.
-    const double u = flipXBase + flipXSign * (centreX[i] / width);
-    const double v = 1.0 - rowCentre[i] / height;
+    const double u = flipXBase + flipXSign * (centreX[i] * inverseWidth);
+    const double v = 1.0 - rowCentre[i] * inverseHeight;
     const double phase = (u + flipXSign * offX[i] + (v + offY[i]) * tilt) * pitchPx - center;
     const double f = invBase + invSign * (phase - std::floor(phase));
     const double ownView = f >= 1.0 ? f - 1.0 : f;
+    const double across = fx[i] - column[i] - 0.5;
     const double lensOffset = viewsAlongRow * (double(sampleV[i]) - ownView) * pixelsPerLens;
     // With the filter none the central ray: x + 1/2 and the row's centre (the additions of
     // zero are exact).
-    panelX[i] = centreX[i] + spreadX * (acrossColumn[i] / 3.0 + lensOffset);
+    panelX[i] = centreX[i] + spreadX * (across * third + lensOffset);
     panelY[i] = rowCentre[i] + spreadY * ((fy[i] - rowCentre[i]) * rowsSpread);
     const double view =
         ownView + periodSpread * (double(sampleU[i]) - 0.5) + warpSpread * warped[i];
     angle[i] = (view - 0.5) * coneRadians;
   }
-  for (int i = 0; i < 16; ++i) slope[i] = std::tan(angle[i]);
-  const double D = k.viewDistance, C = k.convergence;
+  PARALLAX_SIMD
+  for (int i = 0; i < 16; ++i) slope[i] = tan(angle[i]);
+  const double D = k.viewDistance, inverseD = 1.0 / D, inverseC = 1.0 / k.convergence;
   const bool parallel = k.parallel;
-  // subpixelPointMm(panelX, panelY, channel): the cell of the panel point's pixel.
-  for (int i = 0; i < 16; ++i) {
-    const int cell = cellOfPattern[cellPattern(modeMask, floorToInt(panelX[i]),
-                                               lastRow - floorToInt(panelY[i]))];
-    offX[i] = offsetX[cell * 3 + channel[i]] - meanOffsetX[cell];
-    offY[i] = offsetY[cell * 3 + channel[i]];
+  alignas(64) double ox[16], dx[16], dy[16], shiftX[16], shiftY[16];
+  // subpixelPointMm(panelX, panelY, channel): the offset of the channel's subpixel from the
+  // pixel's mean, in the cell of the panel point's pixel.
+  if (cells) {
+    PARALLAX_SIMD
+    for (int i = 0; i < 16; ++i) {
+      const double cell = pick(cellOfPattern, cellPattern(isMode, std::floor(panelX[i]),
+                                                          lastRow - std::floor(panelY[i])));
+      shiftX[i] = pick(offsetX, cell * 3.0 + channel[i]) - pick(meanOffsetX, cell);
+      shiftY[i] = pick(offsetY, cell * 3.0 + channel[i]);
+    }
+  } else {
+    PARALLAX_SIMD
+    for (int i = 0; i < 16; ++i)
+      shiftX[i] = pick(stripeX, channel[i]) - meanOffsetX[0], shiftY[i] = 0.0;
   }
-  alignas(64) double ox[16], dx[16], dy[16];
   PARALLAX_SIMD
   for (int i = 0; i < 16; ++i) {
-    const double u = panelX[i] / width + offX[i];
-    const double v = 1.0 - panelY[i] / height + offY[i];
+    const double u = panelX[i] * inverseWidth + shiftX[i];
+    const double v = 1.0 - panelY[i] * inverseHeight + shiftY[i];
     const double pointX = (flipXBase + flipXSign * u - 0.5) * widthMm;
     const double pointY = (flipYBase + flipYSign * v - 0.5) * heightMm;
     // lensSlope, then lenticularRay's origin on the design line and direction.
-    const double lens = parallel ? slope[i] : (C * slope[i] - pointX) / C;
+    const double lens = parallel ? slope[i] : slope[i] - pointX * inverseC;
     ox[i] = pointX + D * lens;
-    dx[i] = (pointX - ox[i]) / D;
-    dy[i] = pointY / D;
+    dx[i] = (pointX - ox[i]) * inverseD;
+    dy[i] = pointY * inverseD;
   }
   for (int i = 0; i < 16; ++i) {
     origin[0][i] = ox[i], origin[1][i] = 0.0, origin[2][i] = D;
