@@ -130,6 +130,19 @@ check "the ideal view has the panel's size" test "$(png_size "$tmp/ideal.png")" 
 check "bench --camera display with a calibration" run 0 bench --camera display \
   --display "$tmp/small.json" --spp 1 --repeats 1 --json
 check "bench measures the panel's subpixel film" grep -q '"width": 288' "$tmp/out"
+check "bench times the panel's own quilt route, its ratios from its times" python3 -c '
+import json, sys
+q = json.load(open(sys.argv[1]))["quilt_route"]
+assert q["views"] == 48, q
+assert min(q["direct_seconds"], q["quilt_seconds"], q["interlace_seconds"]) > 0, q
+assert abs(q["direct_over_quilt"] - q["direct_seconds"] / q["quilt_seconds"]) < 1e-9, q
+route = q["quilt_seconds"] + q["interlace_seconds"]
+assert abs(q["direct_over_quilt_and_interlace"] - q["direct_seconds"] / route) < 1e-9, q
+assert q["direct_rays"] > 0 and q["quilt_rays"] > 0, q
+' "$tmp/out"
+check "bench says the quilt route's ratios" run 0 bench --camera display \
+  --display "$tmp/small.json" --spp 1 --repeats 1
+check "in its own line" grep -q '^quilt route  direct' "$tmp/out"
 check "interlace a quilt onto the panel" run 0 interlace "$tmp/q/quilt_qs8x6a0.75.png" \
   --display lkg:portrait -o "$tmp/iq"
 check "the interlaced panel has the Portrait's size" \

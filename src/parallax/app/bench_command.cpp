@@ -209,6 +209,11 @@ void runBench(const BenchOptions& o) {
     camera = std::make_unique<DisplayCamera>(std::move(display), scene.display);
     width = camera->width(), height = camera->height();
     limitGrid = WindowCamera(eye, *model, scene.display, width, height).grid(o.sampling.spp);
+    // The panel's film, and a lenticular panel's quilt route (timed below), before either is
+    // allocated.
+    checkMemoryEstimate(imageBytes(width, height) * 4 + quiltRouteBytes(*model),
+                        "--display " + o.display, "the panel's film and its quilt route",
+                        "use a smaller display");
   }
   const CameraSpec spec = scene.camera ? *scene.camera : frameScene(scene);
   const PinholeCamera pinhole(spec.eye, spec.lookAt, spec.up, spec.fovDegrees, width, height);
@@ -232,6 +237,10 @@ void runBench(const BenchOptions& o) {
   const double wallRatio = clock.total() / std::max(1e-9, clock.seconds("render"));
 
   const BenchResult r = benchmark(scene, accelerator, measured, *limitGrid, settings, o.repeats);
+  // A lenticular panel: its direct render against its own device quilt route, in this run.
+  std::optional<QuiltRouteTimes> quiltRoute;
+  if (model && model->lenticularDesign())
+    quiltRoute = benchmarkQuiltRoute(scene, accelerator, *model, settings, o.repeats);
   const double peak = peakResidentMiB();
   const char* quality = qualityName(accelerator.buildQuality());
   if (o.json) {
@@ -272,6 +281,19 @@ void runBench(const BenchOptions& o) {
       json.set(std::string("/phases/") + phase.name + "/seconds", phase.seconds);
       json.set(std::string("/phases/") + phase.name + "/peak_rss_mb", phase.peakMiB);
     }
+    if (quiltRoute) {
+      const QuiltRouteTimes& q = *quiltRoute;
+      json.set("/quilt_route/views", q.views);
+      json.set("/quilt_route/tile_width", q.tileWidth);
+      json.set("/quilt_route/tile_height", q.tileHeight);
+      json.set("/quilt_route/direct_seconds", q.direct);
+      json.set("/quilt_route/direct_rays", q.directRays);
+      json.set("/quilt_route/quilt_seconds", q.quilt);
+      json.set("/quilt_route/quilt_rays", q.quiltRays);
+      json.set("/quilt_route/interlace_seconds", q.interlace);
+      json.set("/quilt_route/direct_over_quilt", q.directOverQuilt());
+      json.set("/quilt_route/direct_over_quilt_and_interlace", q.directOverRoute());
+    }
     json.set("/phases/total_seconds", clock.total());
     json.set("/wall_ratio", wallRatio);
     json.set("/peak_rss_mb", peak);
@@ -303,6 +325,15 @@ void runBench(const BenchOptions& o) {
       "shading      %.2f of Embree's time on our rays (shading, light sampling, packet copies); "
       "ours / (camera ray generation + Embree on our rays) %.2f\n",
       r.shadingOverEmbree(), r.tracedRaysRatio());
+  if (quiltRoute) {
+    const QuiltRouteTimes& q = *quiltRoute;
+    std::printf(
+        "quilt route  direct %.3f s (%llu rays); the device quilt (%d views of %dx%d) %.3f s "
+        "(%llu rays), interlaced in %.3f s\n             direct / quilt %.2f, direct / (quilt + "
+        "interlace) %.2f\n",
+        q.direct, (unsigned long long)q.directRays, q.views, q.tileWidth, q.tileHeight, q.quilt,
+        (unsigned long long)q.quiltRays, q.interlace, q.directOverQuilt(), q.directOverRoute());
+  }
   std::printf("end to end  ");
   for (const Phase& phase : clock.phases())
     std::printf(" %s %.3f s (%.0f MiB)", phase.name, phase.seconds, phase.peakMiB);
@@ -320,7 +351,9 @@ void registerBenchCommand(CLI::App& cli) {
                   "Camera to measure: pinhole, or display (the image layer through the barrier)")
       ->capture_default_str();
   cmd->add_option("--display", options->display,
-                  "Display for --camera display: a file of any kind, or lkg:NAME");
+                  "Display for --camera display: a file of any kind, or lkg:NAME (a lenticular "
+                  "panel's direct render is also timed against its own device quilt and "
+                  "interlace, in the same run)");
   addFilterOptions(*cmd, options->filter, "With --camera display: ", "as render --filter-width");
   cmd->add_option("--scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
   cmd->add_option("--size", options->size,

@@ -5,10 +5,13 @@
 #include <chrono>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <vector>
 
 #include "parallax/core/parallel.h"
+#include "parallax/render/display_render.h"
 #include "parallax/render/light_sampler.h"
+#include "parallax/render/quilt.h"
 #include "parallax/render/tile_packets.h"
 
 namespace parallax {
@@ -109,6 +112,58 @@ BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const 
     keepFastest(result.embreeOnOurs, replayed);
   }
   return result;
+}
+
+namespace {
+
+QuiltLayout deviceQuilt(const LenticularDesign& design, int& tileWidth, int& tileHeight) {
+  const QuiltFormat& q = design.calibration.quilt;
+  QuiltLayout layout;
+  layout.columns = q.columns, layout.rows = q.rows;
+  layout.aspect = design.widthMm / design.heightMm;
+  tileWidth = q.width / q.columns, tileHeight = q.height / q.rows;
+  return layout;
+}
+
+}  // namespace
+
+double quiltRouteBytes(const DisplayModel& display) {
+  const LenticularDesign* design = display.lenticularDesign();
+  if (!design) return 0.0;
+  const QuiltFormat& q = design->calibration.quilt;
+  const FilmLayout film = display.film();
+  // The float quilt and its views (RGB floats), and the panel picture twice (both routes).
+  return 2.0 * 12.0 * double(q.width) * q.height + 2.0 * 12.0 * film.panelWidth * film.panelHeight;
+}
+
+QuiltRouteTimes benchmarkQuiltRoute(const Scene& scene, const Accelerator& accelerator,
+                                    const DisplayModel& display, const RenderSettings& settings,
+                                    int repeats) {
+  const LenticularDesign* design = display.lenticularDesign();
+  if (!design) throw std::invalid_argument("the quilt route is timed on lenticular displays only");
+  QuiltRouteTimes times;
+  const QuiltLayout layout = deviceQuilt(*design, times.tileWidth, times.tileHeight);
+  times.views = layout.views();
+  const double never = std::numeric_limits<double>::infinity();
+  times.direct = times.quilt = times.interlace = never;
+  for (int i = 0; i < std::max(1, repeats); ++i) {
+    // Alternating, as benchmark() does, so that a slow spell of the machine hits both.
+    auto start = Clock::now();
+    const DisplayLayers direct = renderDisplay(scene, accelerator, display, settings);
+    times.direct = std::min(times.direct, since(start));
+    times.directRays = direct.stats.totalRays();
+    RenderStats quiltStats;
+    start = Clock::now();
+    const Image quilt = renderQuilt(scene, accelerator, display, settings, layout, times.tileWidth,
+                                    times.tileHeight, &quiltStats);
+    times.quilt = std::min(times.quilt, since(start));
+    times.quiltRays = quiltStats.totalRays();
+    start = Clock::now();
+    const std::vector<Image> views = splitQuilt(quilt, layout, "<bench>");
+    const Image panel = interlaceQuiltLenticular(*design, views);
+    times.interlace = std::min(times.interlace, since(start));
+  }
+  return times;
 }
 
 }  // namespace parallax

@@ -6,6 +6,7 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/camera/camera.h"
+#include "parallax/display/display_model.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
 
@@ -80,5 +81,27 @@ struct BenchResult {
 BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
                       const PinholeGrid& limitGrid, const RenderSettings& settings,
                       int repeats = 2);
+
+// A lenticular panel's two routes to the same picture, timed in one run (wall seconds with the
+// same workers, the fastest of `repeats`): the direct per-subpixel render (renderDisplay), the
+// device's own quilt (its calibration's layout and size) at the same samples per pixel
+// (renderQuilt), and interlacing that quilt onto the panel (interlaceQuiltLenticular). The
+// issue's goal: direct <= quilt.
+struct QuiltRouteTimes {
+  double direct = 0, quilt = 0, interlace = 0;
+  uint64_t directRays = 0, quiltRays = 0;  // all rays traced (camera and shadow)
+  int views = 0, tileWidth = 0, tileHeight = 0;
+  double directOverQuilt() const { return quilt > 0 ? direct / quilt : 0.0; }
+  double directOverRoute() const {
+    return quilt + interlace > 0 ? direct / (quilt + interlace) : 0.0;
+  }
+};
+// Bytes the quilt route holds at once (the float quilt, its views and the panel), for the
+// caller's memory check before it runs.
+double quiltRouteBytes(const DisplayModel& display);
+// Throws std::invalid_argument for a display that is not lenticular.
+QuiltRouteTimes benchmarkQuiltRoute(const Scene& scene, const Accelerator& accelerator,
+                                    const DisplayModel& display, const RenderSettings& settings,
+                                    int repeats = 2);
 
 }  // namespace parallax

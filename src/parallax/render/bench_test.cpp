@@ -5,7 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <stdexcept>
 
+#include "parallax/display/lenticular_test_support.h"
+#include "parallax/render/display_render.h"
+#include "parallax/render/quilt.h"
 #include "parallax/render/render.h"
 
 namespace parallax {
@@ -124,6 +128,41 @@ TEST(Bench, AtOneSampleBothLimitsTraceThePixelCentres) {
   const BenchResult r = benchmark(scene, accel, camera, camera.grid(1), RenderSettings{}, 1);
   EXPECT_EQ(r.sameRays.rays, r.limit.rays);
   EXPECT_GT(r.limit.rays, uint64_t(37 * 21));
+}
+
+// The quilt route's timing traces what each route traces: the direct render one camera ray per
+// subpixel and sample (3 W H spp), the device quilt one per tile pixel and sample (views w h
+// spp), each plus its shadow rays, as the renders themselves count them.
+TEST(Bench, TheQuiltRouteTracesBothRoutesRays) {
+  LenticularCalibration c = smallLenticularDesign(40).calibration;
+  c.quilt = {4, 2, 96, 64};  // tiles of 24x32
+  const std::unique_ptr<DisplayModel> display = makeLenticularDisplay(designLenticular(c));
+  const Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  RenderSettings settings;
+  settings.samplesPerPixel = 4;
+  const QuiltRouteTimes t = benchmarkQuiltRoute(scene, accel, *display, settings, 1);
+  EXPECT_EQ(t.views, 8);
+  EXPECT_EQ(t.tileWidth, 24);
+  EXPECT_EQ(t.tileHeight, 32);
+  const DisplayLayers direct = renderDisplay(scene, accel, *display, settings);
+  EXPECT_EQ(direct.stats.cameraRays, uint64_t(3 * 180 * 40 * 4));
+  EXPECT_EQ(t.directRays, direct.stats.totalRays());
+  RenderStats quiltStats;
+  QuiltLayout layout;
+  layout.columns = 4, layout.rows = 2;
+  renderQuilt(scene, accel, *display, settings, layout, 24, 32, &quiltStats);
+  EXPECT_EQ(quiltStats.cameraRays, uint64_t(8 * 24 * 32 * 4));
+  EXPECT_EQ(t.quiltRays, quiltStats.totalRays());
+  EXPECT_GT(t.direct, 0.0);
+  EXPECT_GT(t.quilt, 0.0);
+  EXPECT_GT(t.interlace, 0.0);
+  EXPECT_DOUBLE_EQ(t.directOverQuilt(), t.direct / t.quilt);
+  EXPECT_DOUBLE_EQ(t.directOverRoute(), t.direct / (t.quilt + t.interlace));
+  // A barrier has no quilt route of a device.
+  const std::unique_ptr<DisplayModel> barrier = makeBarrierDisplay(designDisplay(DisplaySpec{}));
+  EXPECT_THROW(benchmarkQuiltRoute(scene, accel, *barrier, settings, 1), std::invalid_argument);
+  EXPECT_EQ(quiltRouteBytes(*barrier), 0.0);
 }
 
 }  // namespace
