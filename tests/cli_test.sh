@@ -106,6 +106,23 @@ check "window view has the front layer's size" grep -q "96x54" "$tmp/out"
 check "eye behind the display exits 2" run 2 view --display-eye 0,0,-5 -o "$tmp/w2.png"
 check "bench --camera display" run 0 bench --camera display --display "$tmp/small.json" --spp 1 \
   --repeats 1 --json
+check "bench --camera display reports the views' limit of its views" python3 -c '
+import json, subprocess, sys
+b = json.load(open(sys.argv[1]))
+d = json.loads(subprocess.run([sys.argv[2], "design", sys.argv[3], "--json"], check=True,
+                              capture_output=True, text=True).stdout)
+def find(o, k):
+    if isinstance(o, dict):
+        if k in o: return o[k]
+        for v in o.values():
+            r = find(v, k)
+            if r is not None: return r
+    return None
+views = round(find(d, "views"))
+assert b["views_limit_views"] == views, (b["views_limit_views"], views)
+assert b["views_limit_width"] == round(b["width"] / views), b["views_limit_width"]
+assert abs(b["views_ratio"] - b["rays_per_second"] / b["views_limit_rays_per_second"]) < 1e-9
+' "$tmp/out" "$bin" "$tmp/small.json"
 
 check "lightfield" run 0 lightfield --from -2 --to 2 --spp 4 -o "$tmp/lf.svg"
 check "lightfield wrote an SVG" grep -q "</svg>" "$tmp/lf.svg"

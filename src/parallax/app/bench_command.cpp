@@ -1,6 +1,7 @@
 // `parallax bench`: our rays per second against raw Embree on the same rays, in one run.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -200,6 +201,7 @@ void runBench(const BenchOptions& o) {
   });
   std::unique_ptr<Camera> camera;
   std::optional<PinholeGrid> limitGrid;
+  std::vector<PinholeGrid> viewGrids;
   const DisplayModel* model = display.get();
   if (display) {
     // The display camera renders the image layer at its own resolution. Its limit is a
@@ -209,6 +211,13 @@ void runBench(const BenchOptions& o) {
     camera = std::make_unique<DisplayCamera>(std::move(display), scene.display);
     width = camera->width(), height = camera->height();
     limitGrid = WindowCamera(eye, *model, scene.display, width, height).grid(o.sampling.spp);
+    // The views' limit: each view eye's pinhole at its share of the film's columns.
+    const int views = std::max(1, model->viewCount());
+    const int viewWidth = std::max(1, int(std::lround(double(width) / views)));
+    for (int v = 0; v < views; ++v)
+      viewGrids.push_back(
+          WindowCamera(model->viewPosition(v), *model, scene.display, viewWidth, height)
+              .grid(o.sampling.spp));
     // The panel's film, and a lenticular panel's quilt route (timed below), before either is
     // allocated.
     checkMemoryEstimate(imageBytes(width, height) * 4 + quiltRouteBytes(*model),
@@ -236,7 +245,8 @@ void runBench(const BenchOptions& o) {
   encodeAndWrite(clock, image, mask);
   const double wallRatio = clock.total() / std::max(1e-9, clock.seconds("render"));
 
-  const BenchResult r = benchmark(scene, accelerator, measured, *limitGrid, settings, o.repeats);
+  const BenchResult r =
+      benchmark(scene, accelerator, measured, *limitGrid, settings, o.repeats, viewGrids);
   // A lenticular panel: its direct render against its own device quilt route, in this run.
   std::optional<QuiltRouteTimes> quiltRoute;
   if (model && model->lenticularDesign())
@@ -271,6 +281,12 @@ void runBench(const BenchOptions& o) {
     rate("/embree_alone_", r.embreeAlone);
     rate("/embree_on_ours_", r.embreeOnOurs);
     json.set("/ratio", r.ratio());
+    if (!viewGrids.empty()) {
+      rate("/views_limit_", r.viewsLimit);
+      json.set("/views_limit_views", int(viewGrids.size()));
+      json.set("/views_limit_width", viewGrids.front().width);
+      json.set("/views_ratio", r.viewsRatio());
+    }
     json.set("/same_rays_ratio", r.sameRaysRatio());
     json.set("/ray_order_ratio", r.rayOrderRatio());
     json.set("/embree_ray_order_ratio", r.embreeRayOrderRatio());
@@ -313,6 +329,8 @@ void runBench(const BenchOptions& o) {
   };
   line("parallax", r.ours, "generated, traced, shaded");
   line("raw Embree", r.limit, "coherent pinhole rays, one shadow ray per hit");
+  if (!viewGrids.empty())
+    line("  views", r.viewsLimit, "the same from each view's eye, at its share of the columns");
   line("  same rays", r.sameRays, "this camera's rays, generated and traced, no shading");
   line("  Embree", r.embreeAlone, "the same rays, Embree's traversal alone");
   line("  our rays", r.embreeOnOurs, "every ray parallax traced, Embree's traversal alone");
@@ -321,6 +339,10 @@ void runBench(const BenchOptions& o) {
       "ray generation %.0f %% of the same-rays loop\n",
       r.ratio(), r.rayOrderRatio(), r.sameRaysRatio(), r.embreeRayOrderRatio(),
       100.0 * r.rayGenerationShare());
+  if (!viewGrids.empty())
+    std::printf("views ratio  %.2f  (ours / the views' limit: %zu views of %dx%d)\n",
+                r.viewsRatio(), viewGrids.size(), viewGrids.front().width,
+                viewGrids.front().height);
   std::printf(
       "shading      %.2f of Embree's time on our rays (shading, light sampling, packet copies); "
       "ours / (camera ray generation + Embree on our rays) %.2f\n",

@@ -47,17 +47,22 @@ void keepFastest(RayRate& best, const RayRate& run) {
 }  // namespace
 
 BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
-                      const PinholeGrid& limitGrid, const RenderSettings& settings, int repeats) {
+                      const PinholeGrid& limitGrid, const RenderSettings& settings, int repeats,
+                      const std::vector<PinholeGrid>& viewGrids) {
   BenchResult result;
   result.packetWidth = accelerator.packetWidth();
   result.nativePacketWidth = accelerator.nativePacketWidth();
   result.workers = workerCount(settings.threads);
   const double never = std::numeric_limits<double>::infinity();
+  result.viewsLimit.seconds = viewGrids.empty() ? 0.0 : never;
   result.ours.seconds = result.limit.seconds = result.sameRays.seconds =
       result.embreeAlone.seconds = result.embreeOnOurs.seconds = never;
   const TileRenderer renderer(scene, accelerator, camera, settings);
   Image scratch(camera.width(), camera.height());
   const Vec3f light = LightSampler(scene).representativePoint(limitGrid.eye);
+  std::vector<Vec3f> viewLights;
+  for (const PinholeGrid& grid : viewGrids)
+    viewLights.push_back(LightSampler(scene).representativePoint(grid.eye));
   const TileGrid tiles(camera);
   const PacketWalk walk(settings.samplesPerPixel, settings.seed, settings.jitter, camera);
   for (int i = 0; i < std::max(1, repeats); ++i) {
@@ -66,6 +71,17 @@ BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const 
                 timedSum(settings.threads, (limitGrid.height + 15) / 16, [&](int band) {
                   return accelerator.traceRawLimit(limitGrid, band * 16, band * 16 + 16, light);
                 }));
+    if (!viewGrids.empty()) {
+      // Each view in bands of 16 rows, all views' bands over the workers.
+      const int bands = (viewGrids.front().height + 15) / 16;
+      keepFastest(result.viewsLimit,
+                  timedSum(settings.threads, bands * int(viewGrids.size()), [&](int index) {
+                    const PinholeGrid& grid = viewGrids[size_t(index / bands)];
+                    const int band = index % bands;
+                    return accelerator.traceRawLimit(grid, band * 16, band * 16 + 16,
+                                                     viewLights[size_t(index / bands)]);
+                  }));
+    }
     keepFastest(result.sameRays, timedSum(settings.threads, tiles.count(), [&](int tile) {
                   RawTraceCount count;
                   forEachPacket(tiles, tile, camera, walk, [&](const FilmPacket& packet) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/camera/camera.h"
@@ -34,11 +35,18 @@ struct BenchResult {
   // logged tile by tile as the renderer handed them over, traced again on the clock): what
   // `ours` would take if shading, light sampling and packet copies cost nothing.
   RayRate embreeOnOurs;
+  // For a display camera: coherent pinhole rays from each of the display's view eyes, each
+  // view at its share of the film's columns (a barrier's nine views: a ninth of the columns
+  // each), as many rays in all as the limit's. A display's rays are such bundles, so this is
+  // the limit at the density its rays sample the scene with (docs/speed.md, "Display rays on
+  // large meshes"); empty (no rays) for the pinhole camera.
+  RayRate viewsLimit;
   int packetWidth = 16;        // rays per Embree packet query
   int nativePacketWidth = 16;  // the widest the ISA's kernels run natively
   int workers = 1;
 
   double ratio() const { return rate(ours, limit); }              // ours / coherent limit
+  double viewsRatio() const { return rate(ours, viewsLimit); }    // ours / the views' limit
   double sameRaysRatio() const { return rate(ours, sameRays); }   // what shading costs
   double rayOrderRatio() const { return rate(sameRays, limit); }  // what our rays cost
   // The ray order as Embree alone feels it (ray generation excluded).
@@ -78,9 +86,10 @@ struct BenchResult {
 // view-zone centre that sees what the display shows), and the camera's own rays, with and
 // without their generation. The gap between the limits is what the camera's ray order costs
 // Embree; the gap between the same-rays limit and ours is what shading costs.
+// `viewGrids`: the views' limit's pinholes (none for the pinhole camera).
 BenchResult benchmark(const Scene& scene, const Accelerator& accelerator, const Camera& camera,
-                      const PinholeGrid& limitGrid, const RenderSettings& settings,
-                      int repeats = 2);
+                      const PinholeGrid& limitGrid, const RenderSettings& settings, int repeats = 2,
+                      const std::vector<PinholeGrid>& viewGrids = {});
 
 // A lenticular panel's two routes to the same picture, timed in one run (wall seconds with the
 // same workers, the fastest of `repeats`): the direct per-subpixel render (renderDisplay), the

@@ -130,6 +130,29 @@ TEST(Bench, AtOneSampleBothLimitsTraceThePixelCentres) {
   EXPECT_GT(r.limit.rays, uint64_t(37 * 21));
 }
 
+// The views' limit traces each view's grid as the limit traces its one: given the limit's own
+// grid as its only view it traces the same rays; given two views, each's.
+TEST(Bench, TheViewsLimitTracesEveryViewsGrid) {
+  const Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  const CameraSpec& c = *scene.camera;
+  const PinholeCamera camera(c.eye, c.lookAt, c.up, c.fovDegrees, 37, 21);
+  const PinholeCamera narrow(c.eye + Vec3f{0.3f, 0, 0}, c.lookAt, c.up, c.fovDegrees, 19, 21);
+  const BenchResult one =
+      benchmark(scene, accel, camera, camera.grid(4), RenderSettings{}, 1, {camera.grid(4)});
+  EXPECT_EQ(one.viewsLimit.rays, one.limit.rays);
+  EXPECT_EQ(one.viewsLimit.primaryMisses, one.limit.primaryMisses);
+  const BenchResult none = benchmark(scene, accel, camera, camera.grid(4), RenderSettings{}, 1);
+  EXPECT_EQ(none.viewsLimit.rays, 0u);
+  EXPECT_EQ(none.viewsRatio(), 0.0);
+  const BenchResult two = benchmark(scene, accel, camera, camera.grid(4), RenderSettings{}, 1,
+                                    {camera.grid(4), narrow.grid(4)});
+  const BenchResult alone =
+      benchmark(scene, accel, camera, narrow.grid(4), RenderSettings{}, 1, {});
+  EXPECT_EQ(two.viewsLimit.primaryRays, uint64_t((37 + 19) * 21 * 4));
+  EXPECT_EQ(two.viewsLimit.rays, one.limit.rays + alone.limit.rays);
+}
+
 // The quilt route's timing traces what each route traces: the direct render one camera ray per
 // subpixel and sample (3 W H spp), the device quilt one per tile pixel and sample (views w h
 // spp), each plus its shadow rays, as the renders themselves count them.
