@@ -58,27 +58,37 @@ const SrgbTable& srgbTable() {
 // E_e = 1/2 |V - t|^2 (residual V - t, weights 1); with TrainingView::encodingScale c > 0,
 // E_e = 1/2 |S(V/c) - S(t/c)|^2, the dense measure's own squared error (residual
 // S'(V/c)/c (S(V/c) - S(t/c)), weights (S'(V/c)/c)^2).
-double eyeError(const TrainingView& v, const Image& seen, Image* residual, Image* weights) {
+// eyeError on `count` values from offset `first` of the view: the error, and the residual and
+// weights of those values (either may be null).
+double eyeErrorRange(const TrainingView& v, const Vec3f* seen, size_t first, size_t count,
+                     Vec3f* residual, Vec3f* weights) {
   const bool srgb = v.encodingScale > 0;
   const float inv = srgb ? 1.0f / v.encodingScale : 1.0f;
   const SrgbTable& table = srgbTable();
+  const Vec3f* target = v.target.pixels().data() + first;
   double sum = 0;
-  for (size_t i = 0; i < seen.pixels().size(); ++i)
+  for (size_t i = 0; i < count; ++i)
     for (int c = 0; c < 3; ++c) {
-      const float value = seen.pixels()[i][c], target = v.target.pixels()[i][c];
-      float diff = value - target, slope = 1.0f;
+      const float value = seen[i][c];
+      float diff = value - target[i][c], slope = 1.0f;
       if (srgb) {
         float a = 0, b = 0, unused = 0;
         table(value * inv, a, slope);
-        table(target * inv, b, unused);
+        table(target[i][c] * inv, b, unused);
         diff = a - b;
         slope *= inv;
       }
       sum += 0.5 * double(diff) * double(diff);
-      if (residual) residual->pixels()[i][c] = slope * diff;
-      if (weights) weights->pixels()[i][c] = slope * slope;
+      if (residual) residual[i][c] = slope * diff;
+      if (weights) weights[i][c] = slope * slope;
     }
   return sum;
+}
+
+double eyeError(const TrainingView& v, const Image& seen, Image* residual, Image* weights) {
+  return eyeErrorRange(v, seen.pixels().data(), 0, seen.pixels().size(),
+                       residual ? residual->pixels().data() : nullptr,
+                       weights ? weights->pixels().data() : nullptr);
 }
 
 Image elementwise(const Image& a, const Image& b) {
@@ -143,6 +153,153 @@ void addImageGradient(const TrainingView& v, const Image& residual, const Image&
   addLayerGradient(v, residual, mask, grad, true, threads);
 }
 
+// The passes of optimizeImageLayer over every training eye. When the image layer is in front
+// (the barrier behind it, the default order) each pass runs row by row: output row j of every
+// eye's view depends on the image's row j only and writes only its gradient's row j, so a row
+// is one task that walks every eye's view, residual and adjoint for that row in turn, with
+// buffers of one row. No full-size temporaries, every worker busy through the solve, and the
+// result the same for any thread count (sums per row, added in row order). Otherwise (the
+// barrier in front) the whole-image operators, eye by eye.
+class ImageLayerPasses {
+ public:
+  // `byRows`: false keeps the whole-image passes (the tests' second code path).
+  ImageLayerPasses(const std::vector<TrainingView>& views, const Image& mask, int threads,
+                   bool byRows)
+      : views_(views), mask_(mask), threads_(threads) {
+    fused_ = byRows && std::all_of(views.begin(), views.end(),
+                                   [](const TrainingView& v) { return v.seen.imageInFront(); });
+  }
+
+  // sum_e E_e at the image x.
+  double energy(const Image& x) const {
+    if (!fused_) {
+      double sum = 0;
+      for (const TrainingView& v : views_)
+        sum += eyeError(v, viewOf(v.seen, x, mask_, threads_), nullptr, nullptr);
+      return sum;
+    }
+    return sumOverRows([&](int j, RowWork& w) {
+      double sum = 0;
+      for (const TrainingView& v : views_) {
+        v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
+        sum += eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, nullptr);
+      }
+      return sum;
+    });
+  }
+
+  // grad += sum_e A_e^T dE_e/dV_e at the image x.
+  void addGradient(const Image& x, Image& grad) const {
+    if (!fused_) {
+      for (const TrainingView& v : views_) {
+        Image residual(v.seen.width(), v.seen.height());
+        eyeError(v, viewOf(v.seen, x, mask_, threads_), &residual, nullptr);
+        addImageGradient(v, residual, mask_, grad, threads_);
+      }
+      return;
+    }
+    sumOverRows([&](int j, RowWork& w) {
+      for (const TrainingView& v : views_) {
+        v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
+        eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), w.residual.data(), nullptr);
+        v.seen.addFrontGradientRow(w.residual.data(), mask_, j, grad, w.scratch);
+      }
+      return 0.0;
+    });
+  }
+
+  // sum_e |A_e d|^2 weighted by E_e's Gauss-Newton weights at x (1 in linear light).
+  double curvature(const Image& x, const Image& d) const {
+    if (!fused_) {
+      double sum = 0;
+      for (const TrainingView& v : views_) {
+        const Image ad = viewOf(v.seen, d, mask_, threads_);
+        if (!(v.encodingScale > 0)) {
+          sum += dot(ad, ad);
+          continue;
+        }
+        Image weights(v.seen.width(), v.seen.height());
+        eyeError(v, viewOf(v.seen, x, mask_, threads_), nullptr, &weights);
+        sum += dot(ad, elementwise(ad, weights));
+      }
+      return sum;
+    }
+    return sumOverRows([&](int j, RowWork& w) {
+      double sum = 0;
+      for (const TrainingView& v : views_) {
+        v.seen.viewRow(d, mask_, j, w.other.data(), w.scratch);
+        const bool srgb = v.encodingScale > 0;
+        if (srgb) {
+          v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
+          eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, w.weights.data());
+        }
+        for (size_t i = 0; i < w.other.size(); ++i)
+          for (int c = 0; c < 3; ++c) {
+            const float ad = w.other[i][c];
+            sum += double(ad) * double(srgb ? ad * w.weights[i][c] : ad);
+          }
+      }
+      return sum;
+    });
+  }
+
+  // out += sum_e A_e^T (A_e 1 .* W_e), W_e the Gauss-Newton weights at x.
+  void addCurvatureDiagonal(const Image& x, Image& out) const {
+    const Image ones(x.width(), x.height(), Vec3f(1.0f));
+    if (!fused_) {
+      for (const TrainingView& v : views_) {
+        Image weights(v.seen.width(), v.seen.height());
+        eyeError(v, viewOf(v.seen, x, mask_, threads_), nullptr, &weights);
+        addImageGradient(v, elementwise(viewOf(v.seen, ones, mask_, threads_), weights), mask_, out,
+                         threads_);
+      }
+      return;
+    }
+    sumOverRows([&](int j, RowWork& w) {
+      for (const TrainingView& v : views_) {
+        v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
+        eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, w.weights.data());
+        v.seen.viewRow(ones, mask_, j, w.other.data(), w.scratch);
+        for (size_t i = 0; i < w.other.size(); ++i) w.other[i] = w.other[i] * w.weights[i];
+        v.seen.addFrontGradientRow(w.other.data(), mask_, j, out, w.scratch);
+      }
+      return 0.0;
+    });
+  }
+
+ private:
+  // One worker's row buffers.
+  struct RowWork {
+    explicit RowWork(int width)
+        : seen(size_t(width)),
+          residual(size_t(width)),
+          weights(size_t(width)),
+          other(size_t(width)) {}
+    size_t first(int row) const { return size_t(row) * seen.size(); }
+    std::vector<Vec3f> seen, residual, weights, other;
+    SeenLayers::RowScratch scratch;
+  };
+
+  // body(row, work) for every view row, in parallel; the rows' results added in row order.
+  template <class Body>
+  double sumOverRows(const Body& body) const {
+    const int width = views_.front().seen.width(), rows = views_.front().seen.height();
+    std::vector<double> perRow(size_t(rows), 0.0);
+    parallelFor(rows, threads_, 2, [&](int64_t begin, int64_t end) {
+      RowWork work(width);
+      for (int64_t row = begin; row != end; ++row) perRow[size_t(row)] = body(int(row), work);
+    });
+    double sum = 0;
+    for (const double v : perRow) sum += v;
+    return sum;
+  }
+
+  const std::vector<TrainingView>& views_;
+  const Image& mask_;
+  int threads_;
+  bool fused_ = false;
+};
+
 }  // namespace
 
 double layerObjective(const std::vector<TrainingView>& views, const std::vector<LayerFrame>& frames,
@@ -154,46 +311,32 @@ double layerObjective(const std::vector<TrainingView>& views, const std::vector<
   return sum * normaliser(views);
 }
 
-Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
-                         int iterations, int threads, SolveReport* report,
-                         const SolveProgress& progress) {
+namespace {
+
+Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
+                      int iterations, int threads, SolveReport* report,
+                      const SolveProgress& progress, bool byRows) {
   checkViews(views);
   clampToUnit(image);
-  const auto energy = [&](const Image& x) {
-    double sum = 0;
-    for (const TrainingView& v : views)
-      sum += eyeError(v, viewOf(v.seen, x, mask, threads), nullptr, nullptr);
-    return sum * normaliser(views);
-  };
-  // A diagonal preconditioner: 1 / (sum_e A_e^T A_e 1), the curvature each pixel would have if
-  // its neighbours moved with it (the scaling of SART and of the multiplicative updates). It
-  // keeps pixels seen by many eyes from taking the step of pixels seen by few.
+  const ImageLayerPasses passes(views, mask, threads, byRows);
+  const double norm = normaliser(views);
+  // A diagonal preconditioner: 1 / (sum_e A_e^T W_e A_e 1) at the starting layers, the
+  // curvature each pixel would have if its neighbours moved with it (the scaling of SART and of
+  // the multiplicative updates). It keeps pixels seen by many eyes from taking the step of
+  // pixels seen by few.
   Image precondition(image.width(), image.height());
-  {
-    const Image ones(image.width(), image.height(), Vec3f(1.0f));
-    for (const TrainingView& v : views) {
-      // The Gauss-Newton weights at the starting layers.
-      Image weights(v.seen.width(), v.seen.height());
-      eyeError(v, viewOf(v.seen, image, mask, threads), nullptr, &weights);
-      addImageGradient(v, elementwise(viewOf(v.seen, ones, mask, threads), weights), mask,
-                       precondition, threads);
-    }
-    for (Vec3f& p : precondition.pixels())
-      for (int c = 0; c < 3; ++c) p[c] = p[c] > 0.0f ? 1.0f / p[c] : 0.0f;
-  }
-  double e = energy(image);
+  passes.addCurvatureDiagonal(image, precondition);
+  for (Vec3f& p : precondition.pixels())
+    for (int c = 0; c < 3; ++c) p[c] = p[c] > 0.0f ? 1.0f / p[c] : 0.0f;
+  double e = passes.energy(image) * norm;
   SolveReport local;
   local.objective.push_back(e);
+  Image grad(image.width(), image.height()), d(image.width(), image.height()), next;
   for (int it = 0; it < iterations; ++it) {
     // Gradient of E (times 1 / norm): sum over eyes of A_e^T dE_e/dV_e.
-    Image grad(image.width(), image.height());
-    for (const TrainingView& v : views) {
-      Image residual(v.seen.width(), v.seen.height());
-      eyeError(v, viewOf(v.seen, image, mask, threads), &residual, nullptr);
-      addImageGradient(v, residual, mask, grad, threads);
-    }
+    std::fill(grad.pixels().begin(), grad.pixels().end(), Vec3f(0.0f));
+    passes.addGradient(image, grad);
     // Projected, preconditioned direction: no move out of [0, 1] at a bound.
-    Image d(image.width(), image.height());
     for (size_t i = 0; i < d.pixels().size(); ++i)
       for (int c = 0; c < 3; ++c) {
         const float x = image.pixels()[i][c], g = grad.pixels()[i][c];
@@ -204,29 +347,17 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
     // -<g, d> / sum_e |A_e d|^2_W (A_e linear in the image with the mask fixed).
     const double slope = dot(grad, d);
     if (!(slope < 0)) break;
-    double curvature = 0;
-    for (const TrainingView& v : views) {
-      const Image ad = viewOf(v.seen, d, mask, threads);
-      if (!(v.encodingScale > 0)) {
-        curvature += dot(ad, ad);
-        continue;
-      }
-      // The Gauss-Newton weights at the current layers (recomputed: kept for every eye they
-      // would double the solver's memory).
-      Image weights(v.seen.width(), v.seen.height());
-      eyeError(v, viewOf(v.seen, image, mask, threads), nullptr, &weights);
-      curvature += dot(ad, elementwise(ad, weights));
-    }
+    const double curvature = passes.curvature(image, d);
     if (!(curvature > 0)) break;
     double step = -slope / curvature;
     bool lowered = false;
     for (int halving = 0; halving < 8 && !lowered; ++halving, step *= 0.5) {
-      Image next = image;
+      next = image;
       addScaled(next, d, float(step));
       clampToUnit(next);
-      const double eNext = energy(next);
+      const double eNext = passes.energy(next) * norm;
       if (eNext < e) {
-        image = std::move(next);
+        std::swap(image, next);
         e = eNext;
         lowered = true;
       }
@@ -239,6 +370,22 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
   if (report) *report = local;
   return image;
 }
+
+}  // namespace
+
+Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
+                         int iterations, int threads, SolveReport* report,
+                         const SolveProgress& progress) {
+  return solveImageLayer(views, std::move(image), mask, iterations, threads, report, progress,
+                         true);
+}
+
+namespace detail {
+Image optimizeImageLayerByEye(const std::vector<TrainingView>& views, Image image,
+                              const Image& mask, int iterations, int threads, SolveReport* report) {
+  return solveImageLayer(views, std::move(image), mask, iterations, threads, report, {}, false);
+}
+}  // namespace detail
 
 std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                                         std::vector<LayerFrame> frames, int iterations, int threads,

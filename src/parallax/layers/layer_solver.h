@@ -61,6 +61,15 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
                          int iterations, int threads = 0, SolveReport* report = nullptr,
                          const SolveProgress& progress = {});
 
+namespace detail {
+// optimizeImageLayer with its passes eye by eye over whole images, as it runs with the barrier
+// in front; with the image in front it runs them row by row, every eye in one pass over a row
+// (layer_solver.cpp, ImageLayerPasses). For the tests: both must give the same layers.
+Image optimizeImageLayerByEye(const std::vector<TrainingView>& views, Image image,
+                              const Image& mask, int iterations, int threads = 0,
+                              SolveReport* report = nullptr);
+}  // namespace detail
+
 // Both layers of every frame, starting from `frames` (clamped to [0, 1]).
 std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                                         std::vector<LayerFrame> frames, int iterations,

@@ -287,5 +287,33 @@ TEST(OptimizeImageLayer, SameLayersForAnyThreadCount) {
   EXPECT_EQ(a.pixels(), b.pixels());
 }
 
+// The row-fused passes (the image in front: every eye's view, residual and adjoint one row at a
+// time) against the whole-image operators eye by eye: the same layers and objectives, in linear
+// light and on sRGB values, on a panel tall enough that rows have several vertical pieces.
+TEST(OptimizeImageLayer, RowFusedPassesAreTheWholeImagePasses) {
+  DisplaySpec spec = defaultDisplaySpec();
+  spec.order = LayerOrder::BarrierBack;
+  spec.imagePanel.width = spec.maskPanel.width = 45;
+  spec.imagePanel.height = spec.maskPanel.height = 7;
+  spec.views = 5.0;
+  spec.imagePanel.pitchMm = spec.maskPanel.pitchMm = 1.0;
+  const DisplayDesign d = designDisplay(spec);
+  const Image mask = maskLayerImage(d);
+  for (const float scale : {0.0f, 0.8f}) {
+    std::vector<TrainingView> views = viewsOf(d, randomImage(45, 7, 5), mask, 0.02f);
+    for (TrainingView& v : views) v.encodingScale = scale;
+    SolveReport fused, byEye;
+    const Image a = optimizeImageLayer(views, Image(45, 7, Vec3f(0.4f)), mask, 6, 2, &fused);
+    const Image b =
+        detail::optimizeImageLayerByEye(views, Image(45, 7, Vec3f(0.4f)), mask, 6, 2, &byEye);
+    ASSERT_EQ(fused.iterations, byEye.iterations) << scale;
+    EXPECT_GT(fused.iterations, 2) << scale;
+    for (size_t i = 0; i < fused.objective.size(); ++i)
+      EXPECT_NEAR(fused.objective[i], byEye.objective[i], 1e-9 * byEye.objective[0]) << i;
+    for (size_t i = 0; i < a.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.pixels()[i][c], b.pixels()[i][c], 1e-5f) << i;
+  }
+}
+
 }  // namespace
 }  // namespace parallax

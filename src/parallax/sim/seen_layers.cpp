@@ -84,22 +84,44 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
 // [k, k+1] with the unclipped window (the row clips nothing inside [k, k+1]), which is the
 // integral of the box-pixel row h_x = y_x / |[lo_x, hi_x]| over the window centred on k: the
 // same prefix-sum reading without the division.
+void SeenLayers::boxRow(const Vec3f* row, Vec3f* out, std::vector<double>& prefix) const {
+  prefix.assign(size_t(width_) + 1, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    for (int x = 0; x < width_; ++x) prefix[size_t(x) + 1] = prefix[size_t(x)] + row[x][c];
+    // The integral of the box-pixel row over [0, t] at a window's end.
+    const auto integral = [&](const BoxEnd& e) {
+      return prefix[size_t(e.index)] + e.fraction * row[e.index][c];
+    };
+    for (int x = 0; x < width_; ++x)
+      out[x][c] = float((integral(boxHi_[size_t(x)]) - integral(boxLo_[size_t(x)])) *
+                        boxInverseLength_[size_t(x)]);
+  }
+}
+
+void SeenLayers::boxTransposedRow(const Vec3f* row, Vec3f* out, std::vector<double>& h,
+                                  std::vector<double>& prefix) const {
+  h.assign(size_t(width_), 0.0);
+  prefix.assign(size_t(width_) + 1, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    for (int x = 0; x < width_; ++x) {
+      h[size_t(x)] = row[x][c] * boxInverseLength_[size_t(x)];
+      prefix[size_t(x) + 1] = prefix[size_t(x)] + h[size_t(x)];
+    }
+    // The integral of h over [0, t] (h = 0 outside the row: t is clamped to it).
+    const auto integral = [&](const BoxEnd& e) {
+      return prefix[size_t(e.index)] + e.fraction * h[size_t(e.index)];
+    };
+    for (int k = 0; k < width_; ++k)
+      out[k][c] = float(integral(unclippedHi_[size_t(k)]) - integral(unclippedLo_[size_t(k)]));
+  }
+}
+
 Image SeenLayers::box(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
   forEachRow(view.height(), threads, [&](int y) {
-    const Vec3f* row = &view.at(0, y);
-    std::vector<double> prefix(static_cast<size_t>(width_) + 1);
-    for (int c = 0; c < 3; ++c) {
-      for (int x = 0; x < width_; ++x) prefix[size_t(x) + 1] = prefix[size_t(x)] + row[x][c];
-      // The integral of the box-pixel row over [0, t] at a window's end.
-      const auto integral = [&](const BoxEnd& e) {
-        return prefix[size_t(e.index)] + e.fraction * row[e.index][c];
-      };
-      for (int x = 0; x < width_; ++x)
-        out.at(x, y)[c] = float((integral(boxHi_[size_t(x)]) - integral(boxLo_[size_t(x)])) *
-                                boxInverseLength_[size_t(x)]);
-    }
+    std::vector<double> prefix;
+    boxRow(&view.at(0, y), &out.at(0, y), prefix);
   });
   return out;
 }
@@ -108,66 +130,79 @@ Image SeenLayers::boxTransposed(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
   forEachRow(view.height(), threads, [&](int y) {
-    const Vec3f* row = &view.at(0, y);
-    std::vector<double> h(static_cast<size_t>(width_)), prefix(static_cast<size_t>(width_) + 1);
-    for (int c = 0; c < 3; ++c) {
-      for (int x = 0; x < width_; ++x) {
-        h[size_t(x)] = row[x][c] * boxInverseLength_[size_t(x)];
-        prefix[size_t(x) + 1] = prefix[size_t(x)] + h[size_t(x)];
-      }
-      // The integral of h over [0, t] (h = 0 outside the row: t is clamped to it).
-      const auto integral = [&](const BoxEnd& e) {
-        return prefix[size_t(e.index)] + e.fraction * h[size_t(e.index)];
-      };
-      for (int k = 0; k < width_; ++k)
-        out.at(k, y)[c] =
-            float(integral(unclippedHi_[size_t(k)]) - integral(unclippedLo_[size_t(k)]));
-    }
+    std::vector<double> h, prefix;
+    boxTransposedRow(&view.at(0, y), &out.at(0, y), h, prefix);
   });
   return out;
+}
+
+void SeenLayers::productRow(const Image& front, const Image& rear, int j, Vec3f* product) const {
+  std::fill(product, product + width_, Vec3f(0.0f));
+  for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
+    const Piece& vertical = down_[k];
+    if (vertical.rear < 0) continue;
+    for (int i = 0; i < width_; ++i) {
+      Vec3f light(0.0f);
+      for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
+        const Piece& p = across_[a];
+        if (p.rear < 0) continue;
+        light += front.at(p.front, vertical.front) * rear.at(p.rear, vertical.rear) * p.weight;
+      }
+      product[i] += light * vertical.weight;
+    }
+  }
+}
+
+void SeenLayers::frontAdjointRow(const Vec3f* r, const Image& rear, int j, Image& gradFront) const {
+  for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
+    const Piece& vertical = down_[k];
+    if (vertical.rear < 0) continue;
+    for (int i = 0; i < width_; ++i) {
+      const Vec3f v = r[i] * vertical.weight;
+      for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
+        const Piece& p = across_[a];
+        if (p.rear < 0) continue;
+        gradFront.at(p.front, vertical.front) += v * rear.at(p.rear, vertical.rear) * p.weight;
+      }
+    }
+  }
+}
+
+void SeenLayers::viewRow(const Image& front, const Image& rear, int j, Vec3f* out,
+                         RowScratch& scratch) const {
+  if (!periodBox_) return productRow(front, rear, j, out);
+  scratch.product.resize(size_t(width_));
+  productRow(front, rear, j, scratch.product.data());
+  boxRow(scratch.product.data(), out, scratch.prefix);
+}
+
+void SeenLayers::addFrontGradientRow(const Vec3f* residual, const Image& rear, int j,
+                                     Image& gradFront, RowScratch& scratch) const {
+  if (!periodBox_) return frontAdjointRow(residual, rear, j, gradFront);
+  scratch.filtered.resize(size_t(width_));
+  boxTransposedRow(residual, scratch.filtered.data(), scratch.scaled, scratch.prefix);
+  frontAdjointRow(scratch.filtered.data(), rear, j, gradFront);
 }
 
 Image SeenLayers::view(const Image& front, const Image& rear, int threads) const {
   checkLayer(front, frontColumns_, frontRows_, "front");
   checkLayer(rear, rearColumns_, rearRows_, "rear");
-  Image product(width_, height_);
+  Image out(width_, height_);
   forEachRow(height_, threads, [&](int j) {
-    for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
-      const Piece& vertical = down_[k];
-      if (vertical.rear < 0) continue;
-      for (int i = 0; i < width_; ++i) {
-        Vec3f light(0.0f);
-        for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
-          const Piece& p = across_[a];
-          if (p.rear < 0) continue;
-          light += front.at(p.front, vertical.front) * rear.at(p.rear, vertical.rear) * p.weight;
-        }
-        product.at(i, j) += light * vertical.weight;
-      }
-    }
+    RowScratch scratch;
+    viewRow(front, rear, j, &out.at(0, j), scratch);
   });
-  return box(product, threads);
+  return out;
 }
 
 void SeenLayers::addFrontGradient(const Image& residual, const Image& rear, Image& gradFront,
                                   int threads) const {
   checkLayer(rear, rearColumns_, rearRows_, "rear");
   checkLayer(gradFront, frontColumns_, frontRows_, "front");
-  const Image r = boxTransposed(residual, threads);
   // Output row j's pieces all lie in front row j: rows in parallel write disjoint rows.
   forEachRow(height_, threads, [&](int j) {
-    for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
-      const Piece& vertical = down_[k];
-      if (vertical.rear < 0) continue;
-      for (int i = 0; i < width_; ++i) {
-        const Vec3f v = r.at(i, j) * vertical.weight;
-        for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
-          const Piece& p = across_[a];
-          if (p.rear < 0) continue;
-          gradFront.at(p.front, vertical.front) += v * rear.at(p.rear, vertical.rear) * p.weight;
-        }
-      }
-    }
+    RowScratch scratch;
+    addFrontGradientRow(&residual.at(0, j), rear, j, gradFront, scratch);
   });
 }
 

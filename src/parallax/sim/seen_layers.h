@@ -43,6 +43,20 @@ class SeenLayers {
   Image box(const Image& view, int threads = 0) const;
   Image boxTransposed(const Image& view, int threads = 0) const;
 
+  // One row at a time, for solvers that fuse a view, its residual and its adjoint in one pass
+  // over a row (layers/layer_solver.cpp): output row j depends on front row j only, and B acts
+  // along rows, so rows are independent. The same arithmetic as view() and
+  // addFrontGradient(), which are made of these. `scratch` is the caller's, one per worker.
+  struct RowScratch {
+    std::vector<Vec3f> product, filtered;
+    std::vector<double> prefix, scaled;
+  };
+  // V's row j into out[0 .. width()).
+  void viewRow(const Image& front, const Image& rear, int j, Vec3f* out, RowScratch& scratch) const;
+  // gradFront's row j += (dV_j/dfront)^T residual[0 .. width()).
+  void addFrontGradientRow(const Vec3f* residual, const Image& rear, int j, Image& gradFront,
+                           RowScratch& scratch) const;
+
  private:
   DisplayDesign design_;
   Vec3d eye_;
@@ -60,6 +74,15 @@ class SeenLayers {
   };
   std::vector<BoxEnd> boxLo_, boxHi_, unclippedLo_, unclippedHi_;
   std::vector<double> boxInverseLength_;
+
+  // P's row j (without B) into product[0 .. width()), which it overwrites.
+  void productRow(const Image& front, const Image& rear, int j, Vec3f* product) const;
+  // B and B^T on one row (in and out may not alias).
+  void boxRow(const Vec3f* in, Vec3f* out, std::vector<double>& prefix) const;
+  void boxTransposedRow(const Vec3f* in, Vec3f* out, std::vector<double>& scaled,
+                        std::vector<double>& prefix) const;
+  // P_front^T on row j: gradFront's row j += the pieces' rear values times r.
+  void frontAdjointRow(const Vec3f* r, const Image& rear, int j, Image& gradFront) const;
 };
 
 }  // namespace parallax
