@@ -3,10 +3,13 @@
 # eyes across the view zone see, measures it against the ideal view, and writes a gallery page
 # with the pictures and a table of figures.
 #
-#   examples/paper/run.sh [--full | --size WxH] [--bin PATH] [--out DIR] [--page FILE]
+#   examples/paper/run.sh [--full | --size WxH | --display FILE] [--bin PATH] [--out DIR]
+#                         [--page FILE]
 #
 # Default: reduced size (a 480x270 panel with the default display's pitch and gap: a crop of
-# the full display), which CI runs as a test. --full: the built-in 1920x1080 display. The
+# the full display), which CI runs as a test. --full: the built-in 1920x1080 display.
+# --display FILE: your own barrier display file, each experiment's one change (mask, D')
+# merged into it, at its own size and with the full measure. The
 # gallery in docs/ is made at half size, to keep the repository small:
 #   examples/paper/run.sh --size 960x540 --out docs/gallery --page docs/gallery.md
 # Each experiment also leaves an animation (NAME-anim.png) and a slider page (NAME.html) in the
@@ -17,6 +20,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 bin="$root/build/parallax"
 out="$root/out/paper"
 page=""
+user_display=""
 full=0
 size=""
 while [ $# -gt 0 ]; do
@@ -26,7 +30,8 @@ while [ $# -gt 0 ]; do
     --bin) bin=$2; shift ;;
     --out) out=$2; shift ;;
     --page) page=$2; shift ;;
-    *) echo "usage: $0 [--full | --size WxH] [--bin PATH] [--out DIR] [--page FILE]" >&2; exit 2 ;;
+    --display) user_display=$2; shift ;;
+    *) echo "usage: $0 [--full | --size WxH | --display FILE] [--bin PATH] [--out DIR] [--page FILE]" >&2; exit 2 ;;
   esac
   shift
 done
@@ -37,17 +42,51 @@ trap 'rm -rf "$work"' EXIT
 
 if [ $full -eq 1 ]; then width=1920; height=1080; sweep=9; refspp=16; else width=480; height=270; sweep=5; refspp=4; fi
 if [ -n "$size" ]; then width=${size%x*}; height=${size#*x}; sweep=9; refspp=16; fi
+if [ -n "$user_display" ]; then
+  # The user's display: checked (and its size read) by parallax itself, so that a bad file
+  # stops here with parallax's own message naming the file and the key.
+  [ -r "$user_display" ] || { echo "$0: --display $user_display: no such file" >&2; exit 2; }
+  "$bin" design "$user_display" --json >"$work/user-design.json" || exit 2
+  read -r width height < <(python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+def find(o, k):
+    if isinstance(o, dict):
+        if k in o: return o[k]
+        for v in o.values():
+            r = find(v, k)
+            if r is not None: return r
+    return None
+if find(d, "image_resolution") is None:
+    sys.exit(sys.argv[2] + ": the experiments of the paper need a barrier display (two layers)")
+r = find(d, "image_resolution")
+print(r[0], r[1])' "$work/user-design.json" "$user_display") || exit 2
+  sweep=9; refspp=16; full=1
+fi
 # The dense measure (docs/simulator.md): K eyes inside every view's window at 0.8, 1 and 1.25 D.
 eyes_per_view=4
 [ $full -eq 1 ] || [ -n "$size" ] || eyes_per_view=2
 # A display file per experiment: the built-in display at this size, with one change each.
 display() {  # display NAME EXTRA_JSON
-  printf '{"image_layer": {"resolution": [%d, %d], "pixel_pitch_mm": 0.2745}, "gap_mm": 3, "view_distance_mm": 600, "views": 9%s}\n' \
-    "$width" "$height" "$2" >"$work/$1.json"
+  if [ -n "$user_display" ]; then
+    # The user's file with the experiment's keys merged over it (JSON with // comments, as
+    # parallax reads them).
+    python3 - "$user_display" "{${2#, }}" "$work/$1.json" <<'PY'
+import json, re, sys
+text = re.sub(r'^\s*//.*$', '', open(sys.argv[1]).read(), flags=re.M)
+base, extra = json.loads(text), json.loads(sys.argv[2])
+base.update(extra)
+json.dump(base, open(sys.argv[3], "w"))
+PY
+  else
+    printf '{"image_layer": {"resolution": [%d, %d], "pixel_pitch_mm": 0.2745}, "gap_mm": 3, "view_distance_mm": 600, "views": 9%s}\n' \
+      "$width" "$height" "$2" >"$work/$1.json"
+  fi
   echo "$work/$1.json"
 }
 # The scenes are scaled with the panel so that the reduced size shows the same picture.
 scale=$(awk -v w="$width" 'BEGIN { printf "%.4f", 4 * w / 1920 }')
+[ -z "$user_display" ] || scale=4  # your panel shows the whole scene
 scene() {  # scene SOURCE NAME: a copy whose display width matches this panel size
   sed "s/\"width\": 4}/\"width\": $scale}/" "$1" >"$work/$2.json"
   echo "$work/$2.json"

@@ -77,6 +77,11 @@ Scene defaultScene() {
   // depth of field of the default display; the floor recedes behind it.
   scene.display = DisplayPlacement{};
   scene.display.width = 4.0f;
+  // The box is deeper than the default display's depth of field (-116 to +66 mm against +-27
+  // mm): fit its depth into it by default (the framing's Depth mode: the picture as large as
+  // the window allows and g' deepened), so that the first picture is sharp. `--fit none` shows
+  // it as built.
+  scene.display.fitMode = DisplayFit::Depth;
 
   Texture checker;
   checker.kind = Texture::Kind::Checker;
