@@ -162,6 +162,21 @@ JSON
 check "camera keys" run 0 view "$tmp/keys.json" --size 64x36 --spp 1 --fps 2 -o "$tmp/k/view.png" --frames 1:3
 check "three frames from 1 s at 2 fps" bash -c "test -s '$tmp/k/view-0003.png' && ! test -e '$tmp/k/view-0004.png'"
 check "the camera moved" bash -c "! cmp -s '$tmp/k/view-0001.png' '$tmp/k/view-0003.png'"
+# --video alone on an animated scene: its whole animation, as Blender renders a frame range.
+check "--video alone plays the scene's animation" run 0 view "$tmp/keys.json" --size 64x36 \
+  --spp 1 --fps 2 -o "$tmp/kv/view.png" --video "$tmp/keys.mp4"
+check "all three frames, then the video" bash -c "test -s '$tmp/kv/view-0003.png' && \
+  ! test -e '$tmp/kv/view-0004.png' && test -s '$tmp/keys.mp4'"
+check "the video has the three frames" grep -q "keys.mp4: 3 frames" "$tmp/out"
+check "and says so" grep -q "makes all 3 frames at 2 fps" "$tmp/err"
+check "the same frames as --frames 1:3" cmp "$tmp/k/view-0002.png" "$tmp/kv/view-0002.png"
+check "render --video alone too" run 0 render "$tmp/keys.json" --display "$tmp/small.json" \
+  --spp 1 --fps 2 -o "$tmp/kr" --video "$tmp/kr.mp4"
+check "render made the frames' layers" test -s "$tmp/kr/frame-0003/image.png"
+check "--video of a still scene exits 2" run 2 view --size 64x36 --spp 1 -o "$tmp/still/v.png" \
+  --video "$tmp/still.mp4"
+check "names --video and what to add" one_line_naming "the scene has no animation: add --turntable"
+check "no video of a still scene" test ! -e "$tmp/still.mp4"
 
 # Refusals: one line naming the option, exit 2, nothing written.
 check "frames beyond the animation" run 2 "${turn[@]}" --frames 3:9 -o "$tmp/bad"

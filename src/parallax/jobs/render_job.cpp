@@ -263,14 +263,23 @@ void checkSequenceFolder(const RenderRequest& r, const RenderPlan& plan,
 
 }  // namespace
 
-void runRender(const RenderRequest& r, Reporter& reporter) {
+void runRender(const RenderRequest& request, Reporter& reporter) {
+  RenderRequest r = request;
+  // --video alone: whether it is the scene's animation is known once the scene is loaded, so
+  // then the scene comes first (adoptAnimation).
+  std::optional<Scene> loaded;
+  if (r.sequence.video.wanted() && !r.sequence.given()) {
+    r.sequence.videoOptions();  // bad video options before the load
+    loaded = loadScene(r.scene, reporter);
+    adoptAnimation(r.sequence, *loaded);
+  }
   const RenderPlan plan = planRender(r, reporter);
   // Before the scene is loaded: where the files go can take them (docs/inputs.md, "Outputs").
   if (r.sequence.given())
     checkOutputFolder(r.output.empty() ? "." : r.output);
   else
     OutputSet::check(r.output, plan.outputNames);
-  Scene scene = loadScene(r.scene, reporter);
+  Scene scene = loaded ? std::move(*loaded) : loadScene(r.scene, reporter);
   const SequencePlan sequence = planSequence(r.sequence, scene);
   const MadeFrom made = r.sequence.given() ? renderMadeFrom(r, scene) : MadeFrom{};
   if (r.sequence.given()) checkSequenceFolder(r, plan, sequence, made);

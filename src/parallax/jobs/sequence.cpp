@@ -82,11 +82,17 @@ VideoRequest SequenceRequest::videoOptions() const {
     throw RequestError("video",
                        "{chunk} renders one part of the frames: make the video in a final step, "
                        "the same command without {chunk} (docs/distributed.md)");
-  if (o.wanted() && !given())
-    throw RequestError(
-        "video", "makes a video of a sequence: add {frames} FIRST:LAST or {turntable} DEGREES");
   checkVideoRequest(o);
   return o;
+}
+
+void adoptAnimation(SequenceRequest& options, const Scene& scene) {
+  if (!options.video.wanted() || options.given()) return;
+  if (sceneMotion(scene).keyedSeconds() <= 0)
+    throw RequestError("video",
+                       "makes a video of a sequence, and the scene has no animation: add "
+                       "{turntable} DEGREES (or animation keys in a scene file)");
+  options.wholeAnimation = true;
 }
 
 void writeSequenceVideo(const SequenceRequest& options, const SequencePlan& plan,
@@ -132,7 +138,14 @@ std::vector<double> SequencePlan::times() const {
 }
 
 void noteAnimation(const SequenceRequest& options, const Scene& scene, Reporter& reporter) {
-  if (options.given() || !cluster::world().isRoot()) return;
+  if (!cluster::world().isRoot()) return;
+  if (options.wholeAnimation) {
+    const SequencePlan plan = planSequence(options, scene);
+    reporter.note(printed("the scene is animated (%g s): {video} makes all %d frames at %g fps",
+                          plan.seconds, plan.total, plan.fps));
+    return;
+  }
+  if (options.given()) return;
   const SceneMotion motion = sceneMotion(scene);
   if (motion.empty()) return;
   const SequencePlan plan = planSequence(options, scene);

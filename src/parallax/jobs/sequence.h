@@ -30,8 +30,12 @@ struct SequenceRequest {
   double turntable = 0;  // degrees the content turns over the whole animation; 0 = none
   double duration = 0;   // seconds of the animation; 0 = the keys' last time, else 4 s
   double fps = 30;
+  // Set by adoptAnimation: --video of an animated scene without a range makes every frame.
+  bool wholeAnimation = false;
   // A sequence was asked for (else the command renders one picture, at time 0).
-  bool given() const { return !frames.empty() || !chunk.empty() || turntable != 0; }
+  bool given() const {
+    return !frames.empty() || !chunk.empty() || turntable != 0 || wholeAnimation;
+  }
   // --video's options at the sequence's --fps; refuses a video without a sequence.
   VideoRequest videoOptions() const;
 };
@@ -50,6 +54,12 @@ struct SequencePlan {
   double timeOf(int frame) const { return (frame - 1) / fps; }
   int count() const { return last - first + 1; }
 };
+
+// --video without --frames, --chunk or --turntable: the scene's own animation, every frame
+// (as Blender renders an animation's frame range); a scene without one is refused (RequestError
+// naming --video). Nothing for any other request. Call it once the scene is loaded, before
+// the outputs are checked.
+void adoptAnimation(SequenceRequest& options, const Scene& scene);
 
 // The plan for `scene` (its keys) and the options; throws InputError naming --frames,
 // --turntable, --duration or --fps. A turntable lasts `duration` (default 4 s) and turns the

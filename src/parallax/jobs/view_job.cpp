@@ -158,11 +158,13 @@ void checkViewSequence(const ViewRequest& r, const Scene& scene, const SequenceP
 
 }  // namespace
 
-void runView(const ViewRequest& r, Reporter& reporter) {
+void runView(const ViewRequest& request, Reporter& reporter) {
+  ViewRequest r = request;
   const RenderSettings settings = r.sampling.settings();
   r.sequence.videoOptions();  // refuses bad video options before any work
   checkOutputFile(r.output);  // and a place the picture cannot go (docs/inputs.md, "Outputs")
   Scene scene = loadScene(r.scene, reporter);
+  adoptAnimation(r.sequence, scene);  // --video alone: the scene's animation
   noteAnimation(r.sequence, scene, reporter);
   const std::unique_ptr<Camera> camera = viewCamera(r, scene, reporter);
   checkViewWork(r, scene, *camera, false);
