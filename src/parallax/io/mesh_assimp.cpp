@@ -13,7 +13,9 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "parallax/io/image_file.h"
 #include "parallax/io/isolated_import.h"
@@ -67,6 +69,27 @@ class AssimpConverter {
     if (singularNodes_ > 0)
       contents_.warnings.push_back("skipped " + std::to_string(singularNodes_) +
                                    " mesh instance(s) under a singular node transform");
+    contents_.note = note();
+  }
+
+  // "DAE (assimp): took 4 mesh parts; ignored: 2 cameras, 2 lights": what the file has that
+  // this import drops, as the glTF reader's note says (docs/import.md).
+  std::string note() const {
+    std::string format = std::filesystem::path(path_).extension().string();
+    if (!format.empty()) format.erase(0, 1);
+    for (char& c : format) c = char(std::toupper(static_cast<unsigned char>(c)));
+    const auto count = [](size_t n, const char* what) {
+      return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    std::vector<std::string> ignored;
+    if (scene_.mNumCameras > 0) ignored.push_back(count(scene_.mNumCameras, "camera"));
+    if (scene_.mNumLights > 0) ignored.push_back(count(scene_.mNumLights, "light"));
+    if (scene_.mNumAnimations > 0) ignored.push_back(count(scene_.mNumAnimations, "animation"));
+    std::string text = format + " (assimp): took " + count(contents_.parts.size(), "mesh part");
+    if (ignored.empty()) return text;
+    text += "; ignored: ";
+    for (size_t i = 0; i < ignored.size(); ++i) text += (i ? ", " : "") + ignored[i];
+    return text + " (glTF keeps cameras, lights and animation: export glTF from Blender)";
   }
 
  private:

@@ -85,6 +85,37 @@ TEST_F(RealModels, AssimpReadsTexturesAndTheirMissingFiles) {
   EXPECT_GT(missing, 0u);
 }
 
+// What an FBX or DAE import drops is said in a note, as glTF's is: the cameras and lights
+// counted in the file's own text (its <camera> and <light> elements), not by assimp.
+TEST_F(RealModels, AssimpSaysWhatItDrops) {
+  const std::string path = model("assimp/Collada/COLLADA.dae");
+  std::ifstream file(path);
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const auto occurrences = [&text](const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  };
+  // <camera id=...> and <light id=...> (the <instance_camera> and <instance_light> that place
+  // them, and <camera>'s own <optics>, are not counted).
+  const size_t cameras = occurrences("<camera id="), lights = occurrences("<light id=");
+  ASSERT_GT(cameras, 0u);
+  ASSERT_GT(lights, 0u);
+  const Scene scene = load(path);
+  ASSERT_EQ(scene.notes.size(), 1u);
+  const std::string& note = scene.notes[0];
+  EXPECT_NE(note.find("DAE (assimp): took " + std::to_string(scene.meshes.size()) + " mesh part"),
+            std::string::npos)
+      << note;
+  EXPECT_NE(note.find(std::to_string(cameras) + " camera"), std::string::npos) << note;
+  EXPECT_NE(note.find(std::to_string(lights) + " light"), std::string::npos) << note;
+  EXPECT_TRUE(scene.lights.empty());
+  // A file with nothing to drop says only what it took.
+  const Scene plain = load(model("assimp/Collada/ConcavePolygon.dae"));
+  ASSERT_EQ(plain.notes.size(), 1u);
+  EXPECT_EQ(plain.notes[0].find("ignored"), std::string::npos) << plain.notes[0];
+}
+
 // ---- assimp against our readers ----------------------------------------------------------
 
 // Looks up, for each vertex of `a`, the vertices of `b` at the same position (to within a
