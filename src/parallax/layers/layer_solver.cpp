@@ -153,6 +153,21 @@ void addImageGradient(const TrainingView& v, const Image& residual, const Image&
   addLayerGradient(v, residual, mask, grad, true, threads);
 }
 
+// The frames as the eyes see them: each frame's rear layer (the mask with the image in front)
+// through the diffuser.
+std::vector<LayerFrame> seenFrames(const std::vector<TrainingView>& views,
+                                   const std::vector<LayerFrame>& frames,
+                                   const RearDiffuser& diffuser, int threads) {
+  if (!diffuser.active()) return frames;
+  const bool maskIsRear = views.front().seen.imageInFront();
+  std::vector<LayerFrame> seen = frames;
+  for (LayerFrame& f : seen) {
+    Image& rear = maskIsRear ? f.mask : f.image;
+    rear = diffuser.apply(rear, threads);
+  }
+  return seen;
+}
+
 // The passes of optimizeImageLayer over every training eye. When the image layer is in front
 // (the barrier behind it, the default order) each pass runs row by row: output row j of every
 // eye's view depends on the image's row j only and writes only its gradient's row j, so a row
@@ -163,19 +178,25 @@ void addImageGradient(const TrainingView& v, const Image& residual, const Image&
 class ImageLayerPasses {
  public:
   // `byRows`: false keeps the whole-image passes (the tests' second code path).
+  // `mask`: as the eyes see it (already through the diffuser when the mask is the rear layer).
+  // `diffuser`: applied to the image when the image is the rear layer (the barrier in front).
   ImageLayerPasses(const std::vector<TrainingView>& views, const Image& mask, int threads,
-                   bool byRows)
+                   bool byRows, const RearDiffuser& diffuser)
       : views_(views), mask_(mask), threads_(threads) {
-    fused_ = byRows && std::all_of(views.begin(), views.end(),
-                                   [](const TrainingView& v) { return v.seen.imageInFront(); });
+    const bool imageInFront = std::all_of(
+        views.begin(), views.end(), [](const TrainingView& v) { return v.seen.imageInFront(); });
+    if (!imageInFront && diffuser.active()) imageBlur_ = &diffuser;
+    fused_ = byRows && imageInFront;
   }
 
   // sum_e E_e at the image x.
   double energy(const Image& x) const {
     if (!fused_) {
+      Image holder;
+      const Image& xs = seen(x, holder);
       double sum = 0;
       for (const TrainingView& v : views_)
-        sum += eyeError(v, viewOf(v.seen, x, mask_, threads_), nullptr, nullptr);
+        sum += eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, nullptr);
       return sum;
     }
     return sumOverRows([&](int j, RowWork& w) {
@@ -191,11 +212,14 @@ class ImageLayerPasses {
   // grad += sum_e A_e^T dE_e/dV_e at the image x.
   void addGradient(const Image& x, Image& grad) const {
     if (!fused_) {
+      Image holder, sum(grad.width(), grad.height());
+      const Image& xs = seen(x, holder);
       for (const TrainingView& v : views_) {
         Image residual(v.seen.width(), v.seen.height());
-        eyeError(v, viewOf(v.seen, x, mask_, threads_), &residual, nullptr);
-        addImageGradient(v, residual, mask_, grad, threads_);
+        eyeError(v, viewOf(v.seen, xs, mask_, threads_), &residual, nullptr);
+        addImageGradient(v, residual, mask_, sum, threads_);
       }
+      addThroughDiffuser(sum, grad);
       return;
     }
     sumOverRows([&](int j, RowWork& w) {
@@ -211,15 +235,18 @@ class ImageLayerPasses {
   // sum_e |A_e d|^2 weighted by E_e's Gauss-Newton weights at x (1 in linear light).
   double curvature(const Image& x, const Image& d) const {
     if (!fused_) {
+      Image holderX, holderD;
+      const Image& xs = seen(x, holderX);
+      const Image& ds = seen(d, holderD);
       double sum = 0;
       for (const TrainingView& v : views_) {
-        const Image ad = viewOf(v.seen, d, mask_, threads_);
+        const Image ad = viewOf(v.seen, ds, mask_, threads_);
         if (!(v.encodingScale > 0)) {
           sum += dot(ad, ad);
           continue;
         }
         Image weights(v.seen.width(), v.seen.height());
-        eyeError(v, viewOf(v.seen, x, mask_, threads_), nullptr, &weights);
+        eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, &weights);
         sum += dot(ad, elementwise(ad, weights));
       }
       return sum;
@@ -247,12 +274,16 @@ class ImageLayerPasses {
   void addCurvatureDiagonal(const Image& x, Image& out) const {
     const Image ones(x.width(), x.height(), Vec3f(1.0f));
     if (!fused_) {
+      Image holderX, holderOnes, sum(out.width(), out.height());
+      const Image& xs = seen(x, holderX);
+      const Image& onesSeen = seen(ones, holderOnes);
       for (const TrainingView& v : views_) {
         Image weights(v.seen.width(), v.seen.height());
-        eyeError(v, viewOf(v.seen, x, mask_, threads_), nullptr, &weights);
-        addImageGradient(v, elementwise(viewOf(v.seen, ones, mask_, threads_), weights), mask_, out,
-                         threads_);
+        eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, &weights);
+        addImageGradient(v, elementwise(viewOf(v.seen, onesSeen, mask_, threads_), weights), mask_,
+                         sum, threads_);
       }
+      addThroughDiffuser(sum, out);
       return;
     }
     sumOverRows([&](int j, RowWork& w) {
@@ -294,20 +325,38 @@ class ImageLayerPasses {
     return sum;
   }
 
+  // The image as the eyes see it: through the diffuser when it is the rear layer.
+  const Image& seen(const Image& x, Image& holder) const {
+    if (!imageBlur_) return x;
+    holder = imageBlur_->apply(x, threads_);
+    return holder;
+  }
+  // grad += G^T g = G g (the diffuser is its own transpose) when the image is blurred, else g.
+  void addThroughDiffuser(const Image& g, Image& grad) const {
+    const Image back = imageBlur_ ? imageBlur_->apply(g, threads_) : g;
+    addScaled(grad, back, 1.0f);
+  }
+
   const std::vector<TrainingView>& views_;
   const Image& mask_;
   int threads_;
   bool fused_ = false;
+  const RearDiffuser* imageBlur_ = nullptr;
 };
 
 }  // namespace
 
+Image RearDiffuser::apply(const Image& layer, int threads) const {
+  return active() ? diffuserBlurred(layer, sigmaMm, pitchMm, threads) : layer;
+}
+
 double layerObjective(const std::vector<TrainingView>& views, const std::vector<LayerFrame>& frames,
-                      int threads) {
+                      int threads, const RearDiffuser& diffuser) {
   checkViews(views);
+  const std::vector<LayerFrame> seen = seenFrames(views, frames, diffuser, threads);
   double sum = 0;
   for (const TrainingView& v : views)
-    sum += eyeError(v, averageView(v, frames, threads), nullptr, nullptr);
+    sum += eyeError(v, averageView(v, seen, threads), nullptr, nullptr);
   return sum * normaliser(views);
 }
 
@@ -315,10 +364,14 @@ namespace {
 
 Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
                       int iterations, int threads, SolveReport* report,
-                      const SolveProgress& progress, bool byRows) {
+                      const SolveProgress& progress, bool byRows, const RearDiffuser& diffuser) {
   checkViews(views);
   clampToUnit(image);
-  const ImageLayerPasses passes(views, mask, threads, byRows);
+  // With the image in front the mask is the rear layer: the eyes see it through the diffuser,
+  // once and for all (it is fixed). Otherwise the passes blur the image.
+  const bool maskIsRear = views.front().seen.imageInFront();
+  const Image seenMask = maskIsRear && diffuser.active() ? diffuser.apply(mask, threads) : mask;
+  const ImageLayerPasses passes(views, seenMask, threads, byRows, diffuser);
   const double norm = normaliser(views);
   // A diagonal preconditioner: 1 / (sum_e A_e^T W_e A_e 1) at the starting layers, the
   // curvature each pixel would have if its neighbours moved with it (the scaling of SART and of
@@ -375,21 +428,24 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
 
 Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
                          int iterations, int threads, SolveReport* report,
-                         const SolveProgress& progress) {
-  return solveImageLayer(views, std::move(image), mask, iterations, threads, report, progress,
-                         true);
+                         const SolveProgress& progress, const RearDiffuser& diffuser) {
+  return solveImageLayer(views, std::move(image), mask, iterations, threads, report, progress, true,
+                         diffuser);
 }
 
 namespace detail {
 Image optimizeImageLayerByEye(const std::vector<TrainingView>& views, Image image,
-                              const Image& mask, int iterations, int threads, SolveReport* report) {
-  return solveImageLayer(views, std::move(image), mask, iterations, threads, report, {}, false);
+                              const Image& mask, int iterations, int threads, SolveReport* report,
+                              const RearDiffuser& diffuser) {
+  return solveImageLayer(views, std::move(image), mask, iterations, threads, report, {}, false,
+                         diffuser);
 }
 }  // namespace detail
 
 std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                                         std::vector<LayerFrame> frames, int iterations, int threads,
-                                        SolveReport* report, const SolveProgress& progress) {
+                                        SolveReport* report, const SolveProgress& progress,
+                                        const RearDiffuser& diffuser) {
   checkViews(views);
   if (frames.empty()) throw std::invalid_argument("factorizeLayers: no frames");
   for (const TrainingView& v : views)
@@ -397,12 +453,17 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       throw std::invalid_argument("factorizeLayers: multiplicative updates fit in linear light");
   for (LayerFrame& f : frames) clampToUnit(f.image), clampToUnit(f.mask);
   SolveReport local;
-  local.objective.push_back(layerObjective(views, frames, threads));
+  local.objective.push_back(layerObjective(views, frames, threads, diffuser));
   constexpr float kTiny = 1e-12f;
+  const bool maskIsRear = views.front().seen.imageInFront();
   // One multiplicative update of every frame's image (updateImages) or mask: numerator
   // sum_e A^T t_e, denominator sum_e A^T V_e, where A is the view's derivative with respect to
   // that frame's layer (the other layer fixed); the 1/T of the average cancels in the ratio.
+  // Through a diffuser the views see G rear: the front's A holds G rear, and the rear's A is
+  // P_rear G, so its sums pass through G^T = G (non-negative, so the updates stay
+  // multiplicative and never increase E).
   const auto update = [&](bool updateImages) {
+    const std::vector<LayerFrame> seenLayers = seenFrames(views, frames, diffuser, threads);
     std::vector<Image> numerator, denominator;
     for (const LayerFrame& f : frames) {
       const Image& x = updateImages ? f.image : f.mask;
@@ -410,16 +471,21 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       denominator.emplace_back(x.width(), x.height());
     }
     for (const TrainingView& v : views) {
-      const Image seen = averageView(v, frames, threads);
+      const Image seen = averageView(v, seenLayers, threads);
       const Image& target = v.target;
       for (size_t t = 0; t < frames.size(); ++t) {
-        const LayerFrame& f = frames[t];
+        const LayerFrame& f = seenLayers[t];
         const Image& other = updateImages ? f.mask : f.image;
         addLayerGradient(v, target, other, numerator[t], updateImages, threads);
         addLayerGradient(v, seen, other, denominator[t], updateImages, threads);
       }
     }
+    const bool rearUpdated = updateImages != maskIsRear;
     for (size_t t = 0; t < frames.size(); ++t) {
+      if (rearUpdated && diffuser.active()) {
+        numerator[t] = diffuser.apply(numerator[t], threads);
+        denominator[t] = diffuser.apply(denominator[t], threads);
+      }
       Image& x = updateImages ? frames[t].image : frames[t].mask;
       for (size_t i = 0; i < x.pixels().size(); ++i)
         for (int c = 0; c < 3; ++c) {
@@ -434,7 +500,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
   for (int it = 0; it < iterations; ++it) {
     update(true);
     update(false);
-    local.objective.push_back(layerObjective(views, frames, threads));
+    local.objective.push_back(layerObjective(views, frames, threads, diffuser));
     ++local.iterations;
     if (progress) progress(local.iterations, iterations, local.objective.back());
   }

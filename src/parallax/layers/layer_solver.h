@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "parallax/image/image.h"
+#include "parallax/sim/diffuser.h"
 #include "parallax/sim/seen_layers.h"
 
 namespace parallax {
@@ -44,14 +45,24 @@ struct LayerFrame {
   Image image, mask;
 };
 
+// A diffuser foil between the panels (sim/diffuser.h): the rear layer is seen blurred by G, a
+// Gaussian of sigmaMm over the rear panel's pixels (pitchMm apart). The solvers then fit
+// V = B P(front, G rear): G in the views, and G^T = G on the rear layer's gradient.
+struct RearDiffuser {
+  double sigmaMm = 0, pitchMm = 0;
+  bool active() const { return sigmaMm > 0 && pitchMm > 0; }
+  // G applied to a rear layer (or to a gradient of one: G is its own transpose).
+  Image apply(const Image& layer, int threads = 0) const;
+};
+
 struct SolveReport {
   std::vector<double> objective;  // E / (pixels x channels x eyes): before, then per iteration
   int iterations = 0;             // iterations run (fewer when a step no longer lowers E)
 };
 
-// E / (view pixels x 3 x eyes) of `frames` seen as their average.
+// E / (view pixels x 3 x eyes) of `frames` seen as their average (through `diffuser`).
 double layerObjective(const std::vector<TrainingView>& views, const std::vector<LayerFrame>& frames,
-                      int threads = 0);
+                      int threads = 0, const RearDiffuser& diffuser = {});
 
 // The image layer for the fixed `mask`, starting from `image` (clamped to [0, 1]).
 // Told after each iteration: (iterations done, iterations asked, objective), for progress.
@@ -59,7 +70,7 @@ using SolveProgress = std::function<void(int done, int total, double objective)>
 
 Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
                          int iterations, int threads = 0, SolveReport* report = nullptr,
-                         const SolveProgress& progress = {});
+                         const SolveProgress& progress = {}, const RearDiffuser& diffuser = {});
 
 namespace detail {
 // optimizeImageLayer with its passes eye by eye over whole images, as it runs with the barrier
@@ -67,13 +78,14 @@ namespace detail {
 // (layer_solver.cpp, ImageLayerPasses). For the tests: both must give the same layers.
 Image optimizeImageLayerByEye(const std::vector<TrainingView>& views, Image image,
                               const Image& mask, int iterations, int threads = 0,
-                              SolveReport* report = nullptr);
+                              SolveReport* report = nullptr, const RearDiffuser& diffuser = {});
 }  // namespace detail
 
 // Both layers of every frame, starting from `frames` (clamped to [0, 1]).
 std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                                         std::vector<LayerFrame> frames, int iterations,
                                         int threads = 0, SolveReport* report = nullptr,
-                                        const SolveProgress& progress = {});
+                                        const SolveProgress& progress = {},
+                                        const RearDiffuser& diffuser = {});
 
 }  // namespace parallax

@@ -1,5 +1,7 @@
 #include "parallax/sim/simulator.h"
 
+#include "parallax/sim/diffuser.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -53,11 +55,6 @@ void checkOptions(const SimulationOptions& o) {
     throw fail("/normalisation", "must be 0 (the mask's mean) or positive");
 }
 
-// Probability that a normal variable of standard deviation sigma falls below x.
-double normalCdf(double x, double sigma) {
-  return 0.5 * std::erfc(-x / (sigma * std::sqrt(2.0)));
-}
-
 }  // namespace
 
 DisplaySimulator::Layer DisplaySimulator::makeLayer(const Image& image, const Panel& panel,
@@ -88,48 +85,12 @@ DisplaySimulator::Layer DisplaySimulator::makeLayer(const Image& image, const Pa
   return layer;
 }
 
-// The diffuser blurs the rear panel's box pixels with a Gaussian; each cell keeps the blurred
-// value at its centre, so the kernel weight of a neighbour m cells away is the Gaussian's mass
-// over that cell, [m - 1/2, m + 1/2] (cells outside the panel are dark).
+// The diffuser (sim/diffuser.h): the rear layer's cells blurred, the zero cell that ends each
+// row left dark.
 void DisplaySimulator::blur(Layer& layer, double sigmaMm, int threads) {
   if (!(sigmaMm > 0)) return;
-  const auto kernel = [](double sigmaCells) {
-    const int radius = int(std::ceil(4.0 * sigmaCells + 0.5));
-    std::vector<float> weights(size_t(2 * radius + 1));
-    for (int m = -radius; m <= radius; ++m)
-      weights[size_t(m + radius)] =
-          float(normalCdf(m + 0.5, sigmaCells) - normalCdf(m - 0.5, sigmaCells));
-    return weights;
-  };
-  const size_t stride = size_t(layer.columns + 1);
-  std::vector<Vec3f> blurred(layer.cells.size(), Vec3f(0.0f));
-  const std::vector<float> wx = kernel(sigmaMm / layer.cellWidthMm);
-  const int rx = int(wx.size() / 2);
-  forRows(layer.rows, threads, [&](int begin, int end) {
-    for (int y = begin; y < end; ++y) {
-      const Vec3f* in = layer.cells.data() + size_t(y) * stride;
-      Vec3f* out = blurred.data() + size_t(y) * stride;
-      for (int x = 0; x < layer.columns; ++x) {
-        Vec3f sum(0.0f);
-        for (int m = std::max(-rx, -x); m <= std::min(rx, layer.columns - 1 - x); ++m)
-          sum += in[x + m] * wx[size_t(m + rx)];
-        out[x] = sum;
-      }
-    }
-  });
-  const std::vector<float> wy = kernel(sigmaMm / layer.cellHeightMm);
-  const int ry = int(wy.size() / 2);
-  forRows(layer.rows, threads, [&](int begin, int end) {
-    for (int y = begin; y < end; ++y) {
-      Vec3f* out = layer.cells.data() + size_t(y) * stride;
-      std::fill(out, out + stride, Vec3f(0.0f));
-      for (int m = std::max(-ry, -y); m <= std::min(ry, layer.rows - 1 - y); ++m) {
-        const Vec3f* in = blurred.data() + size_t(y + m) * stride;
-        const float w = wy[size_t(m + ry)];
-        for (int x = 0; x < layer.columns; ++x) out[x] += in[x] * w;
-      }
-    }
-  });
+  diffuserBlur(layer.cells.data(), layer.columns, layer.rows, size_t(layer.columns + 1),
+               sigmaMm / layer.cellWidthMm, sigmaMm / layer.cellHeightMm, threads);
 }
 
 DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages layers,
