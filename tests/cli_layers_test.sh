@@ -47,6 +47,38 @@ slits, oi = d["renders"][0]["mean"]["psnr"], d["renders"][1]["mean"]["psnr"]
 assert oi > slits + 0.1, (slits, oi)
 ' "$tmp/out"
 
+# A panel with a diffuser foil: layers solved for it (--diffuser, or the display file's own
+# diffuser_sigma_mm), recorded, and seen through it by simulate by default.
+check "render --layers optimized-image --diffuser 0.4" run 0 render --display "$tmp/small.json" \
+  --spp 4 --layers optimized-image --iterations 6 --train-eyes 1 --diffuser 0.4 -o "$tmp/oid"
+check "the diffuser is recorded" test "$(record_number "$tmp/oid/render.json" diffuser_sigma_mm)" = 0.4
+check "layers solved for the diffuser differ" bash -c "! cmp -s '$tmp/oi/image.png' '$tmp/oid/image.png'"
+python3 - "$tmp/small.json" "$tmp/foil.json" <<'PY'
+import json, re, sys
+d = json.loads(re.sub(r"^\s*//.*$", "", open(sys.argv[1]).read(), flags=re.M))
+d["diffuser_sigma_mm"] = 0.4
+json.dump(d, open(sys.argv[2], "w"))
+PY
+check "a display file's diffuser" run 0 render --display "$tmp/foil.json" --spp 4 \
+  --layers optimized-image --iterations 6 --train-eyes 1 -o "$tmp/oif"
+check "is solved for as --diffuser" cmp "$tmp/oid/image.png" "$tmp/oif/image.png"
+check "and written into the render's display" grep -q '"diffuser_sigma_mm": 0.4' "$tmp/oif/display.json"
+check "simulate sees the panel through its own diffuser" run 0 simulate "$tmp/oif" --eye 0,0,600 \
+  -o "$tmp/foil-seen.png"
+check "simulate --diffuser 0.4 of the same layers" run 0 simulate "$tmp/oid" --eye 0,0,600 \
+  --diffuser 0.4 -o "$tmp/given-seen.png"
+check "is the same picture" cmp "$tmp/foil-seen.png" "$tmp/given-seen.png"
+check "simulate --diffuser 0 overrides the panel's" run 0 simulate "$tmp/oif" --eye 0,0,600 \
+  --diffuser 0 -o "$tmp/nofoil-seen.png"
+check "and sees it sharper" bash -c "! cmp -s '$tmp/foil-seen.png' '$tmp/nofoil-seen.png'"
+check "--diffuser with slits exits 2" run 2 render --display "$tmp/small.json" --diffuser 0.4 \
+  -o "$tmp/x"
+check "names --diffuser" one_line_naming "--diffuser"
+sed 's/"diffuser_sigma_mm": 0.4/"diffuser_sigma_mm": -1/' "$tmp/foil.json" >"$tmp/badfoil.json"
+check "a negative diffuser in a display file exits 2" run 2 render --display "$tmp/badfoil.json" \
+  -o "$tmp/x"
+check "names the file and the key" one_line_naming "badfoil.json: /diffuser_sigma_mm"
+
 check "unknown --layers exits 2" run 2 render --display "$tmp/small.json" --layers best -o "$tmp/x"
 check "unknown --layers names the option" one_line_naming "--layers"
 check "--rank without nmf exits 2" run 2 render --display "$tmp/small.json" \

@@ -92,6 +92,11 @@ void registerRenderCommand(CLI::App& cli) {
   cmd->add_option("--layer-error", request.layers.error,
                   "The optimised image layer's error: srgb (on sRGB values, as the dense "
                   "measure's PSNR; its default) or linear (light; nmf's only)");
+  cmd->add_option("--diffuser", request.layers.diffuser,
+                  "With --layers optimized-image or nmf: the panel's diffuser foil, a Gaussian "
+                  "blur of the rear layer (sigma in mm, as simulate --diffuser): the layers are "
+                  "solved for what eyes see through it (docs/content-adaptive.md)")
+      ->type_name("MM");
   cmd->add_option("--train-eyes", request.layers.trainEyes,
                   "Training eyes per view at 0.8, 1 and 1.25 D for optimised layers")
       ->capture_default_str();

@@ -56,6 +56,10 @@ struct DisplaySpec {
   std::optional<double> viewZoneWidthMm;
   std::optional<double> screenPeriodPx, slitPeriodPx;
   MaskSpec mask;
+  // A diffuser foil between the panels (sim/diffuser.h): the rear layer's blur, Gaussian sigma
+  // in mm; 0 without one. What simulate sees the panel through and the layer solvers solve
+  // for, unless told otherwise.
+  double diffuserSigmaMm = 0.0;
 };
 
 // How a camera traces a barrier display: render choices, not the display's physics

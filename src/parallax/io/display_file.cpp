@@ -108,7 +108,7 @@ BarrierDisplayFile loadDisplayFile(const std::string& path) {
 BarrierDisplayFile readDisplayFile(const JsonReader& root, const std::string& path) {
   root.expectObject({"image_layer", "mask_layer", "layer_order", "gap_mm", "view_distance_mm",
                      "view_zone", "views", "screen_period_px", "slit_period_px", "mask", "virtual",
-                     "subpixel_rays", "name", "version"});
+                     "subpixel_rays", "name", "version", "diffuser_sigma_mm"});
   DisplaySpec s = defaultDisplaySpec();
   s.source = path;
   if (auto n = root.find("image_layer")) s.imagePanel = readPanel(*n, s.imagePanel);
@@ -125,6 +125,11 @@ BarrierDisplayFile readDisplayFile(const JsonReader& root, const std::string& pa
       n->fail("expected \"barrier-back\" or \"barrier-front\", got \"" + order + "\"");
   }
   if (auto n = root.find("gap_mm")) s.gapMm = n->number();
+  if (auto n = root.find("diffuser_sigma_mm")) {
+    s.diffuserSigmaMm = n->number();
+    if (!(s.diffuserSigmaMm >= 0 && s.diffuserSigmaMm <= 100))
+      n->fail("must be a blur of 0 to 100 mm (Gaussian sigma)");
+  }
   const bool measured = root.has("screen_period_px") || root.has("slit_period_px");
   const bool byZone = root.find("view_zone") && (*root.find("view_zone")).has("width_mm");
   // Defaults that another given quantity replaces: views and D are derived, not assumed.
@@ -170,6 +175,7 @@ std::string displayFileText(const DisplaySpec& s, const BarrierCameraSettings& c
   panel("/mask_layer", s.maskPanel);
   json.set("/layer_order", orderName(s.order));
   json.set("/gap_mm", s.gapMm);
+  if (s.diffuserSigmaMm > 0) json.set("/diffuser_sigma_mm", s.diffuserSigmaMm);
   if (s.viewDistanceMm && !(s.screenPeriodPx && s.slitPeriodPx))
     json.set("/view_distance_mm", *s.viewDistanceMm);
   json.set("/view_zone/center_x_mm", s.viewZoneCenterXMm);

@@ -44,9 +44,13 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
     progress->detail(printed("objective %.4g", objective));
     progress->update(done, total);
   };
+  // A diffuser foil blurs the rear layer (sim/diffuser.h); its pixels are the rear panel's.
+  const Panel& rear =
+      design.spec.order == LayerOrder::BarrierBack ? design.spec.maskPanel : design.spec.imagePanel;
+  const RearDiffuser diffuser{o.diffuser.value_or(design.spec.diffuserSigmaMm), rear.pitchMm};
   if (o.method == "optimized-image") {
     frames.push_back({optimizeImageLayer(views, slits.image, slits.mask, iterations,
-                                         training.threads, &report, onIteration),
+                                         training.threads, &report, onIteration, diffuser),
                       slits.mask});
   } else {
     // Start: T copies of the slit image; masks of T slit phases a period / T apart, their closed
@@ -64,7 +68,7 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
       frames.push_back({slits.image, std::move(mask)});
     }
     frames = factorizeLayers(views, std::move(frames), iterations, training.threads, &report,
-                             onIteration);
+                             onIteration, diffuser);
   }
   progress.reset();
   const double seconds =
@@ -79,6 +83,7 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   out.set("/layers/normalisation", slitMean * gain);
   out.set("/layers/training_eyes", int(views.size()));
   out.set("/layers/error", o.errorMeasure());
+  out.set("/layers/diffuser_sigma_mm", diffuser.sigmaMm);
   out.set("/layers/training_seconds", trainSeconds);
   out.set("/layers/seconds", seconds);
   out.set("/layers/objective_first", report.objective.front());

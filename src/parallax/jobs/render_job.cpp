@@ -54,6 +54,12 @@ void LayersRequest::check() const {
                        "srgb is for {layers} optimized-image (nmf's updates fit in linear light)");
   if (trainEyes < 1 || trainEyes > 16)
     throw RequestError("train_eyes", "must be between 1 and 16 eyes per view");
+  if (diffuser && (!(*diffuser >= 0) || !std::isfinite(*diffuser) || *diffuser > 100))
+    throw RequestError("diffuser", "must be a blur of 0 to 100 mm (Gaussian sigma)");
+  if (diffuser && *diffuser > 0 && !solved())
+    throw RequestError("diffuser",
+                       "applies to {layers} optimized-image or nmf (the layers solved for a "
+                       "panel with a diffuser foil); slits are the same with or without one");
 }
 
 namespace {
@@ -211,7 +217,8 @@ MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
        {"{iterations}", std::to_string(r.layers.iterations.value_or(kDefaultLayerIterations))},
        {"{brightness}", madeFromNumber(r.layers.brightness)},
        {"{train_eyes}", std::to_string(r.layers.trainEyes)},
-       {"{layer_error}", r.layers.error}});
+       {"{layer_error}", r.layers.error},
+       {"{diffuser}", r.layers.diffuser ? madeFromNumber(*r.layers.diffuser) : "display"}});
   addSamplingMadeFrom(made, r.sampling);
   addSequenceMadeFrom(made, r.sequence);
   addFileContent(made, r.display);

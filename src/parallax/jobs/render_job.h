@@ -31,6 +31,9 @@ struct LayersRequest {
   double brightness = 0;          // times the slits' brightness; 0: the method's default
   int trainEyes = 2;              // training eyes per view at 0.8, 1 and 1.25 D
   std::string error;              // srgb or linear; "": the method's default
+  // The panel's diffuser foil (Gaussian sigma, mm) the layers are solved for; none: the display
+  // file's diffuser_sigma_mm.
+  std::optional<double> diffuser;
   bool solved() const { return method != "slits"; }
   // The error measure the image layer is fitted in: srgb for optimized-image, linear for nmf.
   std::string errorMeasure() const;

@@ -32,7 +32,9 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
   checkThreads(r.threads);
   if (r.pupilSamples < 1)
     throw RequestError("pupil_samples", "must be a whole number of at least 1");
-  if (!(r.diffuser >= 0 && std::isfinite(r.diffuser)))
+  const DisplayDesign* barrier = display.barrierDesign();
+  const double diffuser = r.diffuser ? *r.diffuser : barrier ? barrier->spec.diffuserSigmaMm : 0.0;
+  if (!(diffuser >= 0 && std::isfinite(diffuser)))
     throw RequestError("diffuser", "must be a number of at least 0");
   // Options that only the two-layer simulator has, refused for other kinds by name.
   if (!display.barrierDesign()) {
@@ -44,7 +46,7 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
     if (r.size) refuse("size");
     if (r.spp != 0) refuse("spp");
     if (r.pupil > 0) refuse("pupil");
-    if (r.diffuser > 0) refuse("diffuser");
+    if (diffuser > 0) refuse("diffuser");
     if (r.colorFilters) refuse("color_filters");
     if (r.raw) refuse("raw");
   }
@@ -60,13 +62,13 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
     sim.width = (*r.size)[0], sim.height = (*r.size)[1];
   }
   const DisplayWindow window = display.window();
-  if (r.diffuser > window.widthMm)
+  if (diffuser > window.widthMm)
     throw RequestError("diffuser", "a blur wider than the display (" +
                                        std::to_string(int(window.widthMm)) + " mm) is no diffuser");
   sim.samplesPerPixel = r.spp;
   sim.pupilDiameterMm = r.pupil;
   sim.pupilSamples = r.pupilSamples;
-  sim.diffuserSigmaMm = r.diffuser;
+  sim.diffuserSigmaMm = diffuser;
   sim.colourFilters = r.colorFilters;
   sim.normalise = !r.raw;
   sim.threads = r.threads;

@@ -33,7 +33,8 @@ struct SimulatorRequest {
   int spp = 0;         // 0: each output pixel's area exactly; n*n: point samples (for comparison)
   double pupil = 0.0;  // mm; 0: a pinhole eye
   int pupilSamples = 16;
-  double diffuser = 0.0;  // the rear layer's blur, Gaussian sigma in mm
+  // The rear layer's blur, Gaussian sigma in mm; none: the display's own diffuser_sigma_mm.
+  std::optional<double> diffuser;
   bool colorFilters = false;
   bool raw = false;        // raw brightness (not normalised by the aperture ratio)
   bool rawPixels = false;  // the eye's samples as they are (not at the display's resolution)

@@ -73,6 +73,7 @@ jobs::RenderRequest renderRequest(const DisplayDescription& display, const py::k
     r.layers.iterations = kw["iterations"].cast<int>();
   if (kw.contains("brightness")) r.layers.brightness = kw["brightness"].cast<double>();
   if (kw.contains("train_eyes")) r.layers.trainEyes = kw["train_eyes"].cast<int>();
+  if (kw.contains("diffuser")) r.layers.diffuser = kw["diffuser"].cast<double>();
   text("layer_error", r.layers.error);
   if (kw.contains("quilt") && !kw["quilt"].is_none()) {
     r.quilt.wanted = true;
@@ -125,6 +126,7 @@ std::vector<std::string> knownRenderKeywords() {
           "iterations",
           "brightness",
           "train_eyes",
+          "diffuser",
           "layer_error",
           "quilt",
           "size",

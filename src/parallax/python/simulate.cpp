@@ -114,9 +114,9 @@ std::string quality(const Scene& loaded, const DisplayDescription& description,
 void bindSimulate(py::module_& module) {
   const SimulationOptions defaults;
   const auto options = [](const std::optional<std::array<int, 2>>& size, int spp, double pupil,
-                          int pupilSamples, double diffuser, bool colourFilters, bool raw,
-                          bool rawPixels, int threads, const std::optional<double>& lensSpot,
-                          const std::string& bundles) {
+                          int pupilSamples, const std::optional<double>& diffuser,
+                          bool colourFilters, bool raw, bool rawPixels, int threads,
+                          const std::optional<double>& lensSpot, const std::string& bundles) {
     return SeeOptions{size, spp,       pupil,   pupilSamples, diffuser, colourFilters,
                       raw,  rawPixels, threads, lensSpot,     bundles};
   };
@@ -125,8 +125,9 @@ void bindSimulate(py::module_& module) {
       [options](const py::array& image, const std::optional<py::array>& mask,
                 const DisplayDescription& display, const std::vector<std::array<double, 3>>& eyes,
                 const std::optional<std::array<int, 2>>& size, int spp, double pupil,
-                int pupilSamples, double diffuser, bool colourFilters, bool raw, bool rawPixels,
-                int threads, const std::optional<double>& lensSpot, const std::string& bundles) {
+                int pupilSamples, const std::optional<double>& diffuser, bool colourFilters,
+                bool raw, bool rawPixels, int threads, const std::optional<double>& lensSpot,
+                const std::string& bundles) {
         return see(image, mask, display, eyes,
                    options(size, spp, pupil, pupilSamples, diffuser, colourFilters, raw, rawPixels,
                            threads, lensSpot, bundles));
@@ -134,20 +135,21 @@ void bindSimulate(py::module_& module) {
       py::arg("image"), py::arg("mask"), py::arg("display"), py::kw_only(), py::arg("eyes"),
       py::arg("size") = py::none(), py::arg("spp") = defaults.samplesPerPixel,
       py::arg("pupil") = defaults.pupilDiameterMm, py::arg("pupil_samples") = defaults.pupilSamples,
-      py::arg("diffuser") = defaults.diffuserSigmaMm, py::arg("color_filters") = false,
-      py::arg("raw") = false, py::arg("raw_pixels") = false, py::arg("threads") = 0,
-      py::arg("lens_spot") = py::none(), py::arg("bundles") = "");
+      py::arg("diffuser") = py::none(), py::arg("color_filters") = false, py::arg("raw") = false,
+      py::arg("raw_pixels") = false, py::arg("threads") = 0, py::arg("lens_spot") = py::none(),
+      py::arg("bundles") = "");
   module.def("_sweep_eyes", &sweepEyes, py::arg("display"), py::kw_only(), py::arg("count"),
              py::arg("sweep_range") = 1.0, py::arg("distance") = 0.0);
   module.def(
       "_quality",
-      [options](
-          const Scene& scene, const DisplayDescription& display, const py::array& image,
-          const std::optional<py::array>& mask, const std::vector<std::array<double, 3>>& eyes,
-          int referenceSpp, const std::optional<std::array<int, 2>>& size, int spp, double pupil,
-          int pupilSamples, double diffuser, bool colourFilters, bool raw, bool rawPixels,
-          int threads, const std::string& fit, const std::string& focus, const std::string& budget,
-          const std::optional<double>& lensSpot, const std::string& bundles) {
+      [options](const Scene& scene, const DisplayDescription& display, const py::array& image,
+                const std::optional<py::array>& mask,
+                const std::vector<std::array<double, 3>>& eyes, int referenceSpp,
+                const std::optional<std::array<int, 2>>& size, int spp, double pupil,
+                int pupilSamples, const std::optional<double>& diffuser, bool colourFilters,
+                bool raw, bool rawPixels, int threads, const std::string& fit,
+                const std::string& focus, const std::string& budget,
+                const std::optional<double>& lensSpot, const std::string& bundles) {
         return quality(scene, display, image, mask, eyes, referenceSpp,
                        options(size, spp, pupil, pupilSamples, diffuser, colourFilters, raw,
                                rawPixels, threads, lensSpot, bundles),
@@ -156,11 +158,10 @@ void bindSimulate(py::module_& module) {
       py::arg("scene"), py::arg("display"), py::arg("image"), py::arg("mask"), py::kw_only(),
       py::arg("eyes"), py::arg("reference_spp") = 16, py::arg("size") = py::none(),
       py::arg("spp") = defaults.samplesPerPixel, py::arg("pupil") = defaults.pupilDiameterMm,
-      py::arg("pupil_samples") = defaults.pupilSamples,
-      py::arg("diffuser") = defaults.diffuserSigmaMm, py::arg("color_filters") = false,
-      py::arg("raw") = false, py::arg("raw_pixels") = false, py::arg("threads") = 0,
-      py::arg("fit") = "", py::arg("focus") = "", py::arg("depth_budget") = "",
-      py::arg("lens_spot") = py::none(), py::arg("bundles") = "");
+      py::arg("pupil_samples") = defaults.pupilSamples, py::arg("diffuser") = py::none(),
+      py::arg("color_filters") = false, py::arg("raw") = false, py::arg("raw_pixels") = false,
+      py::arg("threads") = 0, py::arg("fit") = "", py::arg("focus") = "",
+      py::arg("depth_budget") = "", py::arg("lens_spot") = py::none(), py::arg("bundles") = "");
 }
 
 }  // namespace parallax::python

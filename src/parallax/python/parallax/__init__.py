@@ -109,7 +109,8 @@ def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
            iterations: Optional[int] = None, brightness: float = 0.0, train_eyes: int = 2,
            layer_error: Optional[str] = None, distance: float = 0.0,
            lens_spot: Optional[float] = None, bundles: Optional[str] = None,
-           fit: Optional[str] = None, focus=None, depth_budget=None) -> RenderResult:
+           fit: Optional[str] = None, focus=None, depth_budget=None,
+           diffuser: Optional[float] = None) -> RenderResult:
     """`parallax render`: the image and mask layers of a barrier display (the slits', direct
     mapping's, or content-adaptive layers solved for eyes across the view zone), or a lenticular
     panel's interlaced picture (`lenticular render`), made for the lens optics lens_spot and
@@ -121,7 +122,7 @@ def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
                  filter_width=filter_width, subpixels=subpixels, direct_mapping=direct_mapping,
                  layers=layers, rank=rank, iterations=iterations, brightness=brightness,
                  train_eyes=train_eyes, layer_error=layer_error, distance=distance,
-                 lens_spot=lens_spot, bundles=bundles),
+                 lens_spot=lens_spot, bundles=bundles, diffuser=diffuser),
         **_framing(fit, focus, depth_budget))
     image, mask = frames[0]
     return RenderResult(image, mask, json.loads(record), frames)
