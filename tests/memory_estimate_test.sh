@@ -133,7 +133,10 @@ if command -v Xvfb >/dev/null && command -v xdpyinfo >/dev/null; then
   DISPLAY=$screen row "show (layers)" 2000x2000 show "$tmp/r2000" --windowed --exit-after 1
   DISPLAY=$screen row "show (calibration patterns)" 960x540 show "$tmp/c960" --windowed --exit-after 1
 else
-  echo "show: skipped (no Xvfb)"
+  # Xvfb is a test dependency (tools/install-deps test installs it): missing, the show rows
+  # would pass unmeasured.
+  echo "FAIL: show rows not measured: Xvfb or xdpyinfo is missing (packages xvfb, x11-utils)"
+  failures=$((failures + 1))
 fi
 
 # pyrow LABEL SIZE CODE: CODE sets up `call`; estimate_memory(call), then call() measured.
