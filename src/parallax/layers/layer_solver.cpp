@@ -168,6 +168,49 @@ std::vector<LayerFrame> seenFrames(const std::vector<TrainingView>& views,
   return seen;
 }
 
+// One worker's row buffers for the passes that run row by row (output row j of every eye's
+// view depends on the front layer's row j only, and writes only its gradient's row j).
+struct RowWork {
+  explicit RowWork(int width)
+      : seen(size_t(width)),
+        residual(size_t(width)),
+        weights(size_t(width)),
+        other(size_t(width)) {}
+  size_t first(int row) const { return size_t(row) * seen.size(); }
+  std::vector<Vec3f> seen, residual, weights, other;
+  SeenLayers::RowScratch scratch;
+};
+
+// body(row, work) for every view row, in parallel; the rows' results added in row order, so
+// the sum is the same for any thread count.
+template <class Body>
+double sumOverRows(const std::vector<TrainingView>& views, int threads, const Body& body) {
+  const int width = views.front().seen.width(), rows = views.front().seen.height();
+  std::vector<double> perRow(size_t(rows), 0.0);
+  parallelFor(rows, threads, 2, [&](int64_t begin, int64_t end) {
+    RowWork work(width);
+    for (int64_t row = begin; row != end; ++row) perRow[size_t(row)] = body(int(row), work);
+  });
+  double sum = 0;
+  for (const double v : perRow) sum += v;
+  return sum;
+}
+
+// The average view of the frames (image in front) on row j into work.seen.
+void averageViewRow(const TrainingView& v, const std::vector<LayerFrame>& frames, int j,
+                    RowWork& work) {
+  for (size_t t = 0; t < frames.size(); ++t) {
+    std::vector<Vec3f>& into = t == 0 ? work.seen : work.other;
+    v.seen.viewRow(frames[t].image, frames[t].mask, j, into.data(), work.scratch);
+    if (t > 0)
+      for (size_t i = 0; i < into.size(); ++i) work.seen[i] += work.other[i];
+  }
+  if (frames.size() > 1) {
+    const float inv = 1.0f / float(frames.size());
+    for (Vec3f& p : work.seen) p = p * inv;
+  }
+}
+
 // The passes of optimizeImageLayer over every training eye. When the image layer is in front
 // (the barrier behind it, the default order) each pass runs row by row: output row j of every
 // eye's view depends on the image's row j only and writes only its gradient's row j, so a row
@@ -199,7 +242,7 @@ class ImageLayerPasses {
         sum += eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, nullptr);
       return sum;
     }
-    return sumOverRows([&](int j, RowWork& w) {
+    return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       double sum = 0;
       for (const TrainingView& v : views_) {
         v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
@@ -222,7 +265,7 @@ class ImageLayerPasses {
       addThroughDiffuser(sum, grad);
       return;
     }
-    sumOverRows([&](int j, RowWork& w) {
+    sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       for (const TrainingView& v : views_) {
         v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
         eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), w.residual.data(), nullptr);
@@ -251,7 +294,7 @@ class ImageLayerPasses {
       }
       return sum;
     }
-    return sumOverRows([&](int j, RowWork& w) {
+    return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       double sum = 0;
       for (const TrainingView& v : views_) {
         v.seen.viewRow(d, mask_, j, w.other.data(), w.scratch);
@@ -286,7 +329,7 @@ class ImageLayerPasses {
       addThroughDiffuser(sum, out);
       return;
     }
-    sumOverRows([&](int j, RowWork& w) {
+    sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       for (const TrainingView& v : views_) {
         v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
         eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, w.weights.data());
@@ -299,32 +342,6 @@ class ImageLayerPasses {
   }
 
  private:
-  // One worker's row buffers.
-  struct RowWork {
-    explicit RowWork(int width)
-        : seen(size_t(width)),
-          residual(size_t(width)),
-          weights(size_t(width)),
-          other(size_t(width)) {}
-    size_t first(int row) const { return size_t(row) * seen.size(); }
-    std::vector<Vec3f> seen, residual, weights, other;
-    SeenLayers::RowScratch scratch;
-  };
-
-  // body(row, work) for every view row, in parallel; the rows' results added in row order.
-  template <class Body>
-  double sumOverRows(const Body& body) const {
-    const int width = views_.front().seen.width(), rows = views_.front().seen.height();
-    std::vector<double> perRow(size_t(rows), 0.0);
-    parallelFor(rows, threads_, 2, [&](int64_t begin, int64_t end) {
-      RowWork work(width);
-      for (int64_t row = begin; row != end; ++row) perRow[size_t(row)] = body(int(row), work);
-    });
-    double sum = 0;
-    for (const double v : perRow) sum += v;
-    return sum;
-  }
-
   // The image as the eyes see it: through the diffuser when it is the rear layer.
   const Image& seen(const Image& x, Image& holder) const {
     if (!imageBlur_) return x;
@@ -452,10 +469,25 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
     if (v.encodingScale > 0)
       throw std::invalid_argument("factorizeLayers: multiplicative updates fit in linear light");
   for (LayerFrame& f : frames) clampToUnit(f.image), clampToUnit(f.mask);
-  SolveReport local;
-  local.objective.push_back(layerObjective(views, frames, threads, diffuser));
   constexpr float kTiny = 1e-12f;
   const bool maskIsRear = views.front().seen.imageInFront();
+  // With the image in front the objective and the image's update run row by row over every
+  // eye (as optimizeImageLayer's passes: row buffers only, the sums per row added in row
+  // order); the mask's update gathers rear rows from several output rows, eye by eye.
+  const auto objective = [&] {
+    if (!maskIsRear) return layerObjective(views, frames, threads, diffuser);
+    const std::vector<LayerFrame> seenLayers = seenFrames(views, frames, diffuser, threads);
+    return normaliser(views) * sumOverRows(views, threads, [&](int j, RowWork& w) {
+             double sum = 0;
+             for (const TrainingView& v : views) {
+               averageViewRow(v, seenLayers, j, w);
+               sum += eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, nullptr);
+             }
+             return sum;
+           });
+  };
+  SolveReport local;
+  local.objective.push_back(objective());
   // One multiplicative update of every frame's image (updateImages) or mask: numerator
   // sum_e A^T t_e, denominator sum_e A^T V_e, where A is the view's derivative with respect to
   // that frame's layer (the other layer fixed); the 1/T of the average cancels in the ratio.
@@ -470,14 +502,29 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       numerator.emplace_back(x.width(), x.height());
       denominator.emplace_back(x.width(), x.height());
     }
-    for (const TrainingView& v : views) {
-      const Image seen = averageView(v, seenLayers, threads);
-      const Image& target = v.target;
-      for (size_t t = 0; t < frames.size(); ++t) {
-        const LayerFrame& f = seenLayers[t];
-        const Image& other = updateImages ? f.mask : f.image;
-        addLayerGradient(v, target, other, numerator[t], updateImages, threads);
-        addLayerGradient(v, seen, other, denominator[t], updateImages, threads);
+    if (updateImages && maskIsRear) {
+      sumOverRows(views, threads, [&](int j, RowWork& w) {
+        for (const TrainingView& v : views) {
+          averageViewRow(v, seenLayers, j, w);
+          const Vec3f* target = v.target.pixels().data() + w.first(j);
+          for (size_t t = 0; t < frames.size(); ++t) {
+            v.seen.addFrontGradientRow(target, seenLayers[t].mask, j, numerator[t], w.scratch);
+            v.seen.addFrontGradientRow(w.seen.data(), seenLayers[t].mask, j, denominator[t],
+                                       w.scratch);
+          }
+        }
+        return 0.0;
+      });
+    } else {
+      for (const TrainingView& v : views) {
+        const Image seen = averageView(v, seenLayers, threads);
+        const Image& target = v.target;
+        for (size_t t = 0; t < frames.size(); ++t) {
+          const LayerFrame& f = seenLayers[t];
+          const Image& other = updateImages ? f.mask : f.image;
+          addLayerGradient(v, target, other, numerator[t], updateImages, threads);
+          addLayerGradient(v, seen, other, denominator[t], updateImages, threads);
+        }
       }
     }
     const bool rearUpdated = updateImages != maskIsRear;
@@ -500,7 +547,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
   for (int it = 0; it < iterations; ++it) {
     update(true);
     update(false);
-    local.objective.push_back(layerObjective(views, frames, threads, diffuser));
+    local.objective.push_back(objective());
     ++local.iterations;
     if (progress) progress(local.iterations, iterations, local.objective.back());
   }
