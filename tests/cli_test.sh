@@ -111,14 +111,7 @@ import json, subprocess, sys
 b = json.load(open(sys.argv[1]))
 d = json.loads(subprocess.run([sys.argv[2], "design", sys.argv[3], "--json"], check=True,
                               capture_output=True, text=True).stdout)
-def find(o, k):
-    if isinstance(o, dict):
-        if k in o: return o[k]
-        for v in o.values():
-            r = find(v, k)
-            if r is not None: return r
-    return None
-views = round(find(d, "views"))
+views = round(d["views"])
 assert b["views_limit_views"] == views, (b["views_limit_views"], views)
 assert b["views_limit_width"] == round(b["width"] / views), b["views_limit_width"]
 assert abs(b["views_ratio"] - b["rays_per_second"] / b["views_limit_rays_per_second"]) < 1e-9

@@ -50,17 +50,9 @@ if [ -n "$user_display" ]; then
   read -r width height < <(python3 -c '
 import json, sys
 d = json.load(open(sys.argv[1]))
-def find(o, k):
-    if isinstance(o, dict):
-        if k in o: return o[k]
-        for v in o.values():
-            r = find(v, k)
-            if r is not None: return r
-    return None
-if find(d, "image_resolution") is None:
+if "image_resolution" not in d:
     sys.exit(sys.argv[2] + ": the experiments of the paper need a barrier display (two layers)")
-r = find(d, "image_resolution")
-print(r[0], r[1])' "$work/user-design.json" "$user_display") || exit 2
+print(*d["image_resolution"])' "$work/user-design.json" "$user_display") || exit 2
   sweep=9; refspp=16; full=1
 fi
 # The dense measure (docs/simulator.md): K eyes inside every view's window at 0.8, 1 and 1.25 D.

@@ -198,52 +198,6 @@ std::vector<Coefficient> probeLightField(const std::vector<TrainingView>& views,
   return out;
 }
 
-TEST(FactorizeLayers, MatchesDenseMultiplicativeUpdatesOnTheLightField) {
-  const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
-  const int w = 27, h = 1;
-  DisplaySpec spec = d.spec;
-  spec.imagePanel.height = spec.maskPanel.height = h;
-  const DisplayDesign flat = designDisplay(spec);
-  const Image truthImage = randomImage(w, h, 8, 0.2f, 0.9f);
-  const Image truthMask = randomImage(w, h, 9, 0.2f, 0.9f);
-  const std::vector<TrainingView> views = viewsOf(flat, truthImage, truthMask, 0.0f);
-  const std::vector<Coefficient> field = probeLightField(views, w, h);
-  ASSERT_FALSE(field.empty());
-  // Channel 0 by dense updates: front = image (barrier-back), rear = mask.
-  std::vector<double> front(static_cast<size_t>(w), 0.5), rear(static_cast<size_t>(w), 0.5);
-  const auto seen = [&] {
-    std::vector<std::vector<double>> v(views.size(), std::vector<double>(size_t(w * h), 0.0));
-    for (const Coefficient& c : field)
-      v[c.eye][c.pixel] += c.weight * front[size_t(c.front)] * rear[size_t(c.rear)];
-    return v;
-  };
-  const int iterations = 6;
-  for (int it = 0; it < iterations; ++it) {
-    for (int layer = 0; layer < 2; ++layer) {
-      const auto v = seen();
-      std::vector<double> num(static_cast<size_t>(w), 0.0), den(static_cast<size_t>(w), 0.0);
-      for (const Coefficient& c : field) {
-        const double other = layer == 0 ? rear[size_t(c.rear)] : front[size_t(c.front)];
-        const size_t at = size_t(layer == 0 ? c.front : c.rear);
-        num[at] += c.weight * other * views[c.eye].target.pixels()[c.pixel].x;
-        den[at] += c.weight * other * v[c.eye][c.pixel];
-      }
-      std::vector<double>& x = layer == 0 ? front : rear;
-      for (int i = 0; i < w; ++i)
-        if (den[size_t(i)] > 1e-12)
-          x[size_t(i)] = std::clamp(x[size_t(i)] * num[size_t(i)] / den[size_t(i)], 0.0, 1.0);
-    }
-  }
-  SolveReport report;
-  const std::vector<LayerFrame> solved = factorizeLayers(
-      views, {{Image(w, h, Vec3f(0.5f)), Image(w, h, Vec3f(0.5f))}}, iterations, 1, &report);
-  for (int i = 0; i < w; ++i) {
-    EXPECT_NEAR(solved[0].image.at(i, 0).x, front[size_t(i)], 2e-3) << i;
-    EXPECT_NEAR(solved[0].mask.at(i, 0).x, rear[size_t(i)], 2e-3) << i;
-  }
-  expectNonIncreasing(report.objective);
-}
-
 TEST(FactorizeLayers, NeverIncreasesAndStaysInTheUnitBoxAtAnyRank) {
   for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
     const DisplayDesign d = tinyDisplay(order);
@@ -379,70 +333,74 @@ TEST(FactorizeLayers, SolvesForTheDiffuser) {
   EXPECT_LT(eAware, 0.1 * aware.objective.front());
 }
 
-// Through a diffuser: the dense updates with the rear seen as G rear (G probed from the blur one
-// pixel at a time), so the rear's sums pass through G^T.
-TEST(FactorizeLayers, MatchesDenseMultiplicativeUpdatesThroughTheDiffuser) {
-  const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
-  const int w = 27, h = 1;
-  DisplaySpec spec = d.spec;
-  spec.imagePanel.height = spec.maskPanel.height = h;
-  const DisplayDesign flat = designDisplay(spec);
-  const RearDiffuser diffuser{1.1, 1.0};
-  const Image truthImage = randomImage(w, h, 8, 0.2f, 0.9f);
-  const Image truthMask = randomImage(w, h, 9, 0.2f, 0.9f);
-  const std::vector<TrainingView> views =
-      viewsThroughDiffuser(flat, truthImage, truthMask, diffuser);
-  const std::vector<Coefficient> field = probeLightField(views, w, h);
-  ASSERT_FALSE(field.empty());
-  std::vector<std::vector<double>> blur(size_t(w), std::vector<double>(size_t(w), 0.0));
-  for (int q = 0; q < w; ++q) {
-    Image one(w, h);
-    one.at(q, 0) = Vec3f(1.0f);
-    const Image column = diffuser.apply(one);
-    for (int r = 0; r < w; ++r) blur[size_t(r)][size_t(q)] = column.at(r, 0).x;  // G[r][q]
-  }
-  std::vector<double> front(static_cast<size_t>(w), 0.5), rear(static_cast<size_t>(w), 0.5);
-  const auto seenRear = [&] {
-    std::vector<double> g(static_cast<size_t>(w), 0.0);
-    for (int r = 0; r < w; ++r)
-      for (int q = 0; q < w; ++q) g[size_t(r)] += blur[size_t(r)][size_t(q)] * rear[size_t(q)];
-    return g;
-  };
-  const int iterations = 6;
-  for (int it = 0; it < iterations; ++it) {
-    for (int layer = 0; layer < 2; ++layer) {
-      const std::vector<double> g = seenRear();
-      std::vector<std::vector<double>> v(views.size(), std::vector<double>(size_t(w), 0.0));
-      for (const Coefficient& c : field)
-        v[c.eye][c.pixel] += c.weight * front[size_t(c.front)] * g[size_t(c.rear)];
-      std::vector<double> num(static_cast<size_t>(w), 0.0), den(static_cast<size_t>(w), 0.0);
-      for (const Coefficient& c : field) {
-        const double t = views[c.eye].target.pixels()[c.pixel].x, seen = v[c.eye][c.pixel];
-        if (layer == 0) {
-          num[size_t(c.front)] += c.weight * g[size_t(c.rear)] * t;
-          den[size_t(c.front)] += c.weight * g[size_t(c.rear)] * seen;
-        } else {
-          for (int q = 0; q < w; ++q) {
-            const double a = c.weight * front[size_t(c.front)] * blur[size_t(c.rear)][size_t(q)];
-            num[size_t(q)] += a * t, den[size_t(q)] += a * seen;
+// The multiplicative updates against dense ones on the probed light field, channel 0: front =
+// image (barrier-back), rear = mask, seen as G rear through a diffuser (G probed from the blur
+// one pixel at a time, the identity without one), so that the rear's sums pass through G^T.
+TEST(FactorizeLayers, MatchesDenseMultiplicativeUpdatesOnTheLightField) {
+  for (const double sigma : {0.0, 1.1}) {
+    SCOPED_TRACE(sigma);
+    const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
+    const int w = 27, h = 1;
+    DisplaySpec spec = d.spec;
+    spec.imagePanel.height = spec.maskPanel.height = h;
+    const DisplayDesign flat = designDisplay(spec);
+    const RearDiffuser diffuser{sigma, 1.0};
+    const Image truthImage = randomImage(w, h, 8, 0.2f, 0.9f);
+    const Image truthMask = randomImage(w, h, 9, 0.2f, 0.9f);
+    const std::vector<TrainingView> views =
+        viewsThroughDiffuser(flat, truthImage, truthMask, diffuser);
+    const std::vector<Coefficient> field = probeLightField(views, w, h);
+    ASSERT_FALSE(field.empty());
+    std::vector<std::vector<double>> blur(size_t(w), std::vector<double>(size_t(w), 0.0));
+    for (int q = 0; q < w; ++q) {
+      Image one(w, h);
+      one.at(q, 0) = Vec3f(1.0f);
+      const Image column = diffuser.apply(one);
+      for (int r = 0; r < w; ++r) blur[size_t(r)][size_t(q)] = column.at(r, 0).x;  // G[r][q]
+    }
+    std::vector<double> front(static_cast<size_t>(w), 0.5), rear(static_cast<size_t>(w), 0.5);
+    const auto seenRear = [&] {
+      std::vector<double> g(static_cast<size_t>(w), 0.0);
+      for (int r = 0; r < w; ++r)
+        for (int q = 0; q < w; ++q) g[size_t(r)] += blur[size_t(r)][size_t(q)] * rear[size_t(q)];
+      return g;
+    };
+    const int iterations = 6;
+    for (int it = 0; it < iterations; ++it) {
+      for (int layer = 0; layer < 2; ++layer) {
+        const std::vector<double> g = seenRear();
+        std::vector<std::vector<double>> v(views.size(), std::vector<double>(size_t(w), 0.0));
+        for (const Coefficient& c : field)
+          v[c.eye][c.pixel] += c.weight * front[size_t(c.front)] * g[size_t(c.rear)];
+        std::vector<double> num(static_cast<size_t>(w), 0.0), den(static_cast<size_t>(w), 0.0);
+        for (const Coefficient& c : field) {
+          const double t = views[c.eye].target.pixels()[c.pixel].x, seen = v[c.eye][c.pixel];
+          if (layer == 0) {
+            num[size_t(c.front)] += c.weight * g[size_t(c.rear)] * t;
+            den[size_t(c.front)] += c.weight * g[size_t(c.rear)] * seen;
+          } else {
+            for (int q = 0; q < w; ++q) {
+              const double a = c.weight * front[size_t(c.front)] * blur[size_t(c.rear)][size_t(q)];
+              num[size_t(q)] += a * t, den[size_t(q)] += a * seen;
+            }
           }
         }
+        std::vector<double>& x = layer == 0 ? front : rear;
+        for (int i = 0; i < w; ++i)
+          if (den[size_t(i)] > 1e-12)
+            x[size_t(i)] = std::clamp(x[size_t(i)] * num[size_t(i)] / den[size_t(i)], 0.0, 1.0);
       }
-      std::vector<double>& x = layer == 0 ? front : rear;
-      for (int i = 0; i < w; ++i)
-        if (den[size_t(i)] > 1e-12)
-          x[size_t(i)] = std::clamp(x[size_t(i)] * num[size_t(i)] / den[size_t(i)], 0.0, 1.0);
     }
+    SolveReport report;
+    const std::vector<LayerFrame> solved =
+        factorizeLayers(views, {{Image(w, h, Vec3f(0.5f)), Image(w, h, Vec3f(0.5f))}}, iterations,
+                        1, &report, {}, diffuser);
+    for (int i = 0; i < w; ++i) {
+      EXPECT_NEAR(solved[0].image.at(i, 0).x, front[size_t(i)], 2e-3) << i;
+      EXPECT_NEAR(solved[0].mask.at(i, 0).x, rear[size_t(i)], 2e-3) << i;
+    }
+    expectNonIncreasing(report.objective);
   }
-  SolveReport report;
-  const std::vector<LayerFrame> solved =
-      factorizeLayers(views, {{Image(w, h, Vec3f(0.5f)), Image(w, h, Vec3f(0.5f))}}, iterations, 1,
-                      &report, {}, diffuser);
-  for (int i = 0; i < w; ++i) {
-    EXPECT_NEAR(solved[0].image.at(i, 0).x, front[size_t(i)], 2e-3) << i;
-    EXPECT_NEAR(solved[0].mask.at(i, 0).x, rear[size_t(i)], 2e-3) << i;
-  }
-  expectNonIncreasing(report.objective);
 }
 
 // The dense least-squares solution of the operator through the diffuser (its columns probed one
