@@ -101,9 +101,12 @@ inline double pick(const double (&table)[n], double index) {
 }
 
 // LenticularDisplay::ray for sixteen lanes: the same formulas (viewFractionAt, subpixelPointMm,
-// lensSlope, lenticularRay in lenticular.cpp) in the same order, lane by lane, so that the lane
-// loops vectorise; only the tangent is taken lane by lane. Outside the class: GCC cannot make
-// ISA clones of a virtual function (core/lane_kernel.h). `warp` is the view filter's warp.
+// lensSlope, lenticularRay in lenticular.cpp) in the same order, written so that the lane loops
+// vectorise. Reciprocals instead of divisions and glibc's vector tangent may change a double's
+// last bits, which the float rays absorb (the pictures are the same byte for byte, measured on
+// every preset; LenticularDisplay.SixteenLaneRaysAreTheSingleRays bounds the difference). Outside
+// the class: GCC cannot make ISA clones of a virtual function (core/lane_kernel.h). `warp` is
+// the view filter's warp.
 PARALLAX_LANE_KERNEL void lensRays16(const LensRayConstants& k, const ViewFilterWarp& warp,
                                      const float filmX[16], const float filmY[16],
                                      const float sampleU[16], const float sampleV[16],
@@ -118,16 +121,16 @@ PARALLAX_LANE_KERNEL void lensRays16(const LensRayConstants& k, const ViewFilter
   const bool spread = !none && !period && k.unblendedViews != 0;
   for (int i = 0; i < 16; ++i)
     warped[i] = spread ? warp(fx[i] - std::floor(fx[i])) * k.unblendedViews : 0.0;
-  // The constants as locals, the integer work in doubles and the flips as arithmetic (1 - u as
-  // 1 + (-1) u): every loop holds doubles only, nothing it stores can alias what it reads, and
-  // it vectorises. The values are those of the scalar formulas, exactly.
+  // The constants as locals, the integer work in doubles (exact) and the flips as arithmetic
+  // (1 - u as 1 + (-1) u, exact): every loop holds doubles only, nothing it stores can alias
+  // what it reads, and it vectorises.
   double isMode[5], cellOfPattern[4], offsetX[12], offsetY[12], meanOffsetX[4];
   for (int m = 0; m < 5; ++m) isMode[m] = m == k.cellPatternMode ? 1.0 : 0.0;
   for (int j = 0; j < 4; ++j) cellOfPattern[j] = k.cellOfPattern[j];
   for (int j = 0; j < 12; ++j) offsetX[j] = k.offsetX[j], offsetY[j] = k.offsetY[j];
   for (int j = 0; j < 4; ++j) meanOffsetX[j] = k.meanOffsetX[j];
-  // Stripes (no cells): one cell, whose offsets depend on the channel only; the loops are
-  // unswitched on `cells`, so that a striped panel pays for no cell pattern.
+  // Stripes (no cells): one cell, whose offsets depend on the channel only, so that a striped
+  // panel pays for no cell pattern (the two cases in loops of their own below).
   const bool cells = k.cellPatternMode != 0 || k.hasCells;
   const double stripeX[3] = {offsetX[0], offsetX[1], offsetX[2]};
   const double width = k.width, height = k.height, tilt = k.tilt, pitchPx = k.pitchPx;
