@@ -111,5 +111,6 @@ struct Bounds3f {
 };
 
 inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr double kPiD = 3.14159265358979323846;
 
 }  // namespace parallax

@@ -13,7 +13,6 @@ namespace parallax {
 namespace {
 
 constexpr double kMmPerInch = 25.4;
-constexpr double kPiD = 3.14159265358979323846;
 
 std::string shortNumber(double v) {
   char text[32];

@@ -36,6 +36,9 @@ struct QuiltFormat {
   int columns = 8, rows = 6;
   int width = 3360, height = 3360;
   int views() const { return columns * rows; }
+  // One view's tile: the quilt's size over its columns and rows (leftover pixels are padding).
+  int tileWidth() const { return width / columns; }
+  int tileHeight() const { return height / rows; }
 };
 
 // The calibration fields as the device writes them (visual.json).

@@ -19,8 +19,6 @@ namespace parallax {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // What LenticularDisplay::ray reads from the design, fixed per display, so that rays16 can run
 // its formulas lane-wise. A subpixel's offset from its pixel (the calibration's stripes, or its
 // cells) comes from `offsetX/Y[cell * 3 + channel]` (screen fractions), cell
@@ -70,7 +68,7 @@ LensRayConstants lensRayConstants(const LenticularDesign& d) {
   }
   k.widthMm = d.widthMm, k.heightMm = d.heightMm;
   k.viewDistance = d.viewDistanceMm, k.convergence = d.optics.convergenceDistanceMm;
-  k.coneRadians = c.viewConeDegrees * kPi / 180.0;
+  k.coneRadians = c.viewConeDegrees * kPiD / 180.0;
   k.parallel = d.optics.bundles == LensBundles::Parallel;
   return k;
 }

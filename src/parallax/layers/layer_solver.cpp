@@ -154,18 +154,19 @@ void addImageGradient(const TrainingView& v, const Image& residual, const Image&
 }
 
 // The frames as the eyes see them: each frame's rear layer (the mask with the image in front)
-// through the diffuser.
-std::vector<LayerFrame> seenFrames(const std::vector<TrainingView>& views,
-                                   const std::vector<LayerFrame>& frames,
-                                   const RearDiffuser& diffuser, int threads) {
+// through the diffuser: `frames` themselves without one, else blurred copies kept in `holder`.
+const std::vector<LayerFrame>& seenFrames(const std::vector<TrainingView>& views,
+                                          const std::vector<LayerFrame>& frames,
+                                          const RearDiffuser& diffuser, int threads,
+                                          std::vector<LayerFrame>& holder) {
   if (!diffuser.active()) return frames;
   const bool maskIsRear = views.front().seen.imageInFront();
-  std::vector<LayerFrame> seen = frames;
-  for (LayerFrame& f : seen) {
+  holder = frames;
+  for (LayerFrame& f : holder) {
     Image& rear = maskIsRear ? f.mask : f.image;
     rear = diffuser.apply(rear, threads);
   }
-  return seen;
+  return holder;
 }
 
 // One worker's row buffers for the passes that run row by row (output row j of every eye's
@@ -255,14 +256,15 @@ class ImageLayerPasses {
   // grad += sum_e A_e^T dE_e/dV_e at the image x.
   void addGradient(const Image& x, Image& grad) const {
     if (!fused_) {
-      Image holder, sum(grad.width(), grad.height());
+      Image holder, blurredSum;
       const Image& xs = seen(x, holder);
+      Image& into = throughDiffuser(grad, blurredSum);
       for (const TrainingView& v : views_) {
         Image residual(v.seen.width(), v.seen.height());
         eyeError(v, viewOf(v.seen, xs, mask_, threads_), &residual, nullptr);
-        addImageGradient(v, residual, mask_, sum, threads_);
+        addImageGradient(v, residual, mask_, into, threads_);
       }
-      addThroughDiffuser(sum, grad);
+      if (imageBlur_) addScaled(grad, imageBlur_->apply(blurredSum, threads_), 1.0f);
       return;
     }
     sumOverRows(views_, threads_, [&](int j, RowWork& w) {
@@ -317,16 +319,17 @@ class ImageLayerPasses {
   void addCurvatureDiagonal(const Image& x, Image& out) const {
     const Image ones(x.width(), x.height(), Vec3f(1.0f));
     if (!fused_) {
-      Image holderX, holderOnes, sum(out.width(), out.height());
+      Image holderX, holderOnes, blurredSum;
       const Image& xs = seen(x, holderX);
       const Image& onesSeen = seen(ones, holderOnes);
+      Image& into = throughDiffuser(out, blurredSum);
       for (const TrainingView& v : views_) {
         Image weights(v.seen.width(), v.seen.height());
         eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, &weights);
         addImageGradient(v, elementwise(viewOf(v.seen, onesSeen, mask_, threads_), weights), mask_,
-                         sum, threads_);
+                         into, threads_);
       }
-      addThroughDiffuser(sum, out);
+      if (imageBlur_) addScaled(out, imageBlur_->apply(blurredSum, threads_), 1.0f);
       return;
     }
     sumOverRows(views_, threads_, [&](int j, RowWork& w) {
@@ -348,10 +351,13 @@ class ImageLayerPasses {
     holder = imageBlur_->apply(x, threads_);
     return holder;
   }
-  // grad += G^T g = G g (the diffuser is its own transpose) when the image is blurred, else g.
-  void addThroughDiffuser(const Image& g, Image& grad) const {
-    const Image back = imageBlur_ ? imageBlur_->apply(g, threads_) : g;
-    addScaled(grad, back, 1.0f);
+  // Where the eyes' sums for the image go: straight into `out`, or (the image blurred) into a
+  // zeroed `blurredSum`, which the caller then adds to `out` through G^T = G (the diffuser is
+  // its own transpose).
+  Image& throughDiffuser(Image& out, Image& blurredSum) const {
+    if (!imageBlur_) return out;
+    blurredSum = Image(out.width(), out.height());
+    return blurredSum;
   }
 
   const std::vector<TrainingView>& views_;
@@ -370,7 +376,8 @@ Image RearDiffuser::apply(const Image& layer, int threads) const {
 double layerObjective(const std::vector<TrainingView>& views, const std::vector<LayerFrame>& frames,
                       int threads, const RearDiffuser& diffuser) {
   checkViews(views);
-  const std::vector<LayerFrame> seen = seenFrames(views, frames, diffuser, threads);
+  std::vector<LayerFrame> holder;
+  const std::vector<LayerFrame>& seen = seenFrames(views, frames, diffuser, threads, holder);
   double sum = 0;
   for (const TrainingView& v : views)
     sum += eyeError(v, averageView(v, seen, threads), nullptr, nullptr);
@@ -476,7 +483,9 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
   // order); the mask's update gathers rear rows from several output rows, eye by eye.
   const auto objective = [&] {
     if (!maskIsRear) return layerObjective(views, frames, threads, diffuser);
-    const std::vector<LayerFrame> seenLayers = seenFrames(views, frames, diffuser, threads);
+    std::vector<LayerFrame> holder;
+    const std::vector<LayerFrame>& seenLayers =
+        seenFrames(views, frames, diffuser, threads, holder);
     return normaliser(views) * sumOverRows(views, threads, [&](int j, RowWork& w) {
              double sum = 0;
              for (const TrainingView& v : views) {
@@ -495,7 +504,9 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
   // P_rear G, so its sums pass through G^T = G (non-negative, so the updates stay
   // multiplicative and never increase E).
   const auto update = [&](bool updateImages) {
-    const std::vector<LayerFrame> seenLayers = seenFrames(views, frames, diffuser, threads);
+    std::vector<LayerFrame> holder;
+    const std::vector<LayerFrame>& seenLayers =
+        seenFrames(views, frames, diffuser, threads, holder);
     std::vector<Image> numerator, denominator;
     for (const LayerFrame& f : frames) {
       const Image& x = updateImages ? f.image : f.mask;

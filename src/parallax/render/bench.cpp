@@ -137,7 +137,7 @@ QuiltLayout deviceQuilt(const LenticularDesign& design, int& tileWidth, int& til
   QuiltLayout layout;
   layout.columns = q.columns, layout.rows = q.rows;
   layout.aspect = design.widthMm / design.heightMm;
-  tileWidth = q.width / q.columns, tileHeight = q.height / q.rows;
+  tileWidth = q.tileWidth(), tileHeight = q.tileHeight();
   return layout;
 }
 
