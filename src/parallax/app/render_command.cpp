@@ -95,7 +95,8 @@ void registerRenderCommand(CLI::App& cli) {
   cmd->add_option("--diffuser", request.layers.diffuser,
                   "With --layers optimized-image or nmf: the panel's diffuser foil, a Gaussian "
                   "blur of the rear layer (sigma in mm, as simulate --diffuser): the layers are "
-                  "solved for what eyes see through it (docs/content-adaptive.md)")
+                  "solved for what eyes see through it (default: the display file's "
+                  "diffuser_sigma_mm, else none; docs/content-adaptive.md)")
       ->type_name("MM");
   cmd->add_option("--train-eyes", request.layers.trainEyes,
                   "Training eyes per view at 0.8, 1 and 1.25 D for optimised layers")
