@@ -53,6 +53,9 @@ const SrgbTable& srgbTable() {
   return table;
 }
 
+// TrainingView::encodedTarget's unit: S in [0, 1] as 0 .. 65535.
+constexpr float kEncodedUnit = 65535.0f, kInverseEncodedUnit = 1.0f / 65535.0f;
+
 // One eye's error E_e for its view `seen`, and optionally the residual dE_e/dV (what the
 // adjoint takes) and the Gauss-Newton weights (E_e's curvature along V). In linear light
 // E_e = 1/2 |V - t|^2 (residual V - t, weights 1); with TrainingView::encodingScale c > 0,
@@ -65,22 +68,34 @@ double eyeErrorRange(const TrainingView& v, const Vec3f* seen, size_t first, siz
   const bool srgb = v.encodingScale > 0;
   const float inv = srgb ? 1.0f / v.encodingScale : 1.0f;
   const SrgbTable& table = srgbTable();
-  const Vec3f* target = v.target.pixels().data() + first;
   double sum = 0;
+  const auto add = [&](size_t i, int c, float diff, float slope) {
+    sum += 0.5 * double(diff) * double(diff);
+    if (residual) residual[i][c] = slope * diff;
+    if (weights) weights[i][c] = slope * slope;
+  };
+  if (srgb && !v.encodedTarget.empty()) {
+    const uint16_t* encoded = v.encodedTarget.data() + 3 * first;
+    for (size_t i = 0; i < count; ++i)
+      for (int c = 0; c < 3; ++c) {
+        float a = 0, slope = 0;
+        table(seen[i][c] * inv, a, slope);
+        add(i, c, a - float(encoded[3 * i + size_t(c)]) * kInverseEncodedUnit, slope * inv);
+      }
+    return sum;
+  }
+  const Vec3f* target = v.target.pixels().data() + first;
   for (size_t i = 0; i < count; ++i)
     for (int c = 0; c < 3; ++c) {
       const float value = seen[i][c];
-      float diff = value - target[i][c], slope = 1.0f;
-      if (srgb) {
-        float a = 0, b = 0, unused = 0;
-        table(value * inv, a, slope);
-        table(target[i][c] * inv, b, unused);
-        diff = a - b;
-        slope *= inv;
+      if (!srgb) {
+        add(i, c, value - target[i][c], 1.0f);
+        continue;
       }
-      sum += 0.5 * double(diff) * double(diff);
-      if (residual) residual[i][c] = slope * diff;
-      if (weights) weights[i][c] = slope * slope;
+      float a = 0, b = 0, slope = 0, unused = 0;
+      table(value * inv, a, slope);
+      table(target[i][c] * inv, b, unused);
+      add(i, c, a - b, slope * inv);
     }
   return sum;
 }
@@ -134,9 +149,14 @@ double normaliser(const std::vector<TrainingView>& views) {
 
 void checkViews(const std::vector<TrainingView>& views) {
   if (views.empty()) throw std::invalid_argument("layer solver: no training views");
-  for (const TrainingView& v : views)
-    if (v.target.width() != v.seen.width() || v.target.height() != v.seen.height())
-      throw std::invalid_argument("layer solver: a target's size differs from its view");
+  for (const TrainingView& v : views) {
+    const bool sized =
+        v.encodedTarget.empty()
+            ? v.target.width() == v.seen.width() && v.target.height() == v.seen.height()
+            : v.encodingScale > 0 &&
+                  v.encodedTarget.size() == 3 * size_t(v.seen.width()) * v.seen.height();
+    if (!sized) throw std::invalid_argument("layer solver: a target's size differs from its view");
+  }
 }
 
 // The gradient of one eye's view with respect to the image layer (imageLayer) or the mask,
@@ -178,7 +198,13 @@ struct RowWork {
         weights(size_t(width)),
         other(size_t(width)) {}
   size_t first(int row) const { return size_t(row) * seen.size(); }
-  std::vector<Vec3f> seen, residual, weights, other;
+  // The fixed rear layer `mask` as eye v sees it through front row j (SeenLayers::seenRearRow),
+  // made once per eye and row for every view and adjoint of that row.
+  const Vec3f* seenMask(const TrainingView& v, const Image& mask, int j) {
+    v.seen.seenRearRow(mask, j, seenRear.data());
+    return seenRear.data();
+  }
+  std::vector<Vec3f> seen, residual, weights, other, seenRear{seen.size()};
   SeenLayers::RowScratch scratch;
 };
 
@@ -246,7 +272,7 @@ class ImageLayerPasses {
     return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       double sum = 0;
       for (const TrainingView& v : views_) {
-        v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
+        v.seen.viewRowSeen(&x.at(0, j), w.seenMask(v, mask_, j), w.seen.data(), w.scratch);
         sum += eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, nullptr);
       }
       return sum;
@@ -269,9 +295,10 @@ class ImageLayerPasses {
     }
     sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       for (const TrainingView& v : views_) {
-        v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
+        const Vec3f* m = w.seenMask(v, mask_, j);
+        v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
         eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), w.residual.data(), nullptr);
-        v.seen.addFrontGradientRow(w.residual.data(), mask_, j, grad, w.scratch);
+        v.seen.addFrontGradientRowSeen(w.residual.data(), m, &grad.at(0, j), w.scratch);
       }
       return 0.0;
     });
@@ -299,10 +326,11 @@ class ImageLayerPasses {
     return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       double sum = 0;
       for (const TrainingView& v : views_) {
-        v.seen.viewRow(d, mask_, j, w.other.data(), w.scratch);
+        const Vec3f* m = w.seenMask(v, mask_, j);
+        v.seen.viewRowSeen(&d.at(0, j), m, w.other.data(), w.scratch);
         const bool srgb = v.encodingScale > 0;
         if (srgb) {
-          v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
+          v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
           eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, w.weights.data());
         }
         for (size_t i = 0; i < w.other.size(); ++i)
@@ -334,11 +362,12 @@ class ImageLayerPasses {
     }
     sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       for (const TrainingView& v : views_) {
-        v.seen.viewRow(x, mask_, j, w.seen.data(), w.scratch);
+        const Vec3f* m = w.seenMask(v, mask_, j);
+        v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
         eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, w.weights.data());
-        v.seen.viewRow(ones, mask_, j, w.other.data(), w.scratch);
+        v.seen.viewRowSeen(&ones.at(0, j), m, w.other.data(), w.scratch);
         for (size_t i = 0; i < w.other.size(); ++i) w.other[i] = w.other[i] * w.weights[i];
-        v.seen.addFrontGradientRow(w.other.data(), mask_, j, out, w.scratch);
+        v.seen.addFrontGradientRowSeen(w.other.data(), m, &out.at(0, j), w.scratch);
       }
       return 0.0;
     });
@@ -368,6 +397,21 @@ class ImageLayerPasses {
 };
 
 }  // namespace
+
+void TrainingView::encodeTarget() {
+  if (!(encodingScale > 0))
+    throw std::invalid_argument("TrainingView::encodeTarget: the errors are in linear light");
+  const SrgbTable& table = srgbTable();
+  const float inv = 1.0f / encodingScale;
+  encodedTarget.resize(3 * target.pixels().size());
+  for (size_t i = 0; i < target.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      float encoded = 0, slope = 0;
+      table(target.pixels()[i][c] * inv, encoded, slope);
+      encodedTarget[3 * i + size_t(c)] = uint16_t(std::lround(encoded * kEncodedUnit));
+    }
+  target = Image();
+}
 
 Image RearDiffuser::apply(const Image& layer, int threads) const {
   return active() ? diffuserBlurred(layer, sigmaMm, pitchMm, threads) : layer;

@@ -20,6 +20,7 @@
 //     increases either.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -38,6 +39,14 @@ struct TrainingView {
   // target / encodingScale (the layers' brightness), the dense measure's own squared error,
   // solved by Gauss-Newton steps. 0: errors in linear light.
   float encodingScale = 0.0f;
+  // The target as those sRGB errors read it, S(target / encodingScale) in 16 bits per channel
+  // (round(65535 S), 3 per pixel, row by row), when encodeTarget() made it: half the bytes of
+  // the float target it replaces, and one encoding fewer per pixel and pass. Empty: the
+  // solvers encode `target` as they go (the same errors to within 1/131070 in S).
+  std::vector<uint16_t> encodedTarget = {};
+  // Fills encodedTarget and frees target (encodingScale > 0 only; the multiplicative updates
+  // fit in linear light and need the float target).
+  void encodeTarget();
 };
 
 // One frame of layers (image and mask panels), linear transmittance.

@@ -271,6 +271,35 @@ TEST(OptimizeImageLayer, RowFusedPassesAreTheWholeImagePasses) {
   }
 }
 
+// Targets kept encoded (TrainingView::encodeTarget: S(t / c) in 16 bits) give the solve of the
+// float targets: the same objectives to the encoding's rounding and the same layers.
+TEST(OptimizeImageLayer, EncodedTargetsSolveAsTheFloatTargets) {
+  DisplaySpec spec = defaultDisplaySpec();
+  spec.imagePanel.width = spec.maskPanel.width = 45;
+  spec.imagePanel.height = spec.maskPanel.height = 7;
+  spec.views = 5.0;
+  spec.imagePanel.pitchMm = spec.maskPanel.pitchMm = 1.0;
+  const DisplayDesign d = designDisplay(spec);
+  const Image mask = maskLayerImage(d);
+  std::vector<TrainingView> floats = viewsOf(d, randomImage(45, 7, 5), mask, 0.02f);
+  for (TrainingView& v : floats) v.encodingScale = 0.8f;
+  std::vector<TrainingView> encoded = floats;
+  for (TrainingView& v : encoded) v.encodeTarget();
+  SolveReport a, b;
+  const Image x = optimizeImageLayer(floats, Image(45, 7, Vec3f(0.4f)), mask, 6, 2, &a);
+  const Image y = optimizeImageLayer(encoded, Image(45, 7, Vec3f(0.4f)), mask, 6, 2, &b);
+  ASSERT_EQ(a.iterations, b.iterations);
+  EXPECT_GT(a.iterations, 2);
+  // |S(t) - round(S(t))| <= 1/131070: the objective moves by at most that times the errors.
+  for (size_t i = 0; i < a.objective.size(); ++i)
+    EXPECT_NEAR(a.objective[i], b.objective[i], 1e-4 * a.objective[0]) << i;
+  EXPECT_LT(b.objective.back(), 0.5 * b.objective.front());
+  for (size_t i = 0; i < x.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(x.pixels()[i][c], y.pixels()[i][c], 2e-3f) << i;
+  EXPECT_NEAR(layerObjective(floats, {{x, mask}}), layerObjective(encoded, {{x, mask}}),
+              1e-4 * a.objective[0]);
+}
+
 // Targets seen through a diffuser (the rear layer blurred, sim/diffuser.h) from layers that can
 // show them exactly: layers solved for the diffuser reach them, layers solved without it do
 // not; in either layer order (the mask blurred, or the image) and for NMF's both layers.

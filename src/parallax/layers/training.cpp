@@ -9,7 +9,9 @@ double trainingBytes(const DisplayDesign& design, const TrainingOptions& options
       design.spec.order == LayerOrder::BarrierBack ? design.spec.imagePanel : design.spec.maskPanel;
   const double eyes =
       double(pixelViewCount(design)) * options.eyesPerView * double(options.distances.size());
-  return eyes * double(front.width) * double(front.height) * double(sizeof(Vec3f));
+  // sRGB errors keep their targets encoded in 16 bits per channel (TrainingView::encodeTarget).
+  const double perPixel = options.srgbWeights ? 3.0 * sizeof(uint16_t) : double(sizeof(Vec3f));
+  return eyes * double(front.width) * double(front.height) * perPixel;
 }
 
 std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,
@@ -26,6 +28,8 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
     for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);
     views.push_back({std::move(seen), std::move(target),
                      options.srgbWeights ? float(options.targetScale) : 0.0f});
+    // The sRGB errors read the target encoded: half the bytes, one encoding less per pass.
+    if (options.srgbWeights) views.back().encodeTarget();
     if (progress) progress(int(i) + 1, int(eyes.size()));
   }
   return views;

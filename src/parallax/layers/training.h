@@ -29,8 +29,8 @@ struct TrainingOptions {
   int threads = 0;
 };
 
-// Bytes the training views hold (one float target per eye at the front layer's resolution),
-// for the caller's memory check before building them.
+// Bytes the training views hold (one target per eye at the front layer's resolution: floats,
+// or 16 bits per channel for sRGB errors), for the caller's memory check before building them.
 double trainingBytes(const DisplayDesign& design, const TrainingOptions& options);
 
 std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,

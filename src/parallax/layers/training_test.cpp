@@ -2,6 +2,10 @@
 // quality's own idealView) times the scale, and the memory estimate equal to what is held.
 #include "parallax/layers/training.h"
 
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
 #include <gtest/gtest.h>
 
 #include "parallax/quality/viewer_quality.h"
@@ -43,9 +47,41 @@ TEST(Training, TargetsAreTheScaledIdealViewsOfTheDenseEyes) {
   double held = 0;
   for (const TrainingView& v : views) held += double(v.target.pixels().size()) * sizeof(Vec3f);
   EXPECT_EQ(trainingBytes(d, options), held);
+  // sRGB errors: the same targets, encoded (TrainingView::encodeTarget), in half the bytes.
   options.srgbWeights = true;
-  options.distances = {1.0};
-  EXPECT_EQ(trainingViews(scene, accel, d, options).front().encodingScale, 0.25f);
+  const std::vector<TrainingView> encoded = trainingViews(scene, accel, d, options);
+  ASSERT_EQ(encoded.size(), views.size());
+  held = 0;
+  for (size_t i = 0; i < views.size(); ++i) {
+    EXPECT_EQ(encoded[i].encodingScale, 0.25f);
+    EXPECT_TRUE(encoded[i].target.empty());
+    TrainingView linear = views[i];
+    linear.encodingScale = 0.25f;
+    linear.encodeTarget();
+    EXPECT_EQ(encoded[i].encodedTarget, linear.encodedTarget);
+    held += double(encoded[i].encodedTarget.size()) * sizeof(uint16_t);
+  }
+  EXPECT_EQ(trainingBytes(d, options), held);
+}
+
+// The encoding is S(t / c) (IEC 61966-2-1) in 16 bits, against the standard's formula.
+TEST(Training, EncodedTargetsAreTheSrgbFormula) {
+  const DisplayDesign d = smallDisplay();
+  const SeenLayers seen(d, {0, 0, d.viewDistanceMm});
+  Image target(seen.width(), seen.height());
+  for (size_t i = 0; i < target.pixels().size(); ++i)
+    target.pixels()[i] = Vec3f(0.5f * float(i) / float(target.pixels().size()), 0.0005f, 0.6f);
+  TrainingView v{seen, target, 0.5f};
+  v.encodeTarget();
+  ASSERT_EQ(v.encodedTarget.size(), 3 * target.pixels().size());
+  for (size_t i = 0; i < target.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double x = std::min(1.0, double(target.pixels()[i][c]) / 0.5);
+      const double s = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;
+      EXPECT_NEAR(v.encodedTarget[3 * i + size_t(c)] / 65535.0, s, 2e-5) << i << " " << c;
+    }
+  TrainingView linear{seen, target};
+  EXPECT_THROW(linear.encodeTarget(), std::invalid_argument);
 }
 
 TEST(Training, MeanTransmittanceAveragesPixelsAndChannels) {

@@ -52,6 +52,14 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
   };
   piecesAlongAxis(height_, frontRows_, rearRows_, row(0), row(1) - row(0), 0, -1, down_,
                   downStart_);
+  // The views are at the front layer's resolution: every piece of output pixel (i, j) lies in
+  // front pixel (i, j), which the row operators' split P_j = front_j .* m_j relies on.
+  for (int i = 0; i < width_; ++i)
+    for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a)
+      if (across_[a].front != i) throw std::logic_error("SeenLayers: a piece leaves its column");
+  for (int j = 0; j < height_; ++j)
+    for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k)
+      if (down_[k].front != j) throw std::logic_error("SeenLayers: a piece leaves its row");
   rearRowSources_.assign(size_t(rearRows_), {});
   for (int j = 0; j < height_; ++j)
     for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k)
@@ -83,36 +91,52 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
 // prefix sum. Its transpose: pixel k receives sum_x y_x / |[lo_x, hi_x]| times the overlap of
 // [k, k+1] with the unclipped window (the row clips nothing inside [k, k+1]), which is the
 // integral of the box-pixel row h_x = y_x / |[lo_x, hi_x]| over the window centred on k: the
-// same prefix-sum reading without the division.
-void SeenLayers::boxRow(const Vec3f* row, Vec3f* out, std::vector<double>& prefix) const {
-  prefix.assign(size_t(width_) + 1, 0.0);
-  for (int c = 0; c < 3; ++c) {
-    for (int x = 0; x < width_; ++x) prefix[size_t(x) + 1] = prefix[size_t(x)] + row[x][c];
-    // The integral of the box-pixel row over [0, t] at a window's end.
-    const auto integral = [&](const BoxEnd& e) {
-      return prefix[size_t(e.index)] + e.fraction * row[e.index][c];
-    };
-    for (int x = 0; x < width_; ++x)
-      out[x][c] = float((integral(boxHi_[size_t(x)]) - integral(boxLo_[size_t(x)])) *
-                        boxInverseLength_[size_t(x)]);
+// same prefix-sum reading without the division. The three channels run together (one pass).
+namespace {
+
+// The integral over [0, t] of the box-pixel row whose prefix sums are `prefix` and whose
+// pixels are `at(index)`, at a window's end t = index + fraction.
+template <class Pixel>
+Vec3d integralTo(const std::vector<Vec3d>& prefix, const Pixel& pixel, int index, double fraction) {
+  const Vec3d& p = prefix[size_t(index)];
+  return {p.x + fraction * pixel.x, p.y + fraction * pixel.y, p.z + fraction * pixel.z};
+}
+
+}  // namespace
+
+void SeenLayers::boxRow(const Vec3f* row, Vec3f* out, std::vector<Vec3d>& prefix) const {
+  prefix.resize(size_t(width_) + 1);
+  prefix[0] = {};
+  for (int x = 0; x < width_; ++x) {
+    const Vec3d& p = prefix[size_t(x)];
+    prefix[size_t(x) + 1] = {p.x + row[x].x, p.y + row[x].y, p.z + row[x].z};
+  }
+  for (int x = 0; x < width_; ++x) {
+    const BoxEnd &lo = boxLo_[size_t(x)], &hi = boxHi_[size_t(x)];
+    const Vec3d a = integralTo(prefix, row[hi.index], hi.index, hi.fraction);
+    const Vec3d b = integralTo(prefix, row[lo.index], lo.index, lo.fraction);
+    const double inv = boxInverseLength_[size_t(x)];
+    out[x] = Vec3f(float((a.x - b.x) * inv), float((a.y - b.y) * inv), float((a.z - b.z) * inv));
   }
 }
 
-void SeenLayers::boxTransposedRow(const Vec3f* row, Vec3f* out, std::vector<double>& h,
-                                  std::vector<double>& prefix) const {
-  h.assign(size_t(width_), 0.0);
-  prefix.assign(size_t(width_) + 1, 0.0);
-  for (int c = 0; c < 3; ++c) {
-    for (int x = 0; x < width_; ++x) {
-      h[size_t(x)] = row[x][c] * boxInverseLength_[size_t(x)];
-      prefix[size_t(x) + 1] = prefix[size_t(x)] + h[size_t(x)];
-    }
-    // The integral of h over [0, t] (h = 0 outside the row: t is clamped to it).
-    const auto integral = [&](const BoxEnd& e) {
-      return prefix[size_t(e.index)] + e.fraction * h[size_t(e.index)];
-    };
-    for (int k = 0; k < width_; ++k)
-      out[k][c] = float(integral(unclippedHi_[size_t(k)]) - integral(unclippedLo_[size_t(k)]));
+void SeenLayers::boxTransposedRow(const Vec3f* row, Vec3f* out, std::vector<Vec3d>& h,
+                                  std::vector<Vec3d>& prefix) const {
+  h.resize(size_t(width_));
+  prefix.resize(size_t(width_) + 1);
+  prefix[0] = {};
+  for (int x = 0; x < width_; ++x) {
+    const double inv = boxInverseLength_[size_t(x)];
+    h[size_t(x)] = {row[x].x * inv, row[x].y * inv, row[x].z * inv};
+    const Vec3d &p = prefix[size_t(x)], &v = h[size_t(x)];
+    prefix[size_t(x) + 1] = {p.x + v.x, p.y + v.y, p.z + v.z};
+  }
+  // The integral of h over [0, t] (h = 0 outside the row: t is clamped to it).
+  for (int k = 0; k < width_; ++k) {
+    const BoxEnd &lo = unclippedLo_[size_t(k)], &hi = unclippedHi_[size_t(k)];
+    const Vec3d a = integralTo(prefix, h[size_t(hi.index)], hi.index, hi.fraction);
+    const Vec3d b = integralTo(prefix, h[size_t(lo.index)], lo.index, lo.fraction);
+    out[k] = Vec3f(float(a.x - b.x), float(a.y - b.y), float(a.z - b.z));
   }
 }
 
@@ -120,7 +144,7 @@ Image SeenLayers::box(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
   forEachRow(view.height(), threads, [&](int y) {
-    std::vector<double> prefix;
+    std::vector<Vec3d> prefix;
     boxRow(&view.at(0, y), &out.at(0, y), prefix);
   });
   return out;
@@ -130,58 +154,60 @@ Image SeenLayers::boxTransposed(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
   forEachRow(view.height(), threads, [&](int y) {
-    std::vector<double> h, prefix;
+    std::vector<Vec3d> h, prefix;
     boxTransposedRow(&view.at(0, y), &out.at(0, y), h, prefix);
   });
   return out;
 }
 
-void SeenLayers::productRow(const Image& front, const Image& rear, int j, Vec3f* product) const {
-  std::fill(product, product + width_, Vec3f(0.0f));
+void SeenLayers::seenRearRow(const Image& rear, int j, Vec3f* seenRear) const {
+  std::fill(seenRear, seenRear + width_, Vec3f(0.0f));
   for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
     const Piece& vertical = down_[k];
     if (vertical.rear < 0) continue;
+    const Vec3f* rearRow = &rear.at(0, vertical.rear);
     for (int i = 0; i < width_; ++i) {
       Vec3f light(0.0f);
       for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
         const Piece& p = across_[a];
-        if (p.rear < 0) continue;
-        light += front.at(p.front, vertical.front) * rear.at(p.rear, vertical.rear) * p.weight;
+        if (p.rear >= 0) light += rearRow[p.rear] * p.weight;
       }
-      product[i] += light * vertical.weight;
+      seenRear[i] += light * vertical.weight;
     }
   }
 }
 
-void SeenLayers::frontAdjointRow(const Vec3f* r, const Image& rear, int j, Image& gradFront) const {
-  for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
-    const Piece& vertical = down_[k];
-    if (vertical.rear < 0) continue;
-    for (int i = 0; i < width_; ++i) {
-      const Vec3f v = r[i] * vertical.weight;
-      for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
-        const Piece& p = across_[a];
-        if (p.rear < 0) continue;
-        gradFront.at(p.front, vertical.front) += v * rear.at(p.rear, vertical.rear) * p.weight;
-      }
-    }
+void SeenLayers::viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f* out,
+                             RowScratch& scratch) const {
+  Vec3f* product =
+      periodBox_ ? (scratch.product.resize(size_t(width_)), scratch.product.data()) : out;
+  for (int i = 0; i < width_; ++i) product[i] = frontRow[i] * seenRear[i];
+  if (periodBox_) boxRow(product, out, scratch.prefix);
+}
+
+void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* seenRear,
+                                         Vec3f* gradRow, RowScratch& scratch) const {
+  const Vec3f* r = residual;
+  if (periodBox_) {
+    scratch.filtered.resize(size_t(width_));
+    boxTransposedRow(residual, scratch.filtered.data(), scratch.scaled, scratch.prefix);
+    r = scratch.filtered.data();
   }
+  for (int i = 0; i < width_; ++i) gradRow[i] += r[i] * seenRear[i];
 }
 
 void SeenLayers::viewRow(const Image& front, const Image& rear, int j, Vec3f* out,
                          RowScratch& scratch) const {
-  if (!periodBox_) return productRow(front, rear, j, out);
-  scratch.product.resize(size_t(width_));
-  productRow(front, rear, j, scratch.product.data());
-  boxRow(scratch.product.data(), out, scratch.prefix);
+  scratch.seenRear.resize(size_t(width_));
+  seenRearRow(rear, j, scratch.seenRear.data());
+  viewRowSeen(&front.at(0, j), scratch.seenRear.data(), out, scratch);
 }
 
 void SeenLayers::addFrontGradientRow(const Vec3f* residual, const Image& rear, int j,
                                      Image& gradFront, RowScratch& scratch) const {
-  if (!periodBox_) return frontAdjointRow(residual, rear, j, gradFront);
-  scratch.filtered.resize(size_t(width_));
-  boxTransposedRow(residual, scratch.filtered.data(), scratch.scaled, scratch.prefix);
-  frontAdjointRow(scratch.filtered.data(), rear, j, gradFront);
+  scratch.seenRear.resize(size_t(width_));
+  seenRearRow(rear, j, scratch.seenRear.data());
+  addFrontGradientRowSeen(residual, scratch.seenRear.data(), &gradFront.at(0, j), scratch);
 }
 
 Image SeenLayers::view(const Image& front, const Image& rear, int threads) const {

@@ -48,14 +48,28 @@ class SeenLayers {
   // along rows, so rows are independent. The same arithmetic as view() and
   // addFrontGradient(), which are made of these. `scratch` is the caller's, one per worker.
   struct RowScratch {
-    std::vector<Vec3f> product, filtered;
-    std::vector<double> prefix, scaled;
+    std::vector<Vec3f> product, filtered, seenRear;
+    std::vector<Vec3d> prefix, scaled;
   };
   // V's row j into out[0 .. width()).
   void viewRow(const Image& front, const Image& rear, int j, Vec3f* out, RowScratch& scratch) const;
   // gradFront's row j += (dV_j/dfront)^T residual[0 .. width()).
   void addFrontGradientRow(const Vec3f* residual, const Image& rear, int j, Image& gradFront,
                            RowScratch& scratch) const;
+
+  // The same row operators split at the rear layer: output pixel i of row j lies in front pixel
+  // (i, j) alone (the views are at the front layer's resolution), so
+  //     P(front, rear)_j = front_j .* m_j,   m_j[i] = sum over pieces k of (i, j): w_k rear[r_k],
+  // the rear layer as the eye sees it through that front pixel. A solver whose rear layer is
+  // fixed makes m_j once per eye and row and reuses it for every view and adjoint of the row.
+  // m_j into seenRear[0 .. width()).
+  void seenRearRow(const Image& rear, int j, Vec3f* seenRear) const;
+  // V_j = B (frontRow .* seenRear) into out (the row's front pixels frontRow[0 .. width())).
+  void viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f* out,
+                   RowScratch& scratch) const;
+  // gradRow[i] += seenRear[i] (B^T residual)[i]: front row j's gradient.
+  void addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* seenRear, Vec3f* gradRow,
+                               RowScratch& scratch) const;
 
  private:
   DisplayDesign design_;
@@ -75,14 +89,10 @@ class SeenLayers {
   std::vector<BoxEnd> boxLo_, boxHi_, unclippedLo_, unclippedHi_;
   std::vector<double> boxInverseLength_;
 
-  // P's row j (without B) into product[0 .. width()), which it overwrites.
-  void productRow(const Image& front, const Image& rear, int j, Vec3f* product) const;
   // B and B^T on one row (in and out may not alias).
-  void boxRow(const Vec3f* in, Vec3f* out, std::vector<double>& prefix) const;
-  void boxTransposedRow(const Vec3f* in, Vec3f* out, std::vector<double>& scaled,
-                        std::vector<double>& prefix) const;
-  // P_front^T on row j: gradFront's row j += the pieces' rear values times r.
-  void frontAdjointRow(const Vec3f* r, const Image& rear, int j, Image& gradFront) const;
+  void boxRow(const Vec3f* in, Vec3f* out, std::vector<Vec3d>& prefix) const;
+  void boxTransposedRow(const Vec3f* in, Vec3f* out, std::vector<Vec3d>& scaled,
+                        std::vector<Vec3d>& prefix) const;
 };
 
 }  // namespace parallax

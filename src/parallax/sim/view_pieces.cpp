@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace parallax {
 
@@ -16,9 +17,12 @@ void piecesAlongAxis(int count, int frontCells, int rearCells, double u0, double
                      std::vector<uint32_t>& start) {
   pieces.clear();
   start.assign(size_t(count) + 1, 0);
+  // The front cells pixel i overlaps, exactly (integers): first = floor(i F / N),
+  // last = ceil((i + 1) F / N) - 1. A piece's midpoint rounded near the pixel's edge stays in them.
+  int firstCell = 0, lastCell = 0;
   const auto add = [&](double t, float weight) {
     Piece piece;
-    piece.front = std::clamp(int(std::floor(t * frontCells)), 0, frontCells - 1);
+    piece.front = std::clamp(int(std::floor(t * frontCells)), firstCell, lastCell);
     const double u = std::floor(u0 + du * t);
     piece.rear = u >= 0 && u < rearCells ? int(u) : outside;
     piece.weight = weight;
@@ -27,6 +31,8 @@ void piecesAlongAxis(int count, int frontCells, int rearCells, double u0, double
   std::vector<double> edges;
   for (int i = 0; i < count; ++i) {
     start[size_t(i)] = uint32_t(pieces.size());
+    firstCell = int(int64_t(i) * frontCells / count);
+    lastCell = int((int64_t(i + 1) * frontCells - 1) / count);
     const double t0 = double(i) / count, t1 = double(i + 1) / count;
     // An eye almost touching the display stretches one output pixel over thousands of rear
     // cells; there the exact pieces would cost without limit, and kMaxRearCells point samples
