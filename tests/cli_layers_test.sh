@@ -23,6 +23,35 @@ first=$(record_number "$tmp/oi/render.json" objective_first)
 last=$(record_number "$tmp/oi/render.json" objective_last)
 check "optimized-image lowers its objective" awk -v a="$first" -v b="$last" 'BEGIN { exit !(b < a) }'
 
+# bench --layers: the same solve as render's (the same passes over the training targets), its
+# pass count from the solver's own steps, and the limit's arithmetic.
+check "bench --layers optimized-image" run 0 bench --layers optimized-image --iterations 6 \
+  --spp 4 --display "$tmp/small.json" --json
+cp "$tmp/out" "$tmp/bench-oi.json"
+check "bench --layers is render's solve, pass for pass" python3 -c '
+import json, sys
+b = json.load(open(sys.argv[1]))["layers"]
+r = json.load(open(sys.argv[2]))["layers"]
+assert b["passes"] == r["passes"] and b["eyes"] == r["training_eyes"], (b, r)
+assert b["iterations"] == r["iterations"] == 6, (b, r)
+# Start: the preconditioner and the objective; each iteration: gradient, curvature, and one
+# objective per step tried (at least one).
+assert b["passes"] >= 2 + 3 * b["iterations"], b
+assert b["target_bytes"] == b["eyes"] * b["width"] * b["height"] * 3 * 2, b  # 16-bit sRGB
+assert abs(b["limit_seconds"] - b["iterations"] * b["streaming_pass_seconds"]) <= 1e-9, b
+assert abs(b["ratio"] - b["limit_seconds"] / b["solve_seconds"]) <= 1e-9 * b["ratio"], b
+assert abs(b["pass_seconds"] * b["passes"] - b["solve_seconds"]) <= 1e-9 * b["solve_seconds"], b
+' "$tmp/bench-oi.json" "$tmp/oi/render.json"
+check "bench --layers nmf" run 0 bench --layers nmf --rank 2 --iterations 3 --display "$tmp/small.json" --json
+check "nmf passes: the objective, then per iteration both updates and the objective" python3 -c '
+import json, sys
+b = json.load(open(sys.argv[1]))["layers"]
+assert b["passes"] == 1 + 3 * 3 and b["rank"] == 2, b
+assert b["target_bytes"] == b["eyes"] * b["width"] * b["height"] * 3 * 4, b  # linear floats
+' "$tmp/out"
+check "bench --layers slits exits 2" run 2 bench --layers slits --display "$tmp/small.json"
+check "bench --layers names the option" one_line_naming "--layers"
+
 check "render --layers nmf --rank 2" run 0 render --display "$tmp/small.json" --spp 4 \
   --layers nmf --rank 2 --iterations 3 --train-eyes 1 -o "$tmp/nmf"
 for f in image-1.png image-2.png mask-1.png mask-2.png; do

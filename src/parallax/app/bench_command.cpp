@@ -18,6 +18,9 @@
 #include "parallax/io/json_writer.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/layer_output.h"
+#include "parallax/jobs/render_parts.h"
+#include "parallax/jobs/reporter.h"
+#include "parallax/layers/training.h"
 #include "parallax/render/bench.h"
 #include "parallax/render/display_render.h"
 #include "parallax/sim/simulator.h"
@@ -71,6 +74,96 @@ void benchSimulator(const std::string& displayPath, const std::string& scenePath
   (void)checksum;
 }
 
+// Seconds of the fastest of three reads of `bytes` bytes (on `threads` workers, each reading
+// blocks of 1 MiB from memory, not cache): what one pass over that many bytes of training targets
+// costs at this machine's memory bandwidth.
+double streamingPassSeconds(double bytes, int threads) {
+  constexpr int64_t kBlockWords = (1 << 20) / sizeof(uint64_t);
+  const int64_t blocks = std::max<int64_t>(1, int64_t(bytes / (kBlockWords * sizeof(uint64_t))));
+  std::vector<uint64_t> words(size_t(blocks * kBlockWords));
+  for (size_t i = 0; i < words.size(); ++i) words[i] = i;  // resident before the clock
+  double fastest = 0, checksum = 0;
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    const auto start = std::chrono::steady_clock::now();
+    checksum += parallelSum(blocks, threads, 1, [&](int64_t block) {
+      uint64_t sum = 0;
+      const uint64_t* first = words.data() + block * kBlockWords;
+      for (int64_t i = 0; i < kBlockWords; ++i) sum += first[i];
+      return double(sum);
+    });
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fastest = repeat == 0 ? seconds : std::min(fastest, seconds);
+  }
+  if (checksum < 0) std::printf("%g\n", checksum);  // keeps the reads
+  return fastest * bytes / (double(words.size()) * sizeof(uint64_t));
+}
+
+// The layer solvers' benchmark (docs/speed.md, "Layer solvers"): what `render --layers METHOD`
+// spends on its training views and on its solve, with the solve's passes over the training
+// targets, against the physical limit of a solver that reads every target once per iteration
+// at this machine's memory bandwidth (streamingPassSeconds of the targets' bytes).
+void benchLayers(const std::string& displayPath, const std::string& scenePath,
+                 const jobs::LayersRequest& request, const SamplingRequest& sampling, bool json) {
+  request.check();
+  const DisplayDesign design = loadDesignOrDefault(displayPath);
+  TrainingOptions training;
+  training.eyesPerView = request.trainEyes;
+  training.srgbWeights = request.errorMeasure() == "srgb";
+  training.threads = sampling.threads;
+  const Panel& panel = design.spec.imagePanel;
+  checkMemoryEstimate(trainingBytes(design, training) + double(panel.width) * panel.height *
+                                                            sizeof(Vec3f) *
+                                                            (4.0 * request.rank + 6.0),
+                      displayPath.empty() ? "the built-in display" : displayPath,
+                      "the training views of --layers " + request.method, "use a smaller display");
+  const Scene scene = loadSceneOrDefault(scenePath);
+  const Accelerator accelerator(scene);
+  // The slit layers the solve starts from, rendered as `render` renders them.
+  DisplayLayers slits = renderDisplay(scene, accelerator, design, sampling.settings());
+  jobs::LayerSolveFigures figures;
+  JsonWriter record;
+  jobs::solveLayers(request, scene, accelerator, design, training,
+                    {std::move(slits.image), std::move(slits.mask)}, record, jobs::silentReporter(),
+                    &figures);
+  const double pass = streamingPassSeconds(figures.targetBytes, sampling.threads);
+  const double limit = pass * figures.iterations;
+  const double ratio = figures.solveSeconds > 0 ? limit / figures.solveSeconds : 0.0;
+  const double perPass = figures.passes > 0 ? figures.solveSeconds / figures.passes : 0.0;
+  if (json) {
+    JsonWriter out;
+    out.set("/layers/method", request.method);
+    out.set("/layers/rank", request.rank);
+    out.set("/layers/width", panel.width);
+    out.set("/layers/height", panel.height);
+    out.set("/layers/eyes", figures.eyes);
+    out.set("/layers/iterations", figures.iterations);
+    out.set("/layers/passes", figures.passes);
+    out.set("/layers/target_bytes", figures.targetBytes);
+    out.set("/layers/training_seconds", figures.trainingSeconds);
+    out.set("/layers/solve_seconds", figures.solveSeconds);
+    out.set("/layers/pass_seconds", perPass);
+    out.set("/layers/streaming_pass_seconds", pass);
+    out.set("/layers/limit_seconds", limit);
+    out.set("/layers/ratio", ratio);
+    out.set("/peak_rss_mb", peakResidentMiB());
+    std::printf("%s\n", out.dump().c_str());
+    return;
+  }
+  std::printf(
+      "layers       %s%s on %dx%d, %d training eyes: ideal views %.2f s, solve %.2f s "
+      "(%d iterations, %d passes over the targets, %.3f s each)\n"
+      "limit        one pass over the targets (%.0f MiB) per iteration at memory bandwidth: "
+      "%.4f s a pass, %.3f s in all\n"
+      "ratio        %.4f (limit / solve); a pass costs %.0fx a streaming read of the targets\n"
+      "peak memory  %.0f MiB\n",
+      request.method.c_str(),
+      request.method == "nmf" ? (" rank " + std::to_string(request.rank)).c_str() : "", panel.width,
+      panel.height, figures.eyes, figures.trainingSeconds, figures.solveSeconds, figures.iterations,
+      figures.passes, perPass, figures.targetBytes / (1 << 20), pass, limit, ratio,
+      pass > 0 ? perPass / pass : 0.0, peakResidentMiB());
+}
+
 struct BenchOptions {
   std::string camera = "pinhole";
   std::string scene, display;
@@ -79,6 +172,7 @@ struct BenchOptions {
   int repeats = 2;
   bool json = false;
   int simulateViews = 0;
+  jobs::LayersRequest layers;  // method "slits": no layer bench
   int packetWidth = 0;
   std::string quality = "auto";
   FilterRequest filter;
@@ -162,6 +256,7 @@ void encodeAndWrite(PhaseClock& clock, const Image& image, const Image& mask) {
 }
 
 void runBench(const BenchOptions& o) {
+  if (o.layers.solved()) return benchLayers(o.display, o.scene, o.layers, o.sampling, o.json);
   if (o.simulateViews > 0) {
     const DisplayDesign design = loadDesignOrDefault(o.display);
     const Panel& panel = design.spec.imagePanel;
@@ -397,6 +492,17 @@ void registerBenchCommand(CLI::App& cli) {
                   "BVH build: auto (high when the render traces at least 5000 rays per "
                   "triangle, else medium), medium or high")
       ->capture_default_str();
+  cmd->add_option("--layers", options->layers.method,
+                  "Instead: time render --layers METHOD (optimized-image or nmf) on the barrier "
+                  "display: its ideal views, its solve and the solve's passes over the training "
+                  "targets, against one pass per iteration at memory bandwidth")
+      ->check(CLI::IsMember({"optimized-image", "nmf"}));
+  cmd->add_option("--rank", options->layers.rank, "With --layers nmf: frame pairs")
+      ->capture_default_str()
+      ->check(integerIn(1, 16));
+  cmd->add_option("--iterations", options->layers.iterations,
+                  "With --layers: solver iterations (default 10)")
+      ->check(integerIn(1, 1000));
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });
 }

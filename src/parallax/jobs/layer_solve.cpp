@@ -23,7 +23,8 @@ double defaultBrightness(const std::string& method, int rank) {
 std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
                                     const Accelerator& accelerator, const DisplayDesign& design,
                                     TrainingOptions training, const LayerFrame& slits,
-                                    JsonWriter& out, Reporter& reporter) {
+                                    JsonWriter& out, Reporter& reporter,
+                                    LayerSolveFigures* figures) {
   const auto start = std::chrono::steady_clock::now();
   const double slitMean = meanTransmittance(slits.mask);
   const double gain = o.brightness > 0 ? o.brightness : defaultBrightness(o.method, o.rank);
@@ -86,6 +87,10 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   out.set("/layers/diffuser_sigma_mm", diffuser.sigmaMm);
   out.set("/layers/training_seconds", trainSeconds);
   out.set("/layers/seconds", seconds);
+  out.set("/layers/passes", report.passes);
+  if (figures)
+    *figures = {trainSeconds,      seconds - trainSeconds, trainingBytes(design, training),
+                int(views.size()), report.iterations,      report.passes};
   out.set("/layers/objective_first", report.objective.front());
   out.set("/layers/objective_last", report.objective.back());
   out.set("/layers/mean_layer_product", seen / double(frames.size()));

@@ -70,11 +70,19 @@ void renderFrameToFiles(const FrameTarget& target, const Scene& scene,
 RenderResult renderFrameInMemory(const FrameTarget& target, const Scene& scene,
                                  const Accelerator& accelerator, Reporter& reporter);
 
+// What a layer solve took, for `bench --layers`.
+struct LayerSolveFigures {
+  double trainingSeconds = 0, solveSeconds = 0;  // the ideal views; the solver after them
+  double targetBytes = 0;                        // the training targets, as the solver reads them
+  int eyes = 0, iterations = 0, passes = 0;      // passes: SolveReport::passes
+};
+
 // Content-adaptive layers from the slit layers (docs/content-adaptive.md): the training views,
-// then the solver; its figures go under /layers of `record`.
+// then the solver; its figures go under /layers of `record` (and into `figures`).
 std::vector<LayerFrame> solveLayers(const LayersRequest& request, const Scene& scene,
                                     const Accelerator& accelerator, const DisplayDesign& design,
                                     TrainingOptions training, const LayerFrame& slits,
-                                    JsonWriter& record, Reporter& reporter);
+                                    JsonWriter& record, Reporter& reporter,
+                                    LayerSolveFigures* figures = nullptr);
 
 }  // namespace parallax::jobs

@@ -247,6 +247,7 @@ void averageViewRow(const TrainingView& v, const std::vector<LayerFrame>& frames
 // barrier in front) the whole-image operators, eye by eye.
 class ImageLayerPasses {
  public:
+  int passes() const { return passes_; }
   // `byRows`: false keeps the whole-image passes (the tests' second code path).
   // `mask`: as the eyes see it (already through the diffuser when the mask is the rear layer).
   // `diffuser`: applied to the image when the image is the rear layer (the barrier in front).
@@ -261,6 +262,7 @@ class ImageLayerPasses {
 
   // sum_e E_e at the image x.
   double energy(const Image& x) const {
+    ++passes_;
     if (!fused_) {
       Image holder;
       const Image& xs = seen(x, holder);
@@ -281,6 +283,7 @@ class ImageLayerPasses {
 
   // grad += sum_e A_e^T dE_e/dV_e at the image x.
   void addGradient(const Image& x, Image& grad) const {
+    ++passes_;
     if (!fused_) {
       Image holder, blurredSum;
       const Image& xs = seen(x, holder);
@@ -306,6 +309,7 @@ class ImageLayerPasses {
 
   // sum_e |A_e d|^2 weighted by E_e's Gauss-Newton weights at x (1 in linear light).
   double curvature(const Image& x, const Image& d) const {
+    ++passes_;
     if (!fused_) {
       Image holderX, holderD;
       const Image& xs = seen(x, holderX);
@@ -345,6 +349,7 @@ class ImageLayerPasses {
 
   // out += sum_e A_e^T (A_e 1 .* W_e), W_e the Gauss-Newton weights at x.
   void addCurvatureDiagonal(const Image& x, Image& out) const {
+    ++passes_;
     const Image ones(x.width(), x.height(), Vec3f(1.0f));
     if (!fused_) {
       Image holderX, holderOnes, blurredSum;
@@ -392,6 +397,7 @@ class ImageLayerPasses {
   const std::vector<TrainingView>& views_;
   const Image& mask_;
   int threads_;
+  mutable int passes_ = 0;
   bool fused_ = false;
   const RearDiffuser* imageBlur_ = nullptr;
 };
@@ -488,6 +494,7 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
     ++local.iterations;
     if (progress) progress(local.iterations, iterations, e);
   }
+  local.passes = passes.passes();
   if (report) *report = local;
   return image;
 }
@@ -541,6 +548,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
   };
   SolveReport local;
   local.objective.push_back(objective());
+  local.passes = 1;
   // One multiplicative update of every frame's image (updateImages) or mask: numerator
   // sum_e A^T t_e, denominator sum_e A^T V_e, where A is the view's derivative with respect to
   // that frame's layer (the other layer fixed); the 1/T of the average cancels in the ratio.
@@ -603,6 +611,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
     update(true);
     update(false);
     local.objective.push_back(objective());
+    local.passes += 3;
     ++local.iterations;
     if (progress) progress(local.iterations, iterations, local.objective.back());
   }

@@ -67,6 +67,9 @@ struct RearDiffuser {
 struct SolveReport {
   std::vector<double> objective;  // E / (pixels x channels x eyes): before, then per iteration
   int iterations = 0;             // iterations run (fewer when a step no longer lowers E)
+  // Passes over every training eye's target (an objective, a gradient, a curvature, an update
+  // of one layer: each reads every target once), for `bench --layers`.
+  int passes = 0;
 };
 
 // E / (view pixels x 3 x eyes) of `frames` seen as their average (through `diffuser`).
