@@ -112,11 +112,12 @@ void benchLayers(const std::string& displayPath, const std::string& scenePath,
   training.srgbWeights = request.errorMeasure() == "srgb";
   training.threads = sampling.threads;
   const Panel& panel = design.spec.imagePanel;
-  checkMemoryEstimate(trainingBytes(design, training) + double(panel.width) * panel.height *
-                                                            sizeof(Vec3f) *
-                                                            (4.0 * request.rank + 6.0),
-                      displayPath.empty() ? "the built-in display" : displayPath,
-                      "the training views of --layers " + request.method, "use a smaller display");
+  checkMemoryEstimate(
+      trainingBytes(design, training) +
+          (request.method == "optimized-image" ? seenMaskBytes(design, training) : 0.0) +
+          double(panel.width) * panel.height * sizeof(Vec3f) * (4.0 * request.rank + 6.0),
+      displayPath.empty() ? "the built-in display" : displayPath,
+      "the training views of --layers " + request.method, "use a smaller display");
   const Scene scene = loadSceneOrDefault(scenePath);
   const Accelerator accelerator(scene);
   // The slit layers the solve starts from, rendered as `render` renders them.

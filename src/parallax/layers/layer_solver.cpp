@@ -196,15 +196,10 @@ struct RowWork {
       : seen(size_t(width)),
         residual(size_t(width)),
         weights(size_t(width)),
-        other(size_t(width)) {}
+        other(size_t(width)),
+        seenRear(size_t(width)) {}
   size_t first(int row) const { return size_t(row) * seen.size(); }
-  // The fixed rear layer `mask` as eye v sees it through front row j (SeenLayers::seenRearRow),
-  // made once per eye and row for every view and adjoint of that row.
-  const Vec3f* seenMask(const TrainingView& v, const Image& mask, int j) {
-    v.seen.seenRearRow(mask, j, seenRear.data());
-    return seenRear.data();
-  }
-  std::vector<Vec3f> seen, residual, weights, other, seenRear{seen.size()};
+  std::vector<Vec3f> seen, residual, weights, other, seenRear;
   SeenLayers::RowScratch scratch;
 };
 
@@ -258,6 +253,23 @@ class ImageLayerPasses {
         views.begin(), views.end(), [](const TrainingView& v) { return v.seen.imageInFront(); });
     if (!imageInFront && diffuser.active()) imageBlur_ = &diffuser;
     fused_ = byRows && imageInFront;
+    // A grey mask (every barrier the paper draws) is seen grey: each eye's view of it, one
+    // float per pixel, is made once here for the whole solve instead of once per pass.
+    const bool grey = std::all_of(mask.pixels().begin(), mask.pixels().end(),
+                                  [](const Vec3f& p) { return p.x == p.y && p.y == p.z; });
+    if (fused_ && grey) {
+      const int width = views.front().seen.width(), rows = views.front().seen.height();
+      seenMasks_.assign(views.size(), std::vector<float>(size_t(width) * size_t(rows)));
+      parallelFor(rows, threads, 2, [&](int64_t begin, int64_t end) {
+        std::vector<Vec3f> row(static_cast<size_t>(width));
+        for (int64_t j = begin; j != end; ++j)
+          for (size_t e = 0; e < views.size(); ++e) {
+            views[e].seen.seenRearRow(mask, int(j), row.data());
+            float* into = seenMasks_[e].data() + size_t(j) * size_t(width);
+            for (int i = 0; i < width; ++i) into[i] = row[size_t(i)].x;
+          }
+      });
+    }
   }
 
   // sum_e E_e at the image x.
@@ -273,37 +285,43 @@ class ImageLayerPasses {
     }
     return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       double sum = 0;
-      for (const TrainingView& v : views_) {
-        v.seen.viewRowSeen(&x.at(0, j), w.seenMask(v, mask_, j), w.seen.data(), w.scratch);
+      for (size_t e = 0; e < views_.size(); ++e) {
+        const TrainingView& v = views_[e];
+        v.seen.viewRowSeen(&x.at(0, j), seenMask(e, j, w), w.seen.data(), w.scratch);
         sum += eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, nullptr);
       }
       return sum;
     });
   }
 
-  // grad += sum_e A_e^T dE_e/dV_e at the image x.
-  void addGradient(const Image& x, Image& grad) const {
+  // grad += sum_e A_e^T dE_e/dV_e at the image x, in the same pass as sum_e E_e (returned, the
+  // same double as energy(x)): a line search that accepts x has its next gradient already.
+  double addGradient(const Image& x, Image& grad) const {
     ++passes_;
     if (!fused_) {
       Image holder, blurredSum;
       const Image& xs = seen(x, holder);
       Image& into = throughDiffuser(grad, blurredSum);
+      double sum = 0;
       for (const TrainingView& v : views_) {
         Image residual(v.seen.width(), v.seen.height());
-        eyeError(v, viewOf(v.seen, xs, mask_, threads_), &residual, nullptr);
+        sum += eyeError(v, viewOf(v.seen, xs, mask_, threads_), &residual, nullptr);
         addImageGradient(v, residual, mask_, into, threads_);
       }
       if (imageBlur_) addScaled(grad, imageBlur_->apply(blurredSum, threads_), 1.0f);
-      return;
+      return sum;
     }
-    sumOverRows(views_, threads_, [&](int j, RowWork& w) {
-      for (const TrainingView& v : views_) {
-        const Vec3f* m = w.seenMask(v, mask_, j);
+    return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
+      double sum = 0;
+      for (size_t e = 0; e < views_.size(); ++e) {
+        const TrainingView& v = views_[e];
+        const Vec3f* m = seenMask(e, j, w);
         v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
-        eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), w.residual.data(), nullptr);
+        sum +=
+            eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), w.residual.data(), nullptr);
         v.seen.addFrontGradientRowSeen(w.residual.data(), m, &grad.at(0, j), w.scratch);
       }
-      return 0.0;
+      return sum;
     });
   }
 
@@ -329,8 +347,9 @@ class ImageLayerPasses {
     }
     return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
       double sum = 0;
-      for (const TrainingView& v : views_) {
-        const Vec3f* m = w.seenMask(v, mask_, j);
+      for (size_t e = 0; e < views_.size(); ++e) {
+        const TrainingView& v = views_[e];
+        const Vec3f* m = seenMask(e, j, w);
         v.seen.viewRowSeen(&d.at(0, j), m, w.other.data(), w.scratch);
         const bool srgb = v.encodingScale > 0;
         if (srgb) {
@@ -366,8 +385,9 @@ class ImageLayerPasses {
       return;
     }
     sumOverRows(views_, threads_, [&](int j, RowWork& w) {
-      for (const TrainingView& v : views_) {
-        const Vec3f* m = w.seenMask(v, mask_, j);
+      for (size_t e = 0; e < views_.size(); ++e) {
+        const TrainingView& v = views_[e];
+        const Vec3f* m = seenMask(e, j, w);
         v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
         eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, w.weights.data());
         v.seen.viewRowSeen(&ones.at(0, j), m, w.other.data(), w.scratch);
@@ -394,10 +414,24 @@ class ImageLayerPasses {
     return blurredSum;
   }
 
+  // The fixed rear layer as eye e sees it through front row j (SeenLayers::seenRearRow), in
+  // w.seenRear: from seenMasks_, else made once per eye and row for every view and adjoint of
+  // that row.
+  const Vec3f* seenMask(size_t e, int j, RowWork& w) const {
+    if (seenMasks_.empty()) {
+      views_[e].seen.seenRearRow(mask_, j, w.seenRear.data());
+    } else {
+      const float* row = seenMasks_[e].data() + w.first(j);
+      for (size_t i = 0; i < w.seenRear.size(); ++i) w.seenRear[i] = Vec3f(row[i]);
+    }
+    return w.seenRear.data();
+  }
+
   const std::vector<TrainingView>& views_;
   const Image& mask_;
   int threads_;
   mutable int passes_ = 0;
+  std::vector<std::vector<float>> seenMasks_;  // per eye, with a grey mask and the fused passes
   bool fused_ = false;
   const RearDiffuser* imageBlur_ = nullptr;
 };
@@ -455,14 +489,14 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
   passes.addCurvatureDiagonal(image, precondition);
   for (Vec3f& p : precondition.pixels())
     for (int c = 0; c < 3; ++c) p[c] = p[c] > 0.0f ? 1.0f / p[c] : 0.0f;
-  double e = passes.energy(image) * norm;
+  // Gradient of E (times 1 / norm): sum over eyes of A_e^T dE_e/dV_e, made in the pass that
+  // evaluates E: at the start, then at each point the line search tries (the accepted one's is
+  // the next iteration's).
+  Image grad(image.width(), image.height()), nextGrad, d(image.width(), image.height()), next;
+  double e = passes.addGradient(image, grad) * norm;
   SolveReport local;
   local.objective.push_back(e);
-  Image grad(image.width(), image.height()), d(image.width(), image.height()), next;
   for (int it = 0; it < iterations; ++it) {
-    // Gradient of E (times 1 / norm): sum over eyes of A_e^T dE_e/dV_e.
-    std::fill(grad.pixels().begin(), grad.pixels().end(), Vec3f(0.0f));
-    passes.addGradient(image, grad);
     // Projected, preconditioned direction: no move out of [0, 1] at a bound.
     for (size_t i = 0; i < d.pixels().size(); ++i)
       for (int c = 0; c < 3; ++c) {
@@ -482,9 +516,11 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
       next = image;
       addScaled(next, d, float(step));
       clampToUnit(next);
-      const double eNext = passes.energy(next) * norm;
+      nextGrad = Image(image.width(), image.height());
+      const double eNext = passes.addGradient(next, nextGrad) * norm;
       if (eNext < e) {
         std::swap(image, next);
+        std::swap(grad, nextGrad);
         e = eNext;
         lowered = true;
       }

@@ -254,8 +254,15 @@ TEST(OptimizeImageLayer, RowFusedPassesAreTheWholeImagePasses) {
   spec.views = 5.0;
   spec.imagePanel.pitchMm = spec.maskPanel.pitchMm = 1.0;
   const DisplayDesign d = designDisplay(spec);
-  const Image mask = maskLayerImage(d);
-  for (const float scale : {0.0f, 0.8f}) {
+  // A grey mask (its views kept for the whole solve) and a tinted one (seen row by row).
+  const Image grey = maskLayerImage(d);
+  Image tinted = grey;
+  for (Vec3f& p : tinted.pixels()) p = p * Vec3f(1.0f, 0.8f, 0.6f);
+  ASSERT_TRUE(std::all_of(grey.pixels().begin(), grey.pixels().end(),
+                          [](const Vec3f& p) { return p.x == p.y && p.y == p.z; }));
+  ASSERT_NE(grey.pixels(), tinted.pixels());
+  for (const auto& [mask, scale] : {std::pair{grey, 0.0f}, std::pair{grey, 0.8f},
+                                    std::pair{tinted, 0.0f}, std::pair{tinted, 0.8f}}) {
     std::vector<TrainingView> views = viewsOf(d, randomImage(45, 7, 5), mask, 0.02f);
     for (TrainingView& v : views) v.encodingScale = scale;
     SolveReport fused, byEye;
@@ -264,6 +271,7 @@ TEST(OptimizeImageLayer, RowFusedPassesAreTheWholeImagePasses) {
         detail::optimizeImageLayerByEye(views, Image(45, 7, Vec3f(0.4f)), mask, 6, 2, &byEye);
     ASSERT_EQ(fused.iterations, byEye.iterations) << scale;
     EXPECT_GT(fused.iterations, 2) << scale;
+    EXPECT_EQ(fused.passes, byEye.passes);
     for (size_t i = 0; i < fused.objective.size(); ++i)
       EXPECT_NEAR(fused.objective[i], byEye.objective[i], 1e-9 * byEye.objective[0]) << i;
     for (size_t i = 0; i < a.pixels().size(); ++i)

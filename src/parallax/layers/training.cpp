@@ -4,14 +4,27 @@
 
 namespace parallax {
 
-double trainingBytes(const DisplayDesign& design, const TrainingOptions& options) {
+namespace {
+
+// Training eyes times the front layer's pixels: the pixels of all training views.
+double trainingPixels(const DisplayDesign& design, const TrainingOptions& options) {
   const Panel& front =
       design.spec.order == LayerOrder::BarrierBack ? design.spec.imagePanel : design.spec.maskPanel;
   const double eyes =
       double(pixelViewCount(design)) * options.eyesPerView * double(options.distances.size());
+  return eyes * double(front.width) * double(front.height);
+}
+
+}  // namespace
+
+double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options) {
+  return trainingPixels(design, options) * sizeof(float);
+}
+
+double trainingBytes(const DisplayDesign& design, const TrainingOptions& options) {
   // sRGB errors keep their targets encoded in 16 bits per channel (TrainingView::encodeTarget).
   const double perPixel = options.srgbWeights ? 3.0 * sizeof(uint16_t) : double(sizeof(Vec3f));
-  return eyes * double(front.width) * double(front.height) * perPixel;
+  return trainingPixels(design, options) * perPixel;
 }
 
 std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,

@@ -32,6 +32,9 @@ struct TrainingOptions {
 // Bytes the training views hold (one target per eye at the front layer's resolution: floats,
 // or 16 bits per channel for sRGB errors), for the caller's memory check before building them.
 double trainingBytes(const DisplayDesign& design, const TrainingOptions& options);
+// Bytes optimizeImageLayer holds besides for a grey mask: each training eye's view of the mask,
+// one float per pixel (layer_solver.cpp, ImageLayerPasses).
+double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options);
 
 std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,
                                         const DisplayDesign& design, const TrainingOptions& options,

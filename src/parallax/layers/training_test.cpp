@@ -47,6 +47,7 @@ TEST(Training, TargetsAreTheScaledIdealViewsOfTheDenseEyes) {
   double held = 0;
   for (const TrainingView& v : views) held += double(v.target.pixels().size()) * sizeof(Vec3f);
   EXPECT_EQ(trainingBytes(d, options), held);
+  EXPECT_EQ(seenMaskBytes(d, options), held / 3);  // one float per pixel against three
   // sRGB errors: the same targets, encoded (TrainingView::encodeTarget), in half the bytes.
   options.srgbWeights = true;
   const std::vector<TrainingView> encoded = trainingViews(scene, accel, d, options);
