@@ -85,6 +85,10 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
                          const SolveProgress& progress = {}, const RearDiffuser& diffuser = {});
 
 namespace detail {
+// The sRGB encoding S(x) of x clamped to [0, 1] and its slope S'(x) as the solvers compute them
+// against encoded targets (layer_solver.cpp, vectorised arithmetic), for the tests.
+void srgbEncode(float x, float& encoded, float& slope);
+
 // optimizeImageLayer with its passes eye by eye over whole images, as it runs with the barrier
 // in front; with the image in front it runs them row by row, every eye in one pass over a row
 // (layer_solver.cpp, ImageLayerPasses). For the tests: both must give the same layers.

@@ -279,6 +279,26 @@ TEST(OptimizeImageLayer, RowFusedPassesAreTheWholeImagePasses) {
   }
 }
 
+// The arithmetic sRGB encoding against IEC 61966-2-1's formula in double, over [0, 1] (both
+// segments), below 0 and above 1 (clamped: slope 0).
+TEST(SrgbEncode, IsTheStandardsFormula) {
+  double worstValue = 0, worstSlope = 0;
+  for (int i = -100; i <= 120000; ++i) {
+    const float x = float(i) / 100000.0f;
+    float encoded = 0, slope = 0;
+    detail::srgbEncode(x, encoded, slope);
+    const double c = std::clamp(double(x), 0.0, 1.0);
+    const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
+    const double ds = x > 1.0f         ? 0.0
+                      : c <= 0.0031308 ? 12.92
+                                       : 1.055 / 2.4 * std::pow(c, 1 / 2.4 - 1);
+    worstValue = std::max(worstValue, std::abs(encoded - s));
+    worstSlope = std::max(worstSlope, std::abs(slope - ds) / std::max(1.0, ds));
+  }
+  EXPECT_LT(worstValue, 3e-7);
+  EXPECT_LT(worstSlope, 1e-6);
+}
+
 // Targets kept encoded (TrainingView::encodeTarget: S(t / c) in 16 bits) give the solve of the
 // float targets: the same objectives to the encoding's rounding and the same layers.
 TEST(OptimizeImageLayer, EncodedTargetsSolveAsTheFloatTargets) {
