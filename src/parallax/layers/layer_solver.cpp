@@ -512,17 +512,20 @@ class ImageLayerPasses {
 
 }  // namespace
 
-void TrainingView::encodeTarget() {
+void TrainingView::encodeTarget(int threads) {
   if (!(encodingScale > 0))
     throw std::invalid_argument("TrainingView::encodeTarget: the errors are in linear light");
   const float inv = 1.0f / encodingScale;
-  encodedTarget.resize(3 * target.pixels().size());
-  for (size_t i = 0; i < target.pixels().size(); ++i)
-    for (int c = 0; c < 3; ++c) {
+  const size_t rowValues = 3 * size_t(target.width());
+  encodedTarget.resize(rowValues * size_t(target.height()));
+  parallelFor(target.height(), threads, 8, [&](int64_t begin, int64_t end) {
+    const float* values = &target.pixels()[0].x;
+    for (size_t i = size_t(begin) * rowValues; i < size_t(end) * rowValues; ++i) {
       float encoded = 0, slope = 0;
-      srgbEncodeArithmetic(target.pixels()[i][c] * inv, encoded, slope);
-      encodedTarget[3 * i + size_t(c)] = uint16_t(std::lround(encoded * kEncodedUnit));
+      srgbEncodeArithmetic(values[i] * inv, encoded, slope);
+      encodedTarget[i] = uint16_t(std::lround(encoded * kEncodedUnit));
     }
+  });
   target = Image();
 }
 

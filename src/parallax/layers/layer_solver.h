@@ -46,7 +46,7 @@ struct TrainingView {
   std::vector<uint16_t> encodedTarget = {};
   // Fills encodedTarget and frees target (encodingScale > 0 only; the multiplicative updates
   // fit in linear light and need the float target).
-  void encodeTarget();
+  void encodeTarget(int threads = 0);
 };
 
 // One frame of layers (image and mask panels), linear transmittance.

@@ -42,7 +42,7 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
     views.push_back({std::move(seen), std::move(target),
                      options.srgbWeights ? float(options.targetScale) : 0.0f});
     // The sRGB errors read the target encoded: half the bytes, one encoding less per pass.
-    if (options.srgbWeights) views.back().encodeTarget();
+    if (options.srgbWeights) views.back().encodeTarget(options.threads);
     if (progress) progress(int(i) + 1, int(eyes.size()));
   }
   return views;

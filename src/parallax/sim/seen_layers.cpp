@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "parallax/core/lane_kernel.h"
 #include "parallax/core/parallel.h"
 
 namespace parallax {
@@ -66,97 +67,102 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
       if (down_[k].rear >= 0)
         rearRowSources_[size_t(down_[k].rear)].push_back({j, down_[k].weight});
 
-  // B: boxFilterX(view, period): output column x reads its window [x + 1/2 - w/2,
-  // x + 1/2 + w/2] clipped to the row; B^T reads the same window around each column, where
-  // clipping it to the row stands for the zero row outside.
+  // B: boxFilterX(view, period): output column x averages its window [x + a, x + b] clipped to
+  // the row (a = 1/2 - w/2, b = 1/2 + w/2); inside the row, a stencil of fixed taps.
   const double w = design.screenPeriodMm / (frontWidth / double(width_));
-  const auto end = [this](double t) {
-    t = std::clamp(t, 0.0, double(width_));
-    const int index = std::min(int(std::floor(t)), width_ - 1);
-    return BoxEnd{index, t - index};
-  };
-  for (int x = 0; x < width_; ++x) {
-    const double lo = std::max(0.0, x + 0.5 - 0.5 * w),
-                 hi = std::min(double(width_), x + 0.5 + 0.5 * w);
-    boxLo_.push_back(end(lo));
-    boxHi_.push_back(end(hi));
-    boxInverseLength_.push_back(1.0 / (hi - lo));
-    unclippedLo_.push_back(end(x + 0.5 - 0.5 * w));
-    unclippedHi_.push_back(end(x + 0.5 + 0.5 * w));
+  boxA_ = 0.5 - 0.5 * w;
+  boxB_ = 0.5 + 0.5 * w;
+  firstTap_ = int(std::floor(boxA_));
+  for (int d = firstTap_; d < boxB_; ++d) {
+    const double overlap = std::min(d + 1.0, boxB_) - std::max(double(d), boxA_);
+    taps_.push_back(float(std::max(0.0, overlap) / w));
   }
+  interiorBegin_ = std::min(width_, int(std::ceil(-boxA_)));
+  interiorEnd_ = std::max(interiorBegin_, std::min(width_, int(std::floor(width_ - boxB_)) + 1));
 }
 
 // B as boxFilterX computes it: output x is the integral of the box-pixel row over
-// [lo_x, hi_x] = [x + 1/2 - w/2, x + 1/2 + w/2] clipped to the row, over its length, read off a
-// prefix sum. Its transpose: pixel k receives sum_x y_x / |[lo_x, hi_x]| times the overlap of
-// [k, k+1] with the unclipped window (the row clips nothing inside [k, k+1]), which is the
-// integral of the box-pixel row h_x = y_x / |[lo_x, hi_x]| over the window centred on k: the
-// same prefix-sum reading without the division. The three channels run together (one pass).
+// [lo_x, hi_x] = [x + a, x + b] clipped to the row, over its length. Inside the row a stencil
+// (one vectorised loop per tap over the row's floats, the three channels 3 floats apart); the
+// few columns whose window the row clips, summed directly. Its transpose: pixel k receives
+// sum_x y_x / |[lo_x, hi_x]| times the overlap of [k, k+1] with x's window: inside, the same
+// taps mirrored; near the ends, summed directly.
 namespace {
 
-// The integral over [0, t] of the box-pixel row whose prefix sums are `prefix` and whose
-// pixels are `at(index)`, at a window's end t = index + fraction.
-template <class Pixel>
-Vec3d integralTo(const std::vector<Vec3d>& prefix, const Pixel& pixel, int index, double fraction) {
-  const Vec3d& p = prefix[size_t(index)];
-  return {p.x + fraction * pixel.x, p.y + fraction * pixel.y, p.z + fraction * pixel.z};
+// |[k, k+1] n [lo, hi]|.
+double overlapWithPixel(int k, double lo, double hi) {
+  return std::max(0.0, std::min(k + 1.0, hi) - std::max(double(k), lo));
+}
+
+// into[n] = sum_t taps[t] from[n + offset + step t] for n in [begin, end): blocks of kBlock
+// floats summed in registers, the taps in order (the same sums on every CPU but for fused
+// multiply-adds).
+PARALLAX_LANE_KERNEL
+void stencil(const float* from, int offset, int step, const float* taps, int tapCount, float* into,
+             int begin, int end) {
+  constexpr int kBlock = 64;
+  for (int n = begin; n < end; n += kBlock) {
+    const int count = std::min(kBlock, end - n);
+    float sum[kBlock] = {};
+    for (int t = 0; t < tapCount; ++t) {
+      const float tap = taps[t];
+      const float* source = from + (n + offset + step * t);
+      for (int i = 0; i < count; ++i) sum[i] += tap * source[i];
+    }
+    for (int i = 0; i < count; ++i) into[n + i] = sum[i];
+  }
 }
 
 }  // namespace
 
-void SeenLayers::boxRow(const Vec3f* row, Vec3f* out, std::vector<Vec3d>& prefix) const {
-  prefix.resize(size_t(width_) + 1);
-  prefix[0] = {};
-  for (int x = 0; x < width_; ++x) {
-    const Vec3d& p = prefix[size_t(x)];
-    prefix[size_t(x) + 1] = {p.x + row[x].x, p.y + row[x].y, p.z + row[x].z};
-  }
-  for (int x = 0; x < width_; ++x) {
-    const BoxEnd &lo = boxLo_[size_t(x)], &hi = boxHi_[size_t(x)];
-    const Vec3d a = integralTo(prefix, row[hi.index], hi.index, hi.fraction);
-    const Vec3d b = integralTo(prefix, row[lo.index], lo.index, lo.fraction);
-    const double inv = boxInverseLength_[size_t(x)];
-    out[x] = Vec3f(float((a.x - b.x) * inv), float((a.y - b.y) * inv), float((a.z - b.z) * inv));
-  }
+void SeenLayers::boxRow(const Vec3f* row, Vec3f* out) const {
+  stencil(&row[0].x, 3 * firstTap_, 3, taps_.data(), int(taps_.size()), &out[0].x,
+          3 * interiorBegin_, 3 * interiorEnd_);
+  const auto edge = [&](int x) {
+    const double lo = windowLo(x), hi = windowHi(x);
+    double sum[3] = {0, 0, 0};
+    for (int k = std::max(0, int(std::floor(lo))); k < std::min(width_, int(std::ceil(hi))); ++k) {
+      const double overlap = overlapWithPixel(k, lo, hi);
+      for (int c = 0; c < 3; ++c) sum[c] += overlap * row[k][c];
+    }
+    for (int c = 0; c < 3; ++c) out[x][c] = float(sum[c] / (hi - lo));
+  };
+  for (int x = 0; x < interiorBegin_; ++x) edge(x);
+  for (int x = interiorEnd_; x < width_; ++x) edge(x);
 }
 
-void SeenLayers::boxTransposedRow(const Vec3f* row, Vec3f* out, std::vector<Vec3d>& h,
-                                  std::vector<Vec3d>& prefix) const {
-  h.resize(size_t(width_));
-  prefix.resize(size_t(width_) + 1);
-  prefix[0] = {};
-  for (int x = 0; x < width_; ++x) {
-    const double inv = boxInverseLength_[size_t(x)];
-    h[size_t(x)] = {row[x].x * inv, row[x].y * inv, row[x].z * inv};
-    const Vec3d &p = prefix[size_t(x)], &v = h[size_t(x)];
-    prefix[size_t(x) + 1] = {p.x + v.x, p.y + v.y, p.z + v.z};
-  }
-  // The integral of h over [0, t] (h = 0 outside the row: t is clamped to it).
-  for (int k = 0; k < width_; ++k) {
-    const BoxEnd &lo = unclippedLo_[size_t(k)], &hi = unclippedHi_[size_t(k)];
-    const Vec3d a = integralTo(prefix, h[size_t(hi.index)], hi.index, hi.fraction);
-    const Vec3d b = integralTo(prefix, h[size_t(lo.index)], lo.index, lo.fraction);
-    out[k] = Vec3f(float(a.x - b.x), float(a.y - b.y), float(a.z - b.z));
-  }
+void SeenLayers::boxTransposedRow(const Vec3f* row, Vec3f* out) const {
+  // Pixel k meets the windows of x = k - d for the taps d; inside, all of those are interior.
+  const int lastTap = firstTap_ + int(taps_.size()) - 1;
+  const int begin = std::min(width_, interiorBegin_ + lastTap),
+            end = std::max(begin, interiorEnd_ + firstTap_);
+  stencil(&row[0].x, -3 * firstTap_, -3, taps_.data(), int(taps_.size()), &out[0].x, 3 * begin,
+          3 * end);
+  const auto edge = [&](int k) {
+    double sum[3] = {0, 0, 0};
+    for (int x = std::max(0, k - lastTap); x <= std::min(width_ - 1, k - firstTap_); ++x) {
+      const double lo = windowLo(x), hi = windowHi(x);
+      const double weight = overlapWithPixel(k, lo, hi) / (hi - lo);
+      for (int c = 0; c < 3; ++c) sum[c] += weight * row[x][c];
+    }
+    for (int c = 0; c < 3; ++c) out[k][c] = float(sum[c]);
+  };
+  for (int k = 0; k < begin; ++k) edge(k);
+  for (int k = end; k < width_; ++k) edge(k);
 }
 
 Image SeenLayers::box(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
-  forEachRow(view.height(), threads, [&](int y) {
-    std::vector<Vec3d> prefix;
-    boxRow(&view.at(0, y), &out.at(0, y), prefix);
-  });
+  forEachRow(view.height(), threads, [&](int y) { boxRow(&view.at(0, y), &out.at(0, y)); });
   return out;
 }
 
 Image SeenLayers::boxTransposed(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
-  forEachRow(view.height(), threads, [&](int y) {
-    std::vector<Vec3d> h, prefix;
-    boxTransposedRow(&view.at(0, y), &out.at(0, y), h, prefix);
-  });
+  forEachRow(view.height(), threads,
+             [&](int y) { boxTransposedRow(&view.at(0, y), &out.at(0, y)); });
   return out;
 }
 
@@ -182,7 +188,7 @@ void SeenLayers::viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f
   Vec3f* product =
       periodBox_ ? (scratch.product.resize(size_t(width_)), scratch.product.data()) : out;
   for (int i = 0; i < width_; ++i) product[i] = frontRow[i] * seenRear[i];
-  if (periodBox_) boxRow(product, out, scratch.prefix);
+  if (periodBox_) boxRow(product, out);
 }
 
 void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* seenRear,
@@ -190,7 +196,7 @@ void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* see
   const Vec3f* r = residual;
   if (periodBox_) {
     scratch.filtered.resize(size_t(width_));
-    boxTransposedRow(residual, scratch.filtered.data(), scratch.scaled, scratch.prefix);
+    boxTransposedRow(residual, scratch.filtered.data());
     r = scratch.filtered.data();
   }
   for (int i = 0; i < width_; ++i) gradRow[i] += r[i] * seenRear[i];

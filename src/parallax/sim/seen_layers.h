@@ -11,6 +11,7 @@
 // 1/2 |V - target|^2 with respect to either layer.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -49,7 +50,6 @@ class SeenLayers {
   // addFrontGradient(), which are made of these. `scratch` is the caller's, one per worker.
   struct RowScratch {
     std::vector<Vec3f> product, filtered, seenRear;
-    std::vector<Vec3d> prefix, scaled;
   };
   // V's row j into out[0 .. width()).
   void viewRow(const Image& front, const Image& rear, int j, Vec3f* out, RowScratch& scratch) const;
@@ -80,19 +80,19 @@ class SeenLayers {
   std::vector<uint32_t> acrossStart_, downStart_;
   // For each rear row, the output rows whose pieces meet it and those pieces' weights.
   std::vector<std::vector<std::pair<int, float>>> rearRowSources_;
-  // B: each output column's window [lo, hi] clipped to the row as (pixel, fraction into it),
-  // 1 / (hi - lo), and the window unclipped (clamped to the row's ends) for B^T.
-  struct BoxEnd {
-    int index = 0;
-    double fraction = 0;
-  };
-  std::vector<BoxEnd> boxLo_, boxHi_, unclippedLo_, unclippedHi_;
-  std::vector<double> boxInverseLength_;
-
+  // B, the box of w = one screen period (pixels) along x: output column x averages the row over
+  // [x + a, x + b] (a = 1/2 - w/2, b = 1/2 + w/2) clipped to the row. Where the window lies
+  // inside the row (columns [interiorBegin_, interiorEnd_)) that is a stencil of fixed taps:
+  // out[x] = sum_d tap_d in[x + d], d from firstTap_, tap_d = |[d, d+1] n [a, b]| / w.
+  double boxA_ = 0, boxB_ = 0;
+  int firstTap_ = 0, interiorBegin_ = 0, interiorEnd_ = 0;
+  std::vector<float> taps_;
   // B and B^T on one row (in and out may not alias).
-  void boxRow(const Vec3f* in, Vec3f* out, std::vector<Vec3d>& prefix) const;
-  void boxTransposedRow(const Vec3f* in, Vec3f* out, std::vector<Vec3d>& scaled,
-                        std::vector<Vec3d>& prefix) const;
+  void boxRow(const Vec3f* in, Vec3f* out) const;
+  void boxTransposedRow(const Vec3f* in, Vec3f* out) const;
+  // Output x's window clipped to the row, [lo, hi].
+  double windowLo(int x) const { return std::max(0.0, x + boxA_); }
+  double windowHi(int x) const { return std::min(double(width_), x + boxB_); }
 };
 
 }  // namespace parallax
