@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "parallax/core/lane_kernel.h"
@@ -274,6 +275,7 @@ struct RowWork {
         seenRear(size_t(width)) {}
   size_t first(int row) const { return size_t(row) * seen.size(); }
   std::vector<Vec3f> seen, residual, weights, other, seenRear;
+  std::vector<Vec3f> frameMasks;  // factorizeLayers: every frame's seen mask row
   SeenLayers::RowScratch scratch;
 };
 
@@ -681,18 +683,67 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       numerator.emplace_back(x.width(), x.height());
       denominator.emplace_back(x.width(), x.height());
     }
+    double before = std::numeric_limits<double>::quiet_NaN();
     if (updateImages && maskIsRear) {
-      sumOverRows(views, threads, [&](int j, RowWork& w) {
-        for (const TrainingView& v : views) {
-          averageViewRow(v, seenLayers, j, w);
-          const Vec3f* target = v.target.pixels().data() + w.first(j);
-          for (size_t t = 0; t < frames.size(); ++t) {
-            v.seen.addFrontGradientRow(target, seenLayers[t].mask, j, numerator[t], w.scratch);
-            v.seen.addFrontGradientRow(w.seen.data(), seenLayers[t].mask, j, denominator[t],
-                                       w.scratch);
-          }
-        }
-        return 0.0;
+      // Row by row over every eye: each frame's mask as the eye sees it through the row (made
+      // once for the view and both sums), the average view V, E at these layers (the objective
+      // the previous iteration left), and B^T t and B^T V, which every frame's sums share.
+      const size_t width = size_t(views.front().seen.width());
+      before =
+          normaliser(views) * sumOverRows(views, threads, [&](int j, RowWork& w) {
+            double sum = 0;
+            std::vector<Vec3f>& masks = w.frameMasks;
+            masks.resize(frames.size() * width);
+            for (const TrainingView& v : views) {
+              for (size_t t = 0; t < frames.size(); ++t) {
+                Vec3f* m = masks.data() + t * width;
+                v.seen.seenRearRow(seenLayers[t].mask, j, m);
+                std::vector<Vec3f>& into = t == 0 ? w.seen : w.other;
+                v.seen.viewRowSeen(&seenLayers[t].image.at(0, j), m, into.data(), w.scratch);
+                if (t > 0)
+                  for (size_t i = 0; i < width; ++i) w.seen[i] += w.other[i];
+              }
+              if (frames.size() > 1) {
+                const float inv = 1.0f / float(frames.size());
+                for (Vec3f& p : w.seen) p = p * inv;
+              }
+              sum += eyeErrorRange(v, w.seen.data(), w.first(j), width, nullptr, nullptr);
+              v.seen.boxTransposedRowInto(v.target.pixels().data() + w.first(j), w.residual.data());
+              v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
+              for (size_t t = 0; t < frames.size(); ++t) {
+                const Vec3f* m = masks.data() + t * width;
+                Vec3f *num = &numerator[t].at(0, j), *den = &denominator[t].at(0, j);
+                for (size_t i = 0; i < width; ++i) {
+                  num[i] += w.residual[i] * m[i];
+                  den[i] += w.weights[i] * m[i];
+                }
+              }
+            }
+            return sum;
+          });
+    } else if (maskIsRear) {
+      // The mask (rear) update row by row: each mask row gathers, eye by eye and in the order
+      // of the output rows that meet it (SeenLayers::rearRowSources: the order of
+      // addRearGradient), every frame's share of B^T t and B^T V; an output row's view is made
+      // for each mask row it meets (about two). Rows in parallel write disjoint rows: the same
+      // sums for any thread count, and no full-size temporaries.
+      const int width = views.front().seen.width(), rearRows = frames.front().mask.height();
+      parallelFor(rearRows, threads, 2, [&](int64_t begin, int64_t end) {
+        RowWork w(width);
+        for (int64_t r = begin; r != end; ++r)
+          for (const TrainingView& v : views)
+            for (const auto& [j, weight] : v.seen.rearRowSources(int(r))) {
+              averageViewRow(v, seenLayers, j, w);
+              v.seen.boxTransposedRowInto(v.target.pixels().data() + w.first(j), w.residual.data());
+              v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
+              for (size_t t = 0; t < frames.size(); ++t) {
+                const Image& front = seenLayers[t].image;
+                v.seen.addRearGradientFromRow(w.residual.data(), front, j, weight,
+                                              &numerator[t].at(0, int(r)));
+                v.seen.addRearGradientFromRow(w.weights.data(), front, j, weight,
+                                              &denominator[t].at(0, int(r)));
+              }
+            }
       });
     } else {
       for (const TrainingView& v : views) {
@@ -722,12 +773,28 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
         }
       clampToUnit(x);
     }
+    return before;
   };
+  // With the image in front the image update's pass also evaluates E at the layers it starts
+  // from, the objective the previous iteration left: only the last needs a pass of its own.
   for (int it = 0; it < iterations; ++it) {
-    update(true);
+    const double before = update(true);
+    if (it > 0) {
+      if (std::isnan(before)) {
+        local.objective.push_back(objective());
+        ++local.passes;
+      } else {
+        local.objective.push_back(before);
+      }
+      ++local.iterations;
+      if (progress) progress(local.iterations, iterations, local.objective.back());
+    }
     update(false);
+    local.passes += 2;
+  }
+  if (iterations > 0) {
     local.objective.push_back(objective());
-    local.passes += 3;
+    ++local.passes;
     ++local.iterations;
     if (progress) progress(local.iterations, iterations, local.objective.back());
   }

@@ -245,18 +245,29 @@ void SeenLayers::addRearGradient(const Image& residual, const Image& front, Imag
   const Image r = boxTransposed(residual, threads);
   // Each rear row gathers from the output rows that meet it, in row order.
   forEachRow(rearRows_, threads, [&](int rearRow) {
-    for (const auto& [j, weight] : rearRowSources_[size_t(rearRow)]) {
-      const int frontRow = j;  // output row j lies in front row j
-      for (int i = 0; i < width_; ++i) {
-        const Vec3f v = r.at(i, j) * weight;
-        for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
-          const Piece& p = across_[a];
-          if (p.rear < 0) continue;
-          gradRear.at(p.rear, rearRow) += v * front.at(p.front, frontRow) * p.weight;
-        }
-      }
-    }
+    for (const auto& [j, weight] : rearRowSources_[size_t(rearRow)])
+      addRearGradientFromRow(&r.at(0, j), front, j, weight, &gradRear.at(0, rearRow));
   });
+}
+
+void SeenLayers::boxTransposedRowInto(const Vec3f* residual, Vec3f* filtered) const {
+  if (periodBox_)
+    boxTransposedRow(residual, filtered);
+  else
+    std::copy(residual, residual + width_, filtered);
+}
+
+void SeenLayers::addRearGradientFromRow(const Vec3f* filtered, const Image& front, int j,
+                                        float weight, Vec3f* gradRearRow) const {
+  const Vec3f* frontRow = &front.at(0, j);  // output row j lies in front row j
+  for (int i = 0; i < width_; ++i) {
+    const Vec3f v = filtered[i] * weight;
+    for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
+      const Piece& p = across_[a];
+      if (p.rear < 0) continue;
+      gradRearRow[p.rear] += v * frontRow[p.front] * p.weight;
+    }
+  }
 }
 
 }  // namespace parallax

@@ -67,6 +67,19 @@ class SeenLayers {
   // V_j = B (frontRow .* seenRear) into out (the row's front pixels frontRow[0 .. width())).
   void viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f* out,
                    RowScratch& scratch) const;
+  // For the rear layer's gradient row by row (each rear row gathers from the output rows that
+  // meet it, so rear rows in parallel write disjoint rows): the output rows whose pieces meet
+  // rear row r with those pieces' vertical weights, in order;
+  const std::vector<std::pair<int, float>>& rearRowSources(int r) const {
+    return rearRowSources_[size_t(r)];
+  }
+  // B^T on one output row (filtered[0 .. width()), which it overwrites);
+  void boxTransposedRowInto(const Vec3f* residual, Vec3f* filtered) const;
+  // and gradRearRow[p.rear] += weight w_a front(i, j) filtered[i] over the across pieces a of
+  // each output column i of row j: output row j's share of a rear row whose vertical piece has
+  // `weight` (rearRowSources). addRearGradient is made of these.
+  void addRearGradientFromRow(const Vec3f* filtered, const Image& front, int j, float weight,
+                              Vec3f* gradRearRow) const;
   // gradRow[i] += seenRear[i] (B^T residual)[i]: front row j's gradient.
   void addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* seenRear, Vec3f* gradRow,
                                RowScratch& scratch) const;
