@@ -36,8 +36,11 @@ TEST(LaneKernel, ReportsTheWidestLevelTheCpuHas) {
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__AVX512F__)
   // The x86-64 psABI's levels: v3 adds AVX, AVX2, BMI1/2, F16C, FMA, LZCNT, MOVBE to v2's
   // SSE4.2 and POPCNT; v4 adds AVX-512 F, BW, CD, DQ and VL.
-  const bool v3 = hasAll(flags, {"avx", "avx2", "bmi1", "bmi2", "f16c", "fma", "abm", "movbe",
-                                 "sse4_2", "popcnt", "ssse3", "cx16"});
+  // LZCNT (v3) is left out: Linux lists it as "abm", which some hypervisors' CPU models hide
+  // from /proc/cpuinfo while CPUID, which GCC's dispatcher reads, reports it (seen on a CI
+  // machine with AVX-512 whose flags lacked "abm").
+  const bool v3 = hasAll(flags, {"avx", "avx2", "bmi1", "bmi2", "f16c", "fma", "movbe", "sse4_2",
+                                 "popcnt", "ssse3", "cx16"});
   const bool v4 = v3 && hasAll(flags, {"avx512f", "avx512bw", "avx512cd", "avx512dq", "avx512vl"});
   EXPECT_STREQ(laneKernelIsa(), v4 ? "x86-64-v4" : v3 ? "x86-64-v3" : "x86-64");
 #else
