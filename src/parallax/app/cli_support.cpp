@@ -314,6 +314,14 @@ void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options) {
                  "for render the display seen as that camera saw the scene (docs/gltf.md). "
                  "Default: a bare glTF file's first camera")
       ->type_name("NAME|INDEX");
+  cmd.add_option("--exposure", options.exposureStops,
+                 "Exposure in stops: the scene's light times 2^EV in every picture (default: the "
+                 "scene file's \"look\", else 0; docs/look.md)")
+      ->type_name("EV");
+  cmd.add_option("--view-transform", options.viewTransform,
+                 "How light becomes display values: standard (clips at white, the default) or "
+                 "filmic (a log encoding with a soft shoulder, as Blender's Filmic; docs/look.md)")
+      ->type_name("NAME");
 }
 
 DisplayDesign loadDesignOrDefault(const std::string& path) {

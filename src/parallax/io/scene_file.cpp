@@ -256,7 +256,7 @@ class SceneFileLoader {
     const JsonDocument document = JsonDocument::parseFile(path_);
     const JsonReader root = document.root();
     root.expectObject({"version", "objects", "materials", "textures", "lights", "ambient",
-                       "background", "max_depth", "camera", "display", "animation"});
+                       "background", "max_depth", "camera", "display", "animation", "look"});
     if (const auto version = root.find("version"))
       if (version->integer(0, INT_MAX) != kFormatVersion)
         version->fail("unsupported version " + version->dump() + " (this build reads version " +
@@ -265,6 +265,7 @@ class SceneFileLoader {
     scene_.ambient = radiance(root, "ambient", Vec3f(0.0f));
     scene_.background = radiance(root, "background", Vec3f(0.0f));
     scene_.maxDepth = root.integer("max_depth", scene_.maxDepth, 0, 64);
+    if (const auto look = root.find("look")) scene_.look = readLook(*look);
     if (const auto textures = root.find("textures"))
       for (const auto& [name, texture] : textures->members()) {
         scene_.textures.push_back(readTexture(texture));
@@ -295,6 +296,20 @@ class SceneFileLoader {
   }
 
  private:
+  // "look": {"exposure": stops, "view_transform": "standard" | "filmic"} (scene/look.h).
+  static Look readLook(const JsonReader& value) {
+    value.expectObject({"exposure", "view_transform"});
+    Look look;
+    if (const auto exposure = value.find("exposure"))
+      look.exposureStops = exposure->number(-20, 20);
+    if (const auto transform = value.find("view_transform")) {
+      const auto parsed = parseViewTransform(transform->string());
+      if (!parsed) transform->fail("expected \"standard\" or \"filmic\"");
+      look.transform = *parsed;
+    }
+    return look;
+  }
+
   struct EmitterOptions {
     int samples = 1;
     bool twoSided = false;
@@ -919,6 +934,14 @@ Scene loadSceneAsRendered(const std::string& scenePath, const std::string& rende
     options.import.creaseDegrees = float((*imported)["crease"].number(0, 180));
   }
   Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, options);
+  // The look the render used (--exposure, --view-transform, or the scene's own).
+  if (const auto look = root.find("look")) {
+    scene.look.exposureStops = (*look)["exposure"].number(-20, 20);
+    const JsonReader name = (*look)["view_transform"];
+    const auto transform = parseViewTransform(name.string());
+    if (!transform) name.fail("expected \"standard\" or \"filmic\"");
+    scene.look.transform = *transform;
+  }
   if (const auto sequence = root.find("sequence")) poseAsRecorded(*sequence, scene);
   const auto framing = root.find("framing");
   if (!framing) return scene;

@@ -2,6 +2,7 @@
 // automatically and lit by a default light.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "parallax/io/mesh_file.h"
@@ -18,6 +19,10 @@ struct SceneLoadOptions {
   std::string camera;
   // --up, --crease: how mesh files are imported (io/mesh_file.h, docs/import.md).
   ImportOptions import;
+  // --exposure, --view-transform: the scene's look (scene/look.h, docs/look.md) instead of its
+  // file's "look"; applied by jobs' scene loading to files, built-in scenes and photos alike.
+  std::optional<double> exposureStops;
+  std::string viewTransform;  // "standard", "filmic"; "": the scene's own
 };
 
 // Loads a .json scene or a bare mesh file (see isMeshFile). Throws InputError with the file

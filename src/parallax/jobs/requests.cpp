@@ -182,12 +182,36 @@ Scene loadRgbd(const RgbdRequest& request) {
 
 }  // namespace
 
+namespace {
+
+// --exposure and --view-transform over the scene's own look.
+void applyLookOptions(const SceneLoadOptions& load, Scene& scene) {
+  if (load.exposureStops) {
+    if (!(std::abs(*load.exposureStops) <= 20))
+      throw RequestError("exposure", "expected stops in [-20, 20]");
+    scene.look.exposureStops = *load.exposureStops;
+  }
+  if (!load.viewTransform.empty()) {
+    const auto transform = parseViewTransform(load.viewTransform);
+    if (!transform)
+      throw RequestError("view_transform",
+                         "unknown view transform '" + load.viewTransform + "' (standard or filmic)",
+                         load.viewTransform);
+    scene.look.transform = *transform;
+  }
+}
+
+}  // namespace
+
 Scene loadSceneQuietly(const SceneRequest& request) {
   applyImporterLimits();
-  if (request.rgbd.given()) return loadRgbd(request.rgbd);
-  if (request.path.empty() && !request.load.camera.empty())
+  if (!request.rgbd.given() && request.path.empty() && !request.load.camera.empty())
     throw RequestError("camera", "the built-in scene has no cameras");
-  return request.path.empty() ? defaultScene() : loadScene(request.path, request.load);
+  Scene scene = request.rgbd.given()   ? loadRgbd(request.rgbd)
+                : request.path.empty() ? defaultScene()
+                                       : loadScene(request.path, request.load);
+  applyLookOptions(request.load, scene);
+  return scene;
 }
 
 Scene loadScene(const SceneRequest& request, Reporter& reporter) {
@@ -227,6 +251,11 @@ void recordRgbd(JsonWriter& record, const RgbdRequest& request, const Scene& sce
 
 void recordScene(JsonWriter& record, const SceneRequest& request, const Scene& scene) {
   record.set("/scene", scene.source);
+  // The look every picture of the render got; simulate's ideal views take it from here.
+  if (!scene.look.identity()) {
+    record.set("/look/exposure", scene.look.exposureStops);
+    record.set("/look/view_transform", viewTransformName(scene.look.transform));
+  }
   if (request.rgbd.given()) recordRgbd(record, request.rgbd, scene);
   if (!request.load.camera.empty()) record.set("/scene_camera", request.load.camera);
 }

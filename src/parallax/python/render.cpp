@@ -171,13 +171,16 @@ renderInMemory(const Scene& scene, const DisplayDescription& display, const py::
 // `parallax render` to files: the same files (and sequences, videos) as the command line.
 void renderToFiles(const std::string& output, const std::optional<std::string>& scenePath,
                    const std::optional<std::string>& displayPath, const std::string& camera,
-                   const py::kwargs& kw) {
+                   const std::optional<double>& exposure,
+                   const std::optional<std::string>& viewTransform, const py::kwargs& kw) {
   checkKeywords(kw, knownRenderKeywords());
   jobs::RenderRequest request = renderRequest(DisplayDescription{}, kw);
   request.loaded.reset();
   request.display = displayPath.value_or("");
   request.scene.path = scenePath.value_or("");
   request.scene.load.camera = camera;
+  request.scene.load.exposureStops = exposure;
+  request.scene.load.viewTransform = viewTransform.value_or("");
   request.output = output;
   py::gil_scoped_release released;
   jobs::runRender(request, pythonReporter());
@@ -228,7 +231,8 @@ py::array_t<float> view(const Scene& scene, const std::optional<DisplayDescripti
 void bindRender(py::module_& module) {
   module.def("_render", &renderInMemory, py::arg("scene"), py::arg("display"));
   module.def("_render_files", &renderToFiles, py::arg("output"), py::arg("scene") = py::none(),
-             py::arg("display") = py::none(), py::arg("camera") = "");
+             py::arg("display") = py::none(), py::arg("camera") = "",
+             py::arg("exposure") = py::none(), py::arg("view_transform") = py::none());
   module.def("_view", &view, py::arg("scene"), py::kw_only(), py::arg("display") = py::none(),
              py::arg("display_eye") = py::none(), py::arg("eye") = py::none(),
              py::arg("look_at") = py::none(), py::arg("up") = py::none(),

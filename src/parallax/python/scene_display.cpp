@@ -50,14 +50,20 @@ void bindSceneAndDisplay(py::module_& module) {
 
   module.def(
       "load_scene",
-      [](const std::optional<std::string>& path, const std::string& camera) {
+      [](const std::optional<std::string>& path, const std::string& camera,
+         const std::optional<double>& exposure, const std::optional<std::string>& viewTransform) {
         jobs::SceneRequest request;
         request.path = path.value_or("");
         request.load.camera = camera;
+        request.load.exposureStops = exposure;
+        request.load.viewTransform = viewTransform.value_or("");
         return jobs::loadScene(request, pythonReporter());
       },
       py::arg("path") = py::none(), py::kw_only(), py::arg("camera") = "",
-      "The scene or mesh file (None: the built-in scene), as `parallax render SCENE` loads it");
+      py::arg("exposure") = py::none(), py::arg("view_transform") = py::none(),
+      "The scene or mesh file (None: the built-in scene), as `parallax render SCENE` loads it; "
+      "exposure (stops) and view_transform ('standard' or 'filmic') as --exposure and "
+      "--view-transform, over the file's own look (docs/look.md)");
 
   py::class_<DisplayDescription>(module, "Display",
                                  "A display of either kind (parallax.load_display)")

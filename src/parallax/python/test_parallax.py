@@ -244,6 +244,19 @@ def same_files(one, other):
         assert a == b, name
 
 
+def test_the_look_is_the_clis(tmp_path):
+    # load_scene(exposure=, view_transform=) is --exposure and --view-transform: the same view.
+    looked = parallax.load_scene(exposure=1.5, view_transform="filmic")
+    assert cli("view", "--size", "96x54", "--spp", 4, "--exposure", 1.5, "--view-transform",
+               "filmic", "-o", tmp_path / "v.png").returncode == 0
+    picture = parallax.view(looked, size=(96, 54), spp=4)
+    assert np.array_equal(parallax.to_srgb8(picture), rgb(read_png(tmp_path / "v.png")))
+    plain = parallax.view(parallax.load_scene(), size=(96, 54), spp=4)
+    assert not np.array_equal(picture, plain)
+    with pytest.raises(parallax.Error, match="view_transform=agx"):
+        parallax.load_scene(view_transform="agx")
+
+
 def test_render_files_are_the_cli_files(tmp_path):
     # Layers, solved layers (nmf, two time-multiplexed frames), direct mapping, a quilt and a
     # two-frame turntable sequence with its video: the same request, two spellings.
@@ -252,6 +265,8 @@ def test_render_files_are_the_cli_files(tmp_path):
         (["--layers", "nmf", "--rank", "2", "--iterations", "2", "--train-eyes", "1"],
          {"layers": "nmf", "rank": 2, "iterations": 2, "train_eyes": 1}),
         (["--direct-mapping"], {"direct_mapping": True}),
+        (["--exposure", "1.5", "--view-transform", "filmic"],
+         {"exposure": 1.5, "view_transform": "filmic"}),
         (["--quilt", "3x2", "--size", "48x27", "--linear"],
          {"quilt": (3, 2), "size": (48, 27), "linear": True}),
         (["--turntable", "90", "--frames", "1:2", "--fps", "2", "--video", "{out}/t.webm"],

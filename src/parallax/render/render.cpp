@@ -23,11 +23,18 @@ namespace {
 // last sample.
 PARALLAX_LANE_KERNEL void renderTile(int tile, const TileGrid& grid, const Camera& camera,
                                      const PacketTracer& tracer, const PacketWalk& walk,
-                                     const RenderSettings& settings, Image& image,
+                                     const RenderSettings& settings, const Look& look, Image& image,
                                      RenderStats& stats) {
   Color16 sum, weight;
   sum.fill(0.0f);
   weight.fill(1.0f);
+  // The film pixel: the mean of its samples, through the scene's look (exposure and view
+  // transform, scene/look.h) unless it is the identity.
+  const bool looks = !look.identity();
+  const auto pixel = [&](int lane, int taken) {
+    const Vec3f mean = sum.at(lane) * (1.0f / float(taken));
+    return looks ? look.apply(mean) : mean;
+  };
   // Adaptive sampling: each lane's sample luminance (sRGB-encoded), summed over the current
   // group, its squares over the first group, and the sums of its group means and their squares.
   // A lane counts its own groups: one that has stopped keeps its mean for its neighbours.
@@ -101,7 +108,7 @@ PARALLAX_LANE_KERNEL void renderTile(int tile, const TileGrid& grid, const Camer
             neighboursAgree &= std::abs(mean[other] - mean[lane]) <= neighbourLimit;
           }
           if (!neighboursAgree) continue;
-          image.at(packet.x[lane], packet.y[lane]) = sum.at(lane) * (1.0f / float(taken));
+          image.at(packet.x[lane], packet.y[lane]) = pixel(lane, taken);
           packet.rays.active[lane] = 0;
           --packet.activeCount;
         }
@@ -109,8 +116,7 @@ PARALLAX_LANE_KERNEL void renderTile(int tile, const TileGrid& grid, const Camer
     }
     if (packet.pass != last) return;
     for (int lane = 0; lane < 16; ++lane)
-      if (packet.rays.active[lane])
-        image.at(packet.x[lane], packet.y[lane]) = sum.at(lane) * (1.0f / float(taken));
+      if (packet.rays.active[lane]) image.at(packet.x[lane], packet.y[lane]) = pixel(lane, taken);
   });
 }
 
@@ -122,6 +128,7 @@ struct TileRenderer::Impl {
       : camera(theCamera),
         settings(theSettings),
         lights(scene),
+        look(scene.look),
         tracer(scene, accelerator, lights, theSettings.bounces),
         grid(theCamera),
         walk(theSettings.samplesPerPixel, theSettings.seed, theSettings.jitter, theCamera,
@@ -129,6 +136,7 @@ struct TileRenderer::Impl {
   const Camera& camera;
   const RenderSettings settings;
   const LightSampler lights;
+  const Look look;
   const PacketTracer tracer;
   const TileGrid grid;
   const PacketWalk walk;
@@ -150,7 +158,7 @@ int TileRenderer::tileBand(int tile) const {
 
 void TileRenderer::renderTile(int tile, Image& image, RenderStats& stats) const {
   const Impl& i = *impl_;
-  parallax::renderTile(tile, i.grid, i.camera, i.tracer, i.walk, i.settings, image, stats);
+  parallax::renderTile(tile, i.grid, i.camera, i.tracer, i.walk, i.settings, i.look, image, stats);
 }
 
 Image render(const Scene& scene, const Accelerator& accelerator, const Camera& camera,

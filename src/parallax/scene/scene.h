@@ -11,6 +11,7 @@
 #include "parallax/core/math.h"
 #include "parallax/core/transform.h"
 #include "parallax/image/image.h"
+#include "parallax/scene/look.h"
 
 namespace parallax {
 
@@ -189,6 +190,7 @@ struct Scene {
   std::vector<Light> lights;
   Vec3f ambient{0.0f};     // uniform ambient radiance reaching every surface (unshadowed)
   Vec3f background{0.0f};  // radiance of rays that escape
+  Look look;               // exposure and view transform of every picture (look.h)
   int maxDepth = 4;        // mirror bounces
   DisplayPlacement display;
   std::optional<CameraSpec> camera;
