@@ -18,7 +18,19 @@ check "render small layers" run 0 render --display "$tmp/small.json" --spp 1 -o 
 check "calibration patterns" run 0 calibrate patterns --display "$tmp/small.json" \
   --steps 3 -o "$tmp/c"
 
+check "render nmf frame pairs" run 0 render --display "$tmp/small.json" --spp 1 --layers nmf \
+  --rank 2 --iterations 1 --train-eyes 1 -o "$tmp/pairs"
+check "render a two-frame sequence" run 0 render --display "$tmp/small.json" --spp 1 \
+  --turntable 90 --frames 1:2 --fps 2 -o "$tmp/seq"
+check "render a quilt" run 0 render --display "$tmp/small.json" --spp 1 --quilt 3x2 \
+  --size 32x18 -o "$tmp/quilt"
+
 # Errors come before any window, with or without a display.
+check "a quilt folder exits 2" run 2 show "$tmp/quilt"
+check "it says to interlace the quilt" one_line_naming "parallax interlace"
+mkdir -p "$tmp/empty"
+check "a folder of no layers exits 2" run 2 show "$tmp/empty"
+check "it names what show plays" one_line_naming "image-K.png pairs"
 check "a missing folder exits 2" run 2 show "$tmp/nothing"
 check "a missing folder is named" one_line_naming "$tmp/nothing"
 check "an unknown key exits 2" run 2 show "$tmp/r" --keys next,jump
@@ -68,6 +80,21 @@ check "each step prints the pattern's period and phase" \
   bash -c "grep -c 'slit period .* phase' '$tmp/show.out' | grep -qx 3"
 check "info prints the current pattern again" bash -c "DISPLAY=$display '$bin' show '$tmp/c' \
   --windowed --keys info,quit | grep -c 'pattern 1/' | grep -qx 2"
+# nmf's pairs and a sequence's frames are played: every frame reaches the screen in turn (the
+# pairs at 4 frames/s so that each stays up for several screenshots).
+check "nmf pair 1's image is shown" shot_matches "$tmp/pairs/image-1.png" 0 0 -- "$tmp/pairs" --fps 4
+check "nmf pair 2's image is shown" shot_matches "$tmp/pairs/image-2.png" 0 0 -- "$tmp/pairs" --fps 4
+check "nmf pair 2's mask is shown beside it" shot_matches "$tmp/pairs/mask-2.png" 96 0 -- \
+  "$tmp/pairs" --fps 4
+check "show says what it plays" grep -q "playing 2 time-multiplexed frame pairs at 4 frames/s" \
+  "$tmp/show.out"
+check "the sequence's first frame is shown" shot_matches "$tmp/seq/frame-0001/image.png" 0 0 -- \
+  "$tmp/seq"
+check "the sequence's second frame is shown" shot_matches "$tmp/seq/frame-0002/image.png" 0 0 -- \
+  "$tmp/seq"
+check "at the sequence's own fps" grep -q "playing 2 sequence frames at 2 frames/s (the sequence's)" \
+  "$tmp/show.out"
+
 check "quit closes at once" bash -c "DISPLAY=$display timeout 5 '$bin' show '$tmp/r' --windowed \
   --keys quit"
 

@@ -32,6 +32,7 @@ struct ShowOptions {
   int pattern = 0;
   double exitAfter = 0;
   std::string keys;
+  double fps = 0;  // frames: per second (0: pairs at the monitor's refresh, sequences at theirs)
 };
 
 // A calibration pattern set's mask patterns, as index.json lists them.
@@ -44,7 +45,61 @@ struct ShowSet {
   std::string imagePath;                  // the image layer (or the lenticular panel)
   std::string maskPath;                   // a render's mask layer; empty for one panel
   std::vector<MaskPattern> maskPatterns;  // a calibration set's, stepped through
+  // Frames played one after another: nmf's time-multiplexed pairs (image-K.png, mask-K.png;
+  // imagePath and maskPath are the first) or a sequence's frames (frame-NNNN/).
+  std::vector<std::string> imageFrames, maskFrames;
+  double fps = 0;  // a sequence's own; 0 for pairs (the monitor's refresh)
+  const char* framesKind = "";
 };
+
+// nmf's frame pairs of a render folder: image-1.png, mask-1.png, image-2.png, ...
+void readFramePairs(const fs::path& dir, ShowSet& set) {
+  for (int k = 1;; ++k) {
+    const fs::path image = dir / ("image-" + std::to_string(k) + ".png");
+    const fs::path mask = dir / ("mask-" + std::to_string(k) + ".png");
+    if (!fs::exists(image)) break;
+    if (!fs::exists(mask))
+      throw InputError(mask.string(), "",
+                       "missing: frame pair " + std::to_string(k) + " has no mask");
+    set.imageFrames.push_back(image.string());
+    set.maskFrames.push_back(mask.string());
+  }
+  set.framesKind = "time-multiplexed frame pairs";
+}
+
+// A sequence's frames (render --frames): frame-NNNN/image.png (and mask.png), at the fps its
+// render.json records.
+void readSequence(const fs::path& dir, ShowSet& set) {
+  std::vector<fs::path> frames;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory() && name.rfind("frame-", 0) == 0 &&
+        fs::exists(entry.path() / "image.png"))
+      frames.push_back(entry.path());
+  }
+  std::sort(frames.begin(), frames.end());
+  for (const fs::path& frame : frames) {
+    set.imageFrames.push_back((frame / "image.png").string());
+    if (fs::exists(frame / "mask.png")) set.maskFrames.push_back((frame / "mask.png").string());
+  }
+  if (!set.maskFrames.empty() && set.maskFrames.size() != set.imageFrames.size())
+    throw InputError(dir.string(), "", "some frames have a mask.png and others not");
+  const fs::path record = frames.front() / "render.json";
+  if (fs::exists(record)) {
+    const JsonDocument doc = JsonDocument::parseFile(record.string());
+    if (const auto sequence = doc.root().find("sequence"))
+      set.fps = (*sequence)["fps"].number(1e-3, 1000);
+  }
+  set.framesKind = "sequence frames";
+}
+
+bool hasSequenceFrames(const fs::path& dir) {
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.is_directory() && entry.path().filename().string().rfind("frame-", 0) == 0 &&
+        fs::exists(entry.path() / "image.png"))
+      return true;
+  return false;
+}
 
 ShowSet readShowSet(const ShowOptions& o) {
   const fs::path dir(o.dir);
@@ -74,8 +129,25 @@ ShowSet readShowSet(const ShowOptions& o) {
   }
   set.imagePath = (dir / "image.png").string();
   if (fs::exists(dir / "mask.png")) set.maskPath = (dir / "mask.png").string();
-  if (!fs::exists(set.imagePath))
-    throw InputError(set.imagePath, "", "missing: give the output folder of render or calibrate");
+  if (!fs::exists(set.imagePath)) {
+    if (fs::exists(dir / "image-1.png"))
+      readFramePairs(dir, set);
+    else if (hasSequenceFrames(dir))
+      readSequence(dir, set);
+    if (set.imageFrames.empty()) {
+      bool quilt = false;
+      for (const auto& entry : fs::directory_iterator(dir))
+        quilt |= entry.path().filename().string().find("_qs") != std::string::npos;
+      throw InputError(set.imagePath, "",
+                       quilt ? "missing: this is a quilt; map it onto the panel with `parallax "
+                               "interlace` (docs/quilts.md) and show that folder"
+                             : "missing: give the output folder of render (image.png, nmf's "
+                               "image-K.png pairs, or a sequence's frame-NNNN folders) or of "
+                               "calibrate");
+    }
+    set.imagePath = set.imageFrames.front();
+    if (!set.maskFrames.empty()) set.maskPath = set.maskFrames.front();
+  }
   return set;
 }
 
@@ -135,6 +207,15 @@ void checkShowMemory(const ShowOptions& o, const ShowSet& set) {
     reading = std::max(reading, info.fileBytes + pixels * info.channels * info.bytesPerSample);
     if (i < 2) shown += pixels * kWindowPixelBytes;  // the image's window and the mask's
   }
+  // Frames after the first: each kept as a float image and as its window's texture.
+  for (const auto* list : {&set.imageFrames, &set.maskFrames})
+    for (size_t i = 1; i < list->size(); ++i) {
+      const ImageInfo info = readImageInfo((*list)[i]);
+      const double pixels = double(info.width) * double(info.height);
+      kept += pixels * kFloatRgbPixelBytes;
+      reading = std::max(reading, info.fileBytes + pixels * info.channels * info.bytesPerSample);
+      shown += pixels * kRgba8PixelBytes;
+    }
   checkPeakMemory(kWindowSystemBytes + kept + reading + shown, o.dir,
                   std::to_string(files.size()) + " pictures and their windows",
                   "show fewer or smaller pictures");
@@ -147,9 +228,17 @@ void runShow(const ShowOptions& o) {
   // Read every picture before a window opens: a bad file is refused with nothing shown.
   const Image image = readImage(set.imagePath);
   Image mask;
-  std::vector<Image> masks;
+  std::vector<Image> masks, imageFrames, maskFrames;
   for (const MaskPattern& p : set.maskPatterns) masks.push_back(readImage(p.file));
   if (!set.maskPath.empty()) mask = readImage(set.maskPath);
+  for (const std::string& f : set.imageFrames) imageFrames.push_back(readImage(f));
+  for (const std::string& f : set.maskFrames) maskFrames.push_back(readImage(f));
+  for (const auto* frames : {&imageFrames, &maskFrames})
+    for (size_t k = 1; k < frames->size(); ++k)
+      if ((*frames)[k].width() != frames->front().width() ||
+          (*frames)[k].height() != frames->front().height())
+        throw InputError(frames == &imageFrames ? set.imageFrames[k] : set.maskFrames[k], "",
+                         "its size differs from the first frame's");
   const bool twoLayers = !masks.empty() || !mask.empty();
 
   std::vector<WindowRequest> requests{{"image", o.imageMonitor, !o.windowed, 0, 0}};
@@ -159,13 +248,53 @@ void runShow(const ShowOptions& o) {
     requests.push_back({"mask", maskMonitor, !o.windowed, image.width(), 0});
   }
   LayerWindows windows(requests);
-  windows.show(0, image);
+  // The panels' modes against the layers: 1:1 pixels need a layer the monitor's size, and two
+  // layers need two monitors.
+  if (!o.windowed) {
+    const Image* layers[2] = {&image,
+                              twoLayers ? (mask.empty() ? &masks.front() : &mask) : nullptr};
+    for (int k = 0; k < int(requests.size()); ++k) {
+      const LayerWindows::Mode mode = windows.monitorMode(k);
+      const Image& layer = *layers[k];
+      if (mode.width > 0 && (mode.width != layer.width() || mode.height != layer.height()))
+        cliReporter().note(
+            printed("monitor %d is %dx%d and the %s layer %dx%d: shown 1:1 from the "
+                    "top-left corner, %s",
+                    requests[size_t(k)].monitor, mode.width, mode.height,
+                    requests[size_t(k)].title.c_str(), layer.width(), layer.height(),
+                    mode.width < layer.width() || mode.height < layer.height()
+                        ? "cut off at the monitor's edges"
+                        : "not filling the monitor"));
+    }
+    if (twoLayers && requests[0].monitor == requests[1].monitor)
+      cliReporter().note(
+          printed("both layers are on monitor %d, one over the other's place: a "
+                  "two-panel display needs each layer on its own monitor "
+                  "(--image-monitor, --mask-monitor)",
+                  requests[0].monitor));
+  }
+  double framePeriod = 0;
+  if (!imageFrames.empty()) {
+    windows.showFrames(0, imageFrames);
+    if (!maskFrames.empty()) windows.showFrames(1, maskFrames);
+    const int refresh = windows.monitorMode(0).refreshHz;
+    const double fps = o.fps > 0 ? o.fps : set.fps > 0 ? set.fps : refresh > 0 ? refresh : 60.0;
+    framePeriod = 1.0 / fps;
+    std::printf("playing %zu %s at %.3g frames/s (%s)\n", imageFrames.size(), set.framesKind, fps,
+                o.fps > 0     ? "--fps"
+                : set.fps > 0 ? "the sequence's"
+                : refresh > 0 ? "the monitor's refresh rate"
+                              : "60 Hz: the monitor's refresh rate is unknown");
+    std::fflush(stdout);
+  } else {
+    windows.show(0, image);
+  }
   int current = o.pattern;
   if (!masks.empty()) {
     windows.show(1, masks[size_t(current)]);
     printPattern(set.maskPatterns, current);
     std::printf("keys: right/space/n next, left/p previous, i the pattern's figures, q quit\n");
-  } else if (!mask.empty()) {
+  } else if (!mask.empty() && maskFrames.empty()) {
     windows.show(1, mask);
   }
   std::fflush(stdout);
@@ -183,7 +312,7 @@ void runShow(const ShowOptions& o) {
         }
         return true;
       },
-      o.exitAfter, keys);
+      o.exitAfter, keys, framePeriod);
 }
 
 }  // namespace
@@ -195,8 +324,9 @@ void registerShowCommand(CLI::App& cli) {
                          "Show layers on the real panels (full screen, 1:1 pixels); step through "
                          "calibration patterns with the keyboard");
   cmd->add_option("dir", o->dir,
-                  "Output folder of `render` (image.png, mask.png) or of `calibrate patterns` "
-                  "(index.json)")
+                  "Output folder of `render` (image.png, mask.png; nmf's image-K.png and "
+                  "mask-K.png pairs and a sequence's frame-NNNN folders are played) or of "
+                  "`calibrate patterns` (index.json)")
       ->required();
   cmd->add_option("--image-monitor", o->imageMonitor,
                   "Monitor for the image layer (or a lenticular panel), from 0")
@@ -212,6 +342,11 @@ void registerShowCommand(CLI::App& cli) {
       ->check(integerIn(0, 100000));
   cmd->add_option("--exit-after", o->exitAfter, "Close after this many seconds (0: on q or Esc)")
       ->check(realIn(0, 1e6));
+  cmd->add_option("--fps", o->fps,
+                  "Frames per second for a folder of frames: nmf's time-multiplexed pairs "
+                  "(default: the monitor's refresh rate) or a sequence's frame-NNNN folders "
+                  "(default: the sequence's fps)")
+      ->check(realIn(0.001, 1000));
   cmd->add_option("--keys", o->keys,
                   "Keys to act on first, as if pressed: next, previous, info, quit (comma "
                   "separated)");

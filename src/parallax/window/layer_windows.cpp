@@ -64,17 +64,24 @@ struct LayerWindows::Impl {
   struct Window {
     SDL_Window* window = nullptr;
     SDL_Renderer* renderer = nullptr;
-    SDL_Texture* texture = nullptr;
+    std::vector<SDL_Texture*> frames;  // one per frame (one for a still picture)
+    SDL_Texture* texture = nullptr;    // the frame shown
     int width = 0, height = 0;
   };
   std::vector<Window> windows;
 
   ~Impl() {
     for (Window& w : windows) {
-      if (w.texture) SDL_DestroyTexture(w.texture);
+      clearFrames(w);
       if (w.renderer) SDL_DestroyRenderer(w.renderer);
       if (w.window) SDL_DestroyWindow(w.window);
     }
+  }
+
+  static void clearFrames(Window& w) {
+    for (SDL_Texture* t : w.frames) SDL_DestroyTexture(t);
+    w.frames.clear();
+    w.texture = nullptr;
   }
 
   void present(Window& w) {
@@ -122,47 +129,87 @@ LayerWindows::LayerWindows(const std::vector<WindowRequest>& requests)
 LayerWindows::~LayerWindows() = default;
 
 void LayerWindows::show(int index, const Image& picture) {
+  showFrames(index, {picture});
+}
+
+void LayerWindows::showFrames(int index, const std::vector<Image>& frames) {
   Impl::Window& w = impl_->windows.at(size_t(index));
-  if (w.texture) SDL_DestroyTexture(w.texture);
-  w.width = picture.width();
-  w.height = picture.height();
+  Impl::clearFrames(w);
+  if (frames.empty()) return;
+  w.width = frames.front().width();
+  w.height = frames.front().height();
   // Not every window system lets a window be smaller or larger than asked; the picture is
   // drawn 1:1 from the top-left corner whatever the window's size.
   if (!(SDL_GetWindowFlags(w.window) & SDL_WINDOW_BORDERLESS))
     SDL_SetWindowSize(w.window, w.width, w.height);
-  w.texture = SDL_CreateTexture(w.renderer, SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STATIC,
-                                w.width, w.height);
-  if (!w.texture) throw sdlError("cannot make the picture's texture");
   std::vector<uint8_t> rgba(size_t(w.width) * size_t(w.height) * 4);
-  for (size_t i = 0; i < picture.pixels().size(); ++i) {
-    for (int c = 0; c < 3; ++c)
-      rgba[4 * i + size_t(c)] = uint8_t(
-          std::lround(255.0f * linearToSrgb(std::clamp(picture.pixels()[i][c], 0.0f, 1.0f))));
-    rgba[4 * i + 3] = 255;
+  for (const Image& picture : frames) {
+    if (picture.width() != w.width || picture.height() != w.height)
+      throw std::invalid_argument("LayerWindows::showFrames: frames of different sizes");
+    SDL_Texture* texture = SDL_CreateTexture(w.renderer, SDL_PIXELFORMAT_RGBA32,
+                                             SDL_TEXTUREACCESS_STATIC, w.width, w.height);
+    if (!texture) throw sdlError("cannot make the picture's texture");
+    w.frames.push_back(texture);
+    for (size_t i = 0; i < picture.pixels().size(); ++i) {
+      for (int c = 0; c < 3; ++c)
+        rgba[4 * i + size_t(c)] = uint8_t(
+            std::lround(255.0f * linearToSrgb(std::clamp(picture.pixels()[i][c], 0.0f, 1.0f))));
+      rgba[4 * i + 3] = 255;
+    }
+    SDL_UpdateTexture(texture, nullptr, rgba.data(), w.width * 4);
   }
-  SDL_UpdateTexture(w.texture, nullptr, rgba.data(), w.width * 4);
+  w.texture = w.frames.front();
   impl_->present(w);
 }
 
-void LayerWindows::run(const std::function<bool(ShowKey)>& onKey, double exitAfterSeconds,
-                       const std::vector<ShowKey>& scriptedKeys) {
+LayerWindows::Mode LayerWindows::monitorMode(int index) const {
+  const Impl::Window& w = impl_->windows.at(size_t(index));
+  Mode mode;
+  SDL_DisplayMode current;
+  const int display = SDL_GetWindowDisplayIndex(w.window);
+  if (display >= 0 && SDL_GetCurrentDisplayMode(display, &current) == 0)
+    mode = {current.w, current.h, current.refresh_rate};
+  return mode;
+}
+
+long LayerWindows::run(const std::function<bool(ShowKey)>& onKey, double exitAfterSeconds,
+                       const std::vector<ShowKey>& scriptedKeys, double framePeriodSeconds) {
+  long presented = 0;
   for (const ShowKey key : scriptedKeys)
-    if (!onKey(key)) return;
+    if (!onKey(key)) return presented;
   const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&start] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  long shownFrame = -1;
   for (;;) {
     SDL_Event event;
     while (SDL_PollEvent(&event)) {
-      if (event.type == SDL_QUIT) return;
-      if (event.type == SDL_WINDOWEVENT && event.window.event == SDL_WINDOWEVENT_CLOSE) return;
-      if (event.type == SDL_KEYDOWN && !onKey(keyOf(event.key.keysym.sym))) return;
+      if (event.type == SDL_QUIT) return presented;
+      if (event.type == SDL_WINDOWEVENT && event.window.event == SDL_WINDOWEVENT_CLOSE)
+        return presented;
+      if (event.type == SDL_KEYDOWN && !onKey(keyOf(event.key.keysym.sym))) return presented;
+    }
+    if (framePeriodSeconds > 0) {
+      // Frame k from k periods after the start: the windows' frames k together.
+      const long frame = long(elapsed() / framePeriodSeconds);
+      if (frame != shownFrame) {
+        for (Impl::Window& w : impl_->windows)
+          if (!w.frames.empty()) w.texture = w.frames[size_t(frame) % w.frames.size()];
+        shownFrame = frame;
+      }
     }
     // Redraw: a window system may have dropped the picture (exposed, moved, another monitor).
     for (Impl::Window& w : impl_->windows) impl_->present(w);
-    if (exitAfterSeconds > 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
-            exitAfterSeconds)
-      return;
-    SDL_Delay(30);
+    ++presented;
+    if (exitAfterSeconds > 0 && elapsed() >= exitAfterSeconds) return presented;
+    if (framePeriodSeconds > 0) {
+      // Until the next frame is due (at most 30 ms, for the keys).
+      const double next = double(shownFrame + 1) * framePeriodSeconds - elapsed();
+      SDL_Delay(Uint32(std::clamp(next * 1000.0, 0.0, 30.0)));
+    } else {
+      SDL_Delay(30);
+    }
   }
 }
 

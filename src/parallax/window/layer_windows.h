@@ -38,11 +38,23 @@ class LayerWindows {
   // Shows `picture` (linear RGB, drawn as sRGB 8-bit, 1:1 from the window's top-left corner) in
   // window `index`.
   void show(int index, const Image& picture);
+  // Shows `frames` in window `index` one after another (run's framePeriodSeconds), all the
+  // same size; every window's frame k is shown at once.
+  void showFrames(int index, const std::vector<Image>& frames);
+
+  // The size of the monitor window `index` is on, and its refresh rate in Hz (0: unknown).
+  struct Mode {
+    int width = 0, height = 0, refreshHz = 0;
+  };
+  Mode monitorMode(int index) const;
 
   // Handles events until `onKey` returns false, the windows are closed, or `exitAfterSeconds`
-  // (> 0) have passed. `scriptedKeys` are handled first, as if pressed, in order.
-  void run(const std::function<bool(ShowKey)>& onKey, double exitAfterSeconds,
-           const std::vector<ShowKey>& scriptedKeys = {});
+  // (> 0) have passed. `scriptedKeys` are handled first, as if pressed, in order. With
+  // framePeriodSeconds > 0 the windows' frames advance together, frame k shown from k periods
+  // after the start (frames are skipped, never slowed, when drawing falls behind). Returns the
+  // number of frames presented.
+  long run(const std::function<bool(ShowKey)>& onKey, double exitAfterSeconds,
+           const std::vector<ShowKey>& scriptedKeys = {}, double framePeriodSeconds = 0);
 
  private:
   struct Impl;
