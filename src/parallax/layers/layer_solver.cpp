@@ -1,7 +1,6 @@
 #include "parallax/layers/layer_solver.h"
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -24,48 +23,9 @@ void clampToUnit(Image& image) {
     for (int c = 0; c < 3; ++c) p[c] = std::clamp(std::isfinite(p[c]) ? p[c] : 0.0f, 0.0f, 1.0f);
 }
 
-// The sRGB encoding S (IEC 61966-2-1) and its slope S', tabulated on a square-root scale (they
-// change fastest near black) and interpolated linearly; x is clamped to [0, 1] as the measure's
-// encoding clamps it.
-class SrgbTable {
- public:
-  SrgbTable() {
-    for (int i = 0; i < kSize; ++i) {
-      const double r = double(i) / (kSize - 1), x = r * r;
-      encode_[size_t(i)] = float(x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055);
-      slope_[size_t(i)] =
-          float(x <= 0.0031308 ? 12.92 : 1.055 / 2.4 * std::pow(x, 1.0 / 2.4 - 1.0));
-    }
-  }
-  // S(x) and S'(x); S' is 0 above 1, where the clamp holds S constant.
-  void operator()(float x, float& encoded, float& slope) const {
-    const float t = std::sqrt(std::clamp(x, 0.0f, 1.0f)) * float(kSize - 1);
-    const int i = std::min(int(t), kSize - 2);
-    const float f = t - float(i);
-    encoded = encode_[size_t(i)] + f * (encode_[size_t(i) + 1] - encode_[size_t(i)]);
-    slope = x <= 1.0f ? slope_[size_t(i)] + f * (slope_[size_t(i) + 1] - slope_[size_t(i)]) : 0.0f;
-  }
-
- private:
-  static constexpr int kSize = 4096;
-  std::array<float, kSize> encode_{}, slope_{};
-};
-
-const SrgbTable& srgbTable() {
-  static const SrgbTable table;
-  return table;
-}
-
 // TrainingView::encodedTarget's unit: S in [0, 1] as 0 .. 65535.
 constexpr float kEncodedUnit = 65535.0f, kInverseEncodedUnit = 1.0f / 65535.0f;
 
-// One eye's error E_e for its view `seen`, and optionally the residual dE_e/dV (what the
-// adjoint takes) and the Gauss-Newton weights (E_e's curvature along V). In linear light
-// E_e = 1/2 |V - t|^2 (residual V - t, weights 1); with TrainingView::encodingScale c > 0,
-// E_e = 1/2 |S(V/c) - S(t/c)|^2, the dense measure's own squared error (residual
-// S'(V/c)/c (S(V/c) - S(t/c)), weights (S'(V/c)/c)^2).
-// eyeError on `count` values from offset `first` of the view: the error, and the residual and
-// weights of those values (either may be null).
 // The sRGB encoding S(x) = 1.055 x^(5/12) - 0.055 (12.92 x up to 0.0031308; IEC 61966-2-1) of
 // x clamped to [0, 1], and its slope S'(x) (0 above 1, where the clamp holds S constant), in
 // arithmetic that vectorises (no table reads: they would be gathers, which GCC's generic tuning
@@ -144,11 +104,17 @@ double encodedErrorLanes(const float* seen, const uint16_t* encoded, size_t n, f
   return encodedErrorLoop<false, false>(seen, encoded, n, inv, residual, weights);
 }
 
+// One eye's error E_e for its view `seen`, and optionally the residual dE_e/dV (what the
+// adjoint takes) and the Gauss-Newton weights (E_e's curvature along V). In linear light
+// E_e = 1/2 |V - t|^2 (residual V - t, weights 1); with TrainingView::encodingScale c > 0,
+// E_e = 1/2 |S(V/c) - S(t/c)|^2, the dense measure's own squared error (residual
+// S'(V/c)/c (S(V/c) - S(t/c)), weights (S'(V/c)/c)^2).
+// eyeError on `count` values from offset `first` of the view: the error, and the residual and
+// weights of those values (either may be null).
 double eyeErrorRange(const TrainingView& v, const Vec3f* seen, size_t first, size_t count,
                      Vec3f* residual, Vec3f* weights) {
   const bool srgb = v.encodingScale > 0;
   const float inv = srgb ? 1.0f / v.encodingScale : 1.0f;
-  const SrgbTable& table = srgbTable();
   double sum = 0;
   const auto add = [&](size_t i, int c, float diff, float slope) {
     sum += 0.5 * double(diff) * double(diff);
@@ -168,8 +134,8 @@ double eyeErrorRange(const TrainingView& v, const Vec3f* seen, size_t first, siz
         continue;
       }
       float a = 0, b = 0, slope = 0, unused = 0;
-      table(value * inv, a, slope);
-      table(target[i][c] * inv, b, unused);
+      srgbEncodeArithmetic(value * inv, a, slope);
+      srgbEncodeArithmetic(target[i][c] * inv, b, unused);
       add(i, c, a - b, slope * inv);
     }
   return sum;

@@ -246,14 +246,19 @@ TEST(OptimizeImageLayer, SameLayersForAnyThreadCount) {
 // The row-fused passes (the image in front: every eye's view, residual and adjoint one row at a
 // time) against the whole-image operators eye by eye: the same layers and objectives, in linear
 // light and on sRGB values, on a panel tall enough that rows have several vertical pieces.
-TEST(OptimizeImageLayer, RowFusedPassesAreTheWholeImagePasses) {
+// A 45 x 7 panel of 1 mm pixels and 5 views, the image in front of the barrier.
+DisplayDesign smallImageInFront() {
   DisplaySpec spec = defaultDisplaySpec();
   spec.order = LayerOrder::BarrierBack;
   spec.imagePanel.width = spec.maskPanel.width = 45;
   spec.imagePanel.height = spec.maskPanel.height = 7;
   spec.views = 5.0;
   spec.imagePanel.pitchMm = spec.maskPanel.pitchMm = 1.0;
-  const DisplayDesign d = designDisplay(spec);
+  return designDisplay(spec);
+}
+
+TEST(OptimizeImageLayer, RowFusedPassesAreTheWholeImagePasses) {
+  const DisplayDesign d = smallImageInFront();
   // A grey mask (its views kept for the whole solve) and a tinted one (seen row by row).
   const Image grey = maskLayerImage(d);
   Image tinted = grey;
@@ -302,12 +307,7 @@ TEST(SrgbEncode, IsTheStandardsFormula) {
 // Targets kept encoded (TrainingView::encodeTarget: S(t / c) in 16 bits) give the solve of the
 // float targets: the same objectives to the encoding's rounding and the same layers.
 TEST(OptimizeImageLayer, EncodedTargetsSolveAsTheFloatTargets) {
-  DisplaySpec spec = defaultDisplaySpec();
-  spec.imagePanel.width = spec.maskPanel.width = 45;
-  spec.imagePanel.height = spec.maskPanel.height = 7;
-  spec.views = 5.0;
-  spec.imagePanel.pitchMm = spec.maskPanel.pitchMm = 1.0;
-  const DisplayDesign d = designDisplay(spec);
+  const DisplayDesign d = smallImageInFront();
   const Image mask = maskLayerImage(d);
   std::vector<TrainingView> floats = viewsOf(d, randomImage(45, 7, 5), mask, 0.02f);
   for (TrainingView& v : floats) v.encodingScale = 0.8f;
