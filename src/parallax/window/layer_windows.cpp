@@ -78,6 +78,9 @@ struct LayerWindows::Impl {
     }
   }
 
+  // Window `index` shows `frames` (all one size) in turn, the first now.
+  void setFrames(int index, const std::vector<const Image*>& frames);
+
   static void clearFrames(Window& w) {
     for (SDL_Texture* t : w.frames) SDL_DestroyTexture(t);
     w.frames.clear();
@@ -129,21 +132,28 @@ LayerWindows::LayerWindows(const std::vector<WindowRequest>& requests)
 LayerWindows::~LayerWindows() = default;
 
 void LayerWindows::show(int index, const Image& picture) {
-  showFrames(index, {picture});
+  impl_->setFrames(index, {&picture});  // no copy of the picture
 }
 
 void LayerWindows::showFrames(int index, const std::vector<Image>& frames) {
-  Impl::Window& w = impl_->windows.at(size_t(index));
-  Impl::clearFrames(w);
+  std::vector<const Image*> pointers;
+  for (const Image& frame : frames) pointers.push_back(&frame);
+  impl_->setFrames(index, pointers);
+}
+
+void LayerWindows::Impl::setFrames(int index, const std::vector<const Image*>& frames) {
+  Window& w = windows.at(size_t(index));
+  clearFrames(w);
   if (frames.empty()) return;
-  w.width = frames.front().width();
-  w.height = frames.front().height();
+  w.width = frames.front()->width();
+  w.height = frames.front()->height();
   // Not every window system lets a window be smaller or larger than asked; the picture is
   // drawn 1:1 from the top-left corner whatever the window's size.
   if (!(SDL_GetWindowFlags(w.window) & SDL_WINDOW_BORDERLESS))
     SDL_SetWindowSize(w.window, w.width, w.height);
   std::vector<uint8_t> rgba(size_t(w.width) * size_t(w.height) * 4);
-  for (const Image& picture : frames) {
+  for (const Image* frame : frames) {
+    const Image& picture = *frame;
     if (picture.width() != w.width || picture.height() != w.height)
       throw std::invalid_argument("LayerWindows::showFrames: frames of different sizes");
     SDL_Texture* texture = SDL_CreateTexture(w.renderer, SDL_PIXELFORMAT_RGBA32,
@@ -159,7 +169,7 @@ void LayerWindows::showFrames(int index, const std::vector<Image>& frames) {
     SDL_UpdateTexture(texture, nullptr, rgba.data(), w.width * 4);
   }
   w.texture = w.frames.front();
-  impl_->present(w);
+  present(w);
 }
 
 LayerWindows::Mode LayerWindows::monitorMode(int index) const {
