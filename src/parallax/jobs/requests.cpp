@@ -180,10 +180,6 @@ Scene loadRgbd(const RgbdRequest& request) {
   }
 }
 
-}  // namespace
-
-namespace {
-
 // --exposure and --view-transform over the scene's own look.
 void applyLookOptions(const SceneLoadOptions& load, Scene& scene) {
   if (load.exposureStops) {
