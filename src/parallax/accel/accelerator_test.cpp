@@ -339,6 +339,32 @@ Ray randomSoupRay(Rng& rng) {
   return ray;
 }
 
+// scene/scene.h's one-ray firstHitDistance (the focus of a file camera's shot) against
+// Embree: the same nearest distance on a soup of triangles and spheres, and no hit where
+// Embree finds none.
+TEST(AcceleratorTriangles, SceneFirstHitDistanceIsTheClosestHit) {
+  Rng rng(21);
+  std::vector<SoupTriangle> soup;
+  Scene scene = randomSoup(rng, 600, soup);
+  for (int i = 0; i < 6; ++i)
+    scene.spheres.push_back({"s", 0, uniformBox(rng, -1, 1), uniform(rng, 0.05f, 0.3f)});
+  const Accelerator accel(scene);
+  int hits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Ray ray = randomSoupRay(rng);
+    ray.direction = normalize(ray.direction);
+    ray.tMin = 0;
+    ray.tMax = std::numeric_limits<float>::infinity();
+    const Hit hit = accel.intersect(ray);
+    const std::optional<float> first = firstHitDistance(scene, ray.origin, ray.direction);
+    ASSERT_EQ(first.has_value(), hit.valid()) << "ray " << i;
+    if (!first) continue;
+    ++hits;
+    EXPECT_NEAR(*first, hit.t, 1e-4f * hit.t + 1e-6f) << "ray " << i;
+  }
+  EXPECT_GT(hits, 500);
+}
+
 TEST(AcceleratorTriangles, MatchBruteForceOnRandomSoup) {
   Rng rng(14);
   std::vector<SoupTriangle> soup;

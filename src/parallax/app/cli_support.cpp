@@ -219,9 +219,11 @@ void addFramingOptions(CLI::App& cmd, FramingRequest& options, const std::string
                  scope +
                      "How the content is framed: window (the width only), depth (the width, the "
                      "zero-parallax plane inside the content and the depth compressed into the "
-                     "budget; the default without a display width in the scene), none (the "
-                     "scene's display block as it is), auto")
-      ->type_name("window|depth|none|auto");
+                     "budget; the default without a display width in the scene), camera (the "
+                     "window is what the scene's glTF camera sees at its focus distance, depth "
+                     "compressed as for depth; the default for a scene with a camera), none "
+                     "(the scene's display block as it is), auto")
+      ->type_name("window|depth|camera|none|auto");
   cmd.add_option("--focus", options.focus,
                  scope +
                      "The zero-parallax plane: its offset in mm toward the viewer from the "
@@ -310,10 +312,16 @@ Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& option
 
 void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options) {
   cmd.add_option("--camera", options.camera,
-                 "A camera of the scene's glTF files, by name or index: the view's camera, and "
+                 "A camera of the scene's glTF files, by its name, its node's name (Blender's "
+                 "object name) or index: the view's camera, and "
                  "for render the display seen as that camera saw the scene (docs/gltf.md). "
                  "Default: a bare glTF file's first camera")
       ->type_name("NAME|INDEX");
+  cmd.add_option("--focus-on", options.focusOn,
+                 "An object whose centre the zero-parallax plane goes through: a glTF node's "
+                 "name (Blender's object name), else a scene object's or mesh's name; with a "
+                 "camera, the distance its shot is framed at (docs/gltf.md)")
+      ->type_name("NAME");
   cmd.add_option("--exposure", options.exposureStops,
                  "Exposure in stops: the scene's light times 2^EV in every picture (default: the "
                  "scene file's \"look\", else 0; docs/look.md)")

@@ -73,8 +73,17 @@ void printJson(const Scene& scene) {
   for (size_t i = 0; i < scene.cameras.size(); ++i) {
     const std::string at = "/cameras/" + std::to_string(i);
     json.set(at + "/name", scene.cameras[i].name);
+    json.set(at + "/node", scene.cameras[i].nodeName);
     json.set(at + "/eye", scene.cameras[i].spec.eye);
     json.set(at + "/fov", double(scene.cameras[i].spec.fovDegrees));
+  }
+  // The files' named nodes, for --focus-on NAME.
+  json.setEmptyArray("/nodes");
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const std::string at = "/nodes/" + std::to_string(i);
+    json.set(at + "/name", scene.objects[i].name);
+    json.set(at + "/min", scene.objects[i].bounds.lo);
+    json.set(at + "/max", scene.objects[i].bounds.hi);
   }
   json.set("/notes", scene.notes);
   json.set("/display/center", scene.display.center);
@@ -119,8 +128,15 @@ void printText(const Scene& scene) {
   if (!scene.cameras.empty()) std::printf("cameras (--camera NAME|INDEX):\n");
   for (size_t i = 0; i < scene.cameras.size(); ++i) {
     const NamedCamera& c = scene.cameras[i];
-    std::printf("  %zu '%s' at (%g, %g, %g), vertical fov %g degrees\n", i, c.name.c_str(),
-                c.spec.eye.x, c.spec.eye.y, c.spec.eye.z, c.spec.fovDegrees);
+    const std::string node =
+        c.nodeName.empty() || c.nodeName == c.name ? "" : " (node '" + c.nodeName + "')";
+    std::printf("  %zu '%s'%s at (%g, %g, %g), vertical fov %g degrees\n", i, c.name.c_str(),
+                node.c_str(), c.spec.eye.x, c.spec.eye.y, c.spec.eye.z, c.spec.fovDegrees);
+  }
+  if (!scene.objects.empty()) std::printf("nodes (--focus-on NAME):\n");
+  for (const NamedObject& o : scene.objects) {
+    const Vec3f c = o.bounds.center();
+    std::printf("  %-28s centre (%g, %g, %g)\n", o.name.c_str(), c.x, c.y, c.z);
   }
   for (const auto& n : scene.notes) std::printf("note: %s\n", n.c_str());
   const auto& d = scene.display;
@@ -141,14 +157,21 @@ void registerInfoCommand(CLI::App& cli) {
   struct Options {
     std::string scene;
     bool json = false;
+    SceneLoadOptions load;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = cli.add_subcommand("info", "Print what a scene holds");
   cmd->add_option("scene", options->scene, "Scene or mesh file; the built-in scene if omitted");
   cmd->add_flag("--json", options->json, "Print one JSON object");
   addImportOptions(*cmd);
+  cmd->add_option("--camera", options->load.camera,
+                  "Frame the display as this glTF camera (name, node name or index) does")
+      ->type_name("NAME|INDEX");
+  cmd->add_option("--focus-on", options->load.focusOn,
+                  "Put the zero-parallax plane through this object (a node's or mesh's name)")
+      ->type_name("NAME");
   cmd->callback([options] {
-    const Scene scene = loadSceneOrDefault(options->scene);
+    const Scene scene = loadSceneOrDefault(options->scene, options->load);
     options->json ? printJson(scene) : printText(scene);
   });
 }

@@ -134,6 +134,10 @@ std::string millimetres(double mm) {
 
 }  // namespace
 
+bool compressesDepth(DisplayFit fit) {
+  return fit == DisplayFit::Depth || fit == DisplayFit::Camera;
+}
+
 double harmonicFocusZ(double nearZ, double farZ, double eyeZ) {
   const double tn = eyeZ - nearZ, tf = eyeZ - farZ;
   return eyeZ - 2 * tn * tf / (tn + tf);
@@ -153,7 +157,10 @@ Framing frameContent(const Scene& scene, const DisplayWindow& window, double dep
   const DisplayPlacement& given = scene.display;
   Framing f;
   f.fit = given.fitMode;
-  if (f.fit == DisplayFit::Auto) f.fit = given.fit ? DisplayFit::Depth : DisplayFit::None;
+  if (f.fit == DisplayFit::Auto)
+    f.fit = !given.fit ? DisplayFit::None : given.shot ? DisplayFit::Camera : DisplayFit::Depth;
+  // Without a file camera's shot there is nothing to frame the camera's way.
+  if (f.fit == DisplayFit::Camera && !given.shot) f.fit = DisplayFit::Depth;
   f.focusAuto = !given.focusMm;
   f.budgetAuto = !given.depthBudgetMm;
   f.depthOfFieldMm = depthOfFieldMm;
@@ -187,6 +194,17 @@ Framing frameContent(const Scene& scene, const DisplayWindow& window, double dep
     } else if (f.fit == DisplayFit::Window || (f.fit == DisplayFit::Depth && given.focusMm)) {
       const auto sameShift = [&](double) { return shift; };
       scale = largestScale(corners, window, sameShift, fallback);
+    } else if (f.fit == DisplayFit::Camera) {
+      // The window is the shot's frame at its focus distance d (the placement's centre): the
+      // camera sees a height 2 d tan(yfov / 2) there, and a width `aspect` times that; the
+      // window (of the display's own aspect) is the smallest that holds that frame, as a
+      // camera's sensor fit "auto" would. A point on the focus plane then falls where it fell
+      // in the camera's picture, seen from any eye; the zero-parallax plane is that plane.
+      const ShotFrame& shot = *given.shot;
+      const double height = 2.0 * shot.focusDistance * std::tan(0.5 * shot.yfovRadians);
+      const double displayAspect = window.widthMm / window.heightMm;
+      const double aspect = shot.aspectRatio > 0 ? shot.aspectRatio : displayAspect;
+      scale = window.widthMm / std::max(height * aspect, height * displayAspect);
     } else if (f.fit == DisplayFit::Depth) {
       // The focus plane moves with the scale (a deeper picture puts it elsewhere) and the fit
       // depends on the focus (content nearer the eye looks larger): solve both at once, the
@@ -234,7 +252,7 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design) {
   // g': fixed by the display file, or for Depth just enough to flatten the content into the
   // budget (never below g: shallow content keeps its depth).
   double virtualGap = design.virtualGapMm;
-  if (f.fit == DisplayFit::Depth && !f.virtualGapFixed && f.hasContent) {
+  if (compressesDepth(f.fit) && !f.virtualGapFixed && f.hasContent) {
     const double deepest = std::max(f.nearMm, -f.farMm);
     virtualGap = std::clamp(design.gapMm * deepest / f.budgetMm, design.gapMm, kGapRange.highest);
     if (virtualGap > design.gapMm * (1 + 1e-9)) {
@@ -259,7 +277,7 @@ Framing frameForDisplay(const Scene& scene, const LenticularDesign& design) {
   // The scale flattens the deeper side exactly onto the budget (a ray's slope can turn toward
   // the normal without limit, unlike g', so the content always fits); shallow content keeps its
   // depth.
-  if (f.fit == DisplayFit::Depth && f.hasContent) {
+  if (compressesDepth(f.fit) && f.hasContent) {
     const double deepest = std::max(f.nearMm, -f.farMm);
     if (deepest > f.budgetMm) f.depthScale = f.budgetMm / deepest;
   }
@@ -283,6 +301,8 @@ const char* displayFitName(DisplayFit fit) {
       return "depth";
     case DisplayFit::None:
       return "none";
+    case DisplayFit::Camera:
+      return "camera";
   }
   return "auto";
 }
@@ -291,11 +311,11 @@ void applyFramingOptions(DisplayPlacement& placement, const std::string& fit,
                          const std::string& focus, const std::string& depthBudget) {
   if (!fit.empty()) {
     bool known = false;
-    for (DisplayFit mode :
-         {DisplayFit::Auto, DisplayFit::Window, DisplayFit::Depth, DisplayFit::None})
+    for (DisplayFit mode : {DisplayFit::Auto, DisplayFit::Window, DisplayFit::Depth,
+                            DisplayFit::None, DisplayFit::Camera})
       if (fit == displayFitName(mode)) placement.fitMode = mode, known = true;
     if (!known)
-      throw RequestError("fit", "expected window, depth, none or auto, got '" + fit + "'");
+      throw RequestError("fit", "expected window, depth, camera, none or auto, got '" + fit + "'");
   }
   const auto parseMm = [](const std::string& text, const char* field, double lowest, double highest,
                           bool openBelow) -> std::optional<double> {
@@ -330,7 +350,7 @@ std::string depthWarning(const Framing& f) {
                 f.lenticular ? "the lens's depth of field" : "G4");
   line += text;
   if (!f.budgetAuto) line += ", the budget is ±" + millimetres(f.budgetMm).substr(1) + " mm";
-  if (f.fit != DisplayFit::Depth)
+  if (!compressesDepth(f.fit))
     line += "; {fit} depth compresses it";
   else if (f.virtualGapFixed)
     line += "; the display file fixes the virtual gap (virtual/gap_mm)";
@@ -347,16 +367,24 @@ std::string depthSummary(const Framing& f) {
   else
     std::snprintf(shown, sizeof shown, "g' %.2f mm, g %.2f mm", f.virtualGapMm, f.gapMm);
   char text[320];
-  std::snprintf(
-      text, sizeof text,
-      "depth (fit %s): the content spans %s to %s mm, shown %s to %s mm (%s); focus %s "
-      "mm (%s); sharp within ±%.1f mm (%s), budget ±%.1f mm",
-      displayFitName(f.fit), millimetres(f.farMm).c_str(), millimetres(f.nearMm).c_str(),
-      millimetres(f.shownFarMm).c_str(), millimetres(f.shownNearMm).c_str(), shown,
-      millimetres(f.focusMm).c_str(),
-      f.focusAuto ? (f.fit == DisplayFit::Depth ? "auto: harmonic mean" : "auto: 0") : "given",
-      f.depthOfFieldMm, f.lenticular ? "lens" : "G4", f.budgetMm);
-  return text;
+  std::snprintf(text, sizeof text,
+                "depth (fit %s): the content spans %s to %s mm, shown %s to %s mm (%s); focus %s "
+                "mm (%s); sharp within ±%.1f mm (%s), budget ±%.1f mm",
+                displayFitName(f.fit), millimetres(f.farMm).c_str(), millimetres(f.nearMm).c_str(),
+                millimetres(f.shownFarMm).c_str(), millimetres(f.shownNearMm).c_str(), shown,
+                millimetres(f.focusMm).c_str(),
+                f.focusAuto ? (f.fit == DisplayFit::Depth    ? "auto: harmonic mean"
+                               : f.fit == DisplayFit::Camera ? "auto: the camera's focus distance"
+                                                             : "auto: 0")
+                            : "given",
+                f.depthOfFieldMm, f.lenticular ? "lens" : "G4", f.budgetMm);
+  std::string summary = text;
+  if (f.fit == DisplayFit::Camera && f.placement.shot) {
+    std::snprintf(text, sizeof text, "; the window frames the camera's shot %.4g units away (%s)",
+                  double(f.placement.shot->focusDistance), f.placement.shot->focusSource.c_str());
+    summary += text;
+  }
+  return summary;
 }
 
 }  // namespace parallax

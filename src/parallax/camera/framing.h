@@ -40,11 +40,12 @@ struct Framing {
 };
 
 // The framing of `scene` (its display placement and content bounds) for `design` (whose spec
-// may fix g'): the mode from placement.fitMode (Auto: Depth without a given display width,
-// None with one), then for Window the largest picture whose content bounds, seen from the
-// view-zone centre, fall inside the window less 5 %; for Depth the same with the
-// zero-parallax plane at the harmonic mean of the content's nearest and farthest distances
-// from that eye (or at placement.focusMm), and g' = max(g, g * largest |z| / budget).
+// may fix g'): the mode from placement.fitMode (Auto: Camera for a file camera's shot and
+// Depth otherwise without a given display width, None with one), then for Camera the window
+// that frames the shot at its focus distance (zero parallax there); for Window the largest picture
+// whose content bounds, seen from the view-zone centre, fall inside the window less 5 %; for Depth
+// the same with the zero-parallax plane at the harmonic mean of the content's nearest and farthest
+// distances from that eye (or at placement.focusMm), and g' = max(g, g * largest |z| / budget).
 // Throws InputError when a given focus puts content at or behind the eye.
 Framing frameForDisplay(const Scene& scene, const DisplayDesign& design);
 
@@ -67,6 +68,8 @@ void applyFramingOptions(DisplayPlacement& placement, const std::string& fit,
                          const std::string& focus, const std::string& depthBudget);
 
 const char* displayFitName(DisplayFit fit);
+// Depth and Camera compress the content's depth into the budget; Window and None do not.
+bool compressesDepth(DisplayFit fit);
 
 // One line when the displayed content reaches beyond the budget (empty otherwise), e.g.
 // "the content spans -112 to +98 mm; the display is sharp within +-27 mm (G4); {fit} depth

@@ -169,7 +169,7 @@ TEST(Framing, OptionsAreChecked) {
       EXPECT_EQ(std::string(e.what()), "request: " + field + ": " + message);
     }
   };
-  refused("wide", "", "", "fit", "expected window, depth, none or auto, got 'wide'");
+  refused("wide", "", "", "fit", "expected window, depth, camera, none or auto, got 'wide'");
   refused("", "near", "", "focus", "expected a number of millimetres or auto, got 'near'");
   refused("", "", "0", "depth_budget", "expected above 0 up to 1000 mm, got 0");
   refused("", "", "1e9", "depth_budget", "expected above 0 up to 1000 mm, got 1e9");

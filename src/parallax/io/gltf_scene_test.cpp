@@ -169,6 +169,13 @@ TEST(Gltf, FirstCameraFramesTheSceneAndPlacesTheDisplay) {
   expectNear(scene.display.up, {0, 1, 0});
   ASSERT_TRUE(scene.display.fit);
   EXPECT_EQ(scene.display.fit->lo, Vec3f(2, 1, -1));
+  // The shot the camera fit frames: its line of sight meets nothing, so the focus distance is
+  // the content centre's depth.
+  ASSERT_TRUE(scene.display.shot);
+  EXPECT_FLOAT_EQ(scene.display.shot->focusDistance, 5.5f);
+  EXPECT_FLOAT_EQ(scene.display.shot->yfovRadians, 0.5f);
+  EXPECT_FLOAT_EQ(scene.display.shot->aspectRatio, 1.5f);
+  EXPECT_EQ(scene.display.shot->focusSource, "the content's centre");
   ASSERT_FALSE(scene.notes.empty());
   EXPECT_NE(scene.notes[0].find("camera 0 'Front' used"), std::string::npos) << scene.notes[0];
   // The spot points down from (0, 4, 0) with a 0.5 rad cone; the nearest corner, (2, 1, 0), is
@@ -184,7 +191,7 @@ TEST(Gltf, CameraOptionChoosesByNameOrIndex) {
   TempDir dir;
   const std::string path = dir.file("lit.gltf");
   writeFile(path, lightsAndColoursGltf());
-  for (const char* choice : {"Side", "1"}) {
+  for (const char* choice : {"Side", "side node", "1"}) {
     SceneLoadOptions options;
     options.camera = choice;
     const Scene scene = loadScene(path, options);

@@ -99,9 +99,10 @@ enum Kind : uint32_t { kContents = 1, kRefusal = 2 };
 static_assert(sizeof(Material) == sizeof(std::string) + 40, "Material: update the flat layout");
 static_assert(sizeof(FileMaterial) == sizeof(Material) + 8, "FileMaterial: update the layout");
 // (FilePart: context, material and its padding, the transform, node and its padding, five
-// vectors.)
-static_assert(sizeof(FilePart) ==
-                  sizeof(std::string) + 8 + sizeof(Transform) + 8 + 5 * sizeof(std::vector<int>),
+// vectors and the node names.)
+static_assert(sizeof(FilePart) == sizeof(std::string) + 8 + sizeof(Transform) + 8 +
+                                      5 * sizeof(std::vector<int>) +
+                                      sizeof(std::vector<std::string>),
               "FilePart: update the flat layout");
 
 class Writer {
@@ -229,7 +230,7 @@ FileContents parseContentsOrThrowGarbled(Reader& r) {
     m.image = indexOrNone(r, contents.images.size(), "material image");
     contents.materials.push_back(std::move(m));
   }
-  const size_t parts = r.count(8 + 4 + 2 * sizeof(Mat4) + 4 + 5 * 8, "part count");
+  const size_t parts = r.count(8 + 4 + 2 * sizeof(Mat4) + 4 + 8 + 5 * 8, "part count");
   for (size_t i = 0; i < parts; ++i) {
     FilePart part;
     part.context = r.string("part context");
@@ -239,6 +240,8 @@ FileContents parseContentsOrThrowGarbled(Reader& r) {
     part.fileFromPart = Transform(matrix, inverse);
     // No node animation is carried (assimp's conversion has none).
     part.node = indexOrNone(r, 0, "part node");
+    const size_t names = r.count(8, "part node name count");
+    for (size_t k = 0; k < names; ++k) part.nodeNames.push_back(r.string("part node name"));
     part.positions = r.array<Vec3f>("positions");
     part.normals = perVertex<Vec3f>(r, part.positions.size(), "normals");
     part.uvs = perVertex<Vec2f>(r, part.positions.size(), "texture coordinates");
@@ -564,6 +567,8 @@ std::string serializeContents(const FileContents& contents) {
     w.put(int32_t(part.material));
     putTransform(w, part.fileFromPart);
     w.put(int32_t(part.node));
+    w.put(uint64_t(part.nodeNames.size()));
+    for (const std::string& name : part.nodeNames) w.string(name);
     w.array(part.positions);
     w.array(part.normals);
     w.array(part.uvs);

@@ -286,6 +286,7 @@ void expectSameContents(const FileContents& a, const FileContents& b) {
     EXPECT_EQ(p.fileFromPart.matrix(), q.fileFromPart.matrix());
     EXPECT_EQ(p.fileFromPart.inverseMatrix(), q.fileFromPart.inverseMatrix());
     EXPECT_EQ(p.node, q.node);
+    EXPECT_EQ(p.nodeNames, q.nodeNames);
     expectSameArray(p.positions, q.positions, "positions");
     expectSameArray(p.normals, q.normals, "normals");
     expectSameArray(p.uvs, q.uvs, "uvs");
@@ -357,6 +358,7 @@ FileContents everyField() {
   c.materials.push_back({});
   meshio::FilePart part;
   part.context = "node 'a' mesh 'b'";
+  part.nodeNames = {"a", "the parent of a"};
   part.material = 1;
   part.fileFromPart = Transform::rotate(30, {1, 2, 3}) * Transform::translate({4, 5, 6});
   part.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

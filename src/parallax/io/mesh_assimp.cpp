@@ -105,6 +105,8 @@ class AssimpConverter {
       ++singularNodes_;
       return;
     }
+    for (const aiNode* n = &node; n; n = n->mParent)
+      if (n->mName.length > 0) part.nodeNames.emplace_back(n->mName.C_Str());
     part.context = "node '" + std::string(node.mName.C_Str()) + "' mesh '" +
                    std::string(mesh.mName.C_Str()) + "'";
     part.material =

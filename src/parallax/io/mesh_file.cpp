@@ -400,6 +400,7 @@ class SceneAppender {
     (hadNormals ? fileNormals_ : generate ? generatedNormals_ : faceted_) = true;
 
     TriangleMesh* mesh = nullptr;
+    Bounds3f partBounds;
     std::vector<uint32_t> remap(part.positions.size(), kUnused);
     for (size_t t = 0; t + 2 < part.indices.size(); t += 3) {
       uint32_t corner[3] = {part.indices[t], part.indices[t + 1], part.indices[t + 2]};
@@ -421,7 +422,10 @@ class SceneAppender {
         mesh->indices.push_back(remap[v]);
       }
       ++triangles_;
+      for (uint32_t v : corner) partBounds.extend(part.positions[v]);
     }
+    if (!partBounds.empty())
+      for (const std::string& name : part.nodeNames) objectBounds(name).extend(partBounds);
   }
 
   // What was done, for Scene::imports.
@@ -461,6 +465,7 @@ class SceneAppender {
       scene_.meshes.push_back(std::move(mesh));
     }
     if (!animatedMeshes_.empty()) appendNodes(contents_.nodeAnimation);
+    for (auto& [name, bounds] : objects_) scene_.objects.push_back({name, path_, bounds});
     const size_t dropped = dropped_ + contents_.droppedDegenerate;
     if (dropped > 0)
       scene_.warnings.push_back(path_ + ": dropped " + std::to_string(dropped) +
@@ -563,8 +568,15 @@ class SceneAppender {
   // By scene material and animated node (-1: none), in a stable order.
   std::map<std::pair<uint32_t, int>, TriangleMesh> meshes_;
   std::map<int, AnimatedMesh> animatedMeshes_;  // by file node
-  std::map<int, uint32_t> materials_;           // file material -> scene material
-  std::map<int, int> textures_;                 // file image -> scene texture
+  // Named nodes' world bounds, in the order first met (at rest, as the meshes are stored).
+  std::vector<std::pair<std::string, Bounds3f>> objects_;
+  Bounds3f& objectBounds(const std::string& name) {
+    for (auto& [known, bounds] : objects_)
+      if (known == name) return bounds;
+    return objects_.emplace_back(name, Bounds3f{}).second;
+  }
+  std::map<int, uint32_t> materials_;  // file material -> scene material
+  std::map<int, int> textures_;        // file image -> scene texture
   size_t dropped_ = 0;
   size_t triangles_ = 0;
   bool fileNormals_ = false, generatedNormals_ = false, faceted_ = false;
@@ -589,6 +601,7 @@ static void addCamerasAndLights(const std::string& path, const MeshLoadOptions& 
     }
     NamedCamera camera;
     camera.name = source.name;
+    camera.nodeName = source.nodeName;
     camera.source = path;
     camera.spec.eye = eye;
     camera.spec.lookAt = eye + normalize(forward);

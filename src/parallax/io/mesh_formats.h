@@ -29,6 +29,9 @@ struct FilePart {
   // glTF: the node the part hangs from when it or an ancestor is animated, an index into
   // FileContents::nodeAnimation.nodes; -1 otherwise.
   int node = -1;
+  // The names of the node that instances it and of its named ancestors, nearest first (glTF,
+  // assimp): the objects it belongs to (--focus-on).
+  std::vector<std::string> nodeNames;
   std::vector<Vec3f> colors;  // vertex colours, linear RGB: empty or one per position
 };
 
@@ -41,6 +44,7 @@ struct FileMaterial {
 // node's world transform already applied, the loader's worldFromFile not yet.
 struct FileCamera {
   std::string name;
+  std::string nodeName;    // the camera's node's name ("": none)
   Vec3f eye, forward, up;  // forward and up: not necessarily unit
   float yfov = 0;          // radians
   float aspectRatio = 0;   // 0: not given

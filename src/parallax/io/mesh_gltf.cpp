@@ -261,7 +261,14 @@ class GltfReader {
           fail(path_, nodeName(model_, nodeIndex) +
                           ": its position composed through its parents lies beyond 1e6 scene "
                           "units");
-      if (node.mesh >= 0) addMesh(node.mesh, fileFromNode, nodeIndex);
+      if (node.mesh >= 0) {
+        namedPath_.clear();  // this node's name, then its named ancestors'
+        if (!node.name.empty()) namedPath_.push_back(node.name);
+        for (auto frame = stack.rbegin(); frame != stack.rend(); ++frame)
+          if (const std::string& name = model_.nodes[size_t(frame->node)].name; !name.empty())
+            namedPath_.push_back(name);
+        addMesh(node.mesh, fileFromNode, nodeIndex);
+      }
       if (node.camera >= 0) addCamera(node, nodeIndex, fileFromNode);
       if (const auto light = node.extensions.find("KHR_lights_punctual");
           light != node.extensions.end())
@@ -305,6 +312,7 @@ class GltfReader {
     camera.name = !source.name.empty() ? source.name
                   : !node.name.empty() ? node.name
                                        : "camera " + std::to_string(contents_.cameras.size());
+    camera.nodeName = node.name;
     camera.eye = transformPoint(fileFromNode, Vec3f(0.0f));
     camera.forward = transformVector(fileFromNode, {0, 0, -1});
     camera.up = transformVector(fileFromNode, {0, 1, 0});
@@ -451,6 +459,7 @@ class GltfReader {
         continue;
       }
       part.node = nodeIndex;  // kept only if the node moves (readAnimations)
+      part.nodeNames = namedPath_;
       contents_.parts.push_back(std::move(part));
     }
   }
@@ -808,8 +817,9 @@ class GltfReader {
   const tinygltf::Model& model_;
   std::map<int, Image>& decodedImages_;  // by glTF image index, from ImageLoader
   FileContents contents_;
-  std::vector<int> uvSets_;   // TEXCOORD set of each material's base colour texture
-  std::vector<bool> onPath_;  // nodes between the root and the one being visited
+  std::vector<int> uvSets_;             // TEXCOORD set of each material's base colour texture
+  std::vector<bool> onPath_;            // nodes between the root and the one being visited
+  std::vector<std::string> namedPath_;  // the visited node's and its ancestors' names
   size_t nodeInstances_ = 0;
   size_t skippedPrimitives_ = 0;
   // For the note.

@@ -656,8 +656,10 @@ class SceneFileLoader {
         scene_.display.fitMode = DisplayFit::Depth;
       else if (mode == "none")
         scene_.display.fitMode = DisplayFit::None;
+      else if (mode == "camera")
+        scene_.display.fitMode = DisplayFit::Camera;
       else if (mode != "auto")
-        fit->fail("expected window, depth, none or auto, got '" + mode + "'");
+        fit->fail("expected window, depth, camera, none or auto, got '" + mode + "'");
     }
     scene_.display.focusMm = millimetresOrAuto(value->find("focus"), -kMaxFocusMm, kMaxFocusMm);
     scene_.display.depthBudgetMm =
@@ -776,15 +778,22 @@ void addEmissiveMeshLights(Scene& scene) {
 std::string cameraList(const Scene& scene) {
   if (scene.cameras.empty()) return "the scene has no cameras";
   std::string list;
-  for (size_t i = 0; i < scene.cameras.size(); ++i)
-    list += (list.empty() ? "" : ", ") + std::to_string(i) + " '" + scene.cameras[i].name + "'";
+  for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const NamedCamera& camera = scene.cameras[i];
+    list += (list.empty() ? "" : ", ") + std::to_string(i) + " '" + camera.name + "'";
+    if (!camera.nodeName.empty() && camera.nodeName != camera.name)
+      list += " (node '" + camera.nodeName + "')";
+  }
   return "the scene's cameras: " + list;
 }
 
-// --camera NAME|INDEX: a name first (a camera may be called "1"), then an index.
+// --camera NAME|INDEX: a camera's name first (a camera may be called "1"), then its node's name
+// (Blender's object name, as the outliner shows it), then an index.
 size_t findCamera(const Scene& scene, const std::string& selection) {
   for (size_t i = 0; i < scene.cameras.size(); ++i)
     if (scene.cameras[i].name == selection) return i;
+  for (size_t i = 0; i < scene.cameras.size(); ++i)
+    if (scene.cameras[i].nodeName == selection) return i;
   int64_t index = -1;
   const bool digits =
       !selection.empty() && std::all_of(selection.begin(), selection.end(),
@@ -813,12 +822,25 @@ void useFileCamera(Scene& scene, size_t index) {
     placement.fit.reset();
   }
   if (!content.empty()) {
-    // On the line of sight, at the depth of the content's centre; content behind the camera
-    // (a camera inside or past the model) keeps the distance to that centre.
+    // On the line of sight at the camera's focus distance: where the line of sight first meets
+    // the content (as a camera's autofocus does), else at the depth of the content's centre;
+    // content behind the camera (a camera inside or past the model) keeps the distance to
+    // that centre.
+    ShotFrame shot;
+    shot.eye = eye;
+    shot.yfovRadians = camera.spec.fovDegrees * (kPi / 180.0f);
+    shot.aspectRatio = camera.aspectRatio;
     const Vec3f toCenter = content.center() - eye;
     float depth = dot(toCenter, forward);
+    shot.focusSource = "the content's centre";
+    if (const auto hit = firstHitDistance(scene, eye, forward)) {
+      depth = *hit;
+      shot.focusSource = "where its line of sight meets the content";
+    }
     if (!(depth > 0)) depth = length(toCenter) > 0 ? length(toCenter) : 1.0f;
+    shot.focusDistance = depth;
     placement.center = eye + forward * depth;
+    placement.shot = shot;
     // The depth along the line of sight is what the camera's view is framed on: the look-at
     // point is the display's centre.
     scene.camera->lookAt = placement.center;
@@ -872,6 +894,58 @@ Scene sceneFromMesh(const std::string& path, const SceneLoadOptions& load) {
   return scene;
 }
 
+// The bounds of the object called `name`: a file node's (Scene::objects), else a mesh's or a
+// sphere's name; throws RequestError naming focus_on and listing some names otherwise.
+static Bounds3f objectBounds(const Scene& scene, const std::string& name) {
+  for (const NamedObject& object : scene.objects)
+    if (object.name == name) return object.bounds;
+  Bounds3f bounds;
+  for (const TriangleMesh& mesh : scene.meshes)
+    if (mesh.name == name)
+      for (const Vec3f& p : mesh.positions) bounds.extend(p);
+  for (const Sphere& sphere : scene.spheres)
+    if (sphere.name == name) {
+      bounds.extend(sphere.center - Vec3f(sphere.radius));
+      bounds.extend(sphere.center + Vec3f(sphere.radius));
+    }
+  if (!bounds.empty()) return bounds;
+  std::vector<std::string> names;
+  for (const NamedObject& object : scene.objects) names.push_back(object.name);
+  for (const TriangleMesh& mesh : scene.meshes) names.push_back(mesh.name);
+  for (const Sphere& sphere : scene.spheres) names.push_back(sphere.name);
+  std::string list;
+  constexpr size_t kListed = 12;
+  for (size_t i = 0; i < names.size() && i < kListed; ++i)
+    list += (i ? ", '" : "'") + names[i] + "'";
+  if (names.size() > kListed) list += ", ... (" + std::to_string(names.size()) + " in all)";
+  throw RequestError("focus_on", "no object '" + name + "' (the scene's objects: " +
+                                     (list.empty() ? "none" : list) + ")");
+}
+
+// --focus-on NAME: the zero-parallax plane through the object's centre. A file camera's shot
+// keeps its line of sight and takes the object's depth along it as its focus distance; any
+// other placement moves its centre along its normal to the object's depth, with the focus
+// given there (offset 0, or --focus's).
+void focusOnObject(Scene& scene, const std::string& name) {
+  const Vec3f target = objectBounds(scene, name).center();
+  DisplayPlacement& display = scene.display;
+  if (display.shot) {
+    ShotFrame& shot = *display.shot;
+    const Vec3f forward = normalize(display.center - shot.eye);
+    const float depth = dot(target - shot.eye, forward);
+    if (!(depth > 0))
+      throw RequestError("focus_on", "the object '" + name + "' is behind the camera");
+    shot.focusDistance = depth;
+    shot.focusSource = "--focus-on '" + name + "'";
+    display.center = shot.eye + forward * depth;
+    if (scene.camera) scene.camera->lookAt = display.center;
+    return;
+  }
+  const Vec3f normal = normalize(display.normal);
+  display.center = display.center + normal * dot(target - display.center, normal);
+  if (!display.focusMm) display.focusMm = 0.0;
+}
+
 Scene loadScene(const std::string& path, const SceneLoadOptions& options) {
   requireRegularFile(path);
   Scene scene;
@@ -883,6 +957,7 @@ Scene loadScene(const std::string& path, const SceneLoadOptions& options) {
   } else {
     throw InputError(path, "", "unknown scene format (expected a .json scene or a mesh file)");
   }
+  if (!options.focusOn.empty()) focusOnObject(scene, options.focusOn);
   for (const std::string& warning : lightFacingWarnings(scene))
     scene.warnings.push_back(path + ": " + warning);
   return scene;
@@ -928,12 +1003,15 @@ Scene loadSceneAsRendered(const std::string& scenePath, const std::string& rende
   SceneLoadOptions options;
   if (const auto camera = root.find("scene_camera"); camera && camera->isString())
     options.camera = camera->string();
+  if (const auto focusOn = root.find("scene_focus_on"); focusOn && focusOn->isString())
+    options.focusOn = focusOn->string();
   if (const auto imported = root.find("import_options")) {
     const JsonReader up = (*imported)["up"];
     if (!parseUpAxis(up.string(), options.import.up)) up.fail("expected \"auto\", \"y\" or \"z\"");
     options.import.creaseDegrees = float((*imported)["crease"].number(0, 180));
   }
   Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, options);
+  if (scenePath.empty() && !options.focusOn.empty()) focusOnObject(scene, options.focusOn);
   // The look the render used (--exposure, --view-transform, or the scene's own).
   if (const auto look = root.find("look")) {
     scene.look.exposureStops = (*look)["exposure"].number(-20, 20);
@@ -950,6 +1028,7 @@ Scene loadSceneAsRendered(const std::string& scenePath, const std::string& rende
   if (fit == "window") p.fitMode = DisplayFit::Window;
   if (fit == "depth") p.fitMode = DisplayFit::Depth;
   if (fit == "none") p.fitMode = DisplayFit::None;
+  if (fit == "camera") p.fitMode = DisplayFit::Camera;
   const auto millimetres = [&framing](const char* key, std::optional<double>& value) {
     if (const auto v = framing->find(key))
       value = v->isNumber() ? std::optional(v->number()) : std::nullopt;

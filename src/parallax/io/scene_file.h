@@ -17,6 +17,10 @@ struct SceneLoadOptions {
   // so that the display is seen as the camera saw the scene (useFileCamera). Empty: the first
   // camera of a bare mesh file, none for a .json scene.
   std::string camera;
+  // --focus-on NAME: an object of the scene (a glTF node's name, as Blender's outliner shows it;
+  // else a scene file object's or a mesh's name) whose centre the display's zero-parallax plane
+  // goes through; with a file camera, its shot's focus distance (docs/gltf.md). Empty: none.
+  std::string focusOn;
   // --up, --crease: how mesh files are imported (io/mesh_file.h, docs/import.md).
   ImportOptions import;
   // --exposure, --view-transform: the scene's look (scene/look.h, docs/look.md) instead of its
@@ -33,6 +37,14 @@ struct SceneLoadOptions {
 // --camera and listing the scene's cameras. Lights facing away from everything are warned
 // about (scene/light_checks.h).
 Scene loadScene(const std::string& path, const SceneLoadOptions& options = {});
+
+// --focus-on NAME (SceneLoadOptions::focusOn): the zero-parallax plane through the centre of the
+// object called `name` (a file node's name, else a mesh's or sphere's). A file camera's shot
+// keeps its line of sight and takes the object's depth along it as its focus distance; any
+// other placement moves its centre along its normal to that depth (focus offset 0 unless
+// given). loadScene applies it; the built-in scene gets it from the caller. Throws
+// RequestError("focus_on") naming the object when there is none of that name.
+void focusOnObject(Scene& scene, const std::string& name);
 
 // Wraps a bare mesh file in a scene: a grey diffuse material unless the file has its own, the
 // file's lights (glTF punctual lights, emissive meshes) or else a key light and ambient fill,

@@ -206,6 +206,8 @@ Scene loadSceneQuietly(const SceneRequest& request) {
   Scene scene = request.rgbd.given()   ? loadRgbd(request.rgbd)
                 : request.path.empty() ? defaultScene()
                                        : loadScene(request.path, request.load);
+  if (request.path.empty() && !request.load.focusOn.empty())
+    focusOnObject(scene, request.load.focusOn);
   applyLookOptions(request.load, scene);
   return scene;
 }
@@ -254,6 +256,7 @@ void recordScene(JsonWriter& record, const SceneRequest& request, const Scene& s
   }
   if (request.rgbd.given()) recordRgbd(record, request.rgbd, scene);
   if (!request.load.camera.empty()) record.set("/scene_camera", request.load.camera);
+  if (!request.load.focusOn.empty()) record.set("/scene_focus_on", request.load.focusOn);
 }
 
 DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& reporter) {

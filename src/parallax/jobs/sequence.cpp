@@ -297,6 +297,7 @@ MadeFrom sceneMadeFrom(const SceneRequest& request, const Scene& scene) {
   MadeFrom made{{"version", PARALLAX_VERSION},
                 {"scene", request.path.empty() ? "<built-in>" : request.path},
                 {"{camera}", request.load.camera},
+                {"{focus_on}", request.load.focusOn},
                 {"{mesh_up}", upAxisName(request.load.import.up)},
                 {"{crease}", madeFromNumber(request.load.import.creaseDegrees)}};
   const RgbdRequest& rgbd = request.rgbd;

@@ -172,13 +172,15 @@ renderInMemory(const Scene& scene, const DisplayDescription& display, const py::
 void renderToFiles(const std::string& output, const std::optional<std::string>& scenePath,
                    const std::optional<std::string>& displayPath, const std::string& camera,
                    const std::optional<double>& exposure,
-                   const std::optional<std::string>& viewTransform, const py::kwargs& kw) {
+                   const std::optional<std::string>& viewTransform, const std::string& focusOn,
+                   const py::kwargs& kw) {
   checkKeywords(kw, knownRenderKeywords());
   jobs::RenderRequest request = renderRequest(DisplayDescription{}, kw);
   request.loaded.reset();
   request.display = displayPath.value_or("");
   request.scene.path = scenePath.value_or("");
   request.scene.load.camera = camera;
+  request.scene.load.focusOn = focusOn;
   request.scene.load.exposureStops = exposure;
   request.scene.load.viewTransform = viewTransform.value_or("");
   request.output = output;
@@ -232,7 +234,8 @@ void bindRender(py::module_& module) {
   module.def("_render", &renderInMemory, py::arg("scene"), py::arg("display"));
   module.def("_render_files", &renderToFiles, py::arg("output"), py::arg("scene") = py::none(),
              py::arg("display") = py::none(), py::arg("camera") = "",
-             py::arg("exposure") = py::none(), py::arg("view_transform") = py::none());
+             py::arg("exposure") = py::none(), py::arg("view_transform") = py::none(),
+             py::arg("focus_on") = "");
   module.def("_view", &view, py::arg("scene"), py::kw_only(), py::arg("display") = py::none(),
              py::arg("display_eye") = py::none(), py::arg("eye") = py::none(),
              py::arg("look_at") = py::none(), py::arg("up") = py::none(),

@@ -51,17 +51,21 @@ void bindSceneAndDisplay(py::module_& module) {
   module.def(
       "load_scene",
       [](const std::optional<std::string>& path, const std::string& camera,
-         const std::optional<double>& exposure, const std::optional<std::string>& viewTransform) {
+         const std::optional<double>& exposure, const std::optional<std::string>& viewTransform,
+         const std::string& focusOn) {
         jobs::SceneRequest request;
         request.path = path.value_or("");
         request.load.camera = camera;
+        request.load.focusOn = focusOn;
         request.load.exposureStops = exposure;
         request.load.viewTransform = viewTransform.value_or("");
         return jobs::loadScene(request, pythonReporter());
       },
       py::arg("path") = py::none(), py::kw_only(), py::arg("camera") = "",
       py::arg("exposure") = py::none(), py::arg("view_transform") = py::none(),
+      py::arg("focus_on") = "",
       "The scene or mesh file (None: the built-in scene), as `parallax render SCENE` loads it; "
+      "camera by name, node name or index as --camera; focus_on an object's name as --focus-on; "
       "exposure (stops) and view_transform ('standard' or 'filmic') as --exposure and "
       "--view-transform, over the file's own look (docs/look.md)");
 

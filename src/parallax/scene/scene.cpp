@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "parallax/core/transform.h"
 
@@ -22,6 +23,65 @@ Bounds3f Scene::bounds() const {
     b.extend(s.center + Vec3f(s.radius));
   }
   return b;
+}
+
+namespace {
+// Double-precision vector arithmetic for the one-ray intersection below.
+Vec3d sub(const Vec3d& a, const Vec3d& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+double dotD(const Vec3d& a, const Vec3d& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+Vec3d crossD(const Vec3d& a, const Vec3d& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+Vec3d toDouble(const Vec3f& v) {
+  return {v.x, v.y, v.z};
+}
+}  // namespace
+
+std::optional<float> firstHitDistance(const Scene& scene, const Vec3f& origin,
+                                      const Vec3f& direction) {
+  // Moller-Trumbore in double precision, both faces, t > 0; spheres by the quadratic's
+  // nearer positive root. One ray over every primitive: no acceleration structure needed.
+  const Vec3d o = toDouble(origin);
+  Vec3d d = toDouble(direction);
+  const double norm = std::sqrt(dotD(d, d));
+  if (!(norm > 0)) return std::nullopt;
+  d = {d.x / norm, d.y / norm, d.z / norm};
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const TriangleMesh& mesh : scene.meshes)
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const Vec3d a = toDouble(mesh.positions[mesh.indices[t]]);
+      const Vec3d e1 = sub(toDouble(mesh.positions[mesh.indices[t + 1]]), a);
+      const Vec3d e2 = sub(toDouble(mesh.positions[mesh.indices[t + 2]]), a);
+      const Vec3d p = crossD(d, e2);
+      const double det = dotD(e1, p);
+      if (std::abs(det) < 1e-300) continue;
+      const Vec3d s = sub(o, a);
+      const double u = dotD(s, p) / det;
+      if (u < 0 || u > 1) continue;
+      const Vec3d q = crossD(s, e1);
+      const double v = dotD(d, q) / det;
+      if (v < 0 || u + v > 1) continue;
+      const double hit = dotD(e2, q) / det;
+      if (hit > 0 && hit < nearest) nearest = hit;
+    }
+  for (const Sphere& sphere : scene.spheres) {
+    const Vec3d oc = sub(o, toDouble(sphere.center));
+    const double b = dotD(oc, d), c = dotD(oc, oc) - double(sphere.radius) * sphere.radius;
+    const double disc = b * b - c;
+    if (disc < 0) continue;
+    const double root = std::sqrt(disc);
+    for (const double hit : {-b - root, -b + root})
+      if (hit > 0) {
+        nearest = std::min(nearest, hit);
+        break;
+      }
+  }
+  if (!std::isfinite(nearest)) return std::nullopt;
+  return float(nearest);
 }
 
 void addQuad(Scene& scene, const std::string& name, const Vec3f& corner, const Vec3f& edgeU,

@@ -77,9 +77,22 @@ struct Light {
 // How the content is framed for the display (docs/display-geometry.md, "Depth budget"):
 // Window: the width fitted so that the content's bounds fill the window (the width-only fit);
 // Depth: the window fit with the zero-parallax plane inside the content and the depth
-// compressed (the camera's virtual gap) into the depth budget; None: the display block as it
-// is. Auto: Depth when the scene gives no display width, None when it does.
-enum class DisplayFit { Auto, Window, Depth, None };
+// compressed (the camera's virtual gap) into the depth budget; Camera: the window is what the
+// scene's file camera (a Blender shot) sees at its focus distance, the zero-parallax plane
+// there, the depth compressed as for Depth; None: the display block as it is. Auto: Camera for
+// a file camera's shot without a display width, Depth without a width, None with one.
+enum class DisplayFit { Auto, Window, Depth, None, Camera };
+
+// A file camera's shot (docs/gltf.md, "Framing a shot"): where the camera is, its fields of
+// view and the distance along its line of sight that the display's window frames (the focus
+// distance). The placement's centre is eye + forward * focusDistance.
+struct ShotFrame {
+  Vec3f eye;
+  float yfovRadians = 0;
+  float aspectRatio = 0;  // width / height from the file; 0: not given (the display's)
+  float focusDistance = 0;
+  std::string focusSource;  // how the focus distance was chosen, for the summary line
+};
 
 // Ranges of the framing's millimetres: the focus offset within +-kMaxFocusMm, the depth budget
 // above 0 and up to kMaxDepthBudgetMm.
@@ -110,6 +123,9 @@ struct DisplayPlacement {
   // frustum: its box's near corners are as wide as its far end). The Depth and Window fits
   // (with a focus) then fit these instead of the box's corners; the depth range stays the box's.
   std::vector<Vec3f> contentHull;
+  // The file camera whose shot the window frames (set by --camera and a bare glTF file's
+  // first camera; DisplayFit::Camera).
+  std::optional<ShotFrame> shot;
   // The content is a picture that should fill the window (an RGB-D photo, whose hull is the
   // frustum between its nearest and farthest depth): the Depth fit then covers the window, so
   // that every ray of the display from the window meets the content, instead of fitting the
@@ -173,11 +189,20 @@ struct NodeAnimation {
 // chosen one (--camera, docs/gltf.md).
 struct NamedCamera {
   std::string name;       // the camera's name, else its node's, else "camera N"
+  std::string nodeName;   // its node's name (Blender's object name, as the outliner shows it)
   std::string source;     // the file
   CameraSpec spec;        // eye, a point on the line of sight, up, vertical field of view
   float aspectRatio = 0;  // width / height from the file; 0: not given
   float znear = 0;        // the near plane from the file (informational: we do not clip)
   int note = -1;          // index of the file's line in Scene::notes, or -1
+};
+
+// An object of a loaded file by its node's name (glTF; Blender's object name): its world
+// bounds, the union over every node of that name (--focus-on, docs/gltf.md).
+struct NamedObject {
+  std::string name;
+  std::string source;  // the file
+  Bounds3f bounds;
 };
 
 struct Scene {
@@ -198,6 +223,7 @@ struct Scene {
   std::vector<DisplayKey> displayKeys;  // sorted by time; empty: the display does not move
   NodeAnimation nodeAnimation;          // glTF node animation; empty: nothing animated
   std::vector<NamedCamera> cameras;     // cameras of the loaded files, in file order
+  std::vector<NamedObject> objects;     // named nodes of the loaded files, in file order
   std::vector<std::string> warnings;
   // What was taken from and ignored in each loaded file (one line per glTF file; docs/gltf.md).
   std::vector<std::string> notes;
@@ -215,6 +241,12 @@ struct Scene {
   size_t triangleCount() const;
   Bounds3f bounds() const;
 };
+
+// The distance along the ray origin + t direction (t > 0, in units of |direction| = 1) to the
+// first triangle (either face) or sphere it meets, by brute force over every primitive (one
+// ray: the focus of a file camera's shot); nullopt when it meets nothing.
+std::optional<float> firstHitDistance(const Scene& scene, const Vec3f& origin,
+                                      const Vec3f& direction);
 
 // Appends an axis-aligned box [lo, hi] as a 12-triangle mesh, outward facing.
 void addBox(Scene& scene, const std::string& name, const Vec3f& lo, const Vec3f& hi,

@@ -130,7 +130,8 @@ def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
 
 def render_files(output: str, scene: Optional[str] = None, display: Optional[str] = None, *,
                  camera: str = "", exposure: Optional[float] = None,
-                 view_transform: Optional[str] = None, **keywords) -> dict:
+                 view_transform: Optional[str] = None, focus_on: str = "",
+                 **keywords) -> dict:
     """`parallax render SCENE --display DISPLAY -o OUTPUT ...`: the same files, byte for byte:
     layers, quilts (quilt="auto" or (columns, rows), size=(w, h), linear=True), sequences
     (frames="A:B", turntable=DEGREES, duration, fps, chunk="K/N") and their video (video=FILE,
@@ -140,7 +141,7 @@ def render_files(output: str, scene: Optional[str] = None, display: Optional[str
     _parallax._render_files(str(output), None if scene is None else str(scene),
                             None if display is None else str(display), camera=camera,
                             exposure=exposure, view_transform=view_transform,
-                            **_given(**keywords))
+                            focus_on=focus_on, **_given(**keywords))
     record = os.path.join(str(output), "render.json")
     return json.load(open(record)) if os.path.exists(record) else {}
 
