@@ -267,6 +267,7 @@ def test_render_files_are_the_cli_files(tmp_path):
         (["--direct-mapping"], {"direct_mapping": True}),
         (["--exposure", "1.5", "--view-transform", "filmic"],
          {"exposure": 1.5, "view_transform": "filmic"}),
+        (["--focus-on", "box"], {"focus_on": "box"}),
         (["--quilt", "3x2", "--size", "48x27", "--linear"],
          {"quilt": (3, 2), "size": (48, 27), "linear": True}),
         (["--turntable", "90", "--frames", "1:2", "--fps", "2", "--video", "{out}/t.webm"],
