@@ -1,6 +1,7 @@
 #include "parallax/render/quilt.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
 #include "parallax/display/display_model.h"
 #include "parallax/display/mask.h"
 #include "parallax/render/display_render.h"
@@ -267,6 +269,33 @@ float bilinear(const Image& image, double x, double y, int c) {
 
 }  // namespace
 
+namespace {
+
+// The two views of N that subpixel (x, y, c) blends, (1 - t) below + t above.
+struct ViewBlend {
+  int below, above;
+  double t;
+};
+ViewBlend subpixelViewBlend(const LenticularDesign& design, int x, int y, int c, int n,
+                            ViewResampling resampling) {
+  // The quilt camera on the design line that the subpixel's light reaches (the optics: view
+  // f's own with bundles converging at D); camera i covers [i / N, (i + 1) / N).
+  const double panelX = subpixelPointMm(design, x + 0.5, y + 0.5, c).x;
+  const double position =
+      lensQuiltFraction(design, panelX, viewFraction(design, x, y, c)) * n - 0.5;
+  const int below = std::clamp(int(std::floor(position)), 0, n - 1);
+  const int above = std::clamp(below + 1, 0, n - 1);
+  const double t = std::clamp(position - std::floor(position), 0.0, 1.0);
+  // Beyond the first and last view: the nearest of them.
+  if (position < 0) return {below, above, 0.0};
+  if (position > n - 1) return {below, above, 1.0};
+  // Nearest: the view whose centre is nearer, floor(f N) (t = 1/2 rounds up, as floor does).
+  if (resampling == ViewResampling::Nearest) return {below, above, t < 0.5 ? 0.0 : 1.0};
+  return {below, above, t};
+}
+
+}  // namespace
+
 Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views,
                                ViewResampling resampling) {
   if (views.empty()) throw std::invalid_argument("interlaceQuiltLenticular: no views");
@@ -277,25 +306,87 @@ Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c) {
-        // The quilt camera on the design line that the subpixel's light reaches (the optics:
-        // view f's own with bundles converging at D); camera i covers [i / N, (i + 1) / N).
-        const double panelX = subpixelPointMm(design, x + 0.5, y + 0.5, c).x;
-        const double position =
-            lensQuiltFraction(design, panelX, viewFraction(design, x, y, c)) * n - 0.5;
-        const int below = std::clamp(int(std::floor(position)), 0, n - 1);
-        const int above = std::clamp(below + 1, 0, n - 1);
-        const double t = std::clamp(position - std::floor(position), 0.0, 1.0);
+        const ViewBlend blend = subpixelViewBlend(design, x, y, c, n, resampling);
         const double px = (x + 0.5) * sx, py = (y + 0.5) * sy;
-        const double a = bilinear(views[size_t(below)], px, py, c);
-        const double b = bilinear(views[size_t(above)], px, py, c);
-        const bool outside = position < 0 || position > n - 1;
-        // Nearest: the view whose centre is nearer, floor(f N) (t = 1/2 rounds up, as floor does).
-        const bool nearest = resampling == ViewResampling::Nearest;
-        panel.at(x, y)[c] = float(outside   ? (position < 0 ? a : b)
-                                  : nearest ? (t < 0.5 ? a : b)
-                                            : a * (1 - t) + b * t);
+        const double a = bilinear(views[size_t(blend.below)], px, py, c);
+        const double b = bilinear(views[size_t(blend.above)], px, py, c);
+        panel.at(x, y)[c] = float(blend.t == 0   ? a
+                                  : blend.t == 1 ? b
+                                                 : a * (1 - blend.t) + b * blend.t);
       }
   return panel;
+}
+
+QuiltInterlacer::QuiltInterlacer(const LenticularDesign& design, const QuiltLayout& layout,
+                                 int quiltWidth, int quiltHeight, ViewResampling resampling)
+    : panelWidth_(design.calibration.screenW),
+      panelHeight_(design.calibration.screenH),
+      quiltWidth_(quiltWidth) {
+  const int tileW = quiltWidth / layout.columns, tileH = quiltHeight / layout.rows;
+  const int n = layout.views();
+  if (tileW < 1 || tileH < 1 || n < 1 || n > 65535)
+    throw std::invalid_argument("QuiltInterlacer: no tiles in the quilt");
+  for (int k = 0; k < n; ++k) {  // splitQuilt's tiles: view 0 at the bottom left
+    const int64_t left = (k % layout.columns) * tileW;
+    const int64_t top = quiltHeight - (k / layout.columns + 1) * tileH;
+    tileOrigin_.push_back(top * quiltWidth + left);
+  }
+  const double sx = double(tileW) / panelWidth_, sy = double(tileH) / panelHeight_;
+  taps_.resize(size_t(panelWidth_) * size_t(panelHeight_));
+  views_.resize(taps_.size() * 3);
+  parallelFor(panelHeight_, 0, 8, [&](int64_t begin, int64_t end) {
+    for (int y = int(begin); y < int(end); ++y)
+      for (int x = 0; x < panelWidth_; ++x) {
+        // bilinear()'s taps at the pixel's place in a tile.
+        const size_t i = size_t(y) * size_t(panelWidth_) + size_t(x);
+        const double fx = std::clamp((x + 0.5) * sx - 0.5, 0.0, tileW - 1.0);
+        const double fy = std::clamp((y + 0.5) * sy - 0.5, 0.0, tileH - 1.0);
+        const int x0 = int(fx), y0 = int(fy);
+        const int x1 = std::min(x0 + 1, tileW - 1), y1 = std::min(y0 + 1, tileH - 1);
+        taps_[i] = {y0 * quiltWidth + x0, x1 - x0, (y1 - y0) * quiltWidth, float(fx - x0),
+                    float(fy - y0)};
+        for (int c = 0; c < 3; ++c) {
+          const ViewBlend blend = subpixelViewBlend(design, x, y, c, n, resampling);
+          views_[3 * i + size_t(c)] = {uint16_t(blend.below), uint16_t(blend.above),
+                                       float(blend.t)};
+        }
+      }
+  });
+}
+
+double QuiltInterlacer::bytesPerPanelPixel() {
+  return sizeof(PixelTaps) + 3 * sizeof(SubpixelViews);
+}
+
+void QuiltInterlacer::interlace(const uint8_t* quilt, uint8_t* panel, int threads) const {
+  static const std::array<float, 256> decode = [] {
+    std::array<float, 256> table{};
+    for (int k = 0; k < 256; ++k) table[size_t(k)] = srgb8ToLinear(uint8_t(k));
+    return table;
+  }();
+  parallelFor(panelHeight_, threads, 16, [&](int64_t begin, int64_t end) {
+    std::vector<float> row(size_t(panelWidth_) * 3);
+    for (int64_t y = begin; y < end; ++y) {
+      const size_t first = size_t(y) * size_t(panelWidth_);
+      for (int x = 0; x < panelWidth_; ++x) {
+        const PixelTaps& p = taps_[first + size_t(x)];
+        for (int c = 0; c < 3; ++c) {
+          const SubpixelViews& v = views_[3 * (first + size_t(x)) + size_t(c)];
+          const auto sample = [&](int view) {
+            const uint8_t* q = quilt + 3 * (tileOrigin_[view] + p.offset) + c;
+            const float top = decode[q[0]] * (1 - p.tx) + decode[q[3 * p.right]] * p.tx;
+            const float bottom =
+                decode[q[3 * p.down]] * (1 - p.tx) + decode[q[3 * (p.down + p.right)]] * p.tx;
+            return top * (1 - p.ty) + bottom * p.ty;
+          };
+          const float a = v.t == 1 ? 0.0f : sample(v.below);
+          const float b = v.t == 0 ? 0.0f : sample(v.above);
+          row[3 * size_t(x) + size_t(c)] = v.t == 0 ? a : v.t == 1 ? b : a * (1 - v.t) + b * v.t;
+        }
+      }
+      linearToSrgb8(row.data(), row.size(), panel + 3 * first);
+    }
+  });
 }
 
 std::vector<Image> resampleViews(const std::vector<Image>& views, int count,

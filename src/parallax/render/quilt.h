@@ -117,6 +117,41 @@ enum class ViewResampling { Nearest, Linear };
 Image interlaceQuiltLenticular(const LenticularDesign& design, const std::vector<Image>& views,
                                ViewResampling resampling = ViewResampling::Linear);
 
+// interlaceQuiltLenticular for playing quilt videos (`parallax show`): from a quilt frame of 8-bit
+// sRGB codes to the panel's 8-bit sRGB codes, with everything that does not change between frames
+// worked out once: each subpixel's two views and their blend, each pixel's bilinear taps inside
+// a tile. The blend runs in linear light (codes decoded by table, encoded by linearToSrgb8), as
+// interlaceQuiltLenticular on the quilt's decoded views does; the two agree to within one code
+// (float against double rounding). The quilt is columns x rows tiles, view 0 at the bottom left
+// (splitQuilt), its size a multiple of the layout; rows run in parallel.
+class QuiltInterlacer {
+ public:
+  QuiltInterlacer(const LenticularDesign& design, const QuiltLayout& layout, int quiltWidth,
+                  int quiltHeight, ViewResampling resampling = ViewResampling::Linear);
+  int panelWidth() const { return panelWidth_; }
+  int panelHeight() const { return panelHeight_; }
+  // The table's bytes, for memory estimates.
+  static double bytesPerPanelPixel();
+  // quilt: quiltWidth x quiltHeight RGB triples, row 0 at the top; panel: panelWidth x
+  // panelHeight RGB triples, written whole.
+  void interlace(const uint8_t* quilt, uint8_t* panel, int threads = 0) const;
+
+ private:
+  struct PixelTaps {
+    int32_t offset;      // of the top-left tap from a tile's top-left corner, in quilt pixels
+    int32_t right, down;  // the other taps' steps (0 where the tile's edge clamps them)
+    float tx, ty;
+  };
+  struct SubpixelViews {
+    uint16_t below, above;  // views, blended (1 - t) below + t above
+    float t;
+  };
+  int panelWidth_ = 0, panelHeight_ = 0, quiltWidth_ = 0;
+  std::vector<int64_t> tileOrigin_;  // view k's top-left corner, in quilt pixels
+  std::vector<PixelTaps> taps_;      // per panel pixel
+  std::vector<SubpixelViews> views_;  // per panel subpixel (pixel * 3 + channel)
+};
+
 // Resamples camera views (leftmost first) to `count` views across the same zone: view k of
 // `count` at (k + 1/2) / count of the way across takes the nearest camera view, or blends the
 // two around it linearly.

@@ -312,6 +312,45 @@ TEST(Interlace, QuiltOfTheDisplaysViewsIsTheDirectMapping) {
   }
 }
 
+// The player's table (QuiltInterlacer, from 8-bit quilt codes to 8-bit panel codes) against
+// interlaceQuiltLenticular on the quilt's decoded views (splitQuilt) encoded to 8 bits: within
+// one code everywhere, both resamplings, a quilt whose tiles are not the panel's shape and a
+// thread count of 1 and of every core alike.
+TEST(QuiltInterlacer, IsTheInterlacerOnCodes) {
+  const LenticularDesign d = smallLenticularDesign(40);  // 180 x 40 pixels
+  const QuiltLayout layout{4, 3, 0};
+  const int quiltW = 4 * 37, quiltH = 3 * 23;
+  std::vector<uint8_t> codes(size_t(quiltW) * quiltH * 3);
+  uint32_t state = 12345;
+  for (uint8_t& code : codes) {
+    state = state * 1664525u + 1013904223u;
+    code = uint8_t(state >> 24);
+  }
+  Image quilt(quiltW, quiltH);
+  for (size_t i = 0; i < quilt.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) quilt.pixels()[i][c] = srgb8ToLinear(codes[3 * i + size_t(c)]);
+  const std::vector<Image> views = splitQuilt(quilt, layout, "quilt");
+  for (const ViewResampling resampling : {ViewResampling::Linear, ViewResampling::Nearest}) {
+    const Image truth = interlaceQuiltLenticular(d, views, resampling);
+    const QuiltInterlacer table(d, layout, quiltW, quiltH, resampling);
+    ASSERT_EQ(table.panelWidth(), truth.width());
+    ASSERT_EQ(table.panelHeight(), truth.height());
+    std::vector<uint8_t> panel(size_t(truth.width()) * truth.height() * 3), serial(panel.size());
+    table.interlace(codes.data(), panel.data());
+    table.interlace(codes.data(), serial.data(), 1);
+    EXPECT_EQ(panel, serial);
+    int off = 0;
+    for (size_t i = 0; i < truth.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const int expected = linearToSrgb8(truth.pixels()[i][c]);
+        const int got = panel[3 * i + size_t(c)];
+        ASSERT_LE(std::abs(got - expected), 1) << i << " " << c;
+        off += got != expected;
+      }
+    EXPECT_LT(off, int(panel.size()) / 100);  // a rounding's difference, rarely
+  }
+}
+
 }  // namespace
 }  // namespace parallax
 
