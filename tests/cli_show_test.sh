@@ -24,10 +24,32 @@ check "render a two-frame sequence" run 0 render --display "$tmp/small.json" --s
   --turntable 90 --frames 1:2 --fps 2 -o "$tmp/seq"
 check "render a quilt" run 0 render --display "$tmp/small.json" --spp 1 --quilt 3x2 \
   --size 32x18 -o "$tmp/quilt"
+# A small lenticular panel (96x128), a quilt for it, the same quilt interlaced by `interlace`,
+# and a two-frame quilt video (a turntable) with each frame's quilt picture interlaced too.
+cat >"$tmp/lkg.json" <<'JSON'
+{"serial": "TEST", "pitch": {"value": 13.7}, "slope": {"value": -6.2}, "center": {"value": 0.4},
+ "viewCone": {"value": 40}, "invView": {"value": 1}, "DPI": {"value": 81},
+ "screenW": {"value": 96}, "screenH": {"value": 128}, "flipImageX": {"value": 0},
+ "flipImageY": {"value": 0}, "flipSubp": {"value": 0}}
+JSON
+check "render a lenticular quilt" run 0 render --display "$tmp/lkg.json" --spp 1 --quilt 4x3 --size 24x32 \
+  -o "$tmp/lq"
+lquilt=$(ls "$tmp"/lq/*_qs4x3*.png)
+check "interlace it" run 0 interlace "$lquilt" --display "$tmp/lkg.json" -o "$tmp/li"
+check "render a quilt video" run 0 render --display "$tmp/lkg.json" --spp 1 --quilt 4x3 --size 24x32 \
+  --turntable 180 --frames 1:2 --fps 2 --video "$tmp/lv/turn_qs4x3a0.75.mp4" -o "$tmp/lv"
+for k in 1 2; do
+  check "interlace the video's frame $k" run 0 interlace \
+    "$(ls "$tmp"/lv/frame-000$k/*_qs4x3*.png)" --display "$tmp/lkg.json" -o "$tmp/lv$k"
+done
 
 # Errors come before any window, with or without a display.
-check "a quilt folder exits 2" run 2 show "$tmp/quilt"
-check "it says to interlace the quilt" one_line_naming "parallax interlace"
+check "a quilt without --display exits 2" run 2 show "$tmp/quilt"
+check "it asks for the panel" one_line_naming "--display: a quilt is shown on the lenticular panel"
+check "a quilt on a barrier display exits 2" run 2 show "$lquilt" --display "$tmp/small.json"
+check "it names the display and interlace" one_line_naming "--display: a quilt is played on a lenticular panel"
+check "--display without a quilt exits 2" run 2 show "$tmp/r" --display "$tmp/lkg.json"
+check "it says what --display is for" one_line_naming "--display: applies to a quilt"
 mkdir -p "$tmp/empty"
 check "a folder of no layers exits 2" run 2 show "$tmp/empty"
 check "it names what show plays" one_line_naming "image-K.png pairs"
@@ -51,9 +73,11 @@ for _ in $(seq 300); do xdpyinfo -display "$display" >/dev/null 2>&1 && break; s
 
 # Shows DIR with the given options for a few seconds and takes a screenshot while it runs:
 # retried until the screen matches or the time is up.
-shot_matches() {  # shot_matches PICTURE X Y -- SHOW-ARGS...
-  local picture=$1 x=$2 y=$3
-  shift 4
+shot_matches() {  # shot_matches PICTURE X Y [MEAN] -- SHOW-ARGS...
+  local picture=$1 x=$2 y=$3 mean=""
+  shift 3
+  if [ "$1" != "--" ]; then mean=$1; shift; fi
+  shift
   DISPLAY=$display "$bin" show "$@" --windowed --exit-after 60 >"$tmp/show.out" 2>&1 &
   local pid=$!
   local ok=1
@@ -61,7 +85,7 @@ shot_matches() {  # shot_matches PICTURE X Y -- SHOW-ARGS...
   for _ in $(seq 150); do
     sleep 0.2
     xwd -root -silent -display "$display" >"$tmp/shot.xwd" 2>/dev/null || continue
-    if $compare "$tmp/shot.xwd" "$picture" "$x" "$y" >"$tmp/compare.out"; then ok=0; break; fi
+    if $compare "$tmp/shot.xwd" "$picture" "$x" "$y" $mean >"$tmp/compare.out"; then ok=0; break; fi
   done
   kill "$pid" 2>/dev/null
   wait "$pid" 2>/dev/null
@@ -94,6 +118,21 @@ check "the sequence's second frame is shown" shot_matches "$tmp/seq/frame-0002/i
   "$tmp/seq"
 check "at the sequence's own fps" grep -q "playing 2 sequence frames at 2 frames/s (the sequence's)" \
   "$tmp/show.out"
+
+# A quilt picture and a quilt video on the lenticular panel, interlaced as shown: the picture
+# is `interlace`'s (within one level), and each frame of the video is its frame's quilt
+# interlaced (within the video's loss: a mean of a few levels).
+check "a quilt on its panel is interlace's picture" shot_matches "$tmp/li/image.png" 0 0 -- \
+  "$lquilt" --display "$tmp/lkg.json"
+check "show says what it shows" grep -q "showing .*_qs4x3.* interlaced for 96x128" "$tmp/show.out"
+check "a quilt's folder is played too" shot_matches "$tmp/li/image.png" 0 0 -- "$tmp/lq" \
+  --display "$tmp/lkg.json"
+for k in 1 2; do
+  check "the quilt video's frame $k is shown interlaced" shot_matches "$tmp/lv$k/image.png" 0 0 \
+    4 -- "$tmp/lv/turn_qs4x3a0.75.mp4" --display "$tmp/lkg.json" --fps 4
+done
+check "show says what it plays" grep -q "playing turn_qs4x3a0.75.mp4: 2 frames at 4 frames/s (--fps), interlaced for 96x128 as shown" "$tmp/show.out"
+check "and how fast it went" grep -qE "shown [0-9]+ frames in .* frames/s\); per frame: decode" "$tmp/show.out"
 
 check "quit closes at once" bash -c "DISPLAY=$display timeout 5 '$bin' show '$tmp/r' --windowed \
   --keys quit"

@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Compares a region of an X screenshot (xwd -root) with a PNG picture, pixel by pixel.
 
-Usage: screen_compare.py SHOT.xwd PICTURE.png X Y
+Usage: screen_compare.py SHOT.xwd PICTURE.png X Y [MEAN]
 Exits 0 when every pixel of the picture, placed with its top-left corner at (X, Y) on the
 screen, matches the screen within one 8-bit level per channel; prints the first mismatch
-otherwise. Both formats are read here (XWD's header, PNG's zlib stream and its row filters),
+otherwise. With MEAN (a lossy video's frame against its source picture): exits 0 when the mean
+absolute difference over the picture's channels is at most MEAN levels instead. Both formats are read here (XWD's header, PNG's zlib stream and its row filters),
 so the check depends on nothing but the Python standard library.
 """
 import struct
@@ -92,6 +93,14 @@ def main():
     if x0 + pw > sw or y0 + ph > sh:
         print(f"the picture ({pw}x{ph} at {x0},{y0}) does not fit the screen {sw}x{sh}")
         return 1
+    if len(sys.argv) > 5:
+        limit, total = float(sys.argv[5]), 0
+        for y in range(ph):
+            for x in range(pw):
+                total += sum(abs(w - g) for w, g in zip(png(x, y), screen(x0 + x, y0 + y)))
+        mean = total / (3 * pw * ph)
+        print(f"mean difference {mean:.2f} levels (at most {limit})")
+        return 0 if mean <= limit else 1
     for y in range(ph):
         for x in range(pw):
             want, got = png(x, y), screen(x0 + x, y0 + y)

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_reader.h"
 #include "parallax/jobs/limits.h"
+#include "parallax/jobs/quilt_player.h"
 #include "parallax/window/layer_windows.h"
 
 namespace parallax::app {
@@ -33,6 +35,7 @@ struct ShowOptions {
   double exitAfter = 0;
   std::string keys;
   double fps = 0;  // frames: per second (0: pairs at the monitor's refresh, sequences at theirs)
+  std::string display;  // a quilt's lenticular panel (a calibration or lkg:NAME)
 };
 
 // A calibration pattern set's mask patterns, as index.json lists them.
@@ -139,8 +142,9 @@ ShowSet readShowSet(const ShowOptions& o) {
       for (const auto& entry : fs::directory_iterator(dir))
         quilt |= entry.path().filename().string().find("_qs") != std::string::npos;
       throw InputError(set.imagePath, "",
-                       quilt ? "missing: this is a quilt; map it onto the panel with `parallax "
-                               "interlace` (docs/quilts.md) and show that folder"
+                       quilt ? "missing: the folder holds several quilts: show one of them "
+                               "(with --display, the lenticular panel), or map one onto a "
+                               "barrier with `parallax interlace` (docs/quilts.md)"
                              : "missing: give the output folder of render (image.png, nmf's "
                                "image-K.png pairs, or a sequence's frame-NNNN folders) or of "
                                "calibrate");
@@ -221,7 +225,98 @@ void checkShowMemory(const ShowOptions& o, const ShowSet& set) {
                   "show fewer or smaller pictures");
 }
 
+// The panels' modes against the layers: 1:1 pixels need a layer the monitor's size, and two
+// layers need two monitors.
+void noteMonitorModes(const LayerWindows& windows, const std::vector<WindowRequest>& requests,
+                      const std::vector<std::pair<int, int>>& sizes) {
+  for (int k = 0; k < int(requests.size()); ++k) {
+    const LayerWindows::Mode mode = windows.monitorMode(k);
+    const auto [width, height] = sizes[size_t(k)];
+    if (mode.width > 0 && (mode.width != width || mode.height != height))
+      cliReporter().note(printed(
+          "monitor %d is %dx%d and the %s layer %dx%d: shown 1:1 from the top-left corner, %s",
+          requests[size_t(k)].monitor, mode.width, mode.height, requests[size_t(k)].title.c_str(),
+          width, height,
+          mode.width < width || mode.height < height ? "cut off at the monitor's edges"
+                                                     : "not filling the monitor"));
+  }
+  if (requests.size() == 2 && requests[0].monitor == requests[1].monitor)
+    cliReporter().note(printed(
+        "both layers are on monitor %d, one over the other's place: a two-panel display needs "
+        "each layer on its own monitor (--image-monitor, --mask-monitor)",
+        requests[0].monitor));
+}
+
+// A quilt's file: `path` itself, or the one quilt picture or video (a name with _qs) in the
+// folder `path` when it has no image.png; "" for neither.
+std::string quiltFile(const fs::path& path) {
+  const auto isQuilt = [](const fs::path& p) {
+    const std::string name = p.filename().string();
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return name.find("_qs") != std::string::npos &&
+           (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || jobs::isVideoPath(name));
+  };
+  if (!fs::is_directory(path)) return isQuilt(path) ? path.string() : "";
+  if (fs::exists(path / "image.png") || fs::exists(path / "image-1.png")) return "";
+  std::vector<std::string> found;
+  for (const auto& entry : fs::directory_iterator(path))
+    if (entry.is_regular_file() && isQuilt(entry.path())) found.push_back(entry.path().string());
+  std::sort(found.begin(), found.end());
+  return found.size() == 1 ? found.front() : "";
+}
+
+// A quilt picture or video on a lenticular panel, interlaced as it is shown.
+void runQuiltShow(const ShowOptions& o, const std::string& quilt) {
+  const std::vector<ShowKey> keys = parseKeys(o.keys);
+  if (o.display.empty())
+    throw RequestError("display",
+                       "a quilt is shown on the lenticular panel it is interlaced for: give "
+                       "lkg:NAME or the panel's visual.json");
+  jobs::QuiltPlayRequest request;
+  request.quilt = quilt;
+  request.display = o.display;
+  request.otherBytes = kWindowSystemBytes;
+  request.otherBytesPerPanelPixel = kWindowPixelBytes;
+  jobs::QuiltPlayer player(request, cliReporter());
+  const std::vector<WindowRequest> requests{{"image", o.imageMonitor, !o.windowed, 0, 0}};
+  LayerWindows windows(requests);
+  if (!o.windowed) noteMonitorModes(windows, requests, {{player.width(), player.height()}});
+  long shown = 0;
+  windows.streamFrames(0, player.width(), player.height(), [&](std::vector<uint8_t>& rgb) {
+    ++shown;
+    return player.next(rgb);
+  });
+  double period = 0;
+  if (player.isVideo()) {
+    const double fps = o.fps > 0 ? o.fps : player.fps() > 0 ? player.fps() : 30.0;
+    period = 1.0 / fps;
+    std::printf("playing %s: %d frames at %.3g frames/s (%s), interlaced for %dx%d as shown\n",
+                fs::path(quilt).filename().c_str(), player.frames(), fps,
+                o.fps > 0 ? "--fps" : "the video's", player.width(), player.height());
+  } else {
+    std::printf("showing %s interlaced for %dx%d\n", fs::path(quilt).filename().c_str(),
+                player.width(), player.height());
+  }
+  std::fflush(stdout);
+  const auto start = std::chrono::steady_clock::now();
+  windows.run([](ShowKey key) { return key != ShowKey::Quit; }, o.exitAfter, keys, period);
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const jobs::QuiltPlayer::Timing t = player.timing();
+  if (player.isVideo() && t.frames > 0)
+    std::printf(
+        "shown %ld frames in %.2f s (%.1f frames/s); per frame: decode %.1f ms, interlace "
+        "%.1f ms\n",
+        shown, wall, double(shown) / std::max(wall, 1e-9), 1e3 * t.decodeSeconds / t.frames,
+        1e3 * t.interlaceSeconds / t.frames);
+}
+
 void runShow(const ShowOptions& o) {
+  if (const std::string quilt = quiltFile(o.dir); !quilt.empty()) return runQuiltShow(o, quilt);
+  if (!o.display.empty())
+    throw RequestError("display", "applies to a quilt picture or video (NAME_qs{C}x{R}...)");
   const std::vector<ShowKey> keys = parseKeys(o.keys);
   const ShowSet set = readShowSet(o);
   checkShowMemory(o, set);
@@ -248,30 +343,13 @@ void runShow(const ShowOptions& o) {
     requests.push_back({"mask", maskMonitor, !o.windowed, image.width(), 0});
   }
   LayerWindows windows(requests);
-  // The panels' modes against the layers: 1:1 pixels need a layer the monitor's size, and two
-  // layers need two monitors.
   if (!o.windowed) {
-    const Image* layers[2] = {&image,
-                              twoLayers ? (mask.empty() ? &masks.front() : &mask) : nullptr};
-    for (int k = 0; k < int(requests.size()); ++k) {
-      const LayerWindows::Mode mode = windows.monitorMode(k);
-      const Image& layer = *layers[k];
-      if (mode.width > 0 && (mode.width != layer.width() || mode.height != layer.height()))
-        cliReporter().note(
-            printed("monitor %d is %dx%d and the %s layer %dx%d: shown 1:1 from the "
-                    "top-left corner, %s",
-                    requests[size_t(k)].monitor, mode.width, mode.height,
-                    requests[size_t(k)].title.c_str(), layer.width(), layer.height(),
-                    mode.width < layer.width() || mode.height < layer.height()
-                        ? "cut off at the monitor's edges"
-                        : "not filling the monitor"));
+    std::vector<std::pair<int, int>> sizes{{image.width(), image.height()}};
+    if (twoLayers) {
+      const Image& layer = mask.empty() ? masks.front() : mask;
+      sizes.emplace_back(layer.width(), layer.height());
     }
-    if (twoLayers && requests[0].monitor == requests[1].monitor)
-      cliReporter().note(
-          printed("both layers are on monitor %d, one over the other's place: a "
-                  "two-panel display needs each layer on its own monitor "
-                  "(--image-monitor, --mask-monitor)",
-                  requests[0].monitor));
+    noteMonitorModes(windows, requests, sizes);
   }
   double framePeriod = 0;
   if (!imageFrames.empty()) {
@@ -326,8 +404,14 @@ void registerShowCommand(CLI::App& cli) {
   cmd->add_option("dir", o->dir,
                   "Output folder of `render` (image.png, mask.png; nmf's image-K.png and "
                   "mask-K.png pairs and a sequence's frame-NNNN folders are played) or of "
-                  "`calibrate patterns` (index.json)")
+                  "`calibrate patterns` (index.json); or a quilt picture or video "
+                  "(NAME_qs{C}x{R}a{aspect}.png/.mp4/.webm, or a folder holding one) with "
+                  "--display, interlaced for that lenticular panel as it is shown")
       ->required();
+  cmd->add_option("--display", o->display,
+                  "With a quilt: the lenticular panel it is shown on (lkg:NAME or its "
+                  "visual.json)")
+      ->type_name("FILE|lkg:NAME");
   cmd->add_option("--image-monitor", o->imageMonitor,
                   "Monitor for the image layer (or a lenticular panel), from 0")
       ->capture_default_str()
@@ -345,7 +429,7 @@ void registerShowCommand(CLI::App& cli) {
   cmd->add_option("--fps", o->fps,
                   "Frames per second for a folder of frames: nmf's time-multiplexed pairs "
                   "(default: the monitor's refresh rate) or a sequence's frame-NNNN folders "
-                  "(default: the sequence's fps)")
+                  "(default: the sequence's fps); for a quilt video (default: the video's)")
       ->check(realIn(0.001, 1000));
   cmd->add_option("--keys", o->keys,
                   "Keys to act on first, as if pressed: next, previous, info, quit (comma "

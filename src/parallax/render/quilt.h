@@ -138,7 +138,7 @@ class QuiltInterlacer {
 
  private:
   struct PixelTaps {
-    int32_t offset;      // of the top-left tap from a tile's top-left corner, in quilt pixels
+    int32_t offset;       // of the top-left tap from a tile's top-left corner, in quilt pixels
     int32_t right, down;  // the other taps' steps (0 where the tile's edge clamps them)
     float tx, ty;
   };
@@ -147,8 +147,8 @@ class QuiltInterlacer {
     float t;
   };
   int panelWidth_ = 0, panelHeight_ = 0, quiltWidth_ = 0;
-  std::vector<int64_t> tileOrigin_;  // view k's top-left corner, in quilt pixels
-  std::vector<PixelTaps> taps_;      // per panel pixel
+  std::vector<int64_t> tileOrigin_;   // view k's top-left corner, in quilt pixels
+  std::vector<PixelTaps> taps_;       // per panel pixel
   std::vector<SubpixelViews> views_;  // per panel subpixel (pixel * 3 + channel)
 };
 

@@ -67,6 +67,8 @@ struct LayerWindows::Impl {
     std::vector<SDL_Texture*> frames;  // one per frame (one for a still picture)
     SDL_Texture* texture = nullptr;    // the frame shown
     int width = 0, height = 0;
+    FrameSource stream;  // frames made as they are shown (texture: a streaming one)
+    std::vector<uint8_t> streamed;
   };
   std::vector<Window> windows;
 
@@ -85,6 +87,16 @@ struct LayerWindows::Impl {
     for (SDL_Texture* t : w.frames) SDL_DestroyTexture(t);
     w.frames.clear();
     w.texture = nullptr;
+    w.stream = nullptr;
+  }
+
+  // The stream's next frame into its texture; false after its last.
+  static bool nextStreamed(Window& w) {
+    if (!w.stream(w.streamed)) return false;
+    if (w.streamed.size() != size_t(w.width) * size_t(w.height) * 3)
+      throw std::invalid_argument("LayerWindows::streamFrames: a frame of another size");
+    SDL_UpdateTexture(w.texture, nullptr, w.streamed.data(), w.width * 3);
+    return true;
   }
 
   void present(Window& w) {
@@ -172,6 +184,22 @@ void LayerWindows::Impl::setFrames(int index, const std::vector<const Image*>& f
   present(w);
 }
 
+void LayerWindows::streamFrames(int index, int width, int height, FrameSource next) {
+  Impl::Window& w = impl_->windows.at(size_t(index));
+  Impl::clearFrames(w);
+  w.width = width;
+  w.height = height;
+  if (!(SDL_GetWindowFlags(w.window) & SDL_WINDOW_BORDERLESS))
+    SDL_SetWindowSize(w.window, width, height);
+  SDL_Texture* texture = SDL_CreateTexture(w.renderer, SDL_PIXELFORMAT_RGB24,
+                                           SDL_TEXTUREACCESS_STREAMING, width, height);
+  if (!texture) throw sdlError("cannot make the stream's texture");
+  w.frames.push_back(texture);
+  w.texture = texture;
+  w.stream = std::move(next);
+  if (Impl::nextStreamed(w)) impl_->present(w);
+}
+
 LayerWindows::Mode LayerWindows::monitorMode(int index) const {
   const Impl::Window& w = impl_->windows.at(size_t(index));
   Mode mode;
@@ -192,6 +220,7 @@ long LayerWindows::run(const std::function<bool(ShowKey)>& onKey, double exitAft
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   long shownFrame = -1;
+  double nextStreamDue = framePeriodSeconds;  // the first streamed frame is up already
   for (;;) {
     SDL_Event event;
     while (SDL_PollEvent(&event)) {
@@ -200,7 +229,16 @@ long LayerWindows::run(const std::function<bool(ShowKey)>& onKey, double exitAft
         return presented;
       if (event.type == SDL_KEYDOWN && !onKey(keyOf(event.key.keysym.sym))) return presented;
     }
-    if (framePeriodSeconds > 0) {
+    bool streams = false;
+    for (const Impl::Window& w : impl_->windows) streams |= bool(w.stream);
+    if (framePeriodSeconds > 0 && streams) {
+      if (elapsed() >= nextStreamDue) {
+        for (Impl::Window& w : impl_->windows)
+          if (w.stream && !Impl::nextStreamed(w)) return presented;
+        // Late: the clock starts again from this frame.
+        nextStreamDue = std::max(nextStreamDue + framePeriodSeconds, elapsed());
+      }
+    } else if (framePeriodSeconds > 0) {
       // Frame k from k periods after the start: the windows' frames k together.
       const long frame = long(elapsed() / framePeriodSeconds);
       if (frame != shownFrame) {
@@ -215,7 +253,8 @@ long LayerWindows::run(const std::function<bool(ShowKey)>& onKey, double exitAft
     if (exitAfterSeconds > 0 && elapsed() >= exitAfterSeconds) return presented;
     if (framePeriodSeconds > 0) {
       // Until the next frame is due (at most 30 ms, for the keys).
-      const double next = double(shownFrame + 1) * framePeriodSeconds - elapsed();
+      const double due = streams ? nextStreamDue : double(shownFrame + 1) * framePeriodSeconds;
+      const double next = due - elapsed();
       SDL_Delay(Uint32(std::clamp(next * 1000.0, 0.0, 30.0)));
     } else {
       SDL_Delay(30);

@@ -42,6 +42,14 @@ class LayerWindows {
   // same size; every window's frame k is shown at once.
   void showFrames(int index, const std::vector<Image>& frames);
 
+  // Frames made as they are shown (a quilt video interlaced on the fly): `next` fills the next
+  // frame of window `index` (width x height RGB triples of 8-bit sRGB codes, row 0 at the top)
+  // and returns false after the last. run() with framePeriodSeconds asks for one frame per
+  // period; behind time, frames follow one another at once until it catches up (they are made
+  // in order, never skipped).
+  using FrameSource = std::function<bool(std::vector<uint8_t>& rgb)>;
+  void streamFrames(int index, int width, int height, FrameSource next);
+
   // The size of the monitor window `index` is on, and its refresh rate in Hz (0: unknown).
   struct Mode {
     int width = 0, height = 0, refreshHz = 0;
