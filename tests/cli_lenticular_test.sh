@@ -4,12 +4,7 @@ set -u
 source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
 
 # A small device-style calibration: every field {"value": n}.
-cat >"$tmp/small.json" <<'JSON'
-{"serial": "TEST", "pitch": {"value": 13.7}, "slope": {"value": -6.2}, "center": {"value": 0.4},
- "viewCone": {"value": 40}, "invView": {"value": 1}, "DPI": {"value": 81},
- "screenW": {"value": 96}, "screenH": {"value": 128}, "flipImageX": {"value": 0},
- "flipImageY": {"value": 0}, "flipSubp": {"value": 0}}
-JSON
+cp "$src/tests/fixtures/displays/small-lenticular-96x128.json" "$tmp/small.json"
 
 check "lenticular without a subcommand exits 2" run 2 lenticular
 check "render" run 0 lenticular render "$tmp/small.json" -o "$tmp/r"

@@ -28,12 +28,7 @@ o="$tmp/out-0"
 
 # A render output folder and a small lenticular calibration for the commands that read them.
 check "render a set for the other commands" run 0 render --spp 1 -o "$tmp/set"
-cat >"$tmp/small.json" <<'JSON'
-{"serial": "TEST", "pitch": {"value": 13.7}, "slope": {"value": -6.2}, "center": {"value": 0.4},
- "viewCone": {"value": 40}, "invView": {"value": 1}, "DPI": {"value": 81},
- "screenW": {"value": 96}, "screenH": {"value": 128}, "flipImageX": {"value": 0},
- "flipImageY": {"value": 0}, "flipSubp": {"value": 0}}
-JSON
+cp "$src/tests/fixtures/displays/small-lenticular-96x128.json" "$tmp/small.json"
 # A display of 65536 x 65536 pixels on each layer.
 sed -e 's/1920/65536/; s/1080/65536/' "$tmp/set/display.json" |
   awk '/resolution/ {r=1} r && /1920/ {sub(/1920/, "65536")} r && /1080/ {sub(/1080/, "65536"); r=0} {print}' \

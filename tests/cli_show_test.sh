@@ -26,12 +26,7 @@ check "render a quilt" run 0 render --display "$tmp/small.json" --spp 1 --quilt 
   --size 32x18 -o "$tmp/quilt"
 # A small lenticular panel (96x128), a quilt for it, the same quilt interlaced by `interlace`,
 # and a two-frame quilt video (a turntable) with each frame's quilt picture interlaced too.
-cat >"$tmp/lkg.json" <<'JSON'
-{"serial": "TEST", "pitch": {"value": 13.7}, "slope": {"value": -6.2}, "center": {"value": 0.4},
- "viewCone": {"value": 40}, "invView": {"value": 1}, "DPI": {"value": 81},
- "screenW": {"value": 96}, "screenH": {"value": 128}, "flipImageX": {"value": 0},
- "flipImageY": {"value": 0}, "flipSubp": {"value": 0}}
-JSON
+cp "$src/tests/fixtures/displays/small-lenticular-96x128.json" "$tmp/lkg.json"
 check "render a lenticular quilt" run 0 render --display "$tmp/lkg.json" --spp 1 --quilt 4x3 --size 24x32 \
   -o "$tmp/lq"
 lquilt=$(ls "$tmp"/lq/*_qs4x3*.png)

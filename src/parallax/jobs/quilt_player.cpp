@@ -64,29 +64,33 @@ struct QuiltPlayer::State {
     try {
       while (true) {
         auto last = Clock::now();
-        probeVideo(request.quilt, [&](int, const VideoFrame& frame) {
-          const auto decoded = Clock::now();
-          if (frame.width != quiltWidth || frame.height != quiltHeight)
-            throw InputError(request.quilt, "", "its frames change size");
-          std::vector<uint8_t> panel;
-          {
-            std::lock_guard<std::mutex> lock(mutex);
-            if (!spare.empty()) panel = std::move(spare.back()), spare.pop_back();
-          }
-          panel.resize(size_t(interlacer->panelWidth()) * size_t(interlacer->panelHeight()) * 3);
-          interlacer->interlace(frame.rgb.data(), panel.data());
-          const auto interlaced = Clock::now();
-          std::unique_lock<std::mutex> lock(mutex);
-          timing.decodeSeconds += seconds(decoded - last);
-          timing.interlaceSeconds += seconds(interlaced - decoded);
-          ++timing.frames;
-          changed.wait(lock, [&] { return stop || ready.size() < kFramesAhead; });
-          if (stop) throw Stopped{};
-          ready.push_back(std::move(panel));
-          changed.notify_all();
-          lock.unlock();
-          last = Clock::now();
-        });
+        probeVideo(
+            request.quilt,
+            [&](int, const VideoFrame& frame) {
+              const auto decoded = Clock::now();
+              if (frame.width != quiltWidth || frame.height != quiltHeight)
+                throw InputError(request.quilt, "", "its frames change size");
+              std::vector<uint8_t> panel;
+              {
+                std::lock_guard<std::mutex> lock(mutex);
+                if (!spare.empty()) panel = std::move(spare.back()), spare.pop_back();
+              }
+              panel.resize(size_t(interlacer->panelWidth()) * size_t(interlacer->panelHeight()) *
+                           3);
+              interlacer->interlace(frame.rgb.data(), panel.data());
+              const auto interlaced = Clock::now();
+              std::unique_lock<std::mutex> lock(mutex);
+              timing.decodeSeconds += seconds(decoded - last);
+              timing.interlaceSeconds += seconds(interlaced - decoded);
+              ++timing.frames;
+              changed.wait(lock, [&] { return stop || ready.size() < kFramesAhead; });
+              if (stop) throw Stopped{};
+              ready.push_back(std::move(panel));
+              changed.notify_all();
+              lock.unlock();
+              last = Clock::now();
+            },
+            true);
         std::lock_guard<std::mutex> lock(mutex);
         if (stop) return;
       }

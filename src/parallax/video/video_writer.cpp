@@ -538,7 +538,7 @@ void VideoWriter::finish() {
 }
 
 VideoInfo probeVideo(const std::string& path,
-                     const std::function<void(int, const VideoFrame&)>& onFrame) {
+                     const std::function<void(int, const VideoFrame&)>& onFrame, bool playback) {
   quietLogs();
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
@@ -584,11 +584,12 @@ VideoInfo probeVideo(const std::string& path,
         info.height = frame->height;
       }
       if (onFrame) {
-        sws.p =
-            sws_getCachedContext(sws.p, frame->width, frame->height, AVPixelFormat(frame->format),
-                                 frame->width, frame->height, AV_PIX_FMT_RGB24,
-                                 SWS_BICUBIC | SWS_ACCURATE_RND | SWS_BITEXACT | SWS_FULL_CHR_H_INT,
-                                 nullptr, nullptr, nullptr);
+        sws.p = sws_getCachedContext(
+            sws.p, frame->width, frame->height, AVPixelFormat(frame->format), frame->width,
+            frame->height, AV_PIX_FMT_RGB24,
+            playback ? SWS_BILINEAR
+                     : SWS_BICUBIC | SWS_ACCURATE_RND | SWS_BITEXACT | SWS_FULL_CHR_H_INT,
+            nullptr, nullptr, nullptr);
         if (!sws.p) throw InputError(path, "", "no conversion of its pixels to RGB");
         // The stream's matrix (BT.709 unless it says BT.601) and range.
         const int matrix =
