@@ -242,21 +242,48 @@ struct RowWork {
   size_t first(int row) const { return size_t(row) * seen.size(); }
   std::vector<Vec3f> seen, residual, weights, other, seenRear;
   std::vector<Vec3f> frameMasks;  // factorizeLayers: every frame's seen mask row
+  std::vector<Vec3f> eyeWeights;  // ImageLayerPasses::addGradientAndStep: every eye's W_e row
   SeenLayers::RowScratch scratch;
 };
 
-// body(row, work) for every view row, in parallel; the rows' results added in row order, so
-// the sum is the same for any thread count.
-template <class Body>
-double sumOverRows(const std::vector<TrainingView>& views, int threads, const Body& body) {
+// body(row, work) for every view row, in parallel, `grain` rows to a task; the rows' results
+// (a double, or anything with +=) added in row order, so the sum is the same for any thread
+// count.
+template <class Result = double, class Body>
+Result sumOverRows(const std::vector<TrainingView>& views, int threads, const Body& body,
+                   int grain = 2) {
   const int width = views.front().seen.width(), rows = views.front().seen.height();
-  std::vector<double> perRow(size_t(rows), 0.0);
-  parallelFor(rows, threads, 2, [&](int64_t begin, int64_t end) {
+  std::vector<Result> perRow(size_t(rows), Result{});
+  parallelFor(rows, threads, grain, [&](int64_t begin, int64_t end) {
     RowWork work(width);
     for (int64_t row = begin; row != end; ++row) perRow[size_t(row)] = body(int(row), work);
   });
+  Result sum{};
+  for (const Result& v : perRow) sum += v;
+  return sum;
+}
+
+// The projected, preconditioned descent direction of optimizeImageLayer over n values:
+// d = -P g, except 0 where x sits at a bound of [0, 1] and g points out of it.
+void projectedDirection(const Vec3f* x, const Vec3f* grad, const Vec3f* precondition, Vec3f* d,
+                        size_t n) {
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float value = x[i][c], g = grad[i][c];
+      const bool stuck = (value <= 0.0f && g > 0.0f) || (value >= 1.0f && g < 0.0f);
+      d[i][c] = stuck ? 0.0f : -g * precondition[i][c];
+    }
+}
+
+// One row's share of sum_e |A_e d|^2 weighted by W_e: `viewsOfD` holds A_e d's row and
+// `weights` W_e's (1 in linear light), eye after eye.
+double weightedSquares(const Vec3f* viewOfD, const Vec3f* weights, size_t n, bool srgb) {
   double sum = 0;
-  for (const double v : perRow) sum += v;
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float ad = viewOfD[i][c];
+      sum += double(ad) * double(srgb ? ad * weights[i][c] : ad);
+    }
   return sum;
 }
 
@@ -398,14 +425,62 @@ class ImageLayerPasses {
           v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
           eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, w.weights.data());
         }
-        for (size_t i = 0; i < w.other.size(); ++i)
-          for (int c = 0; c < 3; ++c) {
-            const float ad = w.other[i][c];
-            sum += double(ad) * double(srgb ? ad * w.weights[i][c] : ad);
-          }
+        sum += weightedSquares(w.other.data(), w.weights.data(), w.other.size(), srgb);
       }
       return sum;
     });
+  }
+
+  // What an iteration needs at the point x, in one pass where the passes are fused by rows:
+  // E at x (returned as `energy`), its gradient (added to `grad`, zero on entry), the descent
+  // direction d there (projectedDirection with `precondition`) and the curvature along it
+  // (as curvature(x, d)). Row j of the gradient is whole once every eye has added its adjoint
+  // to it, so d's row j follows and every eye's view of it is weighted by the W_e already made
+  // for the residual: the curvature costs one view per eye instead of a pass of its own.
+  struct Point {
+    double energy = 0, curvature = 0;
+    Point& operator+=(const Point& o) {
+      energy += o.energy, curvature += o.curvature;
+      return *this;
+    }
+  };
+  Point addGradientAndStep(const Image& x, Image& grad, const Image& precondition, Image& d) const {
+    if (!fused_) {
+      Point point;
+      point.energy = addGradient(x, grad);
+      projectedDirection(x.pixels().data(), grad.pixels().data(), precondition.pixels().data(),
+                         d.pixels().data(), d.pixels().size());
+      point.curvature = curvature(x, d);
+      return point;
+    }
+    ++passes_;
+    const size_t width = size_t(x.width());
+    // Tasks of 16 rows: each holds every eye's weights for its row (54 eyes x 1920 pixels:
+    // 1.2 MB), made once per task.
+    return sumOverRows<Point>(
+        views_, threads_,
+        [&](int j, RowWork& w) {
+          w.eyeWeights.resize(views_.size() * width);
+          Point point;
+          for (size_t e = 0; e < views_.size(); ++e) {
+            const TrainingView& v = views_[e];
+            const Vec3f* m = seenMask(e, j, w);
+            v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
+            point.energy += eyeErrorRange(v, w.seen.data(), w.first(j), width, w.residual.data(),
+                                          w.eyeWeights.data() + e * width);
+            v.seen.addFrontGradientRowSeen(w.residual.data(), m, &grad.at(0, j), w.scratch);
+          }
+          projectedDirection(&x.at(0, j), &grad.at(0, j), &precondition.at(0, j), &d.at(0, j),
+                             width);
+          for (size_t e = 0; e < views_.size(); ++e) {
+            const TrainingView& v = views_[e];
+            v.seen.viewRowSeen(&d.at(0, j), seenMask(e, j, w), w.other.data(), w.scratch);
+            point.curvature += weightedSquares(w.other.data(), w.eyeWeights.data() + e * width,
+                                               width, v.encodingScale > 0);
+          }
+          return point;
+        },
+        16);
   }
 
   // out += sum_e A_e^T (A_e 1 .* W_e), W_e the Gauss-Newton weights at x.
@@ -536,35 +611,34 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
   // Gradient of E (times 1 / norm): sum over eyes of A_e^T dE_e/dV_e, made in the pass that
   // evaluates E: at the start, then at each point the line search tries (the accepted one's is
   // the next iteration's).
-  Image grad(image.width(), image.height()), nextGrad, d(image.width(), image.height()), next;
-  double e = passes.addGradient(image, grad) * norm;
+  // The projected, preconditioned direction d there (no move out of [0, 1] at a bound) and the
+  // curvature along it come from the same pass.
+  const int width = image.width(), height = image.height();
+  Image grad(width, height), nextGrad, d(width, height), nextD(width, height), next;
+  auto point = passes.addGradientAndStep(image, grad, precondition, d);
+  double e = point.energy * norm;
   SolveReport local;
   local.objective.push_back(e);
   for (int it = 0; it < iterations; ++it) {
-    // Projected, preconditioned direction: no move out of [0, 1] at a bound.
-    for (size_t i = 0; i < d.pixels().size(); ++i)
-      for (int c = 0; c < 3; ++c) {
-        const float x = image.pixels()[i][c], g = grad.pixels()[i][c];
-        const bool stuck = (x <= 0.0f && g > 0.0f) || (x >= 1.0f && g < 0.0f);
-        d.pixels()[i][c] = stuck ? 0.0f : -g * precondition.pixels()[i][c];
-      }
     // The exact step of the quadratic (Gauss-Newton: of its model) along d:
     // -<g, d> / sum_e |A_e d|^2_W (A_e linear in the image with the mask fixed).
     const double slope = dot(grad, d);
     if (!(slope < 0)) break;
-    const double curvature = passes.curvature(image, d);
-    if (!(curvature > 0)) break;
-    double step = -slope / curvature;
+    if (!(point.curvature > 0)) break;
+    double step = -slope / point.curvature;
     bool lowered = false;
     for (int halving = 0; halving < 8 && !lowered; ++halving, step *= 0.5) {
       next = image;
       addScaled(next, d, float(step));
       clampToUnit(next);
-      nextGrad = Image(image.width(), image.height());
-      const double eNext = passes.addGradient(next, nextGrad) * norm;
+      nextGrad = Image(width, height);
+      const auto nextPoint = passes.addGradientAndStep(next, nextGrad, precondition, nextD);
+      const double eNext = nextPoint.energy * norm;
       if (eNext < e) {
         std::swap(image, next);
         std::swap(grad, nextGrad);
+        std::swap(d, nextD);
+        point = nextPoint;
         e = eNext;
         lowered = true;
       }
