@@ -162,26 +162,32 @@ double ssim(const Image& a, const Image& b) {
   return sum / (double(outWidth) * double(outHeight));
 }
 
-// A lane kernel: std::floor is a libm call on the x86-64 baseline (no SSE4.1 round).
+// Row by row: the prefix integrals of the row's three channels interleaved as the row is (one
+// pass in memory order), then each pixel's box from the prefixes at its two ends.
 PARALLAX_LANE_KERNEL Image boxFilterX(const Image& image, double widthPx) {
   if (!(widthPx > 0)) throw InputError("", "", "the box filter's width must be positive");
   const int w = image.width();
   Image out(w, image.height());
   parallelFor(image.height(), 0, kRowGrain, [&](int64_t begin, int64_t end) {
-    std::vector<double> prefix(size_t(w) + 1);  // prefix[i]: integral of one channel over [0, i)
-    for (int y = int(begin); y < int(end); ++y)
-      for (int c = 0; c < 3; ++c) {
-        for (int x = 0; x < w; ++x) prefix[size_t(x) + 1] = prefix[size_t(x)] + image.at(x, y)[c];
-        const auto integral = [&](double t) {  // of the box-pixel row over [0, t]
-          const int i = std::min(int(std::floor(t)), w - 1);
-          return prefix[size_t(i)] + (t - i) * image.at(i, y)[c];
-        };
-        for (int x = 0; x < w; ++x) {
-          const double lo = std::max(0.0, x + 0.5 - 0.5 * widthPx);
-          const double hi = std::min(double(w), x + 0.5 + 0.5 * widthPx);
-          out.at(x, y)[c] = float((integral(hi) - integral(lo)) / (hi - lo));
-        }
+    // prefix[3 i + c]: the integral of channel c of the box-pixel row over [0, i).
+    std::vector<double> prefix(3 * (size_t(w) + 1));
+    for (int y = int(begin); y < int(end); ++y) {
+      const float* in = &image.at(0, y).x;
+      for (size_t i = 0; i < 3 * size_t(w); ++i) prefix[i + 3] = prefix[i] + in[i];
+      float* o = &out.at(0, y).x;
+      for (int x = 0; x < w; ++x) {
+        // The box [lo, hi] clipped to the row; the integral up to t is
+        // prefix[i] + (t - i) row[i], i = floor(t) (t >= 0), the last pixel's at t = w.
+        const double lo = std::max(0.0, x + 0.5 - 0.5 * widthPx);
+        const double hi = std::min(double(w), x + 0.5 + 0.5 * widthPx);
+        const size_t il = size_t(std::min(int(lo), w - 1)), ih = size_t(std::min(int(hi), w - 1));
+        const double fl = lo - double(il), fh = hi - double(ih);
+        for (size_t c = 0; c < 3; ++c)
+          o[3 * size_t(x) + c] = float(((prefix[3 * ih + c] + fh * in[3 * ih + c]) -
+                                        (prefix[3 * il + c] + fl * in[3 * il + c])) /
+                                       (hi - lo));
       }
+    }
   });
   return out;
 }

@@ -555,6 +555,26 @@ class ImageLayerPasses {
 
 }  // namespace
 
+namespace {
+
+// round(65535 S(v / c)) of n values, rounding halves up as std::lround does for these
+// non-negative values (truncation and the exact remainder: a vectorised loop, where lround is
+// a libm call per value), at most 65535.
+PARALLAX_LANE_KERNEL
+void encodeTargetLanes(const float* values, uint16_t* encoded, size_t n, float inv) {
+  PARALLAX_SIMD
+  for (size_t i = 0; i < n; ++i) {
+    float value = 0, slope = 0;
+    srgbEncodeArithmetic(values[i] * inv, value, slope);
+    const float scaled = value * kEncodedUnit;
+    int rounded = int(scaled);
+    rounded += scaled - float(rounded) >= 0.5f ? 1 : 0;
+    encoded[i] = uint16_t(std::min(rounded, 65535));
+  }
+}
+
+}  // namespace
+
 void TrainingView::encodeTarget(int threads) {
   if (!(encodingScale > 0))
     throw std::invalid_argument("TrainingView::encodeTarget: the errors are in linear light");
@@ -562,12 +582,9 @@ void TrainingView::encodeTarget(int threads) {
   const size_t rowValues = 3 * size_t(target.width());
   encodedTarget.resize(rowValues * size_t(target.height()));
   parallelFor(target.height(), threads, 8, [&](int64_t begin, int64_t end) {
-    const float* values = &target.pixels()[0].x;
-    for (size_t i = size_t(begin) * rowValues; i < size_t(end) * rowValues; ++i) {
-      float encoded = 0, slope = 0;
-      srgbEncodeArithmetic(values[i] * inv, encoded, slope);
-      encodedTarget[i] = uint16_t(std::lround(encoded * kEncodedUnit));
-    }
+    const size_t first = size_t(begin) * rowValues;
+    encodeTargetLanes(&target.pixels()[0].x + first, encodedTarget.data() + first,
+                      size_t(end - begin) * rowValues, inv);
   });
   target = Image();
 }
