@@ -175,6 +175,45 @@ WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayModel& display,
   viewDistance_ = float(window.eyeMm.z);
 }
 
+namespace {
+
+// WindowCamera's rays, generateRay's formulas in the same order for 16 lanes (a loop outside the
+// class: GCC cannot make ISA clones of a virtual function, core/lane_kernel.h). With
+// `horizontalOnly` the origin moves along the display's up by `shift` (generateRay's
+// originY - eyeHeight); without, shift is 0 and the origin is the eye.
+struct WindowRayParameters {
+  Vec3f eye, corner, stepX, stepY, up;
+  float frontHalfHeight, rowStepMm, viewLineY, eyeZ, viewDistance, eyeHeight;
+  bool horizontalOnly;
+};
+
+PARALLAX_LANE_KERNEL void windowRays16(const WindowRayParameters p, const FilmSamples16& s,
+                                       RayPacket16& __restrict out) {
+  for (int i = 0; i < 16; ++i) {
+    const float tx = p.corner.x + p.stepX.x * s.x[i] + p.stepY.x * s.y[i];
+    const float ty = p.corner.y + p.stepX.y * s.x[i] + p.stepY.y * s.y[i];
+    const float tz = p.corner.z + p.stepX.z * s.x[i] + p.stepY.z * s.y[i];
+    const float frontY = p.frontHalfHeight - s.y[i] * p.rowStepMm;
+    const float originY = frontY + (p.viewLineY - frontY) * p.eyeZ / p.viewDistance;
+    const float shift = p.horizontalOnly ? originY - p.eyeHeight : 0.0f;
+    const float ox = p.eye.x + p.up.x * shift, oy = p.eye.y + p.up.y * shift,
+                oz = p.eye.z + p.up.z * shift;
+    out.ox[i] = ox, out.oy[i] = oy, out.oz[i] = oz;
+    out.dx[i] = tx - ox, out.dy[i] = ty - oy, out.dz[i] = tz - oz;
+    out.tMin[i] = 0.0f;
+    out.tMax[i] = std::numeric_limits<float>::infinity();
+  }
+}
+
+}  // namespace
+
+void WindowCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
+  windowRays16({eye_, corner_, stepX_, stepY_, worldUp_, frontHalfHeight_,
+                2.0f * frontHalfHeight_ / float(height_), viewLineY_, eyeZ_, viewDistance_,
+                eyeHeight_, horizontalOnly_},
+               s, out);
+}
+
 Ray WindowCamera::generateRay(const FilmSample& s) const {
   const Vec3f target = corner_ + stepX_ * s.x + stepY_ * s.y;
   if (!horizontalOnly_) return {eye_, target - eye_};

@@ -69,6 +69,7 @@ class WindowCamera final : public Camera {
   int width() const override { return width_; }
   int height() const override { return height_; }
   Ray generateRay(const FilmSample& sample) const override;
+  void generateRays16(const FilmSamples16& samples, RayPacket16& out) const override;
   // The film as a pinhole grid (the benchmark's limit rays); the eye's own perspective, so
   // only for a camera without `horizontalOnly`.
   PinholeGrid grid(int samplesPerPixel) const {

@@ -122,5 +122,35 @@ TEST(DisplayCamera, PacketsMatchSingleRays) {
   }
 }
 
+// The ideal views' packets (WindowCamera::generateRays16, a lane loop) are generateRay's rays,
+// with and without one-axis perspective; the caller's active flags are left as they were.
+TEST(WindowCamera, PacketsMatchSingleRays) {
+  DisplaySpec spec = defaultDisplaySpec();
+  spec.viewZoneHeightMm = 25.0;
+  const DisplayDesign d = designDisplay(spec);
+  for (const bool horizontalOnly : {false, true}) {
+    const WindowCamera camera({60, -80, 450}, d, tiltedPlacement(), 40, 30, horizontalOnly);
+    FilmSamples16 samples;
+    RayPacket16 packet;
+    for (int i = 0; i < 16; ++i) {
+      samples.x[i] = 2.45f * float(i) + 0.3f, samples.y[i] = 1.85f * float(i) + 0.1f;
+      samples.apertureU[i] = samples.apertureV[i] = 0.5f;
+      packet.active[i] = i % 5 == 0 ? 0 : -1;
+    }
+    camera.generateRays16(samples, packet);
+    for (int i = 0; i < 16; ++i) {
+      EXPECT_EQ(packet.active[i], i % 5 == 0 ? 0 : -1);
+      const Ray single = camera.generateRay(samples.at(i)), fromPacket = packet.ray(i);
+      // Millimetres of a 600 mm scene in float: agreement to rounding.
+      EXPECT_LT(length(single.origin - fromPacket.origin), 1e-4f * length(single.origin) + 1e-4f)
+          << horizontalOnly << " " << i;
+      EXPECT_LT(length(single.direction - fromPacket.direction), 1e-5f * length(single.direction))
+          << horizontalOnly << " " << i;
+      EXPECT_EQ(fromPacket.tMin, 0.0f);
+      EXPECT_EQ(fromPacket.tMax, single.tMax);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace parallax
