@@ -275,15 +275,32 @@ void projectedDirection(const Vec3f* x, const Vec3f* grad, const Vec3f* precondi
     }
 }
 
-// One row's share of sum_e |A_e d|^2 weighted by W_e: `viewsOfD` holds A_e d's row and
-// `weights` W_e's (1 in linear light), eye after eye.
-double weightedSquares(const Vec3f* viewOfD, const Vec3f* weights, size_t n, bool srgb) {
-  double sum = 0;
+// The diagonal preconditioner from the curvature diagonal, in place: 1 / c where c > 0, else 0.
+void invertCurvature(Vec3f* curvature, size_t n) {
   for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) {
-      const float ad = viewOfD[i][c];
-      sum += double(ad) * double(srgb ? ad * weights[i][c] : ad);
+    for (int c = 0; c < 3; ++c)
+      curvature[i][c] = curvature[i][c] > 0.0f ? 1.0f / curvature[i][c] : 0.0f;
+}
+
+// One row's share of sum_e |A_e d|^2 weighted by W_e: `viewOfD` holds A_e d's row and
+// `weights` W_e's (1 in linear light), n pixels; in kLanes running sums, added in lane order
+// (the same sum for any thread count).
+PARALLAX_LANE_KERNEL
+double weightedSquares(const Vec3f* viewOfD, const Vec3f* weights, size_t n, bool srgb) {
+  const float* ad = &viewOfD[0].x;
+  const float* w = &weights[0].x;
+  const size_t values = 3 * n;
+  double lanes[kLanes] = {};
+  size_t k = 0;
+  for (; k + kLanes <= values; k += kLanes)
+    for (int l = 0; l < kLanes; ++l) {
+      const float a = ad[k + size_t(l)];
+      lanes[l] += double(a) * double(srgb ? a * w[k + size_t(l)] : a);
     }
+  for (int l = 0; k < values; ++k, ++l)
+    lanes[l] += double(ad[k]) * double(srgb ? ad[k] * w[k] : ad[k]);
+  double sum = 0;
+  for (const double lane : lanes) sum += lane;
   return sum;
 }
 
@@ -444,8 +461,16 @@ class ImageLayerPasses {
       return *this;
     }
   };
-  Point addGradientAndStep(const Image& x, Image& grad, const Image& precondition, Image& d) const {
+  // With `makePreconditioner` (the first point) the same pass first makes `precondition`, as
+  // addCurvatureDiagonal and invertCurvature would (zero on entry): its row j is whole once
+  // every eye has added its share, before d's row j needs it.
+  Point addGradientAndStep(const Image& x, Image& grad, Image& precondition, Image& d,
+                           bool makePreconditioner = false) const {
     if (!fused_) {
+      if (makePreconditioner) {
+        addCurvatureDiagonal(x, precondition);
+        invertCurvature(precondition.pixels().data(), precondition.pixels().size());
+      }
       Point point;
       point.energy = addGradient(x, grad);
       projectedDirection(x.pixels().data(), grad.pixels().data(), precondition.pixels().data(),
@@ -455,6 +480,7 @@ class ImageLayerPasses {
     }
     ++passes_;
     const size_t width = size_t(x.width());
+    const Image ones = makePreconditioner ? Image(x.width(), x.height(), Vec3f(1.0f)) : Image();
     // Tasks of 16 rows: each holds every eye's weights for its row (54 eyes x 1920 pixels:
     // 1.2 MB), made once per task.
     return sumOverRows<Point>(
@@ -465,11 +491,18 @@ class ImageLayerPasses {
           for (size_t e = 0; e < views_.size(); ++e) {
             const TrainingView& v = views_[e];
             const Vec3f* m = seenMask(e, j, w);
+            Vec3f* weights = w.eyeWeights.data() + e * width;
             v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
-            point.energy += eyeErrorRange(v, w.seen.data(), w.first(j), width, w.residual.data(),
-                                          w.eyeWeights.data() + e * width);
+            point.energy +=
+                eyeErrorRange(v, w.seen.data(), w.first(j), width, w.residual.data(), weights);
             v.seen.addFrontGradientRowSeen(w.residual.data(), m, &grad.at(0, j), w.scratch);
+            if (makePreconditioner) {
+              v.seen.viewRowSeen(&ones.at(0, j), m, w.other.data(), w.scratch);
+              for (size_t i = 0; i < width; ++i) w.other[i] = w.other[i] * weights[i];
+              v.seen.addFrontGradientRowSeen(w.other.data(), m, &precondition.at(0, j), w.scratch);
+            }
           }
+          if (makePreconditioner) invertCurvature(&precondition.at(0, j), width);
           projectedDirection(&x.at(0, j), &grad.at(0, j), &precondition.at(0, j), &d.at(0, j),
                              width);
           for (size_t e = 0; e < views_.size(); ++e) {
@@ -621,10 +654,8 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
   // curvature each pixel would have if its neighbours moved with it (the scaling of SART and of
   // the multiplicative updates). It keeps pixels seen by many eyes from taking the step of
   // pixels seen by few.
+  // It is made in the pass of the first gradient.
   Image precondition(image.width(), image.height());
-  passes.addCurvatureDiagonal(image, precondition);
-  for (Vec3f& p : precondition.pixels())
-    for (int c = 0; c < 3; ++c) p[c] = p[c] > 0.0f ? 1.0f / p[c] : 0.0f;
   // Gradient of E (times 1 / norm): sum over eyes of A_e^T dE_e/dV_e, made in the pass that
   // evaluates E: at the start, then at each point the line search tries (the accepted one's is
   // the next iteration's).
@@ -632,7 +663,7 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
   // curvature along it come from the same pass.
   const int width = image.width(), height = image.height();
   Image grad(width, height), nextGrad, d(width, height), nextD(width, height), next;
-  auto point = passes.addGradientAndStep(image, grad, precondition, d);
+  auto point = passes.addGradientAndStep(image, grad, precondition, d, true);
   double e = point.energy * norm;
   SolveReport local;
   local.objective.push_back(e);
