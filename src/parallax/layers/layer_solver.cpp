@@ -810,28 +810,48 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
             return sum;
           });
     } else if (maskIsRear) {
-      // The mask (rear) update row by row: each mask row gathers, eye by eye and in the order
-      // of the output rows that meet it (SeenLayers::rearRowSources: the order of
-      // addRearGradient), every frame's share of B^T t and B^T V; an output row's view is made
-      // for each mask row it meets (about two). Rows in parallel write disjoint rows: the same
-      // sums for any thread count, and no full-size temporaries.
+      // The mask (rear) update by blocks of mask rows: each block gathers, eye by eye and in
+      // the order of the output rows that meet its rows (SeenLayers::rearRowSources: the order
+      // of addRearGradient), every frame's share of B^T t and B^T V. An output row's view is
+      // made once per block it meets (a row meets about two mask rows, mostly of one block).
+      // Blocks in parallel write disjoint rows: the same sums for any thread count, and no
+      // full-size temporaries.
       const int width = views.front().seen.width(), rearRows = frames.front().mask.height();
-      parallelFor(rearRows, threads, 2, [&](int64_t begin, int64_t end) {
+      struct Share {
+        int outputRow, maskRow;
+        float weight;
+      };
+      parallelFor(rearRows, threads, 8, [&](int64_t begin, int64_t end) {
         RowWork w(width);
-        for (int64_t r = begin; r != end; ++r)
-          for (const TrainingView& v : views)
-            for (const auto& [j, weight] : v.seen.rearRowSources(int(r))) {
+        std::vector<Share> shares;
+        for (const TrainingView& v : views) {
+          // The block's (output row, mask row) pairs by output row, each output row's mask rows
+          // in row order, so that every mask row receives its output rows in rearRowSources'
+          // order.
+          shares.clear();
+          for (int64_t r = begin; r != end; ++r)
+            for (const auto& [j, weight] : v.seen.rearRowSources(int(r)))
+              shares.push_back({j, int(r), weight});
+          std::stable_sort(shares.begin(), shares.end(), [](const Share& a, const Share& b) {
+            return a.outputRow < b.outputRow;
+          });
+          for (size_t k = 0; k < shares.size(); ++k) {
+            const int j = shares[k].outputRow;
+            if (k == 0 || shares[k - 1].outputRow != j) {
               averageViewRow(v, seenLayers, j, w);
               v.seen.boxTransposedRowInto(v.target.pixels().data() + w.first(j), w.residual.data());
               v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
-              for (size_t t = 0; t < frames.size(); ++t) {
-                const Image& front = seenLayers[t].image;
-                v.seen.addRearGradientFromRow(w.residual.data(), front, j, weight,
-                                              &numerator[t].at(0, int(r)));
-                v.seen.addRearGradientFromRow(w.weights.data(), front, j, weight,
-                                              &denominator[t].at(0, int(r)));
-              }
             }
+            for (size_t t = 0; t < frames.size(); ++t) {
+              const Image& front = seenLayers[t].image;
+              const int r = shares[k].maskRow;
+              v.seen.addRearGradientFromRow(w.residual.data(), front, j, shares[k].weight,
+                                            &numerator[t].at(0, r));
+              v.seen.addRearGradientFromRow(w.weights.data(), front, j, shares[k].weight,
+                                            &denominator[t].at(0, r));
+            }
+          }
+        }
       });
     } else {
       for (const TrainingView& v : views) {
