@@ -10,6 +10,7 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/parallel.h"
+#include "parallax/image/srgb_arithmetic.h"
 
 namespace parallax {
 
@@ -87,13 +88,21 @@ double meanSquaredError(const Image& a, const Image& b, MetricEncoding encoding)
   return sum / (3.0 * double(a.pixels().size()));
 }
 
+PARALLAX_LANE_KERNEL void srgbEncodeValues(const float* __restrict in, float* __restrict out,
+                                            size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    float slope = 0;
+    srgbEncodeArithmetic(in[i], out[i], slope);
+  }
+}
+
 Image srgbEncoded(const Image& image) {
   Image out(image.width(), image.height());
+  const size_t rowValues = 3 * size_t(image.width());
   parallelFor(image.height(), 0, kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int y = int(begin); y < int(end); ++y)
-      for (int x = 0; x < image.width(); ++x)
-        for (int c = 0; c < 3; ++c)
-          out.at(x, y)[c] = float(encode(image.at(x, y)[c], MetricEncoding::Srgb));
+    const size_t first = size_t(begin) * rowValues;
+    srgbEncodeValues(&image.pixels()[0].x + first, &out.pixels()[0].x + first,
+                     size_t(end - begin) * rowValues);
   });
   return out;
 }
@@ -131,10 +140,16 @@ double ssim(const Image& a, const Image& b) {
       return across[(size_t(m) * size_t(inRows) + size_t(r)) * size_t(outWidth) + size_t(x)];
     };
     std::vector<double> moments(size_t(5) * size_t(w));
+    // Each row's luminances, then their encodings in one vectorised loop.
+    std::vector<float> luminances(2 * size_t(w)), encoded(2 * size_t(w));
     for (int r = 0; r < inRows; ++r) {
       for (int x = 0; x < w; ++x) {
-        const double u = encode(luminance(a.at(x, first + r)), MetricEncoding::Srgb);
-        const double v = encode(luminance(b.at(x, first + r)), MetricEncoding::Srgb);
+        luminances[size_t(x)] = luminance(a.at(x, first + r));
+        luminances[size_t(w + x)] = luminance(b.at(x, first + r));
+      }
+      srgbEncodeValues(luminances.data(), encoded.data(), encoded.size());
+      for (int x = 0; x < w; ++x) {
+        const double u = encoded[size_t(x)], v = encoded[size_t(w + x)];
         double* m = &moments[size_t(5 * x)];
         m[0] = u, m[1] = v, m[2] = u * u, m[3] = v * v, m[4] = u * v;
       }

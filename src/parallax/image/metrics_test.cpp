@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -73,6 +74,27 @@ TEST(Metrics, SsimOfAShiftedCheckerboardIsItsLuminanceTerm) {
     }
   EXPECT_NEAR(ssim(x, y), expected / windows, 1e-5);
   EXPECT_LT(ssim(x, y), 0.97);  // the shift is not free
+}
+
+// The dense measure's sRGB pictures (srgbEncoded, a vectorised arithmetic encoding) are the
+// standard's formula in double, the value clamped to [0, 1] first: both segments, below 0,
+// above 1, rows of odd lengths (the loops' remainders).
+TEST(Metrics, SrgbEncodedIsTheStandardsFormula) {
+  for (const int width : {1, 7, 333}) {
+    Image image(width, 40);
+    int i = 0;
+    for (Vec3f& p : image.pixels())
+      for (int c = 0; c < 3; ++c, ++i) p[c] = -0.05f + 1.2f * float(i % 9973) / 9972.0f;
+    const Image encoded = srgbEncoded(image);
+    double worst = 0;
+    for (size_t k = 0; k < image.pixels().size(); ++k)
+      for (int c = 0; c < 3; ++c) {
+        const double x = std::clamp(double(image.pixels()[k][c]), 0.0, 1.0);
+        const double s = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;
+        worst = std::max(worst, std::abs(double(encoded.pixels()[k][c]) - s));
+      }
+    EXPECT_LT(worst, 3e-7) << width;
+  }
 }
 
 TEST(Metrics, BoxFilterMatchesBruteForceIntegration) {

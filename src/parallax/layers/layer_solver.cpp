@@ -8,6 +8,7 @@
 
 #include "parallax/core/lane_kernel.h"
 #include "parallax/core/parallel.h"
+#include "parallax/image/srgb_arithmetic.h"
 
 namespace parallax {
 
@@ -25,39 +26,6 @@ void clampToUnit(Image& image) {
 
 // TrainingView::encodedTarget's unit: S in [0, 1] as 0 .. 65535.
 constexpr float kEncodedUnit = 65535.0f, kInverseEncodedUnit = 1.0f / 65535.0f;
-
-// The sRGB encoding S(x) = 1.055 x^(5/12) - 0.055 (12.92 x up to 0.0031308; IEC 61966-2-1) of
-// x clamped to [0, 1], and its slope S'(x) (0 above 1, where the clamp holds S constant), in
-// arithmetic that vectorises (no table reads: they would be gathers, which GCC's generic tuning
-// does not vectorise): x^(5/12) = 2^(5/12 log2 x), with
-//   log2 x = e + log2 m, x = 2^e m, m in [sqrt(1/2), sqrt(2)): log2 m = 2/ln 2 atanh(t),
-//     t = (m - 1)/(m + 1), |t| < 0.172, the series to t^9 (next term < 3e-9);
-//   2^y = 2^n sqrt(2) e^(z ln 2), n = floor(y), z = y - n - 1/2 in [-1/2, 1/2), the series to
-//     z^7 (next term < 7e-9).
-// Within 2e-7 of the formula in double (tested); encodeTarget encodes targets with it too.
-[[gnu::always_inline]] inline void srgbEncodeArithmetic(float x, float& encoded, float& slope) {
-  const float clamped = x < 1e-30f ? 1e-30f : (x > 1.0f ? 1.0f : x);
-  const uint32_t bits = std::bit_cast<uint32_t>(clamped);
-  int exponent = int(bits >> 23) - 127;
-  float m = std::bit_cast<float>((bits & 0x007FFFFFu) | 0x3F800000u);
-  const bool high = m > 1.41421356f;
-  m = high ? 0.5f * m : m;
-  exponent += high ? 1 : 0;
-  const float t = (m - 1.0f) / (m + 1.0f), t2 = t * t;
-  const float atanh = t * (1.0f + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7 + t2 / 9))));
-  const float y = (5.0f / 12.0f) * (float(exponent) + 2.88539008f * atanh);  // 2 / ln 2
-  const int n = int(y + 64.0f) - 64;  // floor for y > -64 (y >= -62 here)
-  const float z = (y - float(n) - 0.5f) * 0.693147181f;
-  const float e =
-      1.0f +
-      z * (1.0f +
-           z * (0.5f +
-                z * (1.0f / 6 + z * (1.0f / 24 + z * (1.0f / 120 + z * (1.0f / 720 + z / 5040))))));
-  const float power = std::bit_cast<float>(uint32_t(n + 127) << 23) * 1.41421356f * e;
-  const bool linear = clamped <= 0.0031308f;
-  encoded = linear ? 12.92f * (x < 0.0f ? 0.0f : clamped) : 1.055f * power - 0.055f;
-  slope = x > 1.0f ? 0.0f : (linear ? 12.92f : (1.055f * 5.0f / 12.0f) * power / clamped);
-}
 
 // The sRGB errors against an encoded target (TrainingView::encodedTarget) over n values, in
 // chunks: a vectorised loop makes each value's difference S(v / c) - target (and its residual
@@ -348,9 +316,10 @@ class ImageLayerPasses {
       seenMasks_.assign(views.size(), std::vector<float>(size_t(width) * size_t(rows)));
       parallelFor(rows, threads, 2, [&](int64_t begin, int64_t end) {
         std::vector<Vec3f> row(static_cast<size_t>(width));
+        SeenLayers::RowScratch scratch;
         for (int64_t j = begin; j != end; ++j)
           for (size_t e = 0; e < views.size(); ++e) {
-            views[e].seen.seenRearRow(mask, int(j), row.data());
+            views[e].seen.seenRearRow(mask, int(j), row.data(), scratch);
             float* into = seenMasks_[e].data() + size_t(j) * size_t(width);
             for (int i = 0; i < width; ++i) into[i] = row[size_t(i)].x;
           }
@@ -569,7 +538,7 @@ class ImageLayerPasses {
   // that row.
   const Vec3f* seenMask(size_t e, int j, RowWork& w) const {
     if (seenMasks_.empty()) {
-      views_[e].seen.seenRearRow(mask_, j, w.seenRear.data());
+      views_[e].seen.seenRearRow(mask_, j, w.seenRear.data(), w.scratch);
     } else {
       const float* row = seenMasks_[e].data() + w.first(j);
       for (size_t i = 0; i < w.seenRear.size(); ++i) w.seenRear[i] = Vec3f(row[i]);
@@ -785,7 +754,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
             for (const TrainingView& v : views) {
               for (size_t t = 0; t < frames.size(); ++t) {
                 Vec3f* m = masks.data() + t * width;
-                v.seen.seenRearRow(seenLayers[t].mask, j, m);
+                v.seen.seenRearRow(seenLayers[t].mask, j, m, w.scratch);
                 std::vector<Vec3f>& into = t == 0 ? w.seen : w.other;
                 v.seen.viewRowSeen(&seenLayers[t].image.at(0, j), m, into.data(), w.scratch);
                 if (t > 0)
@@ -821,9 +790,11 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
         int outputRow, maskRow;
         float weight;
       };
+      const size_t maskWidth = size_t(frames.front().mask.width());
       parallelFor(rearRows, threads, 8, [&](int64_t begin, int64_t end) {
         RowWork w(width);
         std::vector<Share> shares;
+        std::vector<Vec3f> alongRow;
         for (const TrainingView& v : views) {
           // The block's (output row, mask row) pairs by output row, each output row's mask rows
           // in row order, so that every mask row receives its output rows in rearRowSources'
@@ -838,17 +809,31 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
           for (size_t k = 0; k < shares.size(); ++k) {
             const int j = shares[k].outputRow;
             if (k == 0 || shares[k - 1].outputRow != j) {
+              // Output row j's shares of B^T t and B^T V along a mask row, per frame; each mask
+              // row it meets adds them times its vertical weight.
               averageViewRow(v, seenLayers, j, w);
               v.seen.boxTransposedRowInto(v.target.pixels().data() + w.first(j), w.residual.data());
               v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
+              alongRow.assign(2 * frames.size() * maskWidth, Vec3f(0.0f));
+              for (size_t t = 0; t < frames.size(); ++t) {
+                const Image& front = seenLayers[t].image;
+                v.seen.addRearGradientFromRow(w.residual.data(), front, j, 1.0f,
+                                              &alongRow[2 * t * maskWidth]);
+                v.seen.addRearGradientFromRow(w.weights.data(), front, j, 1.0f,
+                                              &alongRow[(2 * t + 1) * maskWidth]);
+              }
             }
+            const int r = shares[k].maskRow;
+            const float weight = shares[k].weight;
             for (size_t t = 0; t < frames.size(); ++t) {
-              const Image& front = seenLayers[t].image;
-              const int r = shares[k].maskRow;
-              v.seen.addRearGradientFromRow(w.residual.data(), front, j, shares[k].weight,
-                                            &numerator[t].at(0, r));
-              v.seen.addRearGradientFromRow(w.weights.data(), front, j, shares[k].weight,
-                                            &denominator[t].at(0, r));
+              float* num = &numerator[t].at(0, r).x;
+              float* den = &denominator[t].at(0, r).x;
+              const float* numShare = &alongRow[2 * t * maskWidth].x;
+              const float* denShare = &alongRow[(2 * t + 1) * maskWidth].x;
+              for (size_t c = 0; c < 3 * maskWidth; ++c) {
+                num[c] += weight * numShare[c];
+                den[c] += weight * denShare[c];
+              }
             }
           }
         }

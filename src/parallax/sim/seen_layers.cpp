@@ -166,20 +166,31 @@ Image SeenLayers::boxTransposed(const Image& view, int threads) const {
   return out;
 }
 
-void SeenLayers::seenRearRow(const Image& rear, int j, Vec3f* seenRear) const {
-  std::fill(seenRear, seenRear + width_, Vec3f(0.0f));
+void SeenLayers::seenRearRow(const Image& rear, int j, Vec3f* seenRear, RowScratch& scratch) const {
+  // m_j[i] = sum_k w_k sum_a w_a rear[r_k][c_a] = sum_a w_a (sum_k w_k rear[r_k])[c_a]: the
+  // vertical blend once per row (a vectorised loop), then one pass of the pieces along it.
+  std::vector<Vec3f>& blend = scratch.rearRow;
+  blend.assign(size_t(rearColumns_), Vec3f(0.0f));
+  bool any = false;
   for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
     const Piece& vertical = down_[k];
     if (vertical.rear < 0) continue;
-    const Vec3f* rearRow = &rear.at(0, vertical.rear);
-    for (int i = 0; i < width_; ++i) {
-      Vec3f light(0.0f);
-      for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
-        const Piece& p = across_[a];
-        if (p.rear >= 0) light += rearRow[p.rear] * p.weight;
-      }
-      seenRear[i] += light * vertical.weight;
+    any = true;
+    const float* from = &rear.at(0, vertical.rear).x;
+    float* into = &blend[0].x;
+    for (size_t c = 0; c < 3 * size_t(rearColumns_); ++c) into[c] += vertical.weight * from[c];
+  }
+  if (!any) {
+    std::fill(seenRear, seenRear + width_, Vec3f(0.0f));
+    return;
+  }
+  for (int i = 0; i < width_; ++i) {
+    Vec3f light(0.0f);
+    for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
+      const Piece& p = across_[a];
+      if (p.rear >= 0) light += blend[size_t(p.rear)] * p.weight;
     }
+    seenRear[i] = light;
   }
 }
 
@@ -205,14 +216,14 @@ void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* see
 void SeenLayers::viewRow(const Image& front, const Image& rear, int j, Vec3f* out,
                          RowScratch& scratch) const {
   scratch.seenRear.resize(size_t(width_));
-  seenRearRow(rear, j, scratch.seenRear.data());
+  seenRearRow(rear, j, scratch.seenRear.data(), scratch);
   viewRowSeen(&front.at(0, j), scratch.seenRear.data(), out, scratch);
 }
 
 void SeenLayers::addFrontGradientRow(const Vec3f* residual, const Image& rear, int j,
                                      Image& gradFront, RowScratch& scratch) const {
   scratch.seenRear.resize(size_t(width_));
-  seenRearRow(rear, j, scratch.seenRear.data());
+  seenRearRow(rear, j, scratch.seenRear.data(), scratch);
   addFrontGradientRowSeen(residual, scratch.seenRear.data(), &gradFront.at(0, j), scratch);
 }
 

@@ -50,6 +50,7 @@ class SeenLayers {
   // addFrontGradient(), which are made of these. `scratch` is the caller's, one per worker.
   struct RowScratch {
     std::vector<Vec3f> product, filtered, seenRear;
+    std::vector<Vec3f> rearRow;  // seenRearRow: the rear rows under front row j, blended
   };
   // V's row j into out[0 .. width()).
   void viewRow(const Image& front, const Image& rear, int j, Vec3f* out, RowScratch& scratch) const;
@@ -62,8 +63,9 @@ class SeenLayers {
   //     P(front, rear)_j = front_j .* m_j,   m_j[i] = sum over pieces k of (i, j): w_k rear[r_k],
   // the rear layer as the eye sees it through that front pixel. A solver whose rear layer is
   // fixed makes m_j once per eye and row and reuses it for every view and adjoint of the row.
-  // m_j into seenRear[0 .. width()).
-  void seenRearRow(const Image& rear, int j, Vec3f* seenRear) const;
+  // m_j into seenRear[0 .. width()). The rear rows front row j meets are blended first (their
+  // vertical weights), then resampled along the row once.
+  void seenRearRow(const Image& rear, int j, Vec3f* seenRear, RowScratch& scratch) const;
   // V_j = B (frontRow .* seenRear) into out (the row's front pixels frontRow[0 .. width())).
   void viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f* out,
                    RowScratch& scratch) const;
