@@ -79,6 +79,31 @@ double encodedErrorLanes(const float* seen, const uint16_t* encoded, size_t n, f
 // S'(V/c)/c (S(V/c) - S(t/c)), weights (S'(V/c)/c)^2).
 // eyeError on `count` values from offset `first` of the view: the error, and the residual and
 // weights of those values (either may be null).
+// The linear-light errors over n values: 1/2 sum (v - t)^2, the residual v - t and the weights
+// 1 when asked; the squares in kLanes running sums added in lane order (the same sum for any
+// thread count).
+PARALLAX_LANE_KERNEL
+double linearErrorLanes(const float* seen, const float* target, size_t n, float* residual,
+                        float* weights) {
+  double lanes[kLanes] = {};
+  size_t k = 0;
+  for (; k + kLanes <= n; k += kLanes)
+    for (int l = 0; l < kLanes; ++l) {
+      const float diff = seen[k + size_t(l)] - target[k + size_t(l)];
+      lanes[l] += double(diff) * double(diff);
+    }
+  for (int l = 0; k < n; ++k, ++l) {
+    const float diff = seen[k] - target[k];
+    lanes[l] += double(diff) * double(diff);
+  }
+  if (residual)
+    for (size_t i = 0; i < n; ++i) residual[i] = seen[i] - target[i];
+  if (weights) std::fill(weights, weights + n, 1.0f);
+  double sum = 0;
+  for (const double lane : lanes) sum += lane;
+  return 0.5 * sum;
+}
+
 double eyeErrorRange(const TrainingView& v, const Vec3f* seen, size_t first, size_t count,
                      Vec3f* residual, Vec3f* weights) {
   const bool srgb = v.encodingScale > 0;
@@ -94,13 +119,12 @@ double eyeErrorRange(const TrainingView& v, const Vec3f* seen, size_t first, siz
                              residual ? &residual[0].x : nullptr,
                              weights ? &weights[0].x : nullptr);
   const Vec3f* target = v.target.pixels().data() + first;
+  if (!srgb)
+    return linearErrorLanes(&seen[0].x, &target[0].x, 3 * count,
+                            residual ? &residual[0].x : nullptr, weights ? &weights[0].x : nullptr);
   for (size_t i = 0; i < count; ++i)
     for (int c = 0; c < 3; ++c) {
       const float value = seen[i][c];
-      if (!srgb) {
-        add(i, c, value - target[i][c], 1.0f);
-        continue;
-      }
       float a = 0, b = 0, slope = 0, unused = 0;
       srgbEncodeArithmetic(value * inv, a, slope);
       srgbEncodeArithmetic(target[i][c] * inv, b, unused);
