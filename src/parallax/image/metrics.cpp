@@ -89,7 +89,7 @@ double meanSquaredError(const Image& a, const Image& b, MetricEncoding encoding)
 }
 
 PARALLAX_LANE_KERNEL void srgbEncodeValues(const float* __restrict in, float* __restrict out,
-                                            size_t n) {
+                                           size_t n) {
   for (size_t i = 0; i < n; ++i) {
     float slope = 0;
     srgbEncodeArithmetic(in[i], out[i], slope);
