@@ -178,11 +178,21 @@ double ssim(const Image& a, const Image& b) {
 }
 
 // Row by row: the prefix integrals of the row's three channels interleaved as the row is (one
-// pass in memory order), then each pixel's box from the prefixes at its two ends.
+// pass in memory order), then each pixel's box from the prefixes at its two ends. Where the box
+// lies inside the row its ends sit at fixed offsets from the pixel, so those pixels are one
+// vectorised loop over the row's values; the few pixels whose box the row clips are summed
+// one by one.
 PARALLAX_LANE_KERNEL Image boxFilterX(const Image& image, double widthPx) {
   if (!(widthPx > 0)) throw InputError("", "", "the box filter's width must be positive");
   const int w = image.width();
   Image out(w, image.height());
+  // Pixel x's box is [x + a, x + b]; inside the row for x in [first, last): x + a >= 0 and
+  // x + b <= w - 1 (so that floor(x + b) is a pixel of the row).
+  const double a = 0.5 - 0.5 * widthPx, b = 0.5 + 0.5 * widthPx;
+  const int first = std::min(w, int(std::ceil(-a)));
+  const int last = std::max(first, std::min(w, int(std::floor(double(w - 1) - b)) + 1));
+  const int lowOffset = int(std::floor(a)), highOffset = int(std::floor(b));
+  const double lowFraction = a - lowOffset, highFraction = b - highOffset;
   parallelFor(image.height(), 0, kRowGrain, [&](int64_t begin, int64_t end) {
     // prefix[3 i + c]: the integral of channel c of the box-pixel row over [0, i).
     std::vector<double> prefix(3 * (size_t(w) + 1));
@@ -190,18 +200,25 @@ PARALLAX_LANE_KERNEL Image boxFilterX(const Image& image, double widthPx) {
       const float* in = &image.at(0, y).x;
       for (size_t i = 0; i < 3 * size_t(w); ++i) prefix[i + 3] = prefix[i] + in[i];
       float* o = &out.at(0, y).x;
-      for (int x = 0; x < w; ++x) {
-        // The box [lo, hi] clipped to the row; the integral up to t is
-        // prefix[i] + (t - i) row[i], i = floor(t) (t >= 0), the last pixel's at t = w.
-        const double lo = std::max(0.0, x + 0.5 - 0.5 * widthPx);
-        const double hi = std::min(double(w), x + 0.5 + 0.5 * widthPx);
+      // The integral up to t is prefix[i] + (t - i) row[i], i = floor(t), the last pixel's at
+      // t = w.
+      const auto clipped = [&](int x) {
+        const double lo = std::max(0.0, x + a), hi = std::min(double(w), x + b);
         const size_t il = size_t(std::min(int(lo), w - 1)), ih = size_t(std::min(int(hi), w - 1));
         const double fl = lo - double(il), fh = hi - double(ih);
         for (size_t c = 0; c < 3; ++c)
           o[3 * size_t(x) + c] = float(((prefix[3 * ih + c] + fh * in[3 * ih + c]) -
                                         (prefix[3 * il + c] + fl * in[3 * il + c])) /
                                        (hi - lo));
-      }
+      };
+      for (int x = 0; x < first; ++x) clipped(x);
+      const double* p = prefix.data();
+      const ptrdiff_t low = 3 * ptrdiff_t(lowOffset), high = 3 * ptrdiff_t(highOffset);
+      for (ptrdiff_t v = 3 * ptrdiff_t(first); v < 3 * ptrdiff_t(last); ++v)
+        o[v] = float(((p[v + high] + highFraction * in[v + high]) -
+                      (p[v + low] + lowFraction * in[v + low])) /
+                     widthPx);
+      for (int x = last; x < w; ++x) clipped(x);
     }
   });
   return out;
