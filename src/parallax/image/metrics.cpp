@@ -139,6 +139,8 @@ double ssim(const Image& a, const Image& b) {
     const auto at = [&](int m, int r, int x) -> double& {
       return across[(size_t(m) * size_t(inRows) + size_t(r)) * size_t(outWidth) + size_t(x)];
     };
+    // The five moments of a row as five planes, so that the filters' loops run along the row
+    // (vectorised); each output still adds its taps in order, so the sums are unchanged.
     std::vector<double> moments(size_t(5) * size_t(w));
     // Each row's luminances, then their encodings in one vectorised loop.
     std::vector<float> luminances(2 * size_t(w)), encoded(2 * size_t(w));
@@ -148,30 +150,44 @@ double ssim(const Image& a, const Image& b) {
         luminances[size_t(w + x)] = luminance(b.at(x, first + r));
       }
       srgbEncodeValues(luminances.data(), encoded.data(), encoded.size());
+      double* plane[5];
+      for (int m = 0; m < 5; ++m) plane[m] = &moments[size_t(m) * size_t(w)];
       for (int x = 0; x < w; ++x) {
         const double u = encoded[size_t(x)], v = encoded[size_t(w + x)];
-        double* m = &moments[size_t(5 * x)];
-        m[0] = u, m[1] = v, m[2] = u * u, m[3] = v * v, m[4] = u * v;
+        plane[0][x] = u, plane[1][x] = v, plane[2][x] = u * u, plane[3][x] = v * v;
+        plane[4][x] = u * v;
       }
-      for (int x = 0; x < outWidth; ++x)
-        for (int m = 0; m < 5; ++m) {
-          double filtered = 0;
-          for (int k = 0; k < kWindow; ++k)
-            filtered += kernel[size_t(k)] * moments[size_t(5 * (x + k) + m)];
-          at(m, r, x) = filtered;
+      for (int m = 0; m < 5; ++m) {
+        double* into = &at(m, r, 0);
+        std::fill(into, into + outWidth, 0.0);
+        for (int k = 0; k < kWindow; ++k) {
+          const double tap = kernel[size_t(k)];
+          const double* from = plane[m] + k;
+          for (int x = 0; x < outWidth; ++x) into[x] += tap * from[x];
         }
+      }
     }
     double chunkSum = 0;
-    for (int r = 0; r < rows; ++r)
-      for (int x = 0; x < outWidth; ++x) {
-        double mean[5] = {};
-        for (int m = 0; m < 5; ++m)
-          for (int k = 0; k < kWindow; ++k) mean[m] += kernel[size_t(k)] * at(m, r + k, x);
-        const double ux = mean[0], uy = mean[1];
-        const double vx = mean[2] - ux * ux, vy = mean[3] - uy * uy, cxy = mean[4] - ux * uy;
+    std::vector<double> means(size_t(5) * size_t(outWidth));
+    for (int r = 0; r < rows; ++r) {
+      std::fill(means.begin(), means.end(), 0.0);
+      for (int m = 0; m < 5; ++m) {
+        double* mean = &means[size_t(m) * size_t(outWidth)];
+        for (int k = 0; k < kWindow; ++k) {
+          const double tap = kernel[size_t(k)];
+          const double* from = &at(m, r + k, 0);
+          for (int x = 0; x < outWidth; ++x) mean[x] += tap * from[x];
+        }
+      }
+      const size_t n = size_t(outWidth);
+      for (size_t x = 0; x < n; ++x) {
+        const double ux = means[x], uy = means[n + x];
+        const double vx = means[2 * n + x] - ux * ux, vy = means[3 * n + x] - uy * uy,
+                     cxy = means[4 * n + x] - ux * uy;
         chunkSum +=
             (2 * ux * uy + kC1) * (2 * cxy + kC2) / ((ux * ux + uy * uy + kC1) * (vx + vy + kC2));
       }
+    }
     return chunkSum;
   });
   return sum / (double(outWidth) * double(outHeight));
