@@ -351,96 +351,6 @@ class ImageLayerPasses {
     }
   }
 
-  // sum_e E_e at the image x.
-  double energy(const Image& x) const {
-    ++passes_;
-    if (!fused_) {
-      Image holder;
-      const Image& xs = seen(x, holder);
-      double sum = 0;
-      for (const TrainingView& v : views_)
-        sum += eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, nullptr);
-      return sum;
-    }
-    return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
-      double sum = 0;
-      for (size_t e = 0; e < views_.size(); ++e) {
-        const TrainingView& v = views_[e];
-        v.seen.viewRowSeen(&x.at(0, j), seenMask(e, j, w), w.seen.data(), w.scratch);
-        sum += eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, nullptr);
-      }
-      return sum;
-    });
-  }
-
-  // grad += sum_e A_e^T dE_e/dV_e at the image x, in the same pass as sum_e E_e (returned, the
-  // same double as energy(x)): a line search that accepts x has its next gradient already.
-  double addGradient(const Image& x, Image& grad) const {
-    ++passes_;
-    if (!fused_) {
-      Image holder, blurredSum;
-      const Image& xs = seen(x, holder);
-      Image& into = throughDiffuser(grad, blurredSum);
-      double sum = 0;
-      for (const TrainingView& v : views_) {
-        Image residual(v.seen.width(), v.seen.height());
-        sum += eyeError(v, viewOf(v.seen, xs, mask_, threads_), &residual, nullptr);
-        addImageGradient(v, residual, mask_, into, threads_);
-      }
-      if (imageBlur_) addScaled(grad, imageBlur_->apply(blurredSum, threads_), 1.0f);
-      return sum;
-    }
-    return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
-      double sum = 0;
-      for (size_t e = 0; e < views_.size(); ++e) {
-        const TrainingView& v = views_[e];
-        const Vec3f* m = seenMask(e, j, w);
-        v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
-        sum +=
-            eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), w.residual.data(), nullptr);
-        v.seen.addFrontGradientRowSeen(w.residual.data(), m, &grad.at(0, j), w.scratch);
-      }
-      return sum;
-    });
-  }
-
-  // sum_e |A_e d|^2 weighted by E_e's Gauss-Newton weights at x (1 in linear light).
-  double curvature(const Image& x, const Image& d) const {
-    ++passes_;
-    if (!fused_) {
-      Image holderX, holderD;
-      const Image& xs = seen(x, holderX);
-      const Image& ds = seen(d, holderD);
-      double sum = 0;
-      for (const TrainingView& v : views_) {
-        const Image ad = viewOf(v.seen, ds, mask_, threads_);
-        if (!(v.encodingScale > 0)) {
-          sum += dot(ad, ad);
-          continue;
-        }
-        Image weights(v.seen.width(), v.seen.height());
-        eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, &weights);
-        sum += dot(ad, elementwise(ad, weights));
-      }
-      return sum;
-    }
-    return sumOverRows(views_, threads_, [&](int j, RowWork& w) {
-      double sum = 0;
-      for (size_t e = 0; e < views_.size(); ++e) {
-        const TrainingView& v = views_[e];
-        const Vec3f* m = seenMask(e, j, w);
-        v.seen.viewRowSeen(&d.at(0, j), m, w.other.data(), w.scratch);
-        const bool srgb = v.encodingScale > 0;
-        if (srgb) {
-          v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
-          eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, w.weights.data());
-        }
-        sum += weightedSquares(w.other.data(), w.weights.data(), w.other.size(), srgb);
-      }
-      return sum;
-    });
-  }
-
   // What an iteration needs at the point x, in one pass where the passes are fused by rows:
   // E at x (returned as `energy`), its gradient (added to `grad`, zero on entry), the descent
   // direction d there (projectedDirection with `precondition`) and the curvature along it
@@ -509,39 +419,62 @@ class ImageLayerPasses {
         16);
   }
 
+ private:
+  // The whole-image passes (the barrier in front, or the tests' second code path), which
+  // addGradientAndStep runs when the passes are not fused by rows.
+  // grad += sum_e A_e^T dE_e/dV_e at the image x; returns sum_e E_e there.
+  double addGradient(const Image& x, Image& grad) const {
+    ++passes_;
+    Image holder, blurredSum;
+    const Image& xs = seen(x, holder);
+    Image& into = throughDiffuser(grad, blurredSum);
+    double sum = 0;
+    for (const TrainingView& v : views_) {
+      Image residual(v.seen.width(), v.seen.height());
+      sum += eyeError(v, viewOf(v.seen, xs, mask_, threads_), &residual, nullptr);
+      addImageGradient(v, residual, mask_, into, threads_);
+    }
+    if (imageBlur_) addScaled(grad, imageBlur_->apply(blurredSum, threads_), 1.0f);
+    return sum;
+  }
+
+  // sum_e |A_e d|^2 weighted by E_e's Gauss-Newton weights at x (1 in linear light).
+  double curvature(const Image& x, const Image& d) const {
+    ++passes_;
+    Image holderX, holderD;
+    const Image& xs = seen(x, holderX);
+    const Image& ds = seen(d, holderD);
+    double sum = 0;
+    for (const TrainingView& v : views_) {
+      const Image ad = viewOf(v.seen, ds, mask_, threads_);
+      if (!(v.encodingScale > 0)) {
+        sum += dot(ad, ad);
+        continue;
+      }
+      Image weights(v.seen.width(), v.seen.height());
+      eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, &weights);
+      sum += dot(ad, elementwise(ad, weights));
+    }
+    return sum;
+  }
+
   // out += sum_e A_e^T (A_e 1 .* W_e), W_e the Gauss-Newton weights at x.
   void addCurvatureDiagonal(const Image& x, Image& out) const {
     ++passes_;
     const Image ones(x.width(), x.height(), Vec3f(1.0f));
-    if (!fused_) {
-      Image holderX, holderOnes, blurredSum;
-      const Image& xs = seen(x, holderX);
-      const Image& onesSeen = seen(ones, holderOnes);
-      Image& into = throughDiffuser(out, blurredSum);
-      for (const TrainingView& v : views_) {
-        Image weights(v.seen.width(), v.seen.height());
-        eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, &weights);
-        addImageGradient(v, elementwise(viewOf(v.seen, onesSeen, mask_, threads_), weights), mask_,
-                         into, threads_);
-      }
-      if (imageBlur_) addScaled(out, imageBlur_->apply(blurredSum, threads_), 1.0f);
-      return;
+    Image holderX, holderOnes, blurredSum;
+    const Image& xs = seen(x, holderX);
+    const Image& onesSeen = seen(ones, holderOnes);
+    Image& into = throughDiffuser(out, blurredSum);
+    for (const TrainingView& v : views_) {
+      Image weights(v.seen.width(), v.seen.height());
+      eyeError(v, viewOf(v.seen, xs, mask_, threads_), nullptr, &weights);
+      addImageGradient(v, elementwise(viewOf(v.seen, onesSeen, mask_, threads_), weights), mask_,
+                       into, threads_);
     }
-    sumOverRows(views_, threads_, [&](int j, RowWork& w) {
-      for (size_t e = 0; e < views_.size(); ++e) {
-        const TrainingView& v = views_[e];
-        const Vec3f* m = seenMask(e, j, w);
-        v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
-        eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, w.weights.data());
-        v.seen.viewRowSeen(&ones.at(0, j), m, w.other.data(), w.scratch);
-        for (size_t i = 0; i < w.other.size(); ++i) w.other[i] = w.other[i] * w.weights[i];
-        v.seen.addFrontGradientRowSeen(w.other.data(), m, &out.at(0, j), w.scratch);
-      }
-      return 0.0;
-    });
+    if (imageBlur_) addScaled(out, imageBlur_->apply(blurredSum, threads_), 1.0f);
   }
 
- private:
   // The image as the eyes see it: through the diffuser when it is the rear layer.
   const Image& seen(const Image& x, Image& holder) const {
     if (!imageBlur_) return x;
