@@ -1,13 +1,16 @@
 #include "parallax/core/memory.h"
 
 #include <malloc.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <new>
 
 #include "parallax/core/error.h"
 
@@ -30,6 +33,24 @@ double residentBytes() {
   unsigned long long pages = 0, resident = 0;
   if (!(statm >> pages >> resident)) return 0;
   return double(resident) * double(sysconf(_SC_PAGE_SIZE));
+}
+
+void* allocateBlock(size_t bytes) {
+  if (bytes < kLargeBlockBytes) return ::operator new(bytes);
+  constexpr size_t kHugePage = size_t(2) << 20;
+  const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+  void* block = std::aligned_alloc(kHugePage, rounded);
+  if (!block) throw std::bad_alloc();
+  // Advice only: where transparent huge pages are off (or the call fails) the block is as good.
+  madvise(block, rounded, MADV_HUGEPAGE);
+  return block;
+}
+
+void freeBlock(void* block, size_t bytes) {
+  if (bytes < kLargeBlockBytes)
+    ::operator delete(block);
+  else
+    std::free(block);
 }
 
 void releaseFreeMemory() {

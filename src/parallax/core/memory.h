@@ -3,8 +3,10 @@
 // allocates it and checks the sum against a limit (by default 3/4 of physical memory).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace parallax {
 
@@ -52,5 +54,35 @@ std::string formatGiB(double bytes);
 // value ("--size 65536x65536").
 void checkMemory(double bytes, double limitBytes, const std::string& subject,
                  const std::string& what, const std::string& advice);
+
+// Buffers of whole images (pixels, a solver's targets) are written once right after they are
+// allocated, and at the sizes this program works at (25 MB a 1080p picture, a GB of training
+// targets) the kernel's page faults on that first touch cost seconds in 4 KiB pages (a sixth of a
+// 1080p layer solve's time was page faults; measured in docs/content-adaptive.md, "Cost").
+// Blocks of kLargeBlockBytes and more are therefore aligned to 2 MiB and marked
+// MADV_HUGEPAGE before they are touched, so that a kernel whose transparent huge pages are
+// "madvise" (Debian's default) backs them with 2 MiB pages: one fault where there were 512.
+// Smaller blocks come from operator new as usual. No effect on any result.
+inline constexpr size_t kLargeBlockBytes = size_t(4) << 20;
+void* allocateBlock(size_t bytes);
+void freeBlock(void* block, size_t bytes);
+
+template <class T>
+struct LargeBlockAllocator {
+  using value_type = T;
+  LargeBlockAllocator() = default;
+  template <class U>
+  LargeBlockAllocator(const LargeBlockAllocator<U>&) {}
+  T* allocate(size_t count) { return static_cast<T*>(allocateBlock(count * sizeof(T))); }
+  void deallocate(T* block, size_t count) { freeBlock(block, count * sizeof(T)); }
+  template <class U>
+  bool operator==(const LargeBlockAllocator<U>&) const {
+    return true;
+  }
+};
+
+// A vector for whole images' worth of values.
+template <class T>
+using LargeVector = std::vector<T, LargeBlockAllocator<T>>;
 
 }  // namespace parallax

@@ -59,5 +59,21 @@ TEST(Memory, CheckRefusesAboveTheLimitWithTheEstimate) {
   }
 }
 
+TEST(Memory, LargeBlocksAreAlignedToHugePagesAndHoldTheirValues) {
+  constexpr size_t kHugePage = size_t(2) << 20;
+  LargeVector<float> small(100, 1.5f);
+  EXPECT_EQ(small.back(), 1.5f);
+  // Growing from a small block to a large one keeps the values.
+  LargeVector<float> grown(small);
+  for (size_t i = 0; grown.size() * sizeof(float) < 3 * kLargeBlockBytes; ++i)
+    grown.push_back(float(i));
+  EXPECT_EQ(grown[99], 1.5f);
+  EXPECT_EQ(grown[100 + 12345], 12345.0f);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(grown.data()) % kHugePage, 0u);
+  const LargeVector<uint16_t> large(kLargeBlockBytes / sizeof(uint16_t) + 1, uint16_t(7));
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(large.data()) % kHugePage, 0u);
+  EXPECT_EQ(large.back(), 7);
+}
+
 }  // namespace
 }  // namespace parallax

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "parallax/core/math.h"
+#include "parallax/core/memory.h"
 
 namespace parallax {
 
@@ -20,8 +21,9 @@ class Image {
 
   Vec3f& at(int x, int y) { return pixels_[size_t(y) * size_t(width_) + size_t(x)]; }
   const Vec3f& at(int x, int y) const { return pixels_[size_t(y) * size_t(width_) + size_t(x)]; }
-  const std::vector<Vec3f>& pixels() const { return pixels_; }
-  std::vector<Vec3f>& pixels() { return pixels_; }
+  // Contiguous, row by row; in large blocks (core/memory.h) for whole pictures.
+  const LargeVector<Vec3f>& pixels() const { return pixels_; }
+  LargeVector<Vec3f>& pixels() { return pixels_; }
 
   // Bilinear lookup at texture coordinates (u, v) in [0,1) with wrap-around; v = 0 is the
   // bottom row, as in OBJ and glTF-flipped UVs (see docs/scene-format.md).
@@ -30,7 +32,7 @@ class Image {
  private:
   int width_ = 0;
   int height_ = 0;
-  std::vector<Vec3f> pixels_;
+  LargeVector<Vec3f> pixels_;
 };
 
 // Area resampling to width x height: each output pixel is the mean of the input area it covers

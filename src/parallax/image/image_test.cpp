@@ -62,6 +62,12 @@ TEST(Srgb, MatchesStandardAnchors) {
   EXPECT_EQ(linearToSrgb8(2.0f), 255);
 }
 
+TEST(Image, WholePicturesLieInHugePageAlignedBlocks) {
+  const Image picture(1024, 1024, Vec3f(0.25f));
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(picture.pixels().data()) % (size_t(2) << 20), 0u);
+  EXPECT_EQ(picture.at(1023, 1023), Vec3f(0.25f));
+}
+
 TEST(Image, BilinearHitsTexelCentresAndWraps) {
   Image img(2, 1);
   img.at(0, 0) = Vec3f(0.0f);

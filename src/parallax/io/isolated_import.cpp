@@ -112,8 +112,8 @@ class Writer {
     static_assert(std::is_trivially_copyable_v<T>);
     out_.append(reinterpret_cast<const char*>(&value), sizeof(T));
   }
-  template <typename T>
-  void array(const std::vector<T>& values) {
+  template <typename T, typename Allocator>
+  void array(const std::vector<T, Allocator>& values) {
     static_assert(std::is_trivially_copyable_v<T>);
     put(uint64_t(values.size()));
     if (!values.empty())
@@ -154,10 +154,10 @@ class Reader {
                     " beyond the bytes present"};
     return size_t(n);
   }
-  template <typename T>
-  std::vector<T> array(const char* what) {
+  template <typename T, typename Allocator = std::allocator<T>>
+  std::vector<T, Allocator> array(const char* what) {
     const size_t n = count(sizeof(T), what);
-    std::vector<T> values(n);
+    std::vector<T, Allocator> values(n);
     if (n > 0) std::memcpy(values.data(), data_.data(), n * sizeof(T));  // no null pointer
     data_.remove_prefix(n * sizeof(T));
     return values;
@@ -212,7 +212,7 @@ FileContents parseContentsOrThrowGarbled(Reader& r) {
     const int32_t width = r.get<int32_t>("image width");
     const int32_t height = r.get<int32_t>("image height");
     if (width < 0 || height < 0) throw Garbled{"negative image size"};
-    std::vector<Vec3f> pixels = r.array<Vec3f>("image pixels");
+    auto pixels = r.array<Vec3f, LargeBlockAllocator<Vec3f>>("image pixels");
     if (pixels.size() != uint64_t(width) * uint64_t(height))
       throw Garbled{"image pixels do not match its size"};
     Image image(width, height);

@@ -261,8 +261,9 @@ void expectSameBytes(const void* a, const void* b, size_t bytes, const std::stri
   EXPECT_EQ(std::memcmp(a, b, bytes), 0) << what;
 }
 
-template <typename T>
-void expectSameArray(const std::vector<T>& a, const std::vector<T>& b, const std::string& what) {
+template <typename T, typename A>
+void expectSameArray(const std::vector<T, A>& a, const std::vector<T, A>& b,
+                     const std::string& what) {
   ASSERT_EQ(a.size(), b.size()) << what;
   if (!a.empty()) expectSameBytes(a.data(), b.data(), a.size() * sizeof(T), what);
 }

@@ -49,7 +49,7 @@ bool mergeFrameShares(std::initializer_list<Image*> images, RenderStats& stats,
   const auto start = std::chrono::steady_clock::now();
   double bytes = 0;
   for (Image* image : images) {
-    std::vector<Vec3f>& pixels = image->pixels();
+    auto& pixels = image->pixels();
     group.mergeToRoot(
         std::span(reinterpret_cast<uint8_t*>(pixels.data()), pixels.size() * sizeof(Vec3f)));
     bytes += double(pixels.size() * sizeof(Vec3f));

@@ -94,23 +94,45 @@ double overlapWithPixel(int k, double lo, double hi) {
   return std::max(0.0, std::min(k + 1.0, hi) - std::max(double(k), lo));
 }
 
-// into[n] = sum_t taps[t] from[n + offset + step t] for n in [begin, end): blocks of kBlock
-// floats summed in registers, the taps in order (the same sums on every CPU but for fused
-// multiply-adds).
+// into[n] = sum_t taps[t] from[n + offset + step t] for n in [begin, end), the taps added in
+// order (the same sums on every CPU but for fused multiply-adds). One lane per output, so each
+// sum stays in a register; with the tap count known at compile time (every screen period up to
+// 15 pixels wide) the taps stay in registers too.
+template <int kTaps>
+[[gnu::always_inline]] inline void stencilLoop(const float* from, int offset, int step,
+                                               const float* taps, int tapCount, float* into,
+                                               int begin, int end) {
+  float fixed[kTaps > 0 ? kTaps : 1];
+  for (int t = 0; t < kTaps; ++t) fixed[t] = taps[t];
+  const int count = kTaps > 0 ? kTaps : tapCount;
+  const float* weights = kTaps > 0 ? fixed : taps;
+  PARALLAX_SIMD
+  for (int n = begin; n < end; ++n) {
+    const float* source = from + (n + offset);
+    float sum = 0;
+    for (int t = 0; t < count; ++t) sum += weights[t] * source[step * t];
+    into[n] = sum;
+  }
+}
+
+// stencilLoop<tapCount> for 2 .. kMostTaps taps, else the loop with the count at run time.
+constexpr int kMostTaps = 16;
+template <int kTaps = 2>
+[[gnu::always_inline]] inline void stencilOfCount(const float* from, int offset, int step,
+                                                  const float* taps, int tapCount, float* into,
+                                                  int begin, int end) {
+  if (tapCount == kTaps)
+    return stencilLoop<kTaps>(from, offset, step, taps, tapCount, into, begin, end);
+  if constexpr (kTaps < kMostTaps)
+    return stencilOfCount<kTaps + 1>(from, offset, step, taps, tapCount, into, begin, end);
+  else
+    return stencilLoop<0>(from, offset, step, taps, tapCount, into, begin, end);
+}
+
 PARALLAX_LANE_KERNEL
 void stencil(const float* from, int offset, int step, const float* taps, int tapCount, float* into,
              int begin, int end) {
-  constexpr int kBlock = 64;
-  for (int n = begin; n < end; n += kBlock) {
-    const int count = std::min(kBlock, end - n);
-    float sum[kBlock] = {};
-    for (int t = 0; t < tapCount; ++t) {
-      const float tap = taps[t];
-      const float* source = from + (n + offset + step * t);
-      for (int i = 0; i < count; ++i) sum[i] += tap * source[i];
-    }
-    for (int i = 0; i < count; ++i) into[n + i] = sum[i];
-  }
+  stencilOfCount(from, offset, step, taps, tapCount, into, begin, end);
 }
 
 }  // namespace
