@@ -12,8 +12,8 @@ namespace parallax {
 // The sRGB encoding S(x) = 1.055 x^(5/12) - 0.055 (12.92 x up to 0.0031308; IEC 61966-2-1) of
 // x clamped to [0, 1], and its slope S'(x) (0 above 1, where the clamp holds S constant), in
 // arithmetic that vectorises (no table reads: they would be gathers, which GCC's generic tuning
-// does not vectorise) and without divisions or selects on the way (a select makes GCC evaluate
-// both sides): x^(5/12) = 2^(5/12 log2 x), with
+// does not vectorise), with no select on the way (GCC would evaluate both sides of one) and one
+// division, the slope's: x^(5/12) = 2^(5/12 log2 x), with
 //   log2 x = e + log2 m, x = 2^e m, m in [sqrt(1/2), sqrt(2)): log2 m = u q(u), u = m - 1,
 //     q of degree 8 interpolating log2(1 + u)/u at 9 Chebyshev nodes of u's interval (within
 //     1.5e-8 of log2 m in exact arithmetic, 6.3e-8 in float);

@@ -61,6 +61,7 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
   for (int j = 0; j < height_; ++j)
     for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k)
       if (down_[k].front != j) throw std::logic_error("SeenLayers: a piece leaves its row");
+  makeAcrossRuns();
   rearRowSources_.assign(size_t(rearRows_), {});
   for (int j = 0; j < height_; ++j)
     for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k)
@@ -80,6 +81,56 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
   interiorBegin_ = std::min(width_, int(std::ceil(-boxA_)));
   interiorEnd_ = std::max(interiorBegin_, std::min(width_, int(std::floor(width_ - boxB_)) + 1));
 }
+
+void SeenLayers::makeAcrossRuns() {
+  acrossFirst_.assign(3 * size_t(width_), 0.0f);
+  acrossSecond_.assign(3 * size_t(width_), 0.0f);
+  for (int i = 0; i < width_; ++i) {
+    const uint32_t begin = acrossStart_[size_t(i)], count = acrossStart_[size_t(i) + 1] - begin;
+    const Piece* pieces = &across_[begin];
+    // Two cells read, so the second must lie inside the rear layer even when its weight is 0.
+    const bool even = (count == 1 || count == 2) && pieces[0].rear >= 0 &&
+                      pieces[0].rear + 1 < rearColumns_ &&
+                      (count == 1 || pieces[1].rear == pieces[0].rear + 1);
+    if (!even) {
+      unevenColumns_.push_back(i);
+      continue;
+    }
+    const int shift = pieces[0].rear - i;
+    for (int c = 0; c < 3; ++c) {
+      acrossFirst_[3 * size_t(i) + size_t(c)] = pieces[0].weight;
+      acrossSecond_[3 * size_t(i) + size_t(c)] = count == 2 ? pieces[1].weight : 0.0f;
+    }
+    if (!acrossRuns_.empty() && acrossRuns_.back().end == i && acrossRuns_.back().shift == shift)
+      ++acrossRuns_.back().end;
+    else
+      acrossRuns_.push_back({i, i + 1, shift});
+  }
+}
+
+namespace {
+
+// A run of columns (SeenLayers::AcrossRun) over n floats: out[k] = first[k] cells[k] +
+// second[k] cells[k + 3] (cells from the run's first rear cell).
+PARALLAX_LANE_KERNEL
+void gatherRun(const float* cells, const float* first, const float* second, float* out, size_t n) {
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) out[k] = first[k] * cells[k] + second[k] * cells[k + 3];
+}
+
+// Its transpose, scaled: cells[k] += scale[k] first[k], then cells[k + 3] += scale[k]
+// second[k], with scale[k] = weight filtered[k] front[k] (two loops: the second adds to cells
+// the first wrote).
+PARALLAX_LANE_KERNEL
+void scatterRun(const float* filtered, const float* front, float weight, const float* first,
+                const float* second, float* cells, size_t n) {
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) cells[k] += filtered[k] * weight * front[k] * first[k];
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) cells[k + 3] += filtered[k] * weight * front[k] * second[k];
+}
+
+}  // namespace
 
 // B as boxFilterX computes it: output x is the integral of the box-pixel row over
 // [lo_x, hi_x] = [x + a, x + b] clipped to the row, over its length. Inside the row a stencil
@@ -206,7 +257,12 @@ void SeenLayers::seenRearRow(const Image& rear, int j, Vec3f* seenRear, RowScrat
     std::fill(seenRear, seenRear + width_, Vec3f(0.0f));
     return;
   }
-  for (int i = 0; i < width_; ++i) {
+  for (const AcrossRun& run : acrossRuns_) {
+    const size_t first = 3 * size_t(run.begin);
+    gatherRun(&blend[size_t(run.begin + run.shift)].x, &acrossFirst_[first], &acrossSecond_[first],
+              &seenRear[run.begin].x, 3 * size_t(run.end - run.begin));
+  }
+  for (const int i : unevenColumns_) {
     Vec3f light(0.0f);
     for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
       const Piece& p = across_[a];
@@ -293,7 +349,13 @@ void SeenLayers::boxTransposedRowInto(const Vec3f* residual, Vec3f* filtered) co
 void SeenLayers::addRearGradientFromRow(const Vec3f* filtered, const Image& front, int j,
                                         float weight, Vec3f* gradRearRow) const {
   const Vec3f* frontRow = &front.at(0, j);  // output row j lies in front row j
-  for (int i = 0; i < width_; ++i) {
+  for (const AcrossRun& run : acrossRuns_) {
+    const size_t first = 3 * size_t(run.begin);
+    scatterRun(&filtered[run.begin].x, &frontRow[run.begin].x, weight, &acrossFirst_[first],
+               &acrossSecond_[first], &gradRearRow[run.begin + run.shift].x,
+               3 * size_t(run.end - run.begin));
+  }
+  for (const int i : unevenColumns_) {
     const Vec3f v = filtered[i] * weight;
     for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
       const Piece& p = across_[a];

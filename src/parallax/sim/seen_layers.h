@@ -93,6 +93,19 @@ class SeenLayers {
   int width_ = 0, height_ = 0, frontColumns_ = 0, frontRows_ = 0, rearColumns_ = 0, rearRows_ = 0;
   std::vector<Piece> across_, down_;
   std::vector<uint32_t> acrossStart_, downStart_;
+  // The pieces across in runs for vectorised loops: the eye sees rear cells at the front's
+  // pitch times the gap's small stretch, so nearly every column i meets rear cells i + s and
+  // i + s + 1 (weights first, second; second 0 for one piece), with the shift s constant over
+  // hundreds of columns. A run is such a stretch of columns with one shift; the weights are
+  // per float of the row (three per column). Columns of any other form (the row's ends, a rear
+  // layer of another pitch) are `unevenColumns_`, read through their pieces.
+  struct AcrossRun {
+    int begin = 0, end = 0, shift = 0;
+  };
+  std::vector<AcrossRun> acrossRuns_;
+  std::vector<float> acrossFirst_, acrossSecond_;
+  std::vector<int> unevenColumns_;
+  void makeAcrossRuns();
   // For each rear row, the output rows whose pieces meet it and those pieces' weights.
   std::vector<std::vector<std::pair<int, float>>> rearRowSources_;
   // B, the box of w = one screen period (pixels) along x: output column x averages the row over

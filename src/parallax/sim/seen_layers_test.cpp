@@ -53,6 +53,36 @@ TEST(SeenLayers, EqualsTheSimulatorsExactViewInBothLayerOrders) {
   }
 }
 
+// Columns whose rear cells are not two neighbours at a constant shift are read through their
+// pieces (SeenLayers::unevenColumns_): every column when the rear panel's pitch is a third of
+// the front's (three or four cells a column), the rows' ends otherwise.
+TEST(SeenLayers, EqualsTheSimulatorsExactViewWithARearPanelOfAnotherPitch) {
+  DisplaySpec s = smallDisplay(LayerOrder::BarrierBack, 60, 8).spec;
+  s.maskPanel.width = 3 * s.imagePanel.width;
+  s.maskPanel.height = 3 * s.imagePanel.height;
+  s.maskPanel.pitchMm = s.imagePanel.pitchMm / 3;
+  const DisplayDesign d = designDisplay(s);
+  const Image image = randomImage(d.spec.imagePanel.width, d.spec.imagePanel.height, 8);
+  const Image mask = randomImage(d.spec.maskPanel.width, d.spec.maskPanel.height, 9);
+  const std::unique_ptr<DisplayModel> model = makeBarrierDisplay(d);
+  SimulationOptions options;
+  options.normalisation = 0.5;
+  const auto simulated = simulateDisplay(*model, LayerImages{image, mask}, options);
+  for (const Vec3d eye : {Vec3d{0, 0, 600}, Vec3d{-37.5, 4, 520}}) {
+    const Image a = SeenLayers(d, eye, false).view(image, mask);
+    const Image raw = simulated->view(eye);
+    for (size_t i = 0; i < a.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.pixels()[i][c], 0.5f * raw.pixels()[i][c], 1e-5f);
+    // And its adjoint.
+    const SeenLayers seen(d, eye);
+    const Image y = randomImage(seen.width(), seen.height(), 10);
+    Image gRear(mask.width(), mask.height());
+    seen.addRearGradient(y, image, gRear);
+    const double vy = dot(seen.view(image, mask), y);
+    EXPECT_NEAR(vy, dot(mask, gRear), 1e-4 * vy);
+  }
+}
+
 TEST(SeenLayers, AdjointsPassTheDotProductTest) {
   for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
     const DisplayDesign d = smallDisplay(order, 60, 6);
