@@ -10,7 +10,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <mutex>
 #include <new>
+#include <utility>
+#include <vector>
 
 #include "parallax/core/error.h"
 
@@ -35,10 +38,68 @@ double residentBytes() {
   return double(resident) * double(sysconf(_SC_PAGE_SIZE));
 }
 
+namespace {
+
+constexpr size_t kHugePage = size_t(2) << 20;
+
+size_t roundedToHugePages(size_t bytes) {
+  return (bytes + kHugePage - 1) / kHugePage * kHugePage;
+}
+
+// Large blocks freed lately, kept for the next allocation of the same rounded size: a solver's
+// per-eye pictures and per-iteration images come and go at a few sizes, and a block handed back
+// to the kernel comes back zeroed by it, page by page (measured: the kernel's zeroing was a
+// tenth of a 1080p layer solve). At most kKeptBytes are kept (the oldest go first), so the peak
+// rises by no more than that; releaseFreeMemory() empties it. Never destroyed: blocks may be
+// freed during static destruction.
+class KeptBlocks {
+ public:
+  static KeptBlocks& instance() {
+    static KeptBlocks* kept = new KeptBlocks;
+    return *kept;
+  }
+  void* take(size_t rounded) {
+    const std::lock_guard lock(mutex_);
+    for (size_t k = blocks_.size(); k-- > 0;)
+      if (blocks_[k].second == rounded) {
+        void* block = blocks_[k].first;
+        blocks_.erase(blocks_.begin() + std::ptrdiff_t(k));
+        bytes_ -= rounded;
+        return block;
+      }
+    return nullptr;
+  }
+  void keep(void* block, size_t rounded) {
+    const std::lock_guard lock(mutex_);
+    if (rounded > kKeptBytes) return std::free(block);
+    while (bytes_ + rounded > kKeptBytes) {
+      std::free(blocks_.front().first);
+      bytes_ -= blocks_.front().second;
+      blocks_.erase(blocks_.begin());
+    }
+    blocks_.push_back({block, rounded});
+    bytes_ += rounded;
+  }
+  void release() {
+    const std::lock_guard lock(mutex_);
+    for (const auto& [block, rounded] : blocks_) std::free(block);
+    blocks_.clear();
+    bytes_ = 0;
+  }
+
+ private:
+  static constexpr size_t kKeptBytes = size_t(64) << 20;
+  std::mutex mutex_;
+  std::vector<std::pair<void*, size_t>> blocks_;
+  size_t bytes_ = 0;
+};
+
+}  // namespace
+
 void* allocateBlock(size_t bytes) {
   if (bytes < kLargeBlockBytes) return ::operator new(bytes);
-  constexpr size_t kHugePage = size_t(2) << 20;
-  const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+  const size_t rounded = roundedToHugePages(bytes);
+  if (void* kept = KeptBlocks::instance().take(rounded)) return kept;
   void* block = std::aligned_alloc(kHugePage, rounded);
   if (!block) throw std::bad_alloc();
   // Advice only: where transparent huge pages are off (or the call fails) the block is as good.
@@ -50,10 +111,11 @@ void freeBlock(void* block, size_t bytes) {
   if (bytes < kLargeBlockBytes)
     ::operator delete(block);
   else
-    std::free(block);
+    KeptBlocks::instance().keep(block, roundedToHugePages(bytes));
 }
 
 void releaseFreeMemory() {
+  KeptBlocks::instance().release();
 #ifdef __GLIBC__
   malloc_trim(0);
 #endif

@@ -75,5 +75,20 @@ TEST(Memory, LargeBlocksAreAlignedToHugePagesAndHoldTheirValues) {
   EXPECT_EQ(large.back(), 7);
 }
 
+TEST(Memory, AFreedLargeBlockIsTakenAgainAtItsSize) {
+  const size_t count = 3 * kLargeBlockBytes / sizeof(float);
+  const float* first = nullptr;
+  {
+    const LargeVector<float> a(count, 2.0f);
+    first = a.data();
+  }
+  // Another size does not take it; the same size does, and gets its own values.
+  const LargeVector<float> other(2 * count, 1.0f);
+  EXPECT_NE(other.data(), first);
+  const LargeVector<float> again(count, 3.0f);
+  EXPECT_EQ(again.data(), first);
+  EXPECT_EQ(again.back(), 3.0f);
+}
+
 }  // namespace
 }  // namespace parallax
