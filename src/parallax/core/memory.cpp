@@ -46,12 +46,10 @@ size_t roundedToHugePages(size_t bytes) {
   return (bytes + kHugePage - 1) / kHugePage * kHugePage;
 }
 
-// Large blocks freed lately, kept for the next allocation of the same rounded size: a solver's
-// per-eye pictures and per-iteration images come and go at a few sizes, and a block handed back
-// to the kernel comes back zeroed by it, page by page (measured: the kernel's zeroing was a
-// tenth of a 1080p layer solve). At most kKeptBytes are kept (the oldest go first), so the peak
-// rises by no more than that; releaseFreeMemory() empties it. Never destroyed: blocks may be
-// freed during static destruction.
+// Large blocks freed while a KeepFreedBlocks lives, kept for the next allocation of the same
+// rounded size. At most kKeptBytes are kept (the oldest go first), so the peak rises by no more
+// than that; releaseFreeMemory() and the last KeepFreedBlocks empty it. Never destroyed: blocks
+// may be freed during static destruction.
 class KeptBlocks {
  public:
   static KeptBlocks& instance() {
@@ -71,7 +69,7 @@ class KeptBlocks {
   }
   void keep(void* block, size_t rounded) {
     const std::lock_guard lock(mutex_);
-    if (rounded > kKeptBytes) return std::free(block);
+    if (scopes_ == 0 || rounded > kKeptBytes) return std::free(block);
     while (bytes_ + rounded > kKeptBytes) {
       std::free(blocks_.front().first);
       bytes_ -= blocks_.front().second;
@@ -82,13 +80,29 @@ class KeptBlocks {
   }
   void release() {
     const std::lock_guard lock(mutex_);
+    releaseLocked();
+  }
+  size_t bytes() {
+    const std::lock_guard lock(mutex_);
+    return bytes_;
+  }
+  void open() {
+    const std::lock_guard lock(mutex_);
+    ++scopes_;
+  }
+  void close() {
+    const std::lock_guard lock(mutex_);
+    if (--scopes_ == 0) releaseLocked();
+  }
+
+ private:
+  void releaseLocked() {
     for (const auto& [block, rounded] : blocks_) std::free(block);
     blocks_.clear();
     bytes_ = 0;
   }
-
- private:
   static constexpr size_t kKeptBytes = size_t(64) << 20;
+  int scopes_ = 0;
   std::mutex mutex_;
   std::vector<std::pair<void*, size_t>> blocks_;
   size_t bytes_ = 0;
@@ -112,6 +126,17 @@ void freeBlock(void* block, size_t bytes) {
     ::operator delete(block);
   else
     KeptBlocks::instance().keep(block, roundedToHugePages(bytes));
+}
+
+size_t keptBlockBytes() {
+  return KeptBlocks::instance().bytes();
+}
+
+KeepFreedBlocks::KeepFreedBlocks() {
+  KeptBlocks::instance().open();
+}
+KeepFreedBlocks::~KeepFreedBlocks() {
+  KeptBlocks::instance().close();
 }
 
 void releaseFreeMemory() {

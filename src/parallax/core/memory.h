@@ -67,6 +67,22 @@ inline constexpr size_t kLargeBlockBytes = size_t(4) << 20;
 void* allocateBlock(size_t bytes);
 void freeBlock(void* block, size_t bytes);
 
+// While one of these lives, large blocks freed are kept (64 MiB of them at most) for the next
+// allocation of the same size instead of going back to the kernel, which would hand them out
+// again zeroed page by page: a layer solve's per-eye pictures and per-iteration images come
+// and go at a few sizes (measured in docs/content-adaptive.md, "Cost"). Scoped, because kept
+// blocks of sizes that never come again raise a command's peak (a supersampled film): the
+// last one to go releases what is kept.
+// What is kept now, in bytes.
+size_t keptBlockBytes();
+class KeepFreedBlocks {
+ public:
+  KeepFreedBlocks();
+  ~KeepFreedBlocks();
+  KeepFreedBlocks(const KeepFreedBlocks&) = delete;
+  KeepFreedBlocks& operator=(const KeepFreedBlocks&) = delete;
+};
+
 template <class T>
 struct LargeBlockAllocator {
   using value_type = T;

@@ -75,19 +75,31 @@ TEST(Memory, LargeBlocksAreAlignedToHugePagesAndHoldTheirValues) {
   EXPECT_EQ(large.back(), 7);
 }
 
-TEST(Memory, AFreedLargeBlockIsTakenAgainAtItsSize) {
+TEST(Memory, AFreedLargeBlockIsTakenAgainAtItsSizeWhileKept) {
   const size_t count = 3 * kLargeBlockBytes / sizeof(float);
-  const float* first = nullptr;
+  const size_t blockBytes = count * sizeof(float);  // a multiple of 2 MiB
   {
-    const LargeVector<float> a(count, 2.0f);
-    first = a.data();
+    const KeepFreedBlocks keep;
+    const float* first = nullptr;
+    {
+      const LargeVector<float> a(count, 2.0f);
+      first = a.data();
+    }
+    // Freed but kept.
+    EXPECT_EQ(keptBlockBytes(), blockBytes);
+    // Another size does not take it; the same size does, and gets its own values.
+    const LargeVector<float> other(2 * count, 1.0f);
+    EXPECT_NE(other.data(), first);
+    const LargeVector<float> again(count, 3.0f);
+    EXPECT_EQ(again.data(), first);
+    EXPECT_EQ(again.back(), 3.0f);
+    EXPECT_EQ(keptBlockBytes(), 0u);
   }
-  // Another size does not take it; the same size does, and gets its own values.
-  const LargeVector<float> other(2 * count, 1.0f);
-  EXPECT_NE(other.data(), first);
-  const LargeVector<float> again(count, 3.0f);
-  EXPECT_EQ(again.data(), first);
-  EXPECT_EQ(again.back(), 3.0f);
+  // The scope's end gives every kept block back (`other` and `again` were kept at its end).
+  EXPECT_EQ(keptBlockBytes(), 0u);
+  // Without a scope a freed block goes back at once.
+  { const LargeVector<float> a(count, 2.0f); }
+  EXPECT_EQ(keptBlockBytes(), 0u);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "parallax/core/memory.h"
 #include "parallax/jobs/render_parts.h"
 #include "parallax/layers/layer_solver.h"
 #include "parallax/layers/training.h"
@@ -26,6 +27,9 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
                                     JsonWriter& out, Reporter& reporter,
                                     LayerSolveFigures* figures) {
   const auto start = std::chrono::steady_clock::now();
+  // The per-eye pictures and the solver's per-iteration images come and go at two or three
+  // sizes: their blocks are taken again rather than handed back to the kernel.
+  const KeepFreedBlocks keepFreedBlocks;
   const double slitMean = meanTransmittance(slits.mask);
   const double gain = o.brightness > 0 ? o.brightness : defaultBrightness(o.method, o.rank);
   training.targetScale = slitMean * gain;
