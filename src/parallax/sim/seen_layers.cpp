@@ -134,10 +134,10 @@ void scatterRun(const float* filtered, const float* front, float weight, const f
 
 // B as boxFilterX computes it: output x is the integral of the box-pixel row over
 // [lo_x, hi_x] = [x + a, x + b] clipped to the row, over its length. Inside the row a stencil
-// (one vectorised loop per tap over the row's floats, the three channels 3 floats apart); the
-// few columns whose window the row clips, summed directly. Its transpose: pixel k receives
-// sum_x y_x / |[lo_x, hi_x]| times the overlap of [k, k+1] with x's window: inside, the same
-// taps mirrored; near the ends, summed directly.
+// (one vectorised loop over the row's floats, each output's taps in a register, the three
+// channels 3 floats apart); the few columns whose window the row clips, summed directly. Its
+// transpose: pixel k receives sum_x y_x / |[lo_x, hi_x]| times the overlap of [k, k+1] with x's
+// window: inside, the same taps mirrored; near the ends, summed directly.
 namespace {
 
 // |[k, k+1] n [lo, hi]|.
