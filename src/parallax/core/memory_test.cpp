@@ -98,7 +98,10 @@ TEST(Memory, AFreedLargeBlockIsTakenAgainAtItsSizeWhileKept) {
   // The scope's end gives every kept block back (`other` and `again` were kept at its end).
   EXPECT_EQ(keptBlockBytes(), 0u);
   // Without a scope a freed block goes back at once.
-  { const LargeVector<float> a(count, 2.0f); }
+  {
+    const LargeVector<float> a(count, 2.0f);
+    EXPECT_EQ(a.front(), 2.0f);
+  }
   EXPECT_EQ(keptBlockBytes(), 0u);
 }
 
