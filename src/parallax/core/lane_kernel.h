@@ -11,6 +11,9 @@
 // fuzzers).
 #pragma once
 
+#include <cstdint>
+#include <type_traits>
+
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__AVX512F__)
 #define PARALLAX_LANE_KERNEL \
   __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
@@ -27,6 +30,41 @@
 #define PARALLAX_SIMD_SUM(variable) PARALLAX_SIMD_PRAGMA(omp simd reduction(+ : variable))
 
 namespace parallax {
+
+// Sixteen lanes as one value of GCC's (and clang's) vector extensions, for loops whose width
+// must not be left to the vectoriser: inside an x86-64-v4 clone GCC 12 vectorises long loops
+// for 256-bit registers whatever -mprefer-vector-width says, where one of these is one 512-bit
+// register (two AVX2 ones, four SSE ones in the other clones). Arithmetic, comparisons (lanes
+// of -1 and 0) and `mask ? a : b` work lane by lane; `convertLanes` converts between the kinds.
+// Used only inside always-inline helpers, so no call passes one between functions compiled for
+// different ISAs (the build turns off GCC's -Wpsabi, which warns that such a call's ABI would
+// differ between the clones).
+using FloatLanes16 = float __attribute__((vector_size(64)));
+using IntLanes16 = int32_t __attribute__((vector_size(64)));
+using HalfWordLanes16 = uint16_t __attribute__((vector_size(32)));
+using FloatLanes8 = float __attribute__((vector_size(32)));
+using DoubleLanes8 = double __attribute__((vector_size(64)));
+
+// Converts lane by lane (numeric conversion, truncation toward zero for float to int); a plain
+// conversion for scalars, so that helpers written once serve a float and FloatLanes16 alike.
+template <class To, class From>
+[[gnu::always_inline]] inline To convertLanes(From value) {
+  if constexpr (std::is_arithmetic_v<From>)
+    return To(value);
+  else
+    return __builtin_convertvector(value, To);
+}
+
+// Lanes 0-7 and 8-15 of `value` in double, for running sums that must not round in float.
+[[gnu::always_inline]] inline DoubleLanes8 lowHalfInDouble(const FloatLanes16& value) {
+  return __builtin_convertvector(
+      FloatLanes8(__builtin_shufflevector(value, value, 0, 1, 2, 3, 4, 5, 6, 7)), DoubleLanes8);
+}
+[[gnu::always_inline]] inline DoubleLanes8 highHalfInDouble(const FloatLanes16& value) {
+  return __builtin_convertvector(
+      FloatLanes8(__builtin_shufflevector(value, value, 8, 9, 10, 11, 12, 13, 14, 15)),
+      DoubleLanes8);
+}
 
 // Which version of the lane kernels this process runs: "x86-64-v4" (AVX-512), "x86-64-v3"
 // (AVX2, FMA) or "x86-64" (the baseline) when they were cloned; "native" when the build was

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -88,11 +89,17 @@ double meanSquaredError(const Image& a, const Image& b, MetricEncoding encoding)
   return sum / (3.0 * double(a.pixels().size()));
 }
 
+// 16 values at a time as FloatLanes16 (one 512-bit register in the x86-64-v4 clone, where GCC's
+// vectoriser chose 256-bit ones); the last n mod 16 through the same lanes.
 PARALLAX_LANE_KERNEL void srgbEncodeValues(const float* __restrict in, float* __restrict out,
                                            size_t n) {
-  for (size_t i = 0; i < n; ++i) {
-    float slope = 0;
-    srgbEncodeArithmetic(in[i], out[i], slope);
+  for (size_t k = 0; k < n; k += 16) {
+    const size_t bytes = sizeof(float) * std::min<size_t>(16, n - k);
+    FloatLanes16 values{};
+    std::memcpy(&values, in + k, bytes);
+    FloatLanes16 encoded, slope;
+    srgbEncodeArithmetic<FloatLanes16, IntLanes16>(values, encoded, slope);
+    std::memcpy(out + k, &encoded, bytes);
   }
 }
 

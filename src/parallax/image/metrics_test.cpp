@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "parallax/core/error.h"
 #include "parallax/core/random.h"
+#include "parallax/image/srgb_arithmetic.h"
 
 namespace parallax {
 namespace {
@@ -94,6 +97,46 @@ TEST(Metrics, SrgbEncodedIsTheStandardsFormula) {
         worst = std::max(worst, std::abs(double(encoded.pixels()[k][c]) - s));
       }
     EXPECT_LT(worst, 3e-7) << width;
+  }
+}
+
+// The encoding of 16 lanes at once (FloatLanes16, what the dense measure's pictures and the
+// layer solvers' errors use) is the one-value encoding bit for bit: the same operations in the
+// same order, wherever the lanes come from: both segments, the clamps below 0 and above 1, the
+// values next to the segments' border, 1 and the smallest ones, infinities.
+TEST(SrgbEncode, SixteenLanesAreSixteenSingleValues) {
+  std::vector<float> values = {-INFINITY,
+                               -1.0f,
+                               -0.0f,
+                               0.0f,
+                               1e-45f,
+                               1e-31f,
+                               1e-30f,
+                               1e-20f,
+                               0.0031308f,
+                               std::nextafter(0.0031308f, 0.0f),
+                               std::nextafter(0.0031308f, 1.0f),
+                               0.5f,
+                               std::nextafter(1.0f, 0.0f),
+                               1.0f,
+                               std::nextafter(1.0f, 2.0f),
+                               2.0f,
+                               1e30f,
+                               INFINITY};
+  Rng rng(5);
+  for (int i = 0; i < 4000; ++i) values.push_back(float(rng.uniform()));
+  for (int i = 0; i < 400; ++i) values.push_back(std::ldexp(float(rng.uniform()), -int(i % 90)));
+  while (values.size() % 16) values.push_back(0.25f);
+  for (size_t base = 0; base < values.size(); base += 16) {
+    FloatLanes16 x, encoded, slope;
+    for (int l = 0; l < 16; ++l) x[l] = values[base + size_t(l)];
+    srgbEncodeArithmetic<FloatLanes16, IntLanes16>(x, encoded, slope);
+    for (int l = 0; l < 16; ++l) {
+      float oneEncoded = 0, oneSlope = 0;
+      srgbEncodeArithmetic(x[l], oneEncoded, oneSlope);
+      EXPECT_EQ(std::bit_cast<uint32_t>(encoded[l]), std::bit_cast<uint32_t>(oneEncoded)) << x[l];
+      EXPECT_EQ(std::bit_cast<uint32_t>(slope[l]), std::bit_cast<uint32_t>(oneSlope)) << x[l];
+    }
   }
 }
 

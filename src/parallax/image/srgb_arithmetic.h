@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "parallax/core/lane_kernel.h"
+
 namespace parallax {
 
 // The sRGB encoding S(x) = 1.055 x^(5/12) - 0.055 (12.92 x up to 0.0031308; IEC 61966-2-1) of
@@ -27,26 +29,34 @@ inline constexpr float kLog2Interpolant[9] = {1.442695f,     -0.721347468f, 0.48
 inline constexpr float kExp2Series[8] = {1.0f,      1.0f,       0.5f,       1.0f / 6,
                                          1.0f / 24, 1.0f / 120, 1.0f / 720, 1.0f / 5040};
 
-[[gnu::always_inline]] inline void srgbEncodeArithmetic(float x, float& encoded, float& slope) {
-  const float clamped = x < 1e-30f ? 1e-30f : (x > 1.0f ? 1.0f : x);
+// The encoding of one value (F = float, I = int32_t) or of 16 lanes at once (F = FloatLanes16,
+// I = IntLanes16): the same operations in the same order, so the same results bit for bit.
+template <class F, class I>
+[[gnu::always_inline]] inline void srgbEncodeArithmetic(F x, F& encoded, F& slope) {
+  const F zero{}, one = zero + 1.0f;
+  const F clamped = x < 1e-30f ? zero + 1e-30f : (x > 1.0f ? one : x);
   // x = 2^e m with m in [sqrt(1/2), sqrt(2)): offset the bits by sqrt(1/2)'s so that the
   // exponent field is e and the mantissa field m's (integer arithmetic only: no selects).
-  const int32_t offset = std::bit_cast<int32_t>(clamped) - 0x3F3504F3;
-  const int exponent = offset >> 23;
-  const float m = std::bit_cast<float>((offset & 0x007FFFFF) + 0x3F3504F3);
-  const float u = m - 1.0f;
-  float q = kLog2Interpolant[8];
+  const I offset = __builtin_bit_cast(I, clamped) - 0x3F3504F3;
+  const I exponent = offset >> 23;
+  const F m = __builtin_bit_cast(F, I((offset & 0x007FFFFF) + 0x3F3504F3));
+  const F u = m - 1.0f;
+  F q = zero + kLog2Interpolant[8];
   for (int k = 7; k >= 0; --k) q = q * u + kLog2Interpolant[k];
-  const float log2m = u * q;
-  const float y = (5.0f / 12.0f) * (float(exponent) + log2m);
-  const int n = int(y + 64.0f) - 64;  // floor for y > -64 (y >= -62 here)
-  const float z = (y - float(n) - 0.5f) * 0.693147181f;
-  float e = kExp2Series[7];
+  const F log2m = u * q;
+  const F y = (5.0f / 12.0f) * (convertLanes<F>(exponent) + log2m);
+  const I n = convertLanes<I>(y + 64.0f) - 64;  // floor for y > -64 (y >= -62 here)
+  const F z = (y - convertLanes<F>(n) - 0.5f) * 0.693147181f;
+  F e = zero + kExp2Series[7];
   for (int k = 6; k >= 0; --k) e = e * z + kExp2Series[k];
-  const float power = std::bit_cast<float>(uint32_t(n + 127) << 23) * 1.41421356f * e;
-  const bool linear = clamped <= 0.0031308f;
-  encoded = linear ? 12.92f * (x < 0.0f ? 0.0f : clamped) : 1.055f * power - 0.055f;
-  slope = x > 1.0f ? 0.0f : (linear ? 12.92f : (1.055f * 5.0f / 12.0f) * power / clamped);
+  const F power = __builtin_bit_cast(F, I((n + 127) << 23)) * 1.41421356f * e;
+  const auto linear = clamped <= 0.0031308f;
+  encoded = linear ? 12.92f * (x < 0.0f ? zero : clamped) : 1.055f * power - 0.055f;
+  slope = x > 1.0f ? zero : (linear ? zero + 12.92f : (1.055f * 5.0f / 12.0f) * power / clamped);
+}
+
+[[gnu::always_inline]] inline void srgbEncodeArithmetic(float x, float& encoded, float& slope) {
+  srgbEncodeArithmetic<float, int32_t>(x, encoded, slope);
 }
 
 // out[i] = S(in[i]) (srgbEncodeArithmetic: x clamped to [0, 1]) for n values, vectorised.

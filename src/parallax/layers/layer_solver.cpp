@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -27,38 +28,64 @@ void clampToUnit(Image& image) {
 // TrainingView::encodedTarget's unit: S in [0, 1] as 0 .. 65535.
 constexpr float kEncodedUnit = 65535.0f, kInverseEncodedUnit = 1.0f / 65535.0f;
 
-// The sRGB errors against an encoded target (TrainingView::encodedTarget) over n values, in
-// chunks: a vectorised loop makes each value's difference S(v / c) - target (and its residual
-// and weight when asked), then the squares are added in kLanes running sums, one per lane,
-// added in lane order at the end: the same sum for any thread count.
-// Returns sum (S(v / c) - target)^2 / 2.
-constexpr int kLanes = 16, kChunk = 256;
+// Running sums of squares are kept in kLanes lanes, added in lane order at the end.
+constexpr int kLanes = 16;
+
+// The sRGB errors against an encoded target (TrainingView::encodedTarget) over n values, 16 at a
+// time as FloatLanes16 (core/lane_kernel.h: one 512-bit register in the x86-64-v4 clone, where
+// a loop left to GCC's vectoriser got 256-bit ones and ran 1.5x slower): each value's
+// difference S(v / c) - target (and its residual and weight when asked), the squares added in
+// 16 running sums in double, one per lane (value k in lane k mod 16), added in lane order at
+// the end: the same sum for any thread count. The last n mod 16 values go through the same
+// lanes, the unused ones zero. Returns sum (S(v / c) - target)^2 / 2.
+template <bool kResidual, bool kWeights>
+[[gnu::always_inline]] inline void encodedErrorStep(const float* seen, const uint16_t* encoded,
+                                                    size_t at, int count, float inv,
+                                                    float* residual, float* weights,
+                                                    DoubleLanes8& low, DoubleLanes8& high) {
+  FloatLanes16 values{};
+  HalfWordLanes16 codes{};
+  std::memcpy(&values, seen + at, sizeof(float) * size_t(count));
+  std::memcpy(&codes, encoded + at, sizeof(uint16_t) * size_t(count));
+  FloatLanes16 value, slope;
+  srgbEncodeArithmetic<FloatLanes16, IntLanes16>(values * inv, value, slope);
+  FloatLanes16 diff = value - convertLanes<FloatLanes16>(codes) * kInverseEncodedUnit;
+  if (count < 16)
+    for (int l = count; l < 16; ++l) diff[l] = 0.0f;
+  slope *= inv;
+  if constexpr (kResidual) {
+    const FloatLanes16 r = slope * diff;
+    std::memcpy(residual + at, &r, sizeof(float) * size_t(count));
+  }
+  if constexpr (kWeights) {
+    const FloatLanes16 w = slope * slope;
+    std::memcpy(weights + at, &w, sizeof(float) * size_t(count));
+  }
+  const DoubleLanes8 first = lowHalfInDouble(diff), second = highHalfInDouble(diff);
+  low += first * first;
+  high += second * second;
+}
+
+constexpr size_t kPrefetchCodes = 512;
 
 template <bool kResidual, bool kWeights>
 [[gnu::always_inline]] inline double encodedErrorLoop(const float* seen, const uint16_t* encoded,
                                                       size_t n, float inv, float* residual,
                                                       float* weights) {
-  double lanes[kLanes] = {};
-  float diffs[kChunk];
-  for (size_t base = 0; base < n; base += kChunk) {
-    const int count = int(std::min<size_t>(kChunk, n - base));
-    PARALLAX_SIMD
-    for (int l = 0; l < count; ++l) {
-      const size_t k = base + size_t(l);
-      float value = 0, slope = 0;
-      srgbEncodeArithmetic(seen[k] * inv, value, slope);
-      const float diff = value - float(encoded[k]) * kInverseEncodedUnit;
-      diffs[l] = diff;
-      slope *= inv;
-      if constexpr (kResidual) residual[k] = slope * diff;
-      if constexpr (kWeights) weights[k] = slope * slope;
-    }
-    for (int l = count; l < kChunk; ++l) diffs[l] = 0.0f;
-    for (int j = 0; j < kChunk; j += kLanes)
-      for (int l = 0; l < kLanes; ++l) lanes[l] += double(diffs[j + l]) * double(diffs[j + l]);
+  DoubleLanes8 low{}, high{};
+  size_t k = 0;
+  for (; k + 16 <= n; k += 16) {
+    // The targets stream from memory, a row of each eye in turn: ask for them a kilobyte ahead
+    // (their loads stalled the loop otherwise, the prefetcher starting anew with each row).
+    __builtin_prefetch(encoded + k + kPrefetchCodes);
+    encodedErrorStep<kResidual, kWeights>(seen, encoded, k, 16, inv, residual, weights, low, high);
   }
+  if (k < n)
+    encodedErrorStep<kResidual, kWeights>(seen, encoded, k, int(n - k), inv, residual, weights, low,
+                                          high);
   double sum = 0;
-  for (const double lane : lanes) sum += lane;
+  for (int l = 0; l < 8; ++l) sum += low[l];
+  for (int l = 0; l < 8; ++l) sum += high[l];
   return 0.5 * sum;
 }
 
@@ -275,24 +302,30 @@ void invertCurvature(Vec3f* curvature, size_t n) {
 }
 
 // One row's share of sum_e |A_e d|^2 weighted by W_e: `viewOfD` holds A_e d's row and
-// `weights` W_e's (1 in linear light), n pixels; in kLanes running sums, added in lane order
-// (the same sum for any thread count).
+// `weights` W_e's (1 in linear light), n pixels; in kLanes running sums in double (value k in
+// lane k mod 16), added in lane order (the same sum for any thread count). 16 values at a time
+// as FloatLanes16 (one 512-bit register in the x86-64-v4 clone), the last ones in zeroed lanes
+// (adding +0 changes no sum).
 PARALLAX_LANE_KERNEL
 double weightedSquares(const Vec3f* viewOfD, const Vec3f* weights, size_t n, bool srgb) {
   const float* ad = &viewOfD[0].x;
   const float* w = &weights[0].x;
   const size_t values = 3 * n;
-  double lanes[kLanes] = {};
+  DoubleLanes8 low{}, high{};
+  const auto add = [&](size_t k, size_t count) {
+    FloatLanes16 a{}, weight{};
+    std::memcpy(&a, ad + k, sizeof(float) * count);
+    if (srgb) std::memcpy(&weight, w + k, sizeof(float) * count);
+    const FloatLanes16 b = srgb ? a * weight : a;
+    low += lowHalfInDouble(a) * lowHalfInDouble(b);
+    high += highHalfInDouble(a) * highHalfInDouble(b);
+  };
   size_t k = 0;
-  for (; k + kLanes <= values; k += kLanes)
-    for (int l = 0; l < kLanes; ++l) {
-      const float a = ad[k + size_t(l)];
-      lanes[l] += double(a) * double(srgb ? a * w[k + size_t(l)] : a);
-    }
-  for (int l = 0; k < values; ++k, ++l)
-    lanes[l] += double(ad[k]) * double(srgb ? ad[k] * w[k] : ad[k]);
+  for (; k + 16 <= values; k += 16) add(k, 16);
+  if (k < values) add(k, values - k);
   double sum = 0;
-  for (const double lane : lanes) sum += lane;
+  for (int l = 0; l < 8; ++l) sum += low[l];
+  for (int l = 0; l < 8; ++l) sum += high[l];
   return sum;
 }
 
