@@ -43,6 +43,29 @@ TEST(Metrics, PsnrOfAConstantOffsetIsTenLogOfOneOverItsSquare) {
   EXPECT_NEAR(psnr(a, c, 1.0, MetricEncoding::Linear), 20.0, 1e-4);
 }
 
+// The mean squared error (in lanes of 16 along each row, in double) against the sum of every
+// squared difference one by one, on rows of lengths that leave every remainder of 16 values.
+TEST(Metrics, MeanSquaredErrorIsTheBruteForceSum) {
+  Rng rng(11);
+  for (const int width : {1, 5, 16, 21, 333}) {
+    Image a(width, 3), b(width, 3);
+    for (size_t i = 0; i < a.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        a.pixels()[i][c] = float(rng.uniform());
+        b.pixels()[i][c] = float(rng.uniform());
+      }
+    double sum = 0;
+    for (size_t i = 0; i < a.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const double d = double(a.pixels()[i][c]) - double(b.pixels()[i][c]);
+        sum += d * d;
+      }
+    const double expected = sum / (3.0 * double(a.pixels().size()));
+    EXPECT_NEAR(meanSquaredError(a, b, MetricEncoding::Linear), expected, 1e-12 * expected)
+        << width;
+  }
+}
+
 TEST(Metrics, SsimOfAnImageWithItselfIsOne) {
   Rng rng(9);
   Image a(32, 24);

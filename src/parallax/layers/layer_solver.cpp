@@ -306,23 +306,28 @@ void invertCurvature(Vec3f* curvature, size_t n) {
 // lane k mod 16), added in lane order (the same sum for any thread count). 16 values at a time
 // as FloatLanes16 (one 512-bit register in the x86-64-v4 clone), the last ones in zeroed lanes
 // (adding +0 changes no sum).
+[[gnu::always_inline]] inline void addWeightedSquares(const float* ad, const float* w, size_t count,
+                                                      bool srgb, DoubleLanes8& low,
+                                                      DoubleLanes8& high) {
+  FloatLanes16 a{}, weight{};
+  std::memcpy(&a, ad, sizeof(float) * count);
+  if (srgb) std::memcpy(&weight, w, sizeof(float) * count);
+  const FloatLanes16 b = srgb ? a * weight : a;
+  low += lowHalfInDouble(a) * lowHalfInDouble(b);
+  high += highHalfInDouble(a) * highHalfInDouble(b);
+}
+
 PARALLAX_LANE_KERNEL
 double weightedSquares(const Vec3f* viewOfD, const Vec3f* weights, size_t n, bool srgb) {
   const float* ad = &viewOfD[0].x;
   const float* w = &weights[0].x;
   const size_t values = 3 * n;
   DoubleLanes8 low{}, high{};
-  const auto add = [&](size_t k, size_t count) {
-    FloatLanes16 a{}, weight{};
-    std::memcpy(&a, ad + k, sizeof(float) * count);
-    if (srgb) std::memcpy(&weight, w + k, sizeof(float) * count);
-    const FloatLanes16 b = srgb ? a * weight : a;
-    low += lowHalfInDouble(a) * lowHalfInDouble(b);
-    high += highHalfInDouble(a) * highHalfInDouble(b);
-  };
   size_t k = 0;
-  for (; k + 16 <= values; k += 16) add(k, 16);
-  if (k < values) add(k, values - k);
+  // W_e is read only for sRGB errors (in linear light it may be absent).
+  for (; k + 16 <= values; k += 16)
+    addWeightedSquares(ad + k, srgb ? w + k : w, 16, srgb, low, high);
+  if (k < values) addWeightedSquares(ad + k, srgb ? w + k : w, values - k, srgb, low, high);
   double sum = 0;
   for (int l = 0; l < 8; ++l) sum += low[l];
   for (int l = 0; l < 8; ++l) sum += high[l];
