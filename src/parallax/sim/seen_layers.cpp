@@ -122,6 +122,13 @@ void gatherRun(const float* cells, const float* first, const float* second, floa
 // Its transpose, scaled: cells[k] += scale[k] first[k], then cells[k + 3] += scale[k]
 // second[k], with scale[k] = weight filtered[k] front[k] (two loops: the second adds to cells
 // the first wrote).
+// into[k] += weight from[k] for k < n: a rear row's share of the rows an eye's front row meets.
+PARALLAX_LANE_KERNEL
+void addWeighted(const float* from, float weight, float* into, size_t n) {
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) into[k] += weight * from[k];
+}
+
 PARALLAX_LANE_KERNEL
 void scatterRun(const float* filtered, const float* front, float weight, const float* first,
                 const float* second, float* cells, size_t n) {
@@ -262,9 +269,8 @@ void SeenLayers::seenRearRow(const Image& rear, int j, Vec3f* seenRear, RowScrat
     const Piece& vertical = down_[k];
     if (vertical.rear < 0) continue;
     any = true;
-    const float* from = &rear.at(0, vertical.rear).x;
-    float* into = &blend[0].x;
-    for (size_t c = 0; c < 3 * size_t(rearColumns_); ++c) into[c] += vertical.weight * from[c];
+    addWeighted(&rear.at(0, vertical.rear).x, vertical.weight, &blend[0].x,
+                3 * size_t(rearColumns_));
   }
   if (!any) {
     std::fill(seenRear, seenRear + width_, Vec3f(0.0f));
