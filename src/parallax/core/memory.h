@@ -5,7 +5,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <new>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace parallax {
@@ -100,5 +103,27 @@ struct LargeBlockAllocator {
 // A vector for whole images' worth of values.
 template <class T>
 using LargeVector = std::vector<T, LargeBlockAllocator<T>>;
+
+// The same blocks, but a value made without arguments (`resize(n)`, `vector(n)`) is
+// default-initialised: floats and codes are not written. For buffers that their owner fills
+// whole right away in parallel: the first touch of their pages, the kernel zeroing them, then
+// happens on every core instead of on the one that sized them (in a virtual machine that
+// first touch is slow: docs/content-adaptive.md, "Cost").
+template <class T>
+struct UninitializedLargeBlockAllocator : LargeBlockAllocator<T> {
+  UninitializedLargeBlockAllocator() = default;
+  template <class U>
+  UninitializedLargeBlockAllocator(const UninitializedLargeBlockAllocator<U>&) {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <class T>
+using UninitializedLargeVector = std::vector<T, UninitializedLargeBlockAllocator<T>>;
 
 }  // namespace parallax

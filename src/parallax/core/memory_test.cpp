@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 
@@ -103,6 +105,26 @@ TEST(Memory, AFreedLargeBlockIsTakenAgainAtItsSizeWhileKept) {
     EXPECT_EQ(a.front(), 2.0f);
   }
   EXPECT_EQ(keptBlockBytes(), 0u);
+}
+
+// UninitializedLargeVector leaves only argument-less values unwritten: a value given is
+// copied, a type with a constructor still runs it, and the blocks are the large ones.
+TEST(Memory, AnUninitializedLargeVectorStillConstructsWhatItIsGiven) {
+  UninitializedLargeVector<float> filled(kLargeBlockBytes / sizeof(float), 0.25f);
+  EXPECT_EQ(filled.front(), 0.25f);
+  EXPECT_EQ(filled.back(), 0.25f);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(filled.data()) % (size_t(2) << 20), 0u);
+  struct Counted {
+    int value = 7;
+  };
+  UninitializedLargeVector<Counted> counted(1000);
+  EXPECT_EQ(counted[999].value, 7);
+  UninitializedLargeVector<float> sized;
+  sized.resize(kLargeBlockBytes / sizeof(float));
+  std::fill(sized.begin(), sized.end(), 1.0f);
+  sized.resize(sized.size() + 1, 2.0f);
+  EXPECT_EQ(sized.back(), 2.0f);
+  EXPECT_EQ(sized.front(), 1.0f);
 }
 
 }  // namespace

@@ -375,7 +375,10 @@ class ImageLayerPasses {
                                   [](const Vec3f& p) { return p.x == p.y && p.y == p.z; });
     if (fused_ && grey) {
       const int width = views.front().seen.width(), rows = views.front().seen.height();
-      seenMasks_.assign(views.size(), LargeVector<float>(size_t(width) * size_t(rows)));
+      // Sized without being written: the row tasks below touch their pages first, in parallel.
+      seenMasks_.resize(views.size());
+      for (UninitializedLargeVector<float>& seenMask : seenMasks_)
+        seenMask.resize(size_t(width) * size_t(rows));
       parallelFor(rows, threads, 2, [&](int64_t begin, int64_t end) {
         std::vector<Vec3f> row(static_cast<size_t>(width));
         SeenLayers::RowScratch scratch;
@@ -545,7 +548,8 @@ class ImageLayerPasses {
   const Image& mask_;
   int threads_;
   mutable int passes_ = 0;
-  std::vector<LargeVector<float>> seenMasks_;  // per eye, with a grey mask and the fused passes
+  std::vector<UninitializedLargeVector<float>>
+      seenMasks_;  // per eye, with a grey mask and the fused passes
   bool fused_ = false;
   const RearDiffuser* imageBlur_ = nullptr;
 };

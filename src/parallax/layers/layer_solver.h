@@ -44,7 +44,7 @@ struct TrainingView {
   // (round(65535 S), 3 per pixel, row by row), when encodeTarget() made it: half the bytes of
   // the float target it replaces, and one encoding fewer per pixel and pass. Empty: the
   // solvers encode `target` as they go (the same errors to within 1/131070 in S).
-  LargeVector<uint16_t> encodedTarget = {};
+  UninitializedLargeVector<uint16_t> encodedTarget = {};
   // Fills encodedTarget and frees target (encodingScale > 0 only; the multiplicative updates
   // fit in linear light and need the float target).
   void encodeTarget(int threads = 0);
