@@ -66,6 +66,16 @@ template <class To, class From>
       DoubleLanes8);
 }
 
+// The 16 running sums of lowHalfInDouble (lanes 0-7) and highHalfInDouble (8-15) added in lane
+// order: the same total wherever the values were summed.
+[[gnu::always_inline]] inline double sumInLaneOrder(const DoubleLanes8& low,
+                                                    const DoubleLanes8& high) {
+  double sum = 0;
+  for (int l = 0; l < 8; ++l) sum += low[l];
+  for (int l = 0; l < 8; ++l) sum += high[l];
+  return sum;
+}
+
 // Which version of the lane kernels this process runs: "x86-64-v4" (AVX-512), "x86-64-v3"
 // (AVX2, FMA) or "x86-64" (the baseline) when they were cloned; "native" when the build was
 // compiled for its machine (or a compiler without clones). Reported by `bench`.

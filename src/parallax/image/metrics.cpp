@@ -96,10 +96,7 @@ PARALLAX_LANE_KERNEL double squaredDifferences(const float* a, const float* b, s
   size_t k = 0;
   for (; k + 16 <= n; k += 16) addSquaredDifferences(a + k, b + k, 16, low, high);
   if (k < n) addSquaredDifferences(a + k, b + k, n - k, low, high);
-  double sum = 0;
-  for (int l = 0; l < 8; ++l) sum += low[l];
-  for (int l = 0; l < 8; ++l) sum += high[l];
-  return sum;
+  return sumInLaneOrder(low, high);
 }
 
 }  // namespace

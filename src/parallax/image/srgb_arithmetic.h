@@ -3,7 +3,6 @@
 // pictures (srgbEncodeValues, image/metrics.cpp).
 #pragma once
 
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 

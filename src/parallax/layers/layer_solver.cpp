@@ -83,10 +83,7 @@ template <bool kResidual, bool kWeights>
   if (k < n)
     encodedErrorStep<kResidual, kWeights>(seen, encoded, k, int(n - k), inv, residual, weights, low,
                                           high);
-  double sum = 0;
-  for (int l = 0; l < 8; ++l) sum += low[l];
-  for (int l = 0; l < 8; ++l) sum += high[l];
-  return 0.5 * sum;
+  return 0.5 * sumInLaneOrder(low, high);
 }
 
 PARALLAX_LANE_KERNEL
@@ -328,10 +325,7 @@ double weightedSquares(const Vec3f* viewOfD, const Vec3f* weights, size_t n, boo
   for (; k + 16 <= values; k += 16)
     addWeightedSquares(ad + k, srgb ? w + k : w, 16, srgb, low, high);
   if (k < values) addWeightedSquares(ad + k, srgb ? w + k : w, values - k, srgb, low, high);
-  double sum = 0;
-  for (int l = 0; l < 8; ++l) sum += low[l];
-  for (int l = 0; l < 8; ++l) sum += high[l];
-  return sum;
+  return sumInLaneOrder(low, high);
 }
 
 // The average view of the frames (image in front) on row j into work.seen.
