@@ -502,7 +502,7 @@ void registerBenchCommand(CLI::App& cli) {
       ->capture_default_str()
       ->check(integerIn(1, 16));
   cmd->add_option("--iterations", options->layers.iterations,
-                  "With --layers: solver iterations (default 10)")
+                  "With --layers: solver iterations (default: as render's)")
       ->check(integerIn(1, 1000));
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });

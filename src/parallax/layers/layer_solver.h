@@ -86,6 +86,28 @@ Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, co
                          const SolveProgress& progress = {}, const RearDiffuser& diffuser = {});
 
 namespace detail {
+// E's Gauss-Newton curvatures on the plane of the descent direction d and the previous step p:
+// sum_e <A_e u, A_e v>_{W_e} for (u, v) = (d, d), (d, p), (p, p); those with p, and (d, d)
+// again (`ddSampled`), on the sampled rows only (planeRowStride).
+struct Curvatures {
+  double dd = 0, dp = 0, pp = 0, ddSampled = 0;
+  Curvatures& operator+=(const Curvatures& o) {
+    dd += o.dd, dp += o.dp, pp += o.pp, ddSampled += o.ddSampled;
+    return *this;
+  }
+};
+
+// optimizeImageLayer's step, for the tests: the step a d + b p that minimises E's Gauss-Newton
+// model
+//   E + a <g, d> + b <g, p> + (a^2 dd + 2 a b dp + b^2 pp) / 2
+// on the plane of d and p (for a quadratic E, the conjugate-gradient step: the previous step
+// carries what steepest descent would zig-zag back to), or along d alone (a = -<g, d> / dd,
+// b = 0) where the plane is degenerate: no previous step, or p nearly parallel to d.
+struct PlaneStep {
+  double a = 0, b = 0;
+};
+PlaneStep planeStep(double gd, double gp, Curvatures h);
+
 // The sRGB encoding S(x) of x clamped to [0, 1] and its slope S'(x) as the solvers compute them
 // against encoded targets (layer_solver.cpp, vectorised arithmetic), for the tests.
 void srgbEncode(float x, float& encoded, float& slope);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "parallax/core/random.h"
@@ -534,6 +535,48 @@ TEST(OptimizeImageLayer, ReachesTheDenseMinimumThroughTheDiffuser) {
     const double eSolved = layerObjective(views, {{solved, mask}}, 1, diffuser);
     EXPECT_GE(eSolved, eDense * (1 - 1e-3) - 1e-12);
     EXPECT_NEAR(eSolved, eDense, 0.02 * eDense + 1e-10);
+  }
+}
+
+// optimizeImageLayer's step on the plane of d and the previous step p against a brute-force
+// search of the Gauss-Newton model m(a, b) = a gd + b gp + (a^2 dd + 2 a b dp + b^2 pp) / 2
+// on a grid around it, the rows' sampling as a scaling of the p sums, and the fall-backs to
+// steepest descent where the plane is degenerate.
+TEST(OptimizeImageLayer, PlaneStepMinimisesTheModelOnThePlane) {
+  using detail::Curvatures;
+  using detail::planeStep;
+  const auto model = [](double a, double b, double gd, double gp, const Curvatures& h) {
+    return a * gd + b * gp + 0.5 * (a * a * h.dd + 2 * a * b * h.dp + b * b * h.pp);
+  };
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    // A positive-definite curvature (dd pp > dp^2) and a slope along d that descends.
+    Curvatures h;
+    h.dd = 1.0 + 2.0 * (uniform(random) + 1.0);
+    h.pp = 0.5 + (uniform(random) + 1.0);
+    h.dp = 0.9 * uniform(random) * std::sqrt(h.dd * h.pp);
+    const double gd = -0.2 - std::abs(uniform(random)), gp = uniform(random);
+    const auto step = planeStep(gd, gp, h);
+    const double best = model(step.a, step.b, gd, gp, h);
+    EXPECT_LT(best, model(-gd / h.dd, 0.0, gd, gp, h) + 1e-12) << trial;
+    for (int i = -20; i <= 20; ++i)
+      for (int k = -20; k <= 20; ++k) {
+        const double a = step.a + 0.05 * i, b = step.b + 0.05 * k;
+        EXPECT_LE(best, model(a, b, gd, gp, h) + 1e-12) << trial << " " << a << " " << b;
+      }
+    // The same plane from a quarter of the rows: the sampled sums with p, scaled by dd's.
+    Curvatures sampled = h;
+    sampled.ddSampled = h.dd / 4, sampled.dp = h.dp / 4, sampled.pp = h.pp / 4;
+    const auto fromSample = planeStep(gd, gp, sampled);
+    EXPECT_NEAR(fromSample.a, step.a, 1e-9 * std::abs(step.a) + 1e-12);
+    EXPECT_NEAR(fromSample.b, step.b, 1e-9 * std::abs(step.b) + 1e-12);
+  }
+  // No previous step, or one parallel to d: the exact step along d alone.
+  for (const Curvatures& h : {Curvatures{2.0, 0.0, 0.0, 0.0}, Curvatures{2.0, 3.0, 4.5, 0.0}}) {
+    const auto step = planeStep(-1.0, 0.5, h);
+    EXPECT_DOUBLE_EQ(step.a, 0.5);
+    EXPECT_EQ(step.b, 0.0);
   }
 }
 
