@@ -505,11 +505,11 @@ class ImageLayerPasses {
             const Vec3f* weights = w.eyeWeights.data() + e * width;
             const bool srgb = v.encodingScale > 0;
             v.seen.viewRowSeen(&d.at(0, j), m, w.other.data(), w.scratch);
-            point.curvatures.dd +=
+            const double dd =
                 weightedProducts(w.other.data(), w.other.data(), weights, width, srgb);
+            point.curvatures.dd += dd;
             if (!pRow || j % planeRowStride_ != 0) continue;
-            point.curvatures.ddSampled +=
-                weightedProducts(w.other.data(), w.other.data(), weights, width, srgb);
+            point.curvatures.ddSampled += dd;
             // w.seen (this eye's view of x) is free again: it holds A_e p's row.
             v.seen.viewRowSeen(pRow, m, w.seen.data(), w.scratch);
             point.curvatures.dp +=
