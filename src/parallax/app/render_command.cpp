@@ -84,8 +84,7 @@ void registerRenderCommand(CLI::App& cli) {
   // Through a function: the request tells a given --iterations from the default.
   cmd->add_option_function<int>(
          "--iterations", [&request](const int& n) { request.layers.iterations = n; },
-         "With --layers optimized-image or nmf: solver iterations, 1 to 1000 (default 7 for "
-         "optimized-image, 10 for nmf)")
+         "With --layers optimized-image or nmf: solver iterations, 1 to 1000 (default 7)")
       ->type_name("INT");
   cmd->add_option("--brightness", request.layers.brightness,
                   "Brightness the optimised layers aim at, times the slits' (default 1 for "

@@ -40,7 +40,7 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   }
   const double trainSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const int iterations = o.iterations.value_or(defaultLayerIterations(o.method));
+  const int iterations = o.iterations.value_or(kDefaultLayerIterations);
   SolveReport report;
   std::vector<LayerFrame> frames;
   // The bar goes before the result line: it lives for the solve only.

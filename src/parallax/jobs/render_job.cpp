@@ -21,10 +21,6 @@
 
 namespace parallax::jobs {
 
-int defaultLayerIterations(const std::string& method) {
-  return method == "optimized-image" ? kDefaultOptimizedImageIterations : kDefaultNmfIterations;
-}
-
 std::string LayersRequest::errorMeasure() const {
   if (!error.empty()) return error;
   return method == "optimized-image" ? "srgb" : "linear";
@@ -220,8 +216,7 @@ MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
        {"{size}", std::to_string(r.quilt.width) + "x" + std::to_string(r.quilt.height)},
        {"{layers}", r.layers.method},
        {"{rank}", std::to_string(r.layers.rank)},
-       {"{iterations}",
-        std::to_string(r.layers.iterations.value_or(defaultLayerIterations(r.layers.method)))},
+       {"{iterations}", std::to_string(r.layers.iterations.value_or(kDefaultLayerIterations))},
        {"{brightness}", madeFromNumber(r.layers.brightness)},
        {"{train_eyes}", std::to_string(r.layers.trainEyes)},
        {"{layer_error}", r.layers.error},

@@ -19,19 +19,18 @@
 
 namespace parallax::jobs {
 
-// A method's iterations when none are asked (docs/content-adaptive.md): nmf's multiplicative
-// updates settle within 8 to 10; optimized-image's steps on the plane of the gradient and the
-// previous step reach in 7 the objective its steepest descent reached in 10.
-inline constexpr int kDefaultNmfIterations = 10;
-inline constexpr int kDefaultOptimizedImageIterations = 7;
-int defaultLayerIterations(const std::string& method);
+// The solvers' iterations when none are asked (docs/content-adaptive.md): in 7, optimized-image's
+// steps on the plane of the gradient and the previous step, and nmf's over-relaxed
+// multiplicative updates (rank 1 and 3), reach a lower objective than their plain forms (steepest
+// descent, plain updates) reached in 10, the default before them.
+inline constexpr int kDefaultLayerIterations = 7;
 
 // layers, rank, iterations, brightness, train_eyes, layer_error: content-adaptive layers
 // (docs/content-adaptive.md) instead of the slits' own.
 struct LayersRequest {
   std::string method = "slits";   // slits, optimized-image or nmf
   int rank = 1;                   // nmf's time-multiplexed frame pairs
-  std::optional<int> iterations;  // 1 to 1000; none: defaultLayerIterations(method)
+  std::optional<int> iterations;  // 1 to 1000; none: kDefaultLayerIterations
   double brightness = 0;          // times the slits' brightness; 0: the method's default
   int trainEyes = 2;              // training eyes per view at 0.8, 1 and 1.25 D
   std::string error;              // srgb or linear; "": the method's default

@@ -433,7 +433,8 @@ TEST(FactorizeLayers, SolvesForTheDiffuser) {
   EXPECT_LT(eAware, 0.1 * aware.objective.front());
 }
 
-// The multiplicative updates against dense ones on the probed light field, channel 0: front =
+// The (over-relaxed) multiplicative updates against dense ones on the probed light field,
+// channel 0: front =
 // image (barrier-back), rear = mask, seen as G rear through a diffuser (G probed from the blur
 // one pixel at a time, the identity without one), so that the rear's sums pass through G^T.
 TEST(FactorizeLayers, MatchesDenseMultiplicativeUpdatesOnTheLightField) {
@@ -486,9 +487,14 @@ TEST(FactorizeLayers, MatchesDenseMultiplicativeUpdatesOnTheLightField) {
           }
         }
         std::vector<double>& x = layer == 0 ? front : rear;
+        // The over-relaxed update (layer_solver.h), in double.
+        const double omega = kNmfOverRelaxation, floor = kNmfShrinkFloor;
         for (int i = 0; i < w; ++i)
-          if (den[size_t(i)] > 1e-12)
-            x[size_t(i)] = std::clamp(x[size_t(i)] * num[size_t(i)] / den[size_t(i)], 0.0, 1.0);
+          if (den[size_t(i)] > 1e-12) {
+            const double old = x[size_t(i)], plain = old * num[size_t(i)] / den[size_t(i)];
+            const double over = std::max(old + omega * (plain - old), std::min(plain, floor * old));
+            x[size_t(i)] = std::clamp(over, 0.0, 1.0);
+          }
       }
     }
     SolveReport report;
@@ -578,6 +584,28 @@ TEST(OptimizeImageLayer, PlaneStepMinimisesTheModelOnThePlane) {
     EXPECT_DOUBLE_EQ(step.a, 0.5);
     EXPECT_EQ(step.b, 0.0);
   }
+}
+
+// The over-relaxed update keeps each coordinate of the multiplicative updates' quadratic bound
+// (symmetric about the plain update m) no higher than at x: |y - m| <= |x - m| after the clamp
+// to [0, 1], so E never increases; and a value the plain update keeps positive stays positive.
+TEST(FactorizeLayers, OverRelaxedUpdateStaysWithinTheBound) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), ratio(0.0f, 3.0f);
+  int longer = 0;
+  for (int trial = 0; trial < 10000; ++trial) {
+    const float x = unit(random), m = x * ratio(random);
+    const float y = std::clamp(overRelaxedUpdate(x, m), 0.0f, 1.0f);
+    const float target = std::clamp(m, 0.0f, 1.0f);
+    EXPECT_LE(std::abs(y - m), std::abs(x - m) * (1 + 1e-6f) + 1e-7f) << x << " " << m;
+    if (m > 0) {
+      EXPECT_GT(y, 0.0f) << x << " " << m;
+    }
+    // Mostly further along than the plain update (clamped), never the other way.
+    EXPECT_LE(std::abs(y - x) + 1e-7f, std::abs(target - x) + std::abs(y - target) + 1e-6f);
+    longer += std::abs(y - x) > std::abs(target - x) * 1.5f;
+  }
+  EXPECT_GT(longer, 1000);
 }
 
 }  // namespace
