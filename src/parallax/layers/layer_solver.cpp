@@ -208,17 +208,10 @@ Image elementwise(const Image& a, const Image& b) {
 void addScaled(Image& a, const Image& b, float s) {
   for (size_t i = 0; i < a.pixels().size(); ++i) a.pixels()[i] += b.pixels()[i] * s;
 }
-double dot(const Image& a, const Image& b) {
+// (<a, b> over every rowStride-th row only: the rows planeStep samples.)
+double dot(const Image& a, const Image& b, int rowStride = 1) {
   double sum = 0;
-  for (size_t i = 0; i < a.pixels().size(); ++i)
-    for (int c = 0; c < 3; ++c) sum += double(a.pixels()[i][c]) * double(b.pixels()[i][c]);
-  return sum;
-}
-
-// <a, b> over every stride-th row (the rows planeStep samples).
-double dotOnSampledRows(const Image& a, const Image& b, int stride) {
-  double sum = 0;
-  for (int y = 0; y < a.height(); y += stride)
+  for (int y = 0; y < a.height(); y += rowStride)
     for (int x = 0; x < a.width(); ++x)
       for (int c = 0; c < 3; ++c) sum += double(a.at(x, y)[c]) * double(b.at(x, y)[c]);
   return sum;
@@ -558,9 +551,9 @@ class ImageLayerPasses {
       const Image wad = elementwise(ad, weights);
       sum.dd += dot(ad, wad);
       if (!ps) continue;
-      sum.ddSampled += dotOnSampledRows(ad, wad, planeRowStride_);
-      sum.dp += dotOnSampledRows(ap, wad, planeRowStride_);
-      sum.pp += dotOnSampledRows(ap, elementwise(ap, weights), planeRowStride_);
+      sum.ddSampled += dot(ad, wad, planeRowStride_);
+      sum.dp += dot(ap, wad, planeRowStride_);
+      sum.pp += dot(ap, elementwise(ap, weights), planeRowStride_);
     }
     return sum;
   }
