@@ -3,6 +3,7 @@
 #include "parallax/core/lane_kernel.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -35,7 +36,7 @@ constexpr int64_t kRowGrain = 8;
 
 // Output rows of SSIM per chunk of work: each chunk filters its own 10 extra input rows, and
 // holds only its rows' moments, never a whole image of them.
-constexpr int kSsimRowsPerChunk = 32;
+constexpr int kSsimRowsPerChunk = 64;
 
 }  // namespace
 
@@ -99,7 +100,71 @@ PARALLAX_LANE_KERNEL double squaredDifferences(const float* a, const float* b, s
   return sumInLaneOrder(low, high);
 }
 
+// sum ((a - b) - (c - d))^2 over n floats, in double lanes as squaredDifferences.
+[[gnu::always_inline]] inline void addSquaredChanges(const float* a, const float* b, const float* c,
+                                                     const float* d, size_t count,
+                                                     DoubleLanes8& low, DoubleLanes8& high) {
+  FloatLanes16 la{}, lb{}, lc{}, ld{};
+  std::memcpy(&la, a, sizeof(float) * count);
+  std::memcpy(&lb, b, sizeof(float) * count);
+  std::memcpy(&lc, c, sizeof(float) * count);
+  std::memcpy(&ld, d, sizeof(float) * count);
+  const DoubleLanes8 dLow = (lowHalfInDouble(la) - lowHalfInDouble(lb)) -
+                            (lowHalfInDouble(lc) - lowHalfInDouble(ld)),
+                     dHigh = (highHalfInDouble(la) - highHalfInDouble(lb)) -
+                             (highHalfInDouble(lc) - highHalfInDouble(ld));
+  low += dLow * dLow;
+  high += dHigh * dHigh;
+}
+
+PARALLAX_LANE_KERNEL double squaredChanges(const float* a, const float* b, const float* c,
+                                           const float* d, size_t n) {
+  DoubleLanes8 low{}, high{};
+  size_t k = 0;
+  for (; k + 16 <= n; k += 16) addSquaredChanges(a + k, b + k, c + k, d + k, 16, low, high);
+  if (k < n) addSquaredChanges(a + k, b + k, c + k, d + k, n - k, low, high);
+  return sumInLaneOrder(low, high);
+}
+
 }  // namespace
+
+EncodedComparison compareEncoded(const Image& picture, const Image& idealEncoded,
+                                 const Image* previousEncoded, const Image* previousIdealEncoded) {
+  checkSameSize(picture, idealEncoded, "the comparison");
+  const bool flicker = previousEncoded && previousIdealEncoded;
+  if (flicker) {
+    checkSameSize(picture, *previousEncoded, "the comparison");
+    checkSameSize(picture, *previousIdealEncoded, "the comparison");
+  }
+  const int w = picture.width(), h = picture.height();
+  const size_t rowValues = 3 * size_t(w);
+  EncodedComparison out{Image(w, h)};
+  // Each row's three sums, added in row order afterwards.
+  std::vector<std::array<double, 3>> rows(static_cast<size_t>(h));
+  parallelFor(h, 0, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int y = int(begin); y < int(end); ++y) {
+      const float* linear = &picture.at(0, y).x;
+      float* encoded = &out.encoded.at(0, y).x;
+      srgbEncodeValues(linear, encoded, rowValues);
+      const float* ideal = &idealEncoded.at(0, y).x;
+      std::array<double, 3>& sums = rows[size_t(y)];
+      sums[0] = squaredDifferences(encoded, ideal, rowValues);
+      sums[1] = flicker ? squaredChanges(encoded, ideal, &previousEncoded->at(0, y).x,
+                                         &previousIdealEncoded->at(0, y).x, rowValues)
+                        : 0.0;
+      double luminances = 0;
+      for (int x = 0; x < w; ++x) luminances += luminance(picture.at(x, y));
+      sums[2] = luminances;
+    }
+  });
+  for (const std::array<double, 3>& sums : rows) {
+    out.squaredError += sums[0];
+    out.flickerSquares += sums[1];
+    out.luminance += sums[2];
+  }
+  if (!flicker) out.flickerSquares = std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
 
 double meanSquaredError(const Image& a, const Image& b, MetricEncoding encoding) {
   checkSameSize(a, b, "the mean squared error");
@@ -160,96 +225,109 @@ double psnr(const Image& a, const Image& b, double peak, MetricEncoding encoding
 
 namespace {
 
-// into[x] = sum_k kernel[k] from[k step + x] for x < n, the taps added in order: SSIM's window
-// along a row (step 1) and down the columns (step: a row of moments). The dense measure runs
-// SSIM on every eye's whole picture; in the lane kernels' clones these loops run 8 doubles a
-// step (AVX-512), where the baseline runs 2.
-PARALLAX_LANE_KERNEL void weightedRows(const double* __restrict from, size_t step,
-                                       const double* __restrict kernel, int taps,
-                                       double* __restrict into, int n) {
-  for (int x = 0; x < n; ++x) into[x] = 0.0;
-  for (int k = 0; k < taps; ++k) {
-    const double tap = kernel[k];
-    const double* row = from + size_t(k) * step;
-    for (int x = 0; x < n; ++x) into[x] += tap * row[x];
-  }
+// SSIM's window: 11 taps of a Gaussian of sigma 1.5 along each axis (Wang et al. 2004).
+constexpr int kSsimWindow = 11;
+
+[[gnu::always_inline]] inline FloatLanes16 loadLanes(const float* from, size_t count) {
+  FloatLanes16 lanes{};
+  std::memcpy(&lanes, from, sizeof(float) * count);
+  return lanes;
 }
 
-// SSIM's term of each of n windows from their five means (x, y, xx, yy, xy, planes n apart).
-PARALLAX_LANE_KERNEL void ssimTerms(const double* __restrict means, size_t n,
-                                    double* __restrict terms) {
+// into[x] = sum_k kernel[k] rows[k][x] for x < n, the taps added in order: SSIM's window along
+// a row (rows[k] = the row from its k-th value) and down the columns (rows[k] = the k-th row of
+// the window). 16 outputs at a time, each kept in a register through its taps (one 512-bit
+// register in the x86-64-v4 clone, where GCC's vectoriser chose 256-bit ones).
+PARALLAX_LANE_KERNEL void windowSums(const float* const* rows, const float* kernel,
+                                     float* __restrict into, size_t n) {
+  const auto lanes = [&](size_t x, size_t count) {
+    FloatLanes16 sum = kernel[0] * loadLanes(rows[0] + x, count);
+    for (int k = 1; k < kSsimWindow; ++k) sum += kernel[k] * loadLanes(rows[k] + x, count);
+    std::memcpy(into + x, &sum, sizeof(float) * count);
+  };
+  size_t x = 0;
+  for (; x + 16 <= n; x += 16) lanes(x, 16);
+  if (x < n) lanes(x, n - x);
+}
+
+// The sum over n windows of SSIM's term from their five means (x, y, xx, yy, xy: planes n
+// apart), in double: the variances are differences of nearly equal means.
+PARALLAX_LANE_KERNEL double ssimTermSum(const float* __restrict means, size_t n) {
   constexpr double kC1 = 0.01 * 0.01, kC2 = 0.03 * 0.03;
+  double sum = 0;
   for (size_t x = 0; x < n; ++x) {
     const double ux = means[x], uy = means[n + x];
     const double vx = means[2 * n + x] - ux * ux, vy = means[3 * n + x] - uy * uy,
                  cxy = means[4 * n + x] - ux * uy;
-    terms[x] =
-        (2 * ux * uy + kC1) * (2 * cxy + kC2) / ((ux * ux + uy * uy + kC1) * (vx + vy + kC2));
+    sum += (2 * ux * uy + kC1) * (2 * cxy + kC2) / ((ux * ux + uy * uy + kC1) * (vx + vy + kC2));
   }
+  return sum;
 }
 
 }  // namespace
 
 double ssim(const Image& a, const Image& b) {
   checkSameSize(a, b, "SSIM");
-  constexpr int kWindow = 11;
   constexpr double kSigma = 1.5;
-  if (a.width() < kWindow || a.height() < kWindow)
+  if (a.width() < kSsimWindow || a.height() < kSsimWindow)
     throw InputError("", "", "SSIM needs images of at least 11x11 pixels");
-  std::vector<double> kernel(kWindow);
+  std::array<double, kSsimWindow> weights{};
   double total = 0;
-  for (int i = 0; i < kWindow; ++i) {
-    const double d = i - kWindow / 2;
-    total += kernel[size_t(i)] = std::exp(-d * d / (2 * kSigma * kSigma));
+  for (int i = 0; i < kSsimWindow; ++i) {
+    const double d = i - kSsimWindow / 2;
+    total += weights[size_t(i)] = std::exp(-d * d / (2 * kSigma * kSigma));
   }
-  for (double& k : kernel) k /= total;
+  std::array<float, kSsimWindow> kernel{};
+  for (int i = 0; i < kSsimWindow; ++i) kernel[size_t(i)] = float(weights[size_t(i)] / total);
 
   const int w = a.width(), h = a.height();
-  const int outWidth = w - kWindow + 1, outHeight = h - kWindow + 1;
+  const size_t n = size_t(w - kSsimWindow + 1);
+  const int outHeight = h - kSsimWindow + 1;
   const int chunks = (outHeight + kSsimRowsPerChunk - 1) / kSsimRowsPerChunk;
-  // Per chunk: the five moments (x, y, xx, yy, xy of the encoded luminance) filtered along each
-  // input row it needs, then down each column: the separable window, valid positions only.
+  // Per chunk: the five moments (x, y, xx, yy, xy of the encoded luminance) of each input row
+  // it needs, filtered along the row into a ring of the window's last 11 rows; each output row
+  // then filters the ring down its columns. In float (the means' rounding moves SSIM by about
+  // 1e-7), so that a chunk's ring stays in the core's cache.
   const double sum = parallelSum(chunks, 0, 1, [&](int64_t chunk) {
     const int first = int(chunk) * kSsimRowsPerChunk;
     const int rows = std::min(kSsimRowsPerChunk, outHeight - first);
-    const int inRows = rows + kWindow - 1;
-    std::vector<double> across(size_t(5) * size_t(inRows) * size_t(outWidth));
-    const auto at = [&](int m, int r, int x) -> double& {
-      return across[(size_t(m) * size_t(inRows) + size_t(r)) * size_t(outWidth) + size_t(x)];
-    };
-    // The five moments of a row as five planes, so that the filters' loops run along the row
-    // (vectorised); each output still adds its taps in order, so the sums are unchanged.
-    std::vector<double> moments(size_t(5) * size_t(w));
-    // Each row's luminances, then their encodings in one vectorised loop.
-    std::vector<float> luminances(2 * size_t(w)), encoded(2 * size_t(w));
-    for (int r = 0; r < inRows; ++r) {
+    // ring[(slot * 5 + m) * n + x]: moment m of input row (first + r) for slot r mod 11.
+    std::vector<float> ring(size_t(kSsimWindow) * 5 * n), means(5 * n);
+    std::vector<float> luminances(2 * size_t(w)), moments(5 * size_t(w));
+    const auto filterInputRow = [&](int r) {
       for (int x = 0; x < w; ++x) {
         luminances[size_t(x)] = luminance(a.at(x, first + r));
         luminances[size_t(w + x)] = luminance(b.at(x, first + r));
       }
-      srgbEncodeValues(luminances.data(), encoded.data(), encoded.size());
-      double* plane[5];
+      srgbEncodeValues(luminances.data(), moments.data(), 2 * size_t(w));
+      float* plane[5];
       for (int m = 0; m < 5; ++m) plane[m] = &moments[size_t(m) * size_t(w)];
       for (int x = 0; x < w; ++x) {
-        const double u = encoded[size_t(x)], v = encoded[size_t(w + x)];
-        plane[0][x] = u, plane[1][x] = v, plane[2][x] = u * u, plane[3][x] = v * v;
-        plane[4][x] = u * v;
+        const float u = plane[0][x], v = plane[1][x];
+        plane[2][x] = u * u, plane[3][x] = v * v, plane[4][x] = u * v;
       }
-      for (int m = 0; m < 5; ++m)
-        weightedRows(plane[m], 1, kernel.data(), kWindow, &at(m, r, 0), outWidth);
-    }
+      const size_t slot = size_t(r % kSsimWindow);
+      for (int m = 0; m < 5; ++m) {
+        const float* taps[kSsimWindow];
+        for (int k = 0; k < kSsimWindow; ++k) taps[k] = plane[m] + k;
+        windowSums(taps, kernel.data(), &ring[(slot * 5 + size_t(m)) * n], n);
+      }
+    };
+    for (int r = 0; r + 1 < kSsimWindow; ++r) filterInputRow(r);
     double chunkSum = 0;
-    const size_t n = size_t(outWidth);
-    std::vector<double> means(5 * n), terms(n);
     for (int r = 0; r < rows; ++r) {
-      for (int m = 0; m < 5; ++m)
-        weightedRows(&at(m, r, 0), n, kernel.data(), kWindow, &means[size_t(m) * n], outWidth);
-      ssimTerms(means.data(), n, terms.data());
-      for (const double term : terms) chunkSum += term;
+      filterInputRow(r + kSsimWindow - 1);
+      for (int m = 0; m < 5; ++m) {
+        const float* taps[kSsimWindow];
+        for (int k = 0; k < kSsimWindow; ++k)
+          taps[k] = &ring[(size_t((r + k) % kSsimWindow) * 5 + size_t(m)) * n];
+        windowSums(taps, kernel.data(), &means[size_t(m) * n], n);
+      }
+      chunkSum += ssimTermSum(means.data(), n);
     }
     return chunkSum;
   });
-  return sum / (double(outWidth) * double(outHeight));
+  return sum / (double(n) * double(outHeight));
 }
 
 // Row by row: the prefix integrals of the row's three channels interleaved as the row is (one

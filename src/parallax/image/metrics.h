@@ -28,6 +28,22 @@ double psnr(const Image& a, const Image& b, double peak = 1.0,
 // compares one image with several encodes it once.
 Image srgbEncoded(const Image& image);
 
+// What the dense measure takes of one picture against its ideal view, in one pass over the
+// rows (each row encoded, then compared while it is in cache): `encoded` = srgbEncoded(picture);
+// squaredError = the sum over pixels and channels of (encoded - idealEncoded)^2, so that
+// meanSquaredError(picture, ideal) = squaredError / (3 pixels); flickerSquares (with a previous
+// eye's encoded picture and ideal; NaN without) = the sum of
+// ((encoded - idealEncoded) - (previousEncoded - previousIdealEncoded))^2; luminance = the sum of
+// the picture's (linear) luminances, meanLuminance times the pixel count. Rows in parallel,
+// their sums added in row order: the same figures for any thread count.
+struct EncodedComparison {
+  Image encoded;
+  double squaredError = 0, flickerSquares = 0, luminance = 0;
+};
+EncodedComparison compareEncoded(const Image& picture, const Image& idealEncoded,
+                                 const Image* previousEncoded = nullptr,
+                                 const Image* previousIdealEncoded = nullptr);
+
 // Mean SSIM of the sRGB-encoded luminance (Wang et al. 2004): an 11x11 Gaussian window of
 // sigma 1.5, C1 = 0.01^2, C2 = 0.03^2 for values in [0, 1], averaged over the window positions
 // that lie wholly inside the image. Needs images of at least 11x11 pixels.

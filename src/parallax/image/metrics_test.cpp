@@ -43,6 +43,46 @@ TEST(Metrics, PsnrOfAConstantOffsetIsTenLogOfOneOverItsSquare) {
   EXPECT_NEAR(psnr(a, c, 1.0, MetricEncoding::Linear), 20.0, 1e-4);
 }
 
+// The dense measure's one-pass comparison against the separate metrics and a brute-force
+// flicker sum, on rows that leave every remainder of 16 values.
+TEST(Metrics, OnePassComparisonEqualsTheSeparateMetrics) {
+  Rng rng(23);
+  const auto randomImage = [&](int width, int height) {
+    Image image(width, height);
+    for (Vec3f& p : image.pixels())
+      for (int c = 0; c < 3; ++c) p[c] = float(1.2 * rng.uniform() - 0.1);  // some clamped
+    return image;
+  };
+  for (const int width : {1, 6, 16, 37}) {
+    const Image picture = randomImage(width, 5), ideal = randomImage(width, 5);
+    const Image before = randomImage(width, 5), idealBefore = randomImage(width, 5);
+    const Image idealEncoded = srgbEncoded(ideal);
+    const EncodedComparison alone = compareEncoded(picture, idealEncoded);
+    const Image beforeEncoded = srgbEncoded(before), idealBeforeEncoded = srgbEncoded(idealBefore);
+    const EncodedComparison c =
+        compareEncoded(picture, idealEncoded, &beforeEncoded, &idealBeforeEncoded);
+    const double values = 3.0 * double(picture.pixels().size());
+    EXPECT_TRUE(std::isnan(alone.flickerSquares));
+    EXPECT_EQ(alone.squaredError, c.squaredError);
+    EXPECT_NEAR(c.squaredError / values,
+                meanSquaredError(srgbEncoded(picture), idealEncoded, MetricEncoding::Linear),
+                1e-12);
+    EXPECT_NEAR(c.squaredError / values, meanSquaredError(picture, ideal), 1e-6);
+    EXPECT_NEAR(c.luminance / double(picture.pixels().size()), meanLuminance(picture), 1e-12);
+    double flicker = 0;
+    const Image encoded = srgbEncoded(picture);
+    for (size_t i = 0; i < picture.pixels().size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(c.encoded.pixels()[i][k], encoded.pixels()[i][k]);
+        const double now = double(encoded.pixels()[i][k]) - double(idealEncoded.pixels()[i][k]);
+        const double then =
+            double(beforeEncoded.pixels()[i][k]) - double(idealBeforeEncoded.pixels()[i][k]);
+        flicker += (now - then) * (now - then);
+      }
+    EXPECT_NEAR(c.flickerSquares, flicker, 1e-9 * values);
+  }
+}
+
 // The mean squared error (in lanes of 16 along each row, in double) against the sum of every
 // squared difference one by one, on rows of lengths that leave every remainder of 16 values.
 TEST(Metrics, MeanSquaredErrorIsTheBruteForceSum) {

@@ -19,6 +19,7 @@
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/video_output.h"
+#include "parallax/quality/viewer_quality.h"
 #include "parallax/scene/scene.h"
 #include "parallax/sim/simulated_display.h"
 #include "parallax/sim/simulator.h"
@@ -138,7 +139,7 @@ struct QualityReference {
   const SimulatedDisplay& simulator;
   const std::vector<LayerImages>& frames;  // the layers (the masks' cross-talk)
   SimulationOptions options;
-  int referenceSpp = 16;
+  int referenceSpp = kDefaultReferenceSpp;
 };
 
 // The figures at `eye`, whose view the simulator made; `seen`: that view at the display's
@@ -173,7 +174,7 @@ struct SimulateRequest {
   SimulatorRequest simulator;
   // reference: the figures at the eyes; without eyes or a sweep, the dense measure.
   bool reference = false;
-  int referenceSpp = 16;
+  int referenceSpp = kDefaultReferenceSpp;
   int eyesPerView = 4;                   // the dense measure's eyes inside each view's window
   std::string distances = "0.8,1,1.25";  // its distances in units of D
   std::vector<std::string> compare;      // more render folders scored at the same eyes

@@ -19,6 +19,7 @@
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/simulate_job.h"
 #include "parallax/python/bindings_internal.h"
+#include "parallax/quality/viewer_quality.h"
 
 namespace parallax::python {
 
@@ -156,12 +157,13 @@ void bindSimulate(py::module_& module) {
                        fit, focus, budget);
       },
       py::arg("scene"), py::arg("display"), py::arg("image"), py::arg("mask"), py::kw_only(),
-      py::arg("eyes"), py::arg("reference_spp") = 16, py::arg("size") = py::none(),
-      py::arg("spp") = defaults.samplesPerPixel, py::arg("pupil") = defaults.pupilDiameterMm,
-      py::arg("pupil_samples") = defaults.pupilSamples, py::arg("diffuser") = py::none(),
-      py::arg("color_filters") = false, py::arg("raw") = false, py::arg("raw_pixels") = false,
-      py::arg("threads") = 0, py::arg("fit") = "", py::arg("focus") = "",
-      py::arg("depth_budget") = "", py::arg("lens_spot") = py::none(), py::arg("bundles") = "");
+      py::arg("eyes"), py::arg("reference_spp") = kDefaultReferenceSpp,
+      py::arg("size") = py::none(), py::arg("spp") = defaults.samplesPerPixel,
+      py::arg("pupil") = defaults.pupilDiameterMm, py::arg("pupil_samples") = defaults.pupilSamples,
+      py::arg("diffuser") = py::none(), py::arg("color_filters") = false, py::arg("raw") = false,
+      py::arg("raw_pixels") = false, py::arg("threads") = 0, py::arg("fit") = "",
+      py::arg("focus") = "", py::arg("depth_budget") = "", py::arg("lens_spot") = py::none(),
+      py::arg("bundles") = "");
 }
 
 }  // namespace parallax::python

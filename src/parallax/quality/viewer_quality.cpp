@@ -172,22 +172,28 @@ std::vector<ViewerQuality> measureViewerQuality(
     const bool sameRow =
         i > 0 && eyes[i - 1].distance == eye.distance && !eye.designEye && !eyes[i - 1].designEye;
     for (size_t s = 0; s < simulators.size(); ++s) {
-      const Image simulated = simulators[s]->atDisplayResolution(simulators[s]->view(eye.position));
+      const Image simulated = simulators[s]->seen(eye.position);
       if (ideal.empty()) {
         ideal = idealView(scene, accelerator, display, *simulators[s], eye.position,
                           simulated.width(), simulated.height(), options.referenceSamplesPerPixel,
                           options.threads, options.bounces);
         idealEncoded = srgbEncoded(ideal);
       }
-      Image simulatedEncoded = srgbEncoded(simulated);
-      EyeQuality q{eye, psnr(simulatedEncoded, idealEncoded, 1.0, MetricEncoding::Linear),
-                   ssim(simulated, ideal), std::numeric_limits<double>::quiet_NaN(),
-                   meanLuminance(simulated)};
-      if (sameRow)
-        q.flicker = flickerBetweenEncoded(previousSimulated[s], previousIdeal, simulatedEncoded,
-                                          idealEncoded);
+      // Encoded, PSNR's and flicker's squares and the luminance in one pass over the rows.
+      EncodedComparison compared =
+          compareEncoded(simulated, idealEncoded, sameRow ? &previousSimulated[s] : nullptr,
+                         sameRow ? &previousIdeal : nullptr);
+      const double pixels = double(simulated.pixels().size());
+      const double meanSquares = compared.squaredError / (3.0 * pixels);
+      EyeQuality q{eye,
+                   meanSquares > 0 ? 10.0 * std::log10(1.0 / meanSquares)
+                                   : std::numeric_limits<double>::infinity(),
+                   ssim(simulated, ideal),
+                   sameRow ? std::sqrt(compared.flickerSquares / (3.0 * pixels))
+                           : std::numeric_limits<double>::quiet_NaN(),
+                   compared.luminance / pixels};
       results[s].eyes.push_back(q);
-      previousSimulated[s] = std::move(simulatedEncoded);
+      previousSimulated[s] = std::move(compared.encoded);
     }
     previousIdeal = std::move(idealEncoded);
     if (progress) progress(int(i + 1), int(eyes.size()));

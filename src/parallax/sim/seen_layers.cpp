@@ -19,8 +19,8 @@ void forEachRow(int rows, int threads, const Body& body) {
   });
 }
 
-void checkLayer(const Image& layer, int columns, int rows, const char* what) {
-  if (layer.width() != columns || layer.height() != rows)
+void checkLayer(const LayerRows& layer, int columns, int rows, const char* what) {
+  if (layer.width != columns || layer.height != rows)
     throw std::invalid_argument(std::string("SeenLayers: the ") + what +
                                 " layer's size differs from its panel");
 }
@@ -259,7 +259,8 @@ Image SeenLayers::boxTransposed(const Image& view, int threads) const {
   return out;
 }
 
-void SeenLayers::seenRearRow(const Image& rear, int j, Vec3f* seenRear, RowScratch& scratch) const {
+void SeenLayers::seenRearRow(const LayerRows& rear, int j, Vec3f* seenRear,
+                             RowScratch& scratch) const {
   // m_j[i] = sum_k w_k sum_a w_a rear[r_k][c_a] = sum_a w_a (sum_k w_k rear[r_k])[c_a]: the
   // vertical blend once per row (a vectorised loop), then one pass of the pieces along it.
   std::vector<Vec3f>& blend = scratch.rearRow;
@@ -269,7 +270,7 @@ void SeenLayers::seenRearRow(const Image& rear, int j, Vec3f* seenRear, RowScrat
     const Piece& vertical = down_[k];
     if (vertical.rear < 0) continue;
     any = true;
-    addWeighted(&rear.at(0, vertical.rear).x, vertical.weight, &blend[0].x,
+    addWeighted(&rear.row(vertical.rear)->x, vertical.weight, &blend[0].x,
                 3 * size_t(rearColumns_));
   }
   if (!any) {
@@ -310,11 +311,11 @@ void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* see
   for (int i = 0; i < width_; ++i) gradRow[i] += r[i] * seenRear[i];
 }
 
-void SeenLayers::viewRow(const Image& front, const Image& rear, int j, Vec3f* out,
+void SeenLayers::viewRow(const LayerRows& front, const LayerRows& rear, int j, Vec3f* out,
                          RowScratch& scratch) const {
   scratch.seenRear.resize(size_t(width_));
   seenRearRow(rear, j, scratch.seenRear.data(), scratch);
-  viewRowSeen(&front.at(0, j), scratch.seenRear.data(), out, scratch);
+  viewRowSeen(front.row(j), scratch.seenRear.data(), out, scratch);
 }
 
 void SeenLayers::addFrontGradientRow(const Vec3f* residual, const Image& rear, int j,
@@ -324,7 +325,7 @@ void SeenLayers::addFrontGradientRow(const Vec3f* residual, const Image& rear, i
   addFrontGradientRowSeen(residual, scratch.seenRear.data(), &gradFront.at(0, j), scratch);
 }
 
-Image SeenLayers::view(const Image& front, const Image& rear, int threads) const {
+Image SeenLayers::view(const LayerRows& front, const LayerRows& rear, int threads) const {
   checkLayer(front, frontColumns_, frontRows_, "front");
   checkLayer(rear, rearColumns_, rearRows_, "rear");
   Image out(width_, height_);

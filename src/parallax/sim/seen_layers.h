@@ -21,6 +21,22 @@
 
 namespace parallax {
 
+// A layer's rows as the operator reads them: row y starts at first + y stride. An Image, or
+// the simulator's cells (each row followed by a dark cell: simulator.h), without a copy.
+struct LayerRows {
+  const Vec3f* first = nullptr;
+  size_t stride = 0;
+  int width = 0, height = 0;
+  LayerRows(const Image& image)  // implicit: every Image is one
+      : first(image.pixels().data()),
+        stride(size_t(image.width())),
+        width(image.width()),
+        height(image.height()) {}
+  LayerRows(const Vec3f* rowsFrom, size_t rowStride, int columns, int rows)
+      : first(rowsFrom), stride(rowStride), width(columns), height(rows) {}
+  const Vec3f* row(int y) const { return first + size_t(y) * stride; }
+};
+
 class SeenLayers {
  public:
   // `periodBox`: apply B (false: V = P, for tests and other measures).
@@ -32,7 +48,7 @@ class SeenLayers {
   const Vec3d& eye() const { return eye_; }
 
   // V for the layers as panel images (front and rear in the display's layer order).
-  Image view(const Image& front, const Image& rear, int threads = 0) const;
+  Image view(const LayerRows& front, const LayerRows& rear, int threads = 0) const;
   // gradFront += (dV/dfront)^T residual and gradRear += (dV/drear)^T residual: the gradient of
   // 1/2 |V - target|^2 for residual = V - target. Sized as the layers; the same result for any
   // thread count.
@@ -53,7 +69,8 @@ class SeenLayers {
     std::vector<Vec3f> rearRow;  // seenRearRow: the rear rows under front row j, blended
   };
   // V's row j into out[0 .. width()).
-  void viewRow(const Image& front, const Image& rear, int j, Vec3f* out, RowScratch& scratch) const;
+  void viewRow(const LayerRows& front, const LayerRows& rear, int j, Vec3f* out,
+               RowScratch& scratch) const;
   // gradFront's row j += (dV_j/dfront)^T residual[0 .. width()).
   void addFrontGradientRow(const Vec3f* residual, const Image& rear, int j, Image& gradFront,
                            RowScratch& scratch) const;
@@ -65,7 +82,7 @@ class SeenLayers {
   // fixed makes m_j once per eye and row and reuses it for every view and adjoint of the row.
   // m_j into seenRear[0 .. width()). The rear rows front row j meets are blended first (their
   // vertical weights), then resampled along the row once.
-  void seenRearRow(const Image& rear, int j, Vec3f* seenRear, RowScratch& scratch) const;
+  void seenRearRow(const LayerRows& rear, int j, Vec3f* seenRear, RowScratch& scratch) const;
   // V_j = B (frontRow .* seenRear) into out (the row's front pixels frontRow[0 .. width())).
   void viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f* out,
                    RowScratch& scratch) const;

@@ -18,6 +18,7 @@ class SimulatedBarrier final : public SimulatedDisplay {
   Image atDisplayResolution(const Image& image) const override {
     return parallax::atDisplayResolution(design_, image);
   }
+  Image seen(const Vec3d& eyeMm) const override { return simulator_.seen(eyeMm); }
 
  private:
   DisplayDesign design_;
@@ -48,21 +49,30 @@ class SimulatedFrames final : public SimulatedDisplay {
   explicit SimulatedFrames(std::vector<std::unique_ptr<SimulatedDisplay>> frames)
       : frames_(std::move(frames)) {}
   Image view(const Vec3d& eyeMm) const override {
-    Image sum = frames_.front()->view(eyeMm);
+    return mean([&](const SimulatedDisplay& frame) { return frame.view(eyeMm); });
+  }
+  Image atDisplayResolution(const Image& image) const override {
+    return frames_.front()->atDisplayResolution(image);
+  }
+  // The box is linear: the mean of the frames' pictures at the display's resolution.
+  Image seen(const Vec3d& eyeMm) const override {
+    return mean([&](const SimulatedDisplay& frame) { return frame.seen(eyeMm); });
+  }
+
+ private:
+  std::vector<std::unique_ptr<SimulatedDisplay>> frames_;
+  // The mean over the frames of picture(frame).
+  template <class Picture>
+  Image mean(const Picture& picture) const {
+    Image sum = picture(*frames_.front());
     for (size_t k = 1; k < frames_.size(); ++k) {
-      const Image next = frames_[k]->view(eyeMm);
+      const Image next = picture(*frames_[k]);
       for (size_t i = 0; i < sum.pixels().size(); ++i) sum.pixels()[i] += next.pixels()[i];
     }
     const float inv = 1.0f / float(frames_.size());
     for (Vec3f& p : sum.pixels()) p = p * inv;
     return sum;
   }
-  Image atDisplayResolution(const Image& image) const override {
-    return frames_.front()->atDisplayResolution(image);
-  }
-
- private:
-  std::vector<std::unique_ptr<SimulatedDisplay>> frames_;
 };
 
 }  // namespace

@@ -22,6 +22,8 @@ class SimulatedDisplay {
   // across), as a viewer at the design distance perceives it: both the simulated and the ideal
   // view are brought to it before they are compared.
   virtual Image atDisplayResolution(const Image& image) const = 0;
+  // atDisplayResolution(view(eyeMm)), which a kind may make in one pass.
+  virtual Image seen(const Vec3d& eyeMm) const { return atDisplayResolution(view(eyeMm)); }
 };
 
 // `layers`: the panel's picture (layers.image) and, for kinds with one, the mask layer. Throws

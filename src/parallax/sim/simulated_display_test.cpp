@@ -4,6 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <utility>
+#include <vector>
+
 #include "parallax/core/error.h"
 #include "parallax/display/lenticular_test_support.h"
 #include "parallax/image/metrics.h"
@@ -38,6 +44,54 @@ TEST(SimulatedDisplay, TheBarrierSeesWhatTheTwoLayerSimulatorSees) {
   for (size_t i = 0; i < a.pixels().size(); ++i) ASSERT_EQ(a.pixels()[i], b.pixels()[i]);
   const Image ra = seen->atDisplayResolution(a), rb = atDisplayResolution(d, b);
   for (size_t i = 0; i < ra.pixels().size(); ++i) ASSERT_EQ(ra.pixels()[i], rb.pixels()[i]);
+}
+
+// seen(eye) is atDisplayResolution(view(eye)): through SeenLayers' rows where the options allow
+// (in both layer orders, with a diffuser, a backlight and time-multiplexed frames), through the
+// general simulator otherwise (a pupil, colour filters, point samples, another output size).
+TEST(SimulatedDisplay, SeenIsTheViewAtTheDisplaysResolution) {
+  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+    DisplaySpec s = defaultDisplaySpec();
+    s.order = order;
+    s.imagePanel.width = s.maskPanel.width = 90;
+    s.imagePanel.height = s.maskPanel.height = 30;
+    s.imagePanel.pitchMm = s.maskPanel.pitchMm = 1.0;
+    const DisplayDesign d = designDisplay(s);
+    const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(d);
+    const LayerImages layers{ramp(90, 30), maskLayerImage(d)};
+    Image dimmer = ramp(90, 30);
+    for (Vec3f& p : dimmer.pixels()) p = p * 0.5f;
+    SimulationOptions plain, diffused, pupil, filters, sampled, resized;
+    diffused.diffuserSigmaMm = 0.7;
+    diffused.backlight = Vec3f(0.9f, 1.0f, 0.8f);
+    pupil.pupilDiameterMm = 3;
+    filters.colourFilters = true;
+    sampled.samplesPerPixel = 4;
+    resized.width = 180;
+    for (const auto& [options, fast] : {std::pair{plain, true},
+                                        {diffused, true},
+                                        {pupil, false},
+                                        {filters, false},
+                                        {sampled, false},
+                                        {resized, false}}) {
+      EXPECT_EQ(DisplaySimulator(d, layers, options).viewsThroughSeenLayers(), fast);
+      const std::unique_ptr<SimulatedDisplay> one = simulateDisplay(*display, layers, options);
+      const std::unique_ptr<SimulatedDisplay> two = simulateDisplay(
+          *display, std::vector<LayerImages>{layers, LayerImages{dimmer, layers.mask}}, options);
+      for (const Vec3d eye : {Vec3d{23, 4, 610}, Vec3d{-41, -2, 480}})
+        for (const SimulatedDisplay* simulated : {one.get(), two.get()}) {
+          const Image a = simulated->seen(eye);
+          const Image b = simulated->atDisplayResolution(simulated->view(eye));
+          ASSERT_EQ(a.pixels().size(), b.pixels().size());
+          double largest = 0;
+          for (size_t i = 0; i < a.pixels().size(); ++i)
+            for (int c = 0; c < 3; ++c)
+              largest = std::max(largest, double(std::abs(a.pixels()[i][c] - b.pixels()[i][c])));
+          EXPECT_LT(largest, 1e-5);
+          EXPECT_GT(meanLuminance(a), 0.01);
+        }
+    }
+  }
 }
 
 TEST(SimulatedDisplay, TheLenticularSeesThroughItsLensesAtOneLensAcross) {

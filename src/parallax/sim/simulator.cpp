@@ -9,6 +9,8 @@
 #include "parallax/core/error.h"
 #include "parallax/core/parallel.h"
 #include "parallax/display/mask.h"
+#include "parallax/sim/seen_layers.h"
+#include "parallax/sim/simulated_display.h"
 #include "parallax/sim/view_pieces.h"
 
 namespace parallax {
@@ -127,6 +129,28 @@ DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages laye
       normaliser /= maskMean_;  // a black mask has nothing to normalise
   }
   scale_ = normaliser / double(pupilPoints({}).size());
+
+  viewsThroughSeenLayers_ = options.samplesPerPixel == 0 && !(options.pupilDiameterMm > 0) &&
+                            !front_.striped && !rear_.striped && width_ == frontPanel.width &&
+                            height_ == frontPanel.height &&
+                            design.spec.mask.kind != MaskKind::Pinholes;
+}
+
+Image DisplaySimulator::seen(const Vec3d& eye) const {
+  if (!viewsThroughSeenLayers()) return atDisplayResolution(design_, view(eye));
+  if (!(eye.z > 0) || !std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z))
+    throw InputError("simulation", "/eye", "the eye must be in front of the display (z > 0)");
+  // The cells as they are (the rear ones blurred), each row read up to its dark end cell.
+  const LayerRows front(front_.cells.data(), size_t(front_.columns + 1), front_.columns,
+                        front_.rows);
+  const LayerRows rear(rear_.cells.data(), size_t(rear_.columns + 1), rear_.columns, rear_.rows);
+  Image out = SeenLayers(design_, eye).view(front, rear, options_.threads);
+  const Vec3f scale = options_.backlight * float(scale_);
+  forRows(out.height(), threads_, [&](int begin, int end) {
+    for (int y = begin; y < end; ++y)
+      for (int x = 0; x < out.width(); ++x) out.at(x, y) = out.at(x, y) * scale;
+  });
+  return out;
 }
 
 std::vector<Vec3d> DisplaySimulator::pupilPoints(const Vec3d& eye) const {

@@ -73,6 +73,14 @@ class DisplaySimulator {
   // What an eye at eyeMm (display millimetres, z > 0) sees, in linear light.
   Image view(const Vec3d& eyeMm) const;
 
+  // The view at the display's resolution: atDisplayResolution(design, view(eyeMm)), what the
+  // dense measure compares. With exact integration, a pinhole eye, no colour filters, the front
+  // layer's resolution and slits (viewsThroughSeenLayers) it is made in one pass of
+  // SeenLayers' vectorised rows (seen_layers.h: the same operator, equal to float rounding),
+  // otherwise as written.
+  Image seen(const Vec3d& eyeMm) const;
+  bool viewsThroughSeenLayers() const { return viewsThroughSeenLayers_; }
+
   // The points the eye's pupil is sampled at: the eye itself for a pinhole eye.
   std::vector<Vec3d> pupilPoints(const Vec3d& eyeMm) const;
 
@@ -98,6 +106,7 @@ class DisplaySimulator {
   SimulationOptions options_;
   Layer front_, rear_;
   double maskMean_ = 0;
+  bool viewsThroughSeenLayers_ = false;
   double scale_ = 1;  // normalisation / pupil samples
   int width_ = 0, height_ = 0, threads_ = 1;
 };

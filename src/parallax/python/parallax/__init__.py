@@ -221,7 +221,7 @@ def sweep(image: np.ndarray, mask: Optional[np.ndarray] = None,
 
 def quality(scene: Optional[Scene], display: Optional[Display], image: np.ndarray,
             mask: Optional[np.ndarray] = None, *, eyes: Sequence[Sequence[float]],
-            reference_spp: int = 16, fit: Optional[str] = None, focus=None,
+            reference_spp: int = 4, fit: Optional[str] = None, focus=None,
             depth_budget=None, **options) -> dict:
     """`parallax simulate --reference --eye ... --json`: PSNR, SSIM, brightness, cross-talk."""
     return json.loads(_parallax._quality(
