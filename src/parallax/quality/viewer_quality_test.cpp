@@ -94,6 +94,37 @@ TEST(ViewerQuality, SharedIdealViewsGiveTheSameScoresAsSeparateRuns) {
   EXPECT_FALSE(std::isnan(both[0].eyes.back().flicker));
 }
 
+// The default ideal views (kDefaultReferenceSpp, stratified) are as good a truth as 64 samples
+// per pixel, because both pictures are compared through the period box: every dense eye's PSNR
+// within 0.05 dB of its PSNR against 64-spp ideal views, where the pixel centres alone (1 spp)
+// miss by several times as much at some eye (so the comparison resolves what it claims).
+TEST(ViewerQuality, TheDefaultIdealViewsAreAsGoodAsSixtyFourSamples) {
+  const DisplayDesign d = designDisplay(smallDisplaySpec(180, 60));
+  Scene scene = defaultScene();
+  scene.display.width = 0.75f;
+  const Accelerator accel(scene);
+  RenderSettings settings;
+  settings.samplesPerPixel = 4;
+  const DisplayLayers layers = renderDisplay(scene, accel, d, settings);
+  const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(d);
+  const std::unique_ptr<SimulatedDisplay> seen =
+      simulateDisplay(*display, {layers.image, layers.mask});
+  const std::vector<DenseEye> eyes = denseEyes(d, 2, {0.8, 1.0, 1.25});
+  const auto scores = [&](int spp) {
+    return measureViewerQuality(scene, accel, *display, *seen, eyes, {spp, 0}).eyes;
+  };
+  const std::vector<EyeQuality> truth = scores(64),
+                                usual = scores(ViewerQualityOptions{}.referenceSamplesPerPixel),
+                                centres = scores(1);
+  double usualMiss = 0, centresMiss = 0;
+  for (size_t i = 0; i < eyes.size(); ++i) {
+    usualMiss = std::max(usualMiss, std::abs(usual[i].psnr - truth[i].psnr));
+    centresMiss = std::max(centresMiss, std::abs(centres[i].psnr - truth[i].psnr));
+  }
+  EXPECT_LT(usualMiss, 0.05);             // 0.026 dB here
+  EXPECT_GT(centresMiss, 3 * usualMiss);  // 0.116 dB here
+}
+
 // A white image layer behind the real mask (9.045-pixel slit period, openings split over two
 // mask pixels where the phase steps), seen from the eye exactly between two design eyes: every
 // pixel centre's ray meets the rear layer on the edge of a mask pixel. Integrated exactly over
