@@ -161,41 +161,58 @@ std::vector<ViewerQuality> measureViewerQuality(
     const std::vector<const SimulatedDisplay*>& simulators, const std::vector<DenseEye>& eyes,
     const ViewerQualityOptions& options, const std::function<void(int, int)>& progress) {
   std::vector<ViewerQuality> results(simulators.size());
-  if (simulators.empty()) return results;
-  // Each eye's pictures are sRGB-encoded once, for its PSNR and the next eye's flicker.
+  if (simulators.empty() || eyes.empty()) return results;
+  // Every eye's pictures have the first one's size.
+  Image firstSeen = simulators.front()->seen(eyes.front().position);
+  const int width = firstSeen.width(), height = firstSeen.height();
+  // Eye i's ideal view and its sRGB encoding (for its PSNR and the next eye's flicker).
+  const auto renderIdeal = [&](size_t i, Image& ideal, Image& encoded) {
+    ideal = idealView(scene, accelerator, display, *simulators.front(), eyes[i].position, width,
+                      height, options.referenceSamplesPerPixel, options.threads, options.bounces);
+    encoded = srgbEncoded(ideal);
+  };
+  Image ideal, idealEncoded;
+  renderIdeal(0, ideal, idealEncoded);
   std::vector<Image> previousSimulated(simulators.size());
   Image previousIdeal;
   for (size_t i = 0; i < eyes.size(); ++i) {
     const DenseEye& eye = eyes[i];
-    Image ideal, idealEncoded;
     // A row is one distance, left to right: the eyes a moving viewer passes in turn.
     const bool sameRow =
         i > 0 && eyes[i - 1].distance == eye.distance && !eye.designEye && !eyes[i - 1].designEye;
-    for (size_t s = 0; s < simulators.size(); ++s) {
-      const Image simulated = simulators[s]->seen(eye.position);
-      if (ideal.empty()) {
-        ideal = idealView(scene, accelerator, display, *simulators[s], eye.position,
-                          simulated.width(), simulated.height(), options.referenceSamplesPerPixel,
-                          options.threads, options.bounces);
-        idealEncoded = srgbEncoded(ideal);
+    const auto compareEye = [&] {
+      for (size_t s = 0; s < simulators.size(); ++s) {
+        const Image simulated =
+            i == 0 && s == 0 ? std::move(firstSeen) : simulators[s]->seen(eye.position);
+        // Encoded, PSNR's and flicker's squares and the luminance in one pass over the rows.
+        EncodedComparison compared =
+            compareEncoded(simulated, idealEncoded, sameRow ? &previousSimulated[s] : nullptr,
+                           sameRow ? &previousIdeal : nullptr);
+        const double pixels = double(simulated.pixels().size());
+        const double meanSquares = compared.squaredError / (3.0 * pixels);
+        EyeQuality q{eye,
+                     meanSquares > 0 ? 10.0 * std::log10(1.0 / meanSquares)
+                                     : std::numeric_limits<double>::infinity(),
+                     ssim(simulated, ideal),
+                     sameRow ? std::sqrt(compared.flickerSquares / (3.0 * pixels))
+                             : std::numeric_limits<double>::quiet_NaN(),
+                     compared.luminance / pixels};
+        results[s].eyes.push_back(q);
+        previousSimulated[s] = std::move(compared.encoded);
       }
-      // Encoded, PSNR's and flicker's squares and the luminance in one pass over the rows.
-      EncodedComparison compared =
-          compareEncoded(simulated, idealEncoded, sameRow ? &previousSimulated[s] : nullptr,
-                         sameRow ? &previousIdeal : nullptr);
-      const double pixels = double(simulated.pixels().size());
-      const double meanSquares = compared.squaredError / (3.0 * pixels);
-      EyeQuality q{eye,
-                   meanSquares > 0 ? 10.0 * std::log10(1.0 / meanSquares)
-                                   : std::numeric_limits<double>::infinity(),
-                   ssim(simulated, ideal),
-                   sameRow ? std::sqrt(compared.flickerSquares / (3.0 * pixels))
-                           : std::numeric_limits<double>::quiet_NaN(),
-                   compared.luminance / pixels};
-      results[s].eyes.push_back(q);
-      previousSimulated[s] = std::move(compared.encoded);
-    }
+    };
+    // The next eye's ideal view is rendered while this eye's pictures are compared, so that
+    // either keeps the cores busy through the other's serial parts (set-up, sums, the rows a
+    // band leaves idle). Each is computed as alone: the figures do not change.
+    Image nextIdeal, nextEncoded;
+    if (i + 1 < eyes.size())
+      parallelInvoke(options.threads, compareEye,
+                     [&] { renderIdeal(i + 1, nextIdeal, nextEncoded); });
+    else
+      compareEye();
     previousIdeal = std::move(idealEncoded);
+    ideal = std::move(nextIdeal);
+    idealEncoded = std::move(nextEncoded);
     if (progress) progress(int(i + 1), int(eyes.size()));
   }
   for (ViewerQuality& result : results) summariseAll(result);
