@@ -147,10 +147,10 @@ namespace {
 
 // The dense measure's estimate, its scene loaded: the BVH; the layers of every set (the first
 // one's copied again, each --compare's read) held by its simulator; per eye the ideal view, its
-// sRGB encoding and the one before it (flicker), the next eye's ideal view and encoding (made
-// while this eye is compared), per set the eye's picture, its encoding and the one before, and
-// the ideal render's temporaries (measured: one and a half pictures; SSIM
-// works in bands of rows).
+// sRGB encoding and the one before it (flicker), the next eye's ideal view and encoding made
+// while this eye is compared (measured: one picture more at the peak), per set the eye's
+// picture, its encoding and the one before, and the ideal render's temporaries (measured: one and a
+// half pictures; SSIM works in bands of rows).
 void checkDenseMemory(const SimulateInputs& in, const SimulateRequest& r, const Scene& scene) {
   double frames = 0;
   for (const LayerImages& f : in.frames)
@@ -163,7 +163,7 @@ void checkDenseMemory(const SimulateInputs& in, const SimulateRequest& r, const 
   const double sets = (1.0 + double(r.compare.size())) * readings;
   const auto [w, h] = seenPictureSize(*in.display, r.simulator);
   checkPeakMemory(acceleratorBytes(scene) + sets * frames +
-                      imageBytes(w, h, kFloatRgbPixelBytes, 5.0 + 3.0 * sets + 1.5),
+                      imageBytes(w, h, kFloatRgbPixelBytes, 4.0 + 3.0 * sets + 1.5),
                   "{reference}",
                   "the dense measure's views and " + std::to_string(int(sets)) + " layer sets",
                   "use a smaller size or fewer {compare}");
