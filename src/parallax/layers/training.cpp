@@ -1,6 +1,5 @@
 #include "parallax/layers/training.h"
 
-#include "parallax/core/parallel.h"
 #include "parallax/quality/viewer_quality.h"
 
 namespace parallax {
@@ -34,31 +33,16 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
   const std::vector<DenseEye> eyes = denseEyes(design, options.eyesPerView, options.distances);
   std::vector<TrainingView> views;
   views.reserve(eyes.size());
-  if (eyes.empty()) return views;
-  const auto render = [&](size_t i) {
-    const Panel& front = design.spec.order == LayerOrder::BarrierBack ? design.spec.imagePanel
-                                                                      : design.spec.maskPanel;
-    return idealView(scene, accelerator, design, eyes[i].position, front.width, front.height,
-                     options.referenceSamplesPerPixel, options.threads, options.bounces);
-  };
-  Image target = render(0);
   for (size_t i = 0; i < eyes.size(); ++i) {
-    const auto keep = [&] {
-      SeenLayers seen(design, eyes[i].position);
-      for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);
-      views.push_back({std::move(seen), std::move(target),
-                       options.srgbWeights ? float(options.targetScale) : 0.0f});
-      // The sRGB errors read the target encoded: half the bytes, one encoding less per pass.
-      if (options.srgbWeights) views.back().encodeTarget(options.threads);
-    };
-    // The next eye's ideal view is rendered while this one is kept, so that either keeps the
-    // cores busy through the other's serial parts; each is computed as alone.
-    Image next;
-    if (i + 1 < eyes.size())
-      parallelInvoke(options.threads, keep, [&] { next = render(i + 1); });
-    else
-      keep();
-    target = std::move(next);
+    SeenLayers seen(design, eyes[i].position);
+    Image target =
+        idealView(scene, accelerator, design, eyes[i].position, seen.width(), seen.height(),
+                  options.referenceSamplesPerPixel, options.threads, options.bounces);
+    for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);
+    views.push_back({std::move(seen), std::move(target),
+                     options.srgbWeights ? float(options.targetScale) : 0.0f});
+    // The sRGB errors read the target encoded: half the bytes, one encoding less per pass.
+    if (options.srgbWeights) views.back().encodeTarget(options.threads);
     if (progress) progress(int(i) + 1, int(eyes.size()));
   }
   return views;
