@@ -68,15 +68,24 @@ TEST(ViewerQuality, SummaryHasTheMeanAndTheWorstEye) {
   EXPECT_DOUBLE_EQ(s.meanFlicker, 0.2);  // the first eye of a row has none
 }
 
-TEST(ViewerQuality, SharedIdealViewsGiveTheSameScoresAsSeparateRuns) {
-  const DisplayDesign d = designDisplay(smallDisplaySpec(90, 30));
+// The built-in scene framed for a small display, and 4 samples per pixel.
+Scene smallScene() {
   Scene scene = defaultScene();
   scene.display.width = 0.75f;
-  const Accelerator accel(scene);
+  return scene;
+}
+RenderSettings fourSamples() {
   RenderSettings settings;
   settings.samplesPerPixel = 4;
+  return settings;
+}
+
+TEST(ViewerQuality, SharedIdealViewsGiveTheSameScoresAsSeparateRuns) {
+  const DisplayDesign d = designDisplay(smallDisplaySpec(90, 30));
+  const Scene scene = smallScene();
+  const Accelerator accel(scene);
   const DisplayLayers none = renderDisplay(scene, accel, d, {}, {}, {ViewFilterKind::None, 1.0});
-  const DisplayLayers view = renderDisplay(scene, accel, d, settings);
+  const DisplayLayers view = renderDisplay(scene, accel, d, fourSamples());
   const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(d);
   const std::unique_ptr<SimulatedDisplay> a = simulateDisplay(*display, {none.image, none.mask});
   const std::unique_ptr<SimulatedDisplay> b = simulateDisplay(*display, {view.image, view.mask});
@@ -100,12 +109,9 @@ TEST(ViewerQuality, SharedIdealViewsGiveTheSameScoresAsSeparateRuns) {
 // miss by several times as much at some eye (so the comparison resolves what it claims).
 TEST(ViewerQuality, TheDefaultIdealViewsAreAsGoodAsSixtyFourSamples) {
   const DisplayDesign d = designDisplay(smallDisplaySpec(180, 60));
-  Scene scene = defaultScene();
-  scene.display.width = 0.75f;
+  const Scene scene = smallScene();
   const Accelerator accel(scene);
-  RenderSettings settings;
-  settings.samplesPerPixel = 4;
-  const DisplayLayers layers = renderDisplay(scene, accel, d, settings);
+  const DisplayLayers layers = renderDisplay(scene, accel, d, fourSamples());
   const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(d);
   const std::unique_ptr<SimulatedDisplay> seen =
       simulateDisplay(*display, {layers.image, layers.mask});
