@@ -75,6 +75,7 @@ TEST(SimulatedDisplay, SeenIsTheViewAtTheDisplaysResolution) {
                                         {sampled, false},
                                         {resized, false}}) {
       EXPECT_EQ(DisplaySimulator(d, layers, options).viewsThroughSeenLayers(), fast);
+      EXPECT_THROW(DisplaySimulator(d, layers, options).seen({0, 0, -600}), InputError);
       const std::unique_ptr<SimulatedDisplay> one = simulateDisplay(*display, layers, options);
       const std::unique_ptr<SimulatedDisplay> two = simulateDisplay(
           *display, std::vector<LayerImages>{layers, LayerImages{dimmer, layers.mask}}, options);

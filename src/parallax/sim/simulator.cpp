@@ -57,6 +57,11 @@ void checkOptions(const SimulationOptions& o) {
     throw fail("/normalisation", "must be 0 (the mask's mean) or positive");
 }
 
+void checkEye(const Vec3d& eye) {
+  if (!(eye.z > 0) || !std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z))
+    throw InputError("simulation", "/eye", "the eye must be in front of the display (z > 0)");
+}
+
 }  // namespace
 
 DisplaySimulator::Layer DisplaySimulator::makeLayer(const Image& image, const Panel& panel,
@@ -138,8 +143,7 @@ DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages laye
 
 Image DisplaySimulator::seen(const Vec3d& eye) const {
   if (!viewsThroughSeenLayers()) return atDisplayResolution(design_, view(eye));
-  if (!(eye.z > 0) || !std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z))
-    throw InputError("simulation", "/eye", "the eye must be in front of the display (z > 0)");
+  checkEye(eye);
   // The cells as they are (the rear ones blurred), each row read up to its dark end cell.
   const LayerRows front(front_.cells.data(), size_t(front_.columns + 1), front_.columns,
                         front_.rows);
@@ -168,8 +172,7 @@ std::vector<Vec3d> DisplaySimulator::pupilPoints(const Vec3d& eye) const {
 }
 
 Image DisplaySimulator::view(const Vec3d& eye) const {
-  if (!(eye.z > 0) || !std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z))
-    throw InputError("simulation", "/eye", "the eye must be in front of the display (z > 0)");
+  checkEye(eye);
   const int n = int(std::lround(std::sqrt(double(options_.samplesPerPixel))));
   const std::vector<Vec3d> eyes = pupilPoints(eye);
   const size_t pupil = eyes.size();
