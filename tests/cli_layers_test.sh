@@ -48,7 +48,7 @@ check "nmf passes: the objective, per iteration both updates (the first also eva
 import json, sys
 b = json.load(open(sys.argv[1]))["layers"]
 assert b["passes"] == 2 + 2 * 3 and b["rank"] == 2, b
-assert b["target_bytes"] == b["eyes"] * b["width"] * b["height"] * 3 * 4, b  # linear floats
+assert b["target_bytes"] == b["eyes"] * b["width"] * b["height"] * 3 * 2, b  # 16-bit linear
 ' "$tmp/out"
 check "bench --layers slits exits 2" run 2 bench --layers slits --display "$tmp/small.json"
 check "bench --layers names the option" one_line_naming "--layers"

@@ -163,6 +163,41 @@ double linearErrorLanes(const float* seen, const float* target, size_t n, float*
   return 0.5 * sum;
 }
 
+// linearErrorLanes against a target kept in 16-bit codes (TrainingView::linearUnit): each
+// value's target code x unit, decoded in the loop (16 at a time as FloatLanes16), the squares
+// in the same 16 running sums in double, added in lane order; the last n mod 16 values through
+// the same lanes, the unused ones zero.
+template <int kCount>
+[[gnu::always_inline]] inline void linearCodeErrorStep(const float* seen, const uint16_t* codes,
+                                                       size_t at, int count, float unit,
+                                                       float* residual, DoubleLanes8& low,
+                                                       DoubleLanes8& high) {
+  const size_t n = size_t(kCount > 0 ? kCount : count);
+  FloatLanes16 values{};
+  HalfWordLanes16 target{};
+  std::memcpy(&values, seen + at, sizeof(float) * n);
+  std::memcpy(&target, codes + at, sizeof(uint16_t) * n);
+  const FloatLanes16 diff = values - convertLanes<FloatLanes16>(target) * unit;
+  if (residual) std::memcpy(residual + at, &diff, sizeof(float) * n);
+  const DoubleLanes8 first = lowHalfInDouble(diff), second = highHalfInDouble(diff);
+  low += first * first;
+  high += second * second;
+}
+
+PARALLAX_LANE_KERNEL
+double linearCodeErrorLanes(const float* seen, const uint16_t* codes, size_t n, float unit,
+                            float* residual, float* weights) {
+  DoubleLanes8 low{}, high{};
+  size_t k = 0;
+  for (; k + 16 <= n; k += 16) {
+    __builtin_prefetch(codes + k + kPrefetchCodes);
+    linearCodeErrorStep<16>(seen, codes, k, 16, unit, residual, low, high);
+  }
+  if (k < n) linearCodeErrorStep<0>(seen, codes, k, int(n - k), unit, residual, low, high);
+  if (weights) std::fill(weights, weights + n, 1.0f);
+  return 0.5 * sumInLaneOrder(low, high);
+}
+
 double eyeErrorRange(const TrainingView& v, const Vec3f* seen, size_t first, size_t count,
                      Vec3f* residual, Vec3f* weights) {
   const bool srgb = v.encodingScale > 0;
@@ -177,6 +212,10 @@ double eyeErrorRange(const TrainingView& v, const Vec3f* seen, size_t first, siz
     return encodedErrorLanes(&seen[0].x, v.encodedTarget.data() + 3 * first, 3 * count, inv,
                              residual ? &residual[0].x : nullptr,
                              weights ? &weights[0].x : nullptr);
+  if (!srgb && !v.encodedTarget.empty())
+    return linearCodeErrorLanes(&seen[0].x, v.encodedTarget.data() + 3 * first, 3 * count,
+                                v.linearUnit, residual ? &residual[0].x : nullptr,
+                                weights ? &weights[0].x : nullptr);
   const Vec3f* target = v.target.pixels().data() + first;
   if (!srgb)
     return linearErrorLanes(&seen[0].x, &target[0].x, 3 * count,
@@ -247,7 +286,7 @@ void checkViews(const std::vector<TrainingView>& views) {
     const bool sized =
         v.encodedTarget.empty()
             ? v.target.width() == v.seen.width() && v.target.height() == v.seen.height()
-            : v.encodingScale > 0 &&
+            : (v.encodingScale > 0 || v.linearUnit > 0) &&
                   v.encodedTarget.size() == 3 * size_t(v.seen.width()) * v.seen.height();
     if (!sized) throw std::invalid_argument("layer solver: a target's size differs from its view");
   }
@@ -636,18 +675,80 @@ void encodeTargetLanes(const float* values, uint16_t* encoded, size_t n, float i
 
 }  // namespace
 
+namespace {
+
+// round(v / unit) of n non-negative values (halves up, as encodeTargetLanes), at most 65535.
+PARALLAX_LANE_KERNEL
+void encodeLinearLanes(const float* values, uint16_t* encoded, size_t n, float inverseUnit) {
+  PARALLAX_SIMD
+  for (size_t i = 0; i < n; ++i) {
+    const float scaled = std::clamp(values[i] * inverseUnit, 0.0f, 65535.0f);
+    int rounded = int(scaled);
+    rounded += scaled - float(rounded) >= 0.5f ? 1 : 0;
+    encoded[i] = uint16_t(std::min(rounded, 65535));
+  }
+}
+
+// codes[i] x unit into values, n of them.
+PARALLAX_LANE_KERNEL
+void decodeLinearLanes(const uint16_t* codes, float* values, size_t n, float unit) {
+  PARALLAX_SIMD
+  for (size_t i = 0; i < n; ++i) values[i] = float(codes[i]) * unit;
+}
+
+}  // namespace
+
 void TrainingView::encodeTarget(int threads) {
-  if (!(encodingScale > 0))
-    throw std::invalid_argument("TrainingView::encodeTarget: the errors are in linear light");
-  const float inv = 1.0f / encodingScale;
   const size_t rowValues = 3 * size_t(target.width());
-  encodedTarget.resize(rowValues * size_t(target.height()));
-  parallelFor(target.height(), threads, 8, [&](int64_t begin, int64_t end) {
-    const size_t first = size_t(begin) * rowValues;
-    encodeTargetLanes(&target.pixels()[0].x + first, encodedTarget.data() + first,
-                      size_t(end - begin) * rowValues, inv);
+  const int rows = target.height();
+  const float* values = &target.pixels()[0].x;
+  float inverse = 0;
+  if (encodingScale > 0) {
+    inverse = 1.0f / encodingScale;
+  } else {
+    // The unit: the largest value over 65535 (each row's largest, then theirs).
+    std::vector<float> rowLargest(size_t(rows), 0.0f);
+    parallelFor(rows, threads, 8, [&](int64_t begin, int64_t end) {
+      for (int64_t j = begin; j != end; ++j) {
+        float largest = 0;
+        const float* row = values + size_t(j) * rowValues;
+        for (size_t k = 0; k < rowValues; ++k) largest = std::max(largest, row[k]);
+        rowLargest[size_t(j)] = largest;
+      }
+    });
+    const float largest = *std::max_element(rowLargest.begin(), rowLargest.end());
+    if (!std::isfinite(largest))
+      throw std::invalid_argument("TrainingView::encodeTarget: a target value is not finite");
+    linearUnit = largest > 0 ? largest / 65535.0f : 1.0f;
+    inverse = 1.0f / linearUnit;
+  }
+  encodedTarget.resize(rowValues * size_t(rows));
+  parallelFor(rows, threads, 8, [&](int64_t begin, int64_t end) {
+    const size_t first = size_t(begin) * rowValues, n = size_t(end - begin) * rowValues;
+    if (encodingScale > 0)
+      encodeTargetLanes(values + first, encodedTarget.data() + first, n, inverse);
+    else
+      encodeLinearLanes(values + first, encodedTarget.data() + first, n, inverse);
   });
   target = Image();
+}
+
+const Vec3f* TrainingView::linearTargetRow(int j, Vec3f* row) const {
+  const size_t width = size_t(seen.width());
+  if (encodedTarget.empty()) return target.pixels().data() + size_t(j) * width;
+  if (!(linearUnit > 0))
+    throw std::logic_error("TrainingView::linearTargetRow: the target is kept as sRGB codes");
+  decodeLinearLanes(encodedTarget.data() + 3 * width * size_t(j), &row[0].x, 3 * width, linearUnit);
+  return row;
+}
+
+const Image& TrainingView::linearTarget(Image& holder, int threads) const {
+  if (encodedTarget.empty()) return target;
+  holder = Image(seen.width(), seen.height());
+  parallelFor(seen.height(), threads, 8, [&](int64_t begin, int64_t end) {
+    for (int64_t j = begin; j != end; ++j) linearTargetRow(int(j), &holder.at(0, int(j)));
+  });
+  return holder;
 }
 
 Image RearDiffuser::apply(const Image& layer, int threads) const {
@@ -854,7 +955,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                 for (Vec3f& p : w.seen) p = p * inv;
               }
               sum += eyeErrorRange(v, w.seen.data(), w.first(j), width, nullptr, nullptr);
-              v.seen.boxTransposedRowInto(v.target.pixels().data() + w.first(j), w.residual.data());
+              v.seen.boxTransposedRowInto(v.linearTargetRow(j, w.other.data()), w.residual.data());
               v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
               for (size_t t = 0; t < frames.size(); ++t) {
                 const Vec3f* m = masks.data() + t * width;
@@ -901,7 +1002,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
               // Output row j's shares of B^T t and B^T V along a mask row, per frame; each mask
               // row it meets adds them times its vertical weight.
               averageViewRow(v, seenLayers, j, w);
-              v.seen.boxTransposedRowInto(v.target.pixels().data() + w.first(j), w.residual.data());
+              v.seen.boxTransposedRowInto(v.linearTargetRow(j, w.other.data()), w.residual.data());
               v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
               alongRow.assign(2 * frames.size() * maskWidth, Vec3f(0.0f));
               for (size_t t = 0; t < frames.size(); ++t) {
@@ -930,7 +1031,8 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
     } else {
       for (const TrainingView& v : views) {
         const Image seen = averageView(v, seenLayers, threads);
-        const Image& target = v.target;
+        Image decoded;
+        const Image& target = v.linearTarget(decoded, threads);
         for (size_t t = 0; t < frames.size(); ++t) {
           const LayerFrame& f = seenLayers[t];
           const Image& other = updateImages ? f.mask : f.image;

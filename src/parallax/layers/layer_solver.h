@@ -40,14 +40,24 @@ struct TrainingView {
   // target / encodingScale (the layers' brightness), the dense measure's own squared error,
   // solved by Gauss-Newton steps. 0: errors in linear light.
   float encodingScale = 0.0f;
-  // The target as those sRGB errors read it, S(target / encodingScale) in 16 bits per channel
-  // (round(65535 S), 3 per pixel, row by row), when encodeTarget() made it: half the bytes of
-  // the float target it replaces, and one encoding fewer per pixel and pass. Empty: the
-  // solvers encode `target` as they go (the same errors to within 1/131070 in S).
+  // The target kept in 16 bits per channel (3 per pixel, row by row) when encodeTarget() made
+  // it, half the bytes of the float target it replaces (whose first touch of memory is a
+  // second or more of a 1080p solve's ideal views here: docs/content-adaptive.md, "Cost"):
+  //   - sRGB errors (encodingScale > 0): round(65535 S(target / encodingScale)), as those errors
+  //     read it, one encoding fewer per pixel and pass (the same errors to within 1/131070 in S);
+  //   - linear light (encodingScale = 0): round(target / linearUnit), linearUnit = the target's
+  //     largest value / 65535: within linearUnit / 2 of it, a ten-thousandth of the largest
+  //     value, far below the layers' own error (docs/content-adaptive.md, "Targets in 16 bits").
+  // Empty: the solvers read `target`.
   UninitializedLargeVector<uint16_t> encodedTarget = {};
-  // Fills encodedTarget and frees target (encodingScale > 0 only; the multiplicative updates
-  // fit in linear light and need the float target).
+  float linearUnit = 0.0f;
+  // Fills encodedTarget (and linearUnit) and frees target.
   void encodeTarget(int threads = 0);
+  // Row j of the target in linear light, decoded when it is kept in 16 bits (into `row`, which
+  // must hold the view's width; the pointer returned is `row`'s or the target's own).
+  const Vec3f* linearTargetRow(int j, Vec3f* row) const;
+  // The whole target in linear light: `target`, or the codes decoded into `holder`.
+  const Image& linearTarget(Image& holder, int threads = 0) const;
 };
 
 // One frame of layers (image and mask panels), linear transmittance.

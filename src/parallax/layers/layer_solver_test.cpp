@@ -371,6 +371,64 @@ TEST(OptimizeImageLayer, EncodedTargetsSolveAsTheFloatTargets) {
               1e-4 * a.objective[0]);
 }
 
+// Linear-light targets kept in 16 bits (TrainingView::encodeTarget with encodingScale 0:
+// round(t / u), u = the largest value / 65535) are within u / 2 of the floats (and the float
+// arithmetic's rounding), and give the
+// solve of the float targets: the multiplicative updates at every rank in both layer orders
+// (the row passes with the image in front, the whole-image ones behind it) and the linear
+// image-layer solve; the objectives move by at most the rounding times the errors.
+TEST(FactorizeLayers, TargetsInSixteenBitsSolveAsTheFloatTargets) {
+  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+    SCOPED_TRACE(int(order));
+    const DisplayDesign d = tinyDisplay(order);
+    const std::vector<TrainingView> floats =
+        viewsOf(d, randomImage(27, 2, 12), Image(27, 2, Vec3f(0.6f)), 0.01f);
+    std::vector<TrainingView> coded = floats;
+    for (TrainingView& v : coded) v.encodeTarget(2);
+    for (size_t e = 0; e < floats.size(); ++e) {
+      const TrainingView& v = coded[e];
+      ASSERT_TRUE(v.target.empty());
+      float largest = 0;
+      for (const Vec3f& p : floats[e].target.pixels()) largest = std::max({largest, p.x, p.y, p.z});
+      EXPECT_FLOAT_EQ(v.linearUnit, largest / 65535.0f);
+      Image holder;
+      const Image& decoded = v.linearTarget(holder, 2);
+      for (size_t i = 0; i < decoded.pixels().size(); ++i)
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(decoded.pixels()[i][c], floats[e].target.pixels()[i][c],
+                      0.51f * v.linearUnit);
+    }
+    for (const int rank : {1, 2}) {
+      std::vector<LayerFrame> start;
+      for (int t = 0; t < rank; ++t)
+        start.push_back(
+            {randomImage(27, 2, 20 + t, 0.1f, 0.9f), randomImage(27, 2, 30 + t, 0.1f, 0.9f)});
+      SolveReport a, b;
+      const std::vector<LayerFrame> x = factorizeLayers(floats, start, 12, 2, &a);
+      const std::vector<LayerFrame> y = factorizeLayers(coded, start, 12, 2, &b);
+      ASSERT_EQ(a.objective.size(), b.objective.size());
+      EXPECT_LT(b.objective.back(), 0.5 * b.objective.front());
+      for (size_t i = 0; i < a.objective.size(); ++i)
+        EXPECT_NEAR(a.objective[i], b.objective[i], 1e-4 * a.objective[0]) << i;
+      for (size_t t = 0; t < x.size(); ++t)
+        for (size_t i = 0; i < x[t].image.pixels().size(); ++i)
+          for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(x[t].image.pixels()[i][c], y[t].image.pixels()[i][c], 1e-3f);
+            EXPECT_NEAR(x[t].mask.pixels()[i][c], y[t].mask.pixels()[i][c], 1e-3f);
+          }
+    }
+    const Image mask = maskLayerImage(d);
+    SolveReport a, b;
+    const Image x = optimizeImageLayer(floats, Image(27, 2, Vec3f(0.4f)), mask, 6, 2, &a);
+    const Image y = optimizeImageLayer(coded, Image(27, 2, Vec3f(0.4f)), mask, 6, 2, &b);
+    ASSERT_EQ(a.objective.size(), b.objective.size());
+    for (size_t i = 0; i < a.objective.size(); ++i)
+      EXPECT_NEAR(a.objective[i], b.objective[i], 1e-4 * a.objective[0]) << i;
+    for (size_t i = 0; i < x.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(x.pixels()[i][c], y.pixels()[i][c], 1e-3f);
+  }
+}
+
 // Targets seen through a diffuser (the rear layer blurred, sim/diffuser.h) from layers that can
 // show them exactly: layers solved for the diffuser reach them, layers solved without it do
 // not; in either layer order (the mask blurred, or the image) and for NMF's both layers.

@@ -22,9 +22,8 @@ double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options
 }
 
 double trainingBytes(const DisplayDesign& design, const TrainingOptions& options) {
-  // sRGB errors keep their targets encoded in 16 bits per channel (TrainingView::encodeTarget).
-  const double perPixel = options.srgbWeights ? 3.0 * sizeof(uint16_t) : double(sizeof(Vec3f));
-  return trainingPixels(design, options) * perPixel;
+  // Targets are kept in 16 bits per channel (TrainingView::encodeTarget).
+  return trainingPixels(design, options) * 3.0 * sizeof(uint16_t);
 }
 
 std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,
@@ -41,8 +40,9 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
     for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);
     views.push_back({std::move(seen), std::move(target),
                      options.srgbWeights ? float(options.targetScale) : 0.0f});
-    // The sRGB errors read the target encoded: half the bytes, one encoding less per pass.
-    if (options.srgbWeights) views.back().encodeTarget(options.threads);
+    // Targets kept in 16 bits: half the bytes (and, for the sRGB errors, one encoding less per
+    // pass).
+    views.back().encodeTarget(options.threads);
     if (progress) progress(int(i) + 1, int(eyes.size()));
   }
   return views;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -35,20 +36,32 @@ TEST(Training, TargetsAreTheScaledIdealViewsOfTheDenseEyes) {
   const std::vector<DenseEye> eyes = denseEyes(d, 2, {0.9, 1.1});
   ASSERT_EQ(views.size(), eyes.size());
   EXPECT_EQ(calls, int(eyes.size()));
-  for (size_t i : {size_t(0), eyes.size() / 2, eyes.size() - 1}) {
+  // Linear light unless asked, kept in 16 bits (TrainingView::encodeTarget): within half a
+  // unit (and the float arithmetic's rounding) of the scaled ideal views, the unit a 65535th
+  // of the largest value.
+  std::vector<Image> ideals;
+  double held = 0;
+  for (size_t i = 0; i < eyes.size(); ++i) {
     EXPECT_EQ(views[i].seen.eye().x, eyes[i].position.x);
     EXPECT_EQ(views[i].seen.eye().z, eyes[i].position.z);
-    const Image ideal = idealView(scene, accel, d, eyes[i].position, 72, 12, 1, 0);
+    ideals.push_back(idealView(scene, accel, d, eyes[i].position, 72, 12, 1, 0));
+    const Image& ideal = ideals.back();
+    float largest = 0;
+    for (const Vec3f& p : ideal.pixels()) largest = std::max({largest, p.x, p.y, p.z});
+    EXPECT_EQ(views[i].encodingScale, 0.0f);
+    EXPECT_TRUE(views[i].target.empty());
+    EXPECT_FLOAT_EQ(views[i].linearUnit, 0.25f * largest / 65535.0f);
+    Image holder;
+    const Image& target = views[i].linearTarget(holder);
     for (size_t p = 0; p < ideal.pixels().size(); ++p)
       for (int c = 0; c < 3; ++c)
-        EXPECT_FLOAT_EQ(views[i].target.pixels()[p][c], 0.25f * ideal.pixels()[p][c]);
-    EXPECT_EQ(views[i].encodingScale, 0.0f);  // linear light unless asked
+        EXPECT_NEAR(target.pixels()[p][c], 0.25f * ideal.pixels()[p][c],
+                    0.51f * views[i].linearUnit);
+    held += double(views[i].encodedTarget.size()) * sizeof(uint16_t);
   }
-  double held = 0;
-  for (const TrainingView& v : views) held += double(v.target.pixels().size()) * sizeof(Vec3f);
   EXPECT_EQ(trainingBytes(d, options), held);
-  EXPECT_EQ(seenMaskBytes(d, options), held / 3);  // one float per pixel against three
-  // sRGB errors: the same targets, encoded (TrainingView::encodeTarget), in half the bytes.
+  EXPECT_EQ(seenMaskBytes(d, options), held / 1.5);  // one float per pixel against 3 halfwords
+  // sRGB errors: the same targets, encoded as S(t / c) (TrainingView::encodeTarget).
   options.srgbWeights = true;
   const std::vector<TrainingView> encoded = trainingViews(scene, accel, d, options);
   ASSERT_EQ(encoded.size(), views.size());
@@ -56,10 +69,11 @@ TEST(Training, TargetsAreTheScaledIdealViewsOfTheDenseEyes) {
   for (size_t i = 0; i < views.size(); ++i) {
     EXPECT_EQ(encoded[i].encodingScale, 0.25f);
     EXPECT_TRUE(encoded[i].target.empty());
-    TrainingView linear = views[i];
-    linear.encodingScale = 0.25f;
-    linear.encodeTarget();
-    EXPECT_EQ(encoded[i].encodedTarget, linear.encodedTarget);
+    Image scaled = ideals[i];
+    for (Vec3f& p : scaled.pixels()) p = p * 0.25f;
+    TrainingView fromIdeal{views[i].seen, scaled, 0.25f};
+    fromIdeal.encodeTarget();
+    EXPECT_EQ(encoded[i].encodedTarget, fromIdeal.encodedTarget);
     held += double(encoded[i].encodedTarget.size()) * sizeof(uint16_t);
   }
   EXPECT_EQ(trainingBytes(d, options), held);
@@ -83,8 +97,16 @@ TEST(Training, EncodedTargetsAreTheSrgbFormula) {
       EXPECT_NEAR(v.encodedTarget[3 * i + size_t(c)] / 65535.0, s, 1.0 / 131070 + 2e-7)
           << i << " " << c;
     }
-  TrainingView linear{seen, target};
+  // A target with a value that is not finite cannot be kept in 16 bits.
+  Image broken = target;
+  broken.pixels()[5].y = std::numeric_limits<float>::infinity();
+  TrainingView linear{seen, broken};
   EXPECT_THROW(linear.encodeTarget(), std::invalid_argument);
+  // An all-black target: codes 0 (in any unit).
+  TrainingView black{seen, Image(seen.width(), seen.height())};
+  black.encodeTarget();
+  EXPECT_GT(black.linearUnit, 0.0f);
+  for (const uint16_t code : black.encodedTarget) EXPECT_EQ(code, 0);
 }
 
 TEST(Training, MeanTransmittanceAveragesPixelsAndChannels) {
