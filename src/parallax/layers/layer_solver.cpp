@@ -673,10 +673,6 @@ void encodeTargetLanes(const float* values, uint16_t* encoded, size_t n, float i
   }
 }
 
-}  // namespace
-
-namespace {
-
 // round(v / unit) of n non-negative values (halves up, as encodeTargetLanes), at most 65535.
 PARALLAX_LANE_KERNEL
 void encodeLinearLanes(const float* values, uint16_t* encoded, size_t n, float inverseUnit) {
@@ -706,17 +702,24 @@ void TrainingView::encodeTarget(int threads) {
   if (encodingScale > 0) {
     inverse = 1.0f / encodingScale;
   } else {
-    // The unit: the largest value over 65535 (each row's largest, then theirs).
+    // The unit: the largest value over 65535 (each row's largest, then theirs; a value that is
+    // not a number makes its row's largest one).
     std::vector<float> rowLargest(size_t(rows), 0.0f);
     parallelFor(rows, threads, 8, [&](int64_t begin, int64_t end) {
       for (int64_t j = begin; j != end; ++j) {
         float largest = 0;
+        bool numbers = true;
         const float* row = values + size_t(j) * rowValues;
-        for (size_t k = 0; k < rowValues; ++k) largest = std::max(largest, row[k]);
-        rowLargest[size_t(j)] = largest;
+        for (size_t k = 0; k < rowValues; ++k) {
+          largest = std::max(largest, row[k]);
+          numbers &= row[k] == row[k];
+        }
+        rowLargest[size_t(j)] = numbers ? largest : std::numeric_limits<float>::quiet_NaN();
       }
     });
-    const float largest = *std::max_element(rowLargest.begin(), rowLargest.end());
+    float largest = 0;
+    for (const float value : rowLargest)
+      largest = std::isnan(value) ? value : std::max(largest, value);
     if (!std::isfinite(largest))
       throw std::invalid_argument("TrainingView::encodeTarget: a target value is not finite");
     linearUnit = largest > 0 ? largest / 65535.0f : 1.0f;

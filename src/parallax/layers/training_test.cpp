@@ -102,6 +102,9 @@ TEST(Training, EncodedTargetsAreTheSrgbFormula) {
   broken.pixels()[5].y = std::numeric_limits<float>::infinity();
   TrainingView linear{seen, broken};
   EXPECT_THROW(linear.encodeTarget(), std::invalid_argument);
+  broken.pixels()[5].y = std::numeric_limits<float>::quiet_NaN();
+  TrainingView notANumber{seen, broken};
+  EXPECT_THROW(notANumber.encodeTarget(), std::invalid_argument);
   // An all-black target: codes 0 (in any unit).
   TrainingView black{seen, Image(seen.width(), seen.height())};
   black.encodeTarget();
