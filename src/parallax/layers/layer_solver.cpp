@@ -657,32 +657,32 @@ class ImageLayerPasses {
 
 namespace {
 
-// round(65535 S(v / c)) of n values, rounding halves up as std::lround does for these
-// non-negative values (truncation and the exact remainder: a vectorised loop, where lround is
-// a libm call per value), at most 65535.
+// round(scaled) of a value in [0, 65535], rounding halves up as std::lround does for these
+// non-negative values (truncation and the exact remainder: vectorised in the loops below,
+// where lround is a libm call per value), at most 65535.
+[[gnu::always_inline]] inline uint16_t sixteenBitCode(float scaled) {
+  int rounded = int(scaled);
+  rounded += scaled - float(rounded) >= 0.5f ? 1 : 0;
+  return uint16_t(std::min(rounded, 65535));
+}
+
+// round(65535 S(v / c)) of n values.
 PARALLAX_LANE_KERNEL
 void encodeTargetLanes(const float* values, uint16_t* encoded, size_t n, float inv) {
   PARALLAX_SIMD
   for (size_t i = 0; i < n; ++i) {
     float value = 0, slope = 0;
     srgbEncodeArithmetic(values[i] * inv, value, slope);
-    const float scaled = value * kEncodedUnit;
-    int rounded = int(scaled);
-    rounded += scaled - float(rounded) >= 0.5f ? 1 : 0;
-    encoded[i] = uint16_t(std::min(rounded, 65535));
+    encoded[i] = sixteenBitCode(value * kEncodedUnit);
   }
 }
 
-// round(v / unit) of n non-negative values (halves up, as encodeTargetLanes), at most 65535.
+// round(v / unit) of n values, clamped to [0, 65535].
 PARALLAX_LANE_KERNEL
 void encodeLinearLanes(const float* values, uint16_t* encoded, size_t n, float inverseUnit) {
   PARALLAX_SIMD
-  for (size_t i = 0; i < n; ++i) {
-    const float scaled = std::clamp(values[i] * inverseUnit, 0.0f, 65535.0f);
-    int rounded = int(scaled);
-    rounded += scaled - float(rounded) >= 0.5f ? 1 : 0;
-    encoded[i] = uint16_t(std::min(rounded, 65535));
-  }
+  for (size_t i = 0; i < n; ++i)
+    encoded[i] = sixteenBitCode(std::clamp(values[i] * inverseUnit, 0.0f, 65535.0f));
 }
 
 // codes[i] x unit into values, n of them.
