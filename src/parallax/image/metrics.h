@@ -54,6 +54,10 @@ double ssim(const Image& a, const Image& b);
 // the box clipped to the image and renormalised at the edges. Brings a reference down to the
 // display's spatial resolution (one aperture period).
 Image boxFilterX(const Image& image, double widthPx);
+// The same by the prefix integrals of each row, whatever the width: boxFilterX's way for boxes
+// wider than BoxRow::kMostTaps pixels, and the second code path its tests check the stencil
+// against (`out`: a picture of the image's size to write into, else a new one).
+Image boxFilterXByPrefixes(const Image& image, double widthPx, Image out = Image());
 // The same along y (columns), for displays with vertical parallax (pinhole grids).
 Image boxFilterY(const Image& image, double heightPx);
 

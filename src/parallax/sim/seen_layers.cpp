@@ -69,18 +69,8 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
       if (down_[k].rear >= 0)
         rearRowSources_[size_t(down_[k].rear)].push_back({j, down_[k].weight});
 
-  // B: boxFilterX(view, period): output column x averages its window [x + a, x + b] clipped to
-  // the row (a = 1/2 - w/2, b = 1/2 + w/2); inside the row, a stencil of fixed taps.
-  const double w = design.screenPeriodMm / (frontWidth / double(width_));
-  boxA_ = 0.5 - 0.5 * w;
-  boxB_ = 0.5 + 0.5 * w;
-  firstTap_ = int(std::floor(boxA_));
-  for (int d = firstTap_; d < boxB_; ++d) {
-    const double overlap = std::min(d + 1.0, boxB_) - std::max(double(d), boxA_);
-    taps_.push_back(float(std::max(0.0, overlap) / w));
-  }
-  interiorBegin_ = std::min(width_, int(std::ceil(-boxA_)));
-  interiorEnd_ = std::max(interiorBegin_, std::min(width_, int(std::floor(width_ - boxB_)) + 1));
+  // B: boxFilterX(view, period) (image/box_row.h).
+  box_ = BoxRow(width_, design.screenPeriodMm / (frontWidth / double(width_)));
 }
 
 void SeenLayers::makeAcrossRuns() {
@@ -140,114 +130,10 @@ void scatterRun(const float* filtered, const float* front, float weight, const f
 
 }  // namespace
 
-// B as boxFilterX computes it: output x is the integral of the box-pixel row over
-// [lo_x, hi_x] = [x + a, x + b] clipped to the row, over its length. Inside the row a stencil
-// (one vectorised loop over the row's floats, each output's taps in a register, the three
-// channels 3 floats apart); the few columns whose window the row clips, summed directly. Its
-// transpose: pixel k receives sum_x y_x / |[lo_x, hi_x]| times the overlap of [k, k+1] with x's
-// window: inside, the same taps mirrored; near the ends, summed directly.
-namespace {
-
-// |[k, k+1] n [lo, hi]|.
-double overlapWithPixel(int k, double lo, double hi) {
-  return std::max(0.0, std::min(k + 1.0, hi) - std::max(double(k), lo));
-}
-
-// into[n] = sum_t taps[t] from[n + offset + step t] for n in [begin, end), the taps added in
-// order (the same sums on every CPU but for fused multiply-adds). 16 outputs at a time as one
-// FloatLanes16 (core/lane_kernel.h: one 512-bit register in the x86-64-v4 clone, where GCC's
-// vectoriser chose 256-bit ones), so each sum stays in a register; with the tap count known at
-// compile time (every screen period up to 15 pixels wide) the taps stay in registers too. The
-// last outputs one at a time, in the same order.
-template <int kTaps>
-[[gnu::always_inline]] inline void stencilLoop(const float* from, int offset, int step,
-                                               const float* taps, int tapCount, float* into,
-                                               int begin, int end) {
-  float fixed[kTaps > 0 ? kTaps : 1];
-  for (int t = 0; t < kTaps; ++t) fixed[t] = taps[t];
-  const int count = kTaps > 0 ? kTaps : tapCount;
-  const float* weights = kTaps > 0 ? fixed : taps;
-  int n = begin;
-  for (; n + 16 <= end; n += 16) {
-    const float* source = from + (n + offset);
-    FloatLanes16 sum{};
-    for (int t = 0; t < count; ++t) {
-      FloatLanes16 values;
-      std::memcpy(&values, source + step * t, sizeof(values));
-      sum += weights[t] * values;
-    }
-    std::memcpy(into + n, &sum, sizeof(sum));
-  }
-  for (; n < end; ++n) {
-    const float* source = from + (n + offset);
-    float sum = 0;
-    for (int t = 0; t < count; ++t) sum += weights[t] * source[step * t];
-    into[n] = sum;
-  }
-}
-
-// stencilLoop<tapCount> for 2 .. kMostTaps taps, else the loop with the count at run time.
-constexpr int kMostTaps = 16;
-template <int kTaps = 2>
-[[gnu::always_inline]] inline void stencilOfCount(const float* from, int offset, int step,
-                                                  const float* taps, int tapCount, float* into,
-                                                  int begin, int end) {
-  if (tapCount == kTaps)
-    return stencilLoop<kTaps>(from, offset, step, taps, tapCount, into, begin, end);
-  if constexpr (kTaps < kMostTaps)
-    return stencilOfCount<kTaps + 1>(from, offset, step, taps, tapCount, into, begin, end);
-  else
-    return stencilLoop<0>(from, offset, step, taps, tapCount, into, begin, end);
-}
-
-PARALLAX_LANE_KERNEL
-void stencil(const float* from, int offset, int step, const float* taps, int tapCount, float* into,
-             int begin, int end) {
-  stencilOfCount(from, offset, step, taps, tapCount, into, begin, end);
-}
-
-}  // namespace
-
-void SeenLayers::boxRow(const Vec3f* row, Vec3f* out) const {
-  stencil(&row[0].x, 3 * firstTap_, 3, taps_.data(), int(taps_.size()), &out[0].x,
-          3 * interiorBegin_, 3 * interiorEnd_);
-  const auto edge = [&](int x) {
-    const double lo = windowLo(x), hi = windowHi(x);
-    double sum[3] = {0, 0, 0};
-    for (int k = std::max(0, int(std::floor(lo))); k < std::min(width_, int(std::ceil(hi))); ++k) {
-      const double overlap = overlapWithPixel(k, lo, hi);
-      for (int c = 0; c < 3; ++c) sum[c] += overlap * row[k][c];
-    }
-    for (int c = 0; c < 3; ++c) out[x][c] = float(sum[c] / (hi - lo));
-  };
-  for (int x = 0; x < interiorBegin_; ++x) edge(x);
-  for (int x = interiorEnd_; x < width_; ++x) edge(x);
-}
-
-void SeenLayers::boxTransposedRow(const Vec3f* row, Vec3f* out) const {
-  // Pixel k meets the windows of x = k - d for the taps d; inside, all of those are interior.
-  const int lastTap = firstTap_ + int(taps_.size()) - 1;
-  const int begin = std::min(width_, interiorBegin_ + lastTap),
-            end = std::max(begin, interiorEnd_ + firstTap_);
-  stencil(&row[0].x, -3 * firstTap_, -3, taps_.data(), int(taps_.size()), &out[0].x, 3 * begin,
-          3 * end);
-  const auto edge = [&](int k) {
-    double sum[3] = {0, 0, 0};
-    for (int x = std::max(0, k - lastTap); x <= std::min(width_ - 1, k - firstTap_); ++x) {
-      const double lo = windowLo(x), hi = windowHi(x);
-      const double weight = overlapWithPixel(k, lo, hi) / (hi - lo);
-      for (int c = 0; c < 3; ++c) sum[c] += weight * row[x][c];
-    }
-    for (int c = 0; c < 3; ++c) out[k][c] = float(sum[c]);
-  };
-  for (int k = 0; k < begin; ++k) edge(k);
-  for (int k = end; k < width_; ++k) edge(k);
-}
-
 Image SeenLayers::box(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
-  forEachRow(view.height(), threads, [&](int y) { boxRow(&view.at(0, y), &out.at(0, y)); });
+  forEachRow(view.height(), threads, [&](int y) { box_.apply(&view.at(0, y), &out.at(0, y)); });
   return out;
 }
 
@@ -255,7 +141,7 @@ Image SeenLayers::boxTransposed(const Image& view, int threads) const {
   if (!periodBox_) return view;
   Image out(view.width(), view.height());
   forEachRow(view.height(), threads,
-             [&](int y) { boxTransposedRow(&view.at(0, y), &out.at(0, y)); });
+             [&](int y) { box_.applyTransposed(&view.at(0, y), &out.at(0, y)); });
   return out;
 }
 
@@ -297,7 +183,7 @@ void SeenLayers::viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f
   Vec3f* product =
       periodBox_ ? (scratch.product.resize(size_t(width_)), scratch.product.data()) : out;
   for (int i = 0; i < width_; ++i) product[i] = frontRow[i] * seenRear[i];
-  if (periodBox_) boxRow(product, out);
+  if (periodBox_) box_.apply(product, out);
 }
 
 void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* seenRear,
@@ -305,7 +191,7 @@ void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* see
   const Vec3f* r = residual;
   if (periodBox_) {
     scratch.filtered.resize(size_t(width_));
-    boxTransposedRow(residual, scratch.filtered.data());
+    box_.applyTransposed(residual, scratch.filtered.data());
     r = scratch.filtered.data();
   }
   for (int i = 0; i < width_; ++i) gradRow[i] += r[i] * seenRear[i];
@@ -361,7 +247,7 @@ void SeenLayers::addRearGradient(const Image& residual, const Image& front, Imag
 
 void SeenLayers::boxTransposedRowInto(const Vec3f* residual, Vec3f* filtered) const {
   if (periodBox_)
-    boxTransposedRow(residual, filtered);
+    box_.applyTransposed(residual, filtered);
   else
     std::copy(residual, residual + width_, filtered);
 }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "parallax/display/display.h"
+#include "parallax/image/box_row.h"
 #include "parallax/image/image.h"
 #include "parallax/sim/view_pieces.h"
 
@@ -125,19 +126,8 @@ class SeenLayers {
   void makeAcrossRuns();
   // For each rear row, the output rows whose pieces meet it and those pieces' weights.
   std::vector<std::vector<std::pair<int, float>>> rearRowSources_;
-  // B, the box of w = one screen period (pixels) along x: output column x averages the row over
-  // [x + a, x + b] (a = 1/2 - w/2, b = 1/2 + w/2) clipped to the row. Where the window lies
-  // inside the row (columns [interiorBegin_, interiorEnd_)) that is a stencil of fixed taps:
-  // out[x] = sum_d tap_d in[x + d], d from firstTap_, tap_d = |[d, d+1] n [a, b]| / w.
-  double boxA_ = 0, boxB_ = 0;
-  int firstTap_ = 0, interiorBegin_ = 0, interiorEnd_ = 0;
-  std::vector<float> taps_;
-  // B and B^T on one row (in and out may not alias).
-  void boxRow(const Vec3f* in, Vec3f* out) const;
-  void boxTransposedRow(const Vec3f* in, Vec3f* out) const;
-  // Output x's window clipped to the row, [lo, hi].
-  double windowLo(int x) const { return std::max(0.0, x + boxA_); }
-  double windowHi(int x) const { return std::min(double(width_), x + boxB_); }
+  // B, the box of one screen period along x (image/box_row.h).
+  BoxRow box_;
 };
 
 }  // namespace parallax

@@ -1,0 +1,139 @@
+#include "parallax/image/box_row.h"
+
+#include "parallax/core/lane_kernel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "parallax/core/error.h"
+
+namespace parallax {
+
+BoxRow::BoxRow(int columns, double widthPx) : columns_(columns) {
+  if (!(widthPx > 0) || !std::isfinite(widthPx))
+    throw InputError("", "", "the box filter's width must be positive");
+  a_ = 0.5 - 0.5 * widthPx;
+  b_ = 0.5 + 0.5 * widthPx;
+  firstTap_ = int(std::floor(a_));
+  for (int d = firstTap_; d < b_; ++d) {
+    const double overlap = std::min(d + 1.0, b_) - std::max(double(d), a_);
+    taps_.push_back(float(std::max(0.0, overlap) / widthPx));
+  }
+  interiorBegin_ = std::min(columns_, int(std::ceil(-a_)));
+  interiorEnd_ = std::max(interiorBegin_, std::min(columns_, int(std::floor(columns_ - b_)) + 1));
+}
+
+double BoxRow::windowLo(int x) const {
+  return std::max(0.0, x + a_);
+}
+
+double BoxRow::windowHi(int x) const {
+  return std::min(double(columns_), x + b_);
+}
+
+// Output x is the integral of the box-pixel row over
+// [lo_x, hi_x] = [x + a, x + b] clipped to the row, over its length. Inside the row a stencil
+// (one vectorised loop over the row's floats, each output's taps in a register, the three
+// channels 3 floats apart); the few columns whose window the row clips, summed directly. Its
+// transpose: pixel k receives sum_x y_x / |[lo_x, hi_x]| times the overlap of [k, k+1] with x's
+// window: inside, the same taps mirrored; near the ends, summed directly.
+namespace {
+
+// |[k, k+1] n [lo, hi]|.
+double overlapWithPixel(int k, double lo, double hi) {
+  return std::max(0.0, std::min(k + 1.0, hi) - std::max(double(k), lo));
+}
+
+// into[n] = sum_t taps[t] from[n + offset + step t] for n in [begin, end), the taps added in
+// order (the same sums on every CPU but for fused multiply-adds). 16 outputs at a time as one
+// FloatLanes16 (core/lane_kernel.h: one 512-bit register in the x86-64-v4 clone, where GCC's
+// vectoriser chose 256-bit ones), so each sum stays in a register; with the tap count known at
+// compile time (every screen period up to 15 pixels wide) the taps stay in registers too. The
+// last outputs one at a time, in the same order.
+template <int kTaps>
+[[gnu::always_inline]] inline void stencilLoop(const float* from, int offset, int step,
+                                               const float* taps, int tapCount, float* into,
+                                               int begin, int end) {
+  float fixed[kTaps > 0 ? kTaps : 1];
+  for (int t = 0; t < kTaps; ++t) fixed[t] = taps[t];
+  const int count = kTaps > 0 ? kTaps : tapCount;
+  const float* weights = kTaps > 0 ? fixed : taps;
+  int n = begin;
+  for (; n + 16 <= end; n += 16) {
+    const float* source = from + (n + offset);
+    FloatLanes16 sum{};
+    for (int t = 0; t < count; ++t) {
+      FloatLanes16 values;
+      std::memcpy(&values, source + step * t, sizeof(values));
+      sum += weights[t] * values;
+    }
+    std::memcpy(into + n, &sum, sizeof(sum));
+  }
+  for (; n < end; ++n) {
+    const float* source = from + (n + offset);
+    float sum = 0;
+    for (int t = 0; t < count; ++t) sum += weights[t] * source[step * t];
+    into[n] = sum;
+  }
+}
+
+// stencilLoop<tapCount> for 2 .. kMostTaps taps, else the loop with the count at run time.
+template <int kTaps = 2>
+[[gnu::always_inline]] inline void stencilOfCount(const float* from, int offset, int step,
+                                                  const float* taps, int tapCount, float* into,
+                                                  int begin, int end) {
+  if (tapCount == kTaps)
+    return stencilLoop<kTaps>(from, offset, step, taps, tapCount, into, begin, end);
+  if constexpr (kTaps < BoxRow::kMostTaps)
+    return stencilOfCount<kTaps + 1>(from, offset, step, taps, tapCount, into, begin, end);
+  else
+    return stencilLoop<0>(from, offset, step, taps, tapCount, into, begin, end);
+}
+
+PARALLAX_LANE_KERNEL
+void stencil(const float* from, int offset, int step, const float* taps, int tapCount, float* into,
+             int begin, int end) {
+  stencilOfCount(from, offset, step, taps, tapCount, into, begin, end);
+}
+
+}  // namespace
+
+void BoxRow::apply(const Vec3f* row, Vec3f* out) const {
+  stencil(&row[0].x, 3 * firstTap_, 3, taps_.data(), int(taps_.size()), &out[0].x,
+          3 * interiorBegin_, 3 * interiorEnd_);
+  const auto edge = [&](int x) {
+    const double lo = windowLo(x), hi = windowHi(x);
+    double sum[3] = {0, 0, 0};
+    for (int k = std::max(0, int(std::floor(lo))); k < std::min(columns_, int(std::ceil(hi)));
+         ++k) {
+      const double overlap = overlapWithPixel(k, lo, hi);
+      for (int c = 0; c < 3; ++c) sum[c] += overlap * row[k][c];
+    }
+    for (int c = 0; c < 3; ++c) out[x][c] = float(sum[c] / (hi - lo));
+  };
+  for (int x = 0; x < interiorBegin_; ++x) edge(x);
+  for (int x = interiorEnd_; x < columns_; ++x) edge(x);
+}
+
+void BoxRow::applyTransposed(const Vec3f* row, Vec3f* out) const {
+  // Pixel k meets the windows of x = k - d for the taps d; inside, all of those are interior.
+  const int lastTap = firstTap_ + int(taps_.size()) - 1;
+  const int begin = std::min(columns_, interiorBegin_ + lastTap),
+            end = std::max(begin, interiorEnd_ + firstTap_);
+  stencil(&row[0].x, -3 * firstTap_, -3, taps_.data(), int(taps_.size()), &out[0].x, 3 * begin,
+          3 * end);
+  const auto edge = [&](int k) {
+    double sum[3] = {0, 0, 0};
+    for (int x = std::max(0, k - lastTap); x <= std::min(columns_ - 1, k - firstTap_); ++x) {
+      const double lo = windowLo(x), hi = windowHi(x);
+      const double weight = overlapWithPixel(k, lo, hi) / (hi - lo);
+      for (int c = 0; c < 3; ++c) sum[c] += weight * row[x][c];
+    }
+    for (int c = 0; c < 3; ++c) out[k][c] = float(sum[c]);
+  };
+  for (int k = 0; k < begin; ++k) edge(k);
+  for (int k = end; k < columns_; ++k) edge(k);
+}
+
+}  // namespace parallax

@@ -1,0 +1,43 @@
+// The box one screen period wide along a row, through which the dense measure compares views
+// (docs/simulator.md, "Quality figures"): output column x is the mean of the row's box pixels over
+// its window [x + a, x + b], a = 1/2 - w/2, b = 1/2 + w/2, clipped to the row and renormalised at
+// its ends. One implementation for boxFilterX (image/metrics.h) and the layer solvers' operator B
+// and its transpose (sim/seen_layers.h).
+#pragma once
+
+#include <vector>
+
+#include "parallax/core/math.h"
+
+namespace parallax {
+
+class BoxRow {
+ public:
+  // Widths up to this many taps run as a stencil with the taps in registers.
+  static constexpr int kMostTaps = 16;
+
+  BoxRow() = default;
+  // A row of `columns` pixels, the box `widthPx` pixels wide (> 0).
+  BoxRow(int columns, double widthPx);
+
+  int columns() const { return columns_; }
+  int tapCount() const { return int(taps_.size()); }
+  // B: out[x] = the window's mean (in and out may not alias; both hold columns() pixels).
+  void apply(const Vec3f* in, Vec3f* out) const;
+  // B^T: pixel k receives sum_x in[x] |[k, k+1] n window_x| / |window_x|.
+  void applyTransposed(const Vec3f* in, Vec3f* out) const;
+
+ private:
+  int columns_ = 0;
+  double a_ = 0, b_ = 0;
+  // Where the window lies inside the row (columns [interiorBegin_, interiorEnd_)) B is a
+  // stencil of fixed taps: out[x] = sum_d tap_d in[x + d], d from firstTap_,
+  // tap_d = |[d, d+1] n [a, b]| / w.
+  int firstTap_ = 0, interiorBegin_ = 0, interiorEnd_ = 0;
+  std::vector<float> taps_;
+  // Output x's window clipped to the row, [lo, hi].
+  double windowLo(int x) const;
+  double windowHi(int x) const;
+};
+
+}  // namespace parallax
