@@ -119,6 +119,21 @@ void addWeighted(const float* from, float weight, float* into, size_t n) {
   for (size_t k = 0; k < n; ++k) into[k] += weight * from[k];
 }
 
+// out[k] = a[k] b[k] and into[k] += a[k] b[k] for k < n: a row's product with the mask an eye
+// sees, and its adjoint's share (vectorised for the CPU's widest lanes, where the Vec3f loops
+// they replace ran in 128-bit ones: 5 % of a 1080p solve).
+PARALLAX_LANE_KERNEL
+void multiplyLanes(const float* a, const float* b, float* out, size_t n) {
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) out[k] = a[k] * b[k];
+}
+
+PARALLAX_LANE_KERNEL
+void addProductsLanes(const float* a, const float* b, float* into, size_t n) {
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) into[k] += a[k] * b[k];
+}
+
 PARALLAX_LANE_KERNEL
 void scatterRun(const float* filtered, const float* front, float weight, const float* first,
                 const float* second, float* cells, size_t n) {
@@ -182,7 +197,7 @@ void SeenLayers::viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f
                              RowScratch& scratch) const {
   Vec3f* product =
       periodBox_ ? (scratch.product.resize(size_t(width_)), scratch.product.data()) : out;
-  for (int i = 0; i < width_; ++i) product[i] = frontRow[i] * seenRear[i];
+  multiplyLanes(&frontRow[0].x, &seenRear[0].x, &product[0].x, 3 * size_t(width_));
   if (periodBox_) box_.apply(product, out);
 }
 
@@ -194,7 +209,7 @@ void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* see
     box_.applyTransposed(residual, scratch.filtered.data());
     r = scratch.filtered.data();
   }
-  for (int i = 0; i < width_; ++i) gradRow[i] += r[i] * seenRear[i];
+  addProductsLanes(&r[0].x, &seenRear[0].x, &gradRow[0].x, 3 * size_t(width_));
 }
 
 void SeenLayers::viewRow(const LayerRows& front, const LayerRows& rear, int j, Vec3f* out,
