@@ -15,4 +15,28 @@ const char* laneKernelIsa() {
 #endif
 }
 
+PARALLAX_LANE_KERNEL
+void multiplyLanes(const float* a, const float* b, float* out, size_t n) {
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) out[k] = a[k] * b[k];
+}
+
+PARALLAX_LANE_KERNEL
+void addProductsLanes(const float* a, const float* b, float* into, size_t n) {
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) into[k] += a[k] * b[k];
+}
+
+PARALLAX_LANE_KERNEL
+void addScaledLanes(const float* from, float weight, float* into, size_t n) {
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) into[k] += weight * from[k];
+}
+
+PARALLAX_LANE_KERNEL
+void scaleLanes(float* values, float factor, size_t n) {
+  PARALLAX_SIMD
+  for (size_t k = 0; k < n; ++k) values[k] *= factor;
+}
+
 }  // namespace parallax

@@ -11,6 +11,8 @@
 // fuzzers).
 #pragma once
 
+#include <cstddef>
+
 #include <cstdint>
 #include <type_traits>
 
@@ -75,6 +77,17 @@ template <class To, class From>
   for (int l = 0; l < 8; ++l) sum += high[l];
   return sum;
 }
+
+// Element-wise row arithmetic over n floats (a row of Vec3f is 3 x its width of them), in the
+// CPU's widest lanes: the loops over Vec3f they replace ran in 128-bit ones.
+// out[k] = a[k] b[k].
+void multiplyLanes(const float* a, const float* b, float* out, size_t n);
+// into[k] += a[k] b[k].
+void addProductsLanes(const float* a, const float* b, float* into, size_t n);
+// into[k] += weight from[k].
+void addScaledLanes(const float* from, float weight, float* into, size_t n);
+// values[k] *= factor.
+void scaleLanes(float* values, float factor, size_t n);
 
 // Which version of the lane kernels this process runs: "x86-64-v4" (AVX-512), "x86-64-v3"
 // (AVX2, FMA) or "x86-64" (the baseline) when they were cloned; "native" when the build was

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace parallax {
 namespace {
@@ -46,6 +47,37 @@ TEST(LaneKernel, ReportsTheWidestLevelTheCpuHas) {
 #else
   EXPECT_STREQ(laneKernelIsa(), "native");
 #endif
+}
+
+// The row kernels against their scalar definitions, for every remainder of 16 and from an
+// odd offset (rows of Vec3f start anywhere): multiplications and single additions are exact in
+// IEEE arithmetic, so the lanes give the same bits; a product added may be fused (one rounding
+// fewer), so within an ulp of the sum.
+TEST(LaneKernel, RowArithmeticIsTheScalarLoop) {
+  std::vector<float> a(80), b(80);
+  for (size_t k = 0; k < a.size(); ++k)
+    a[k] = 0.37f * float(k % 13) - 1.1f, b[k] = 0.011f * float((k * 7) % 17) + 0.3f;
+  for (size_t n = 0; n <= 48; ++n) {
+    const float* x = a.data() + 1;
+    const float* y = b.data() + 3;
+    std::vector<float> out(n + 1, -7.0f), products(n + 1, 0.5f), scaled(n + 1, 0.25f),
+        factors(x, x + n + 1);
+    multiplyLanes(x, y, out.data(), n);
+    addProductsLanes(x, y, products.data(), n);
+    addScaledLanes(x, 0.3f, scaled.data(), n);
+    scaleLanes(factors.data(), 1.7f, n);
+    for (size_t k = 0; k < n; ++k) {
+      EXPECT_EQ(out[k], x[k] * y[k]) << n;
+      EXPECT_NEAR(products[k], 0.5f + x[k] * y[k], 2e-7f) << n;
+      EXPECT_NEAR(scaled[k], 0.25f + 0.3f * x[k], 2e-7f) << n;
+      EXPECT_EQ(factors[k], x[k] * 1.7f) << n;
+    }
+    // Nothing past n is written.
+    EXPECT_EQ(out[n], -7.0f);
+    EXPECT_EQ(products[n], 0.5f);
+    EXPECT_EQ(scaled[n], 0.25f);
+    EXPECT_EQ(factors[n], x[n]);
+  }
 }
 
 }  // namespace

@@ -428,13 +428,10 @@ void averageViewRow(const TrainingView& v, const std::vector<LayerFrame>& frames
   for (size_t t = 0; t < frames.size(); ++t) {
     std::vector<Vec3f>& into = t == 0 ? work.seen : work.other;
     v.seen.viewRow(frames[t].image, frames[t].mask, j, into.data(), work.scratch);
-    if (t > 0)
-      for (size_t i = 0; i < into.size(); ++i) work.seen[i] += work.other[i];
+    if (t > 0) addScaledLanes(&work.other[0].x, 1.0f, &work.seen[0].x, 3 * into.size());
   }
-  if (frames.size() > 1) {
-    const float inv = 1.0f / float(frames.size());
-    for (Vec3f& p : work.seen) p = p * inv;
-  }
+  if (frames.size() > 1)
+    scaleLanes(&work.seen[0].x, 1.0f / float(frames.size()), 3 * work.seen.size());
 }
 
 // The passes of optimizeImageLayer over every training eye. When the image layer is in front
@@ -961,23 +958,17 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                 v.seen.seenRearRow(seenLayers[t].mask, j, m, w.scratch);
                 std::vector<Vec3f>& into = t == 0 ? w.seen : w.other;
                 v.seen.viewRowSeen(&seenLayers[t].image.at(0, j), m, into.data(), w.scratch);
-                if (t > 0)
-                  for (size_t i = 0; i < width; ++i) w.seen[i] += w.other[i];
+                if (t > 0) addScaledLanes(&w.other[0].x, 1.0f, &w.seen[0].x, 3 * width);
               }
-              if (frames.size() > 1) {
-                const float inv = 1.0f / float(frames.size());
-                for (Vec3f& p : w.seen) p = p * inv;
-              }
+              if (frames.size() > 1)
+                scaleLanes(&w.seen[0].x, 1.0f / float(frames.size()), 3 * width);
               sum += eyeErrorRange(v, w.seen.data(), w.first(j), width, nullptr, nullptr);
               v.seen.boxTransposedRowInto(v.linearTargetRow(j, w.other.data()), w.residual.data());
               v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
               for (size_t t = 0; t < frames.size(); ++t) {
                 const Vec3f* m = masks.data() + t * width;
-                Vec3f *num = &numerator[t].at(0, j), *den = &denominator[t].at(0, j);
-                for (size_t i = 0; i < width; ++i) {
-                  num[i] += w.residual[i] * m[i];
-                  den[i] += w.weights[i] * m[i];
-                }
+                addProductsLanes(&w.residual[0].x, &m[0].x, &numerator[t].at(0, j).x, 3 * width);
+                addProductsLanes(&w.weights[0].x, &m[0].x, &denominator[t].at(0, j).x, 3 * width);
               }
             }
             return sum;
@@ -1034,10 +1025,8 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
               float* den = &denominator[t].at(0, r).x;
               const float* numShare = &alongRow[2 * t * maskWidth].x;
               const float* denShare = &alongRow[(2 * t + 1) * maskWidth].x;
-              for (size_t c = 0; c < 3 * maskWidth; ++c) {
-                num[c] += weight * numShare[c];
-                den[c] += weight * denShare[c];
-              }
+              addScaledLanes(numShare, weight, num, 3 * maskWidth);
+              addScaledLanes(denShare, weight, den, 3 * maskWidth);
             }
           }
         }

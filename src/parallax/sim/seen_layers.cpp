@@ -112,28 +112,6 @@ void gatherRun(const float* cells, const float* first, const float* second, floa
 // Its transpose, scaled: cells[k] += scale[k] first[k], then cells[k + 3] += scale[k]
 // second[k], with scale[k] = weight filtered[k] front[k] (two loops: the second adds to cells
 // the first wrote).
-// into[k] += weight from[k] for k < n: a rear row's share of the rows an eye's front row meets.
-PARALLAX_LANE_KERNEL
-void addWeighted(const float* from, float weight, float* into, size_t n) {
-  PARALLAX_SIMD
-  for (size_t k = 0; k < n; ++k) into[k] += weight * from[k];
-}
-
-// out[k] = a[k] b[k] and into[k] += a[k] b[k] for k < n: a row's product with the mask an eye
-// sees, and its adjoint's share (vectorised for the CPU's widest lanes, where the Vec3f loops
-// they replace ran in 128-bit ones: 5 % of a 1080p solve).
-PARALLAX_LANE_KERNEL
-void multiplyLanes(const float* a, const float* b, float* out, size_t n) {
-  PARALLAX_SIMD
-  for (size_t k = 0; k < n; ++k) out[k] = a[k] * b[k];
-}
-
-PARALLAX_LANE_KERNEL
-void addProductsLanes(const float* a, const float* b, float* into, size_t n) {
-  PARALLAX_SIMD
-  for (size_t k = 0; k < n; ++k) into[k] += a[k] * b[k];
-}
-
 PARALLAX_LANE_KERNEL
 void scatterRun(const float* filtered, const float* front, float weight, const float* first,
                 const float* second, float* cells, size_t n) {
@@ -171,8 +149,8 @@ void SeenLayers::seenRearRow(const LayerRows& rear, int j, Vec3f* seenRear,
     const Piece& vertical = down_[k];
     if (vertical.rear < 0) continue;
     any = true;
-    addWeighted(&rear.row(vertical.rear)->x, vertical.weight, &blend[0].x,
-                3 * size_t(rearColumns_));
+    addScaledLanes(&rear.row(vertical.rear)->x, vertical.weight, &blend[0].x,
+                   3 * size_t(rearColumns_));
   }
   if (!any) {
     std::fill(seenRear, seenRear + width_, Vec3f(0.0f));
