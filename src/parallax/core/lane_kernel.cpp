@@ -39,4 +39,24 @@ void scaleLanes(float* values, float factor, size_t n) {
   for (size_t k = 0; k < n; ++k) values[k] *= factor;
 }
 
+PARALLAX_LANE_KERNEL
+void multiplyByGreyLanes(const float* rgb, const float* grey, float* out, size_t pixels) {
+  PARALLAX_SIMD
+  for (size_t i = 0; i < pixels; ++i) {
+    out[3 * i] = rgb[3 * i] * grey[i];
+    out[3 * i + 1] = rgb[3 * i + 1] * grey[i];
+    out[3 * i + 2] = rgb[3 * i + 2] * grey[i];
+  }
+}
+
+PARALLAX_LANE_KERNEL
+void addProductsByGreyLanes(const float* rgb, const float* grey, float* into, size_t pixels) {
+  PARALLAX_SIMD
+  for (size_t i = 0; i < pixels; ++i) {
+    into[3 * i] += rgb[3 * i] * grey[i];
+    into[3 * i + 1] += rgb[3 * i + 1] * grey[i];
+    into[3 * i + 2] += rgb[3 * i + 2] * grey[i];
+  }
+}
+
 }  // namespace parallax

@@ -88,6 +88,10 @@ void addProductsLanes(const float* a, const float* b, float* into, size_t n);
 void addScaledLanes(const float* from, float weight, float* into, size_t n);
 // values[k] *= factor.
 void scaleLanes(float* values, float factor, size_t n);
+// The same over `pixels` RGB triples with one grey factor each: out[3 i + c] = rgb[3 i + c]
+// grey[i], and into[3 i + c] += rgb[3 i + c] grey[i].
+void multiplyByGreyLanes(const float* rgb, const float* grey, float* out, size_t pixels);
+void addProductsByGreyLanes(const float* rgb, const float* grey, float* into, size_t pixels);
 
 // Which version of the lane kernels this process runs: "x86-64-v4" (AVX-512), "x86-64-v3"
 // (AVX2, FMA) or "x86-64" (the baseline) when they were cloned; "native" when the build was

@@ -72,6 +72,16 @@ TEST(LaneKernel, RowArithmeticIsTheScalarLoop) {
       EXPECT_NEAR(scaled[k], 0.25f + 0.3f * x[k], 2e-7f) << n;
       EXPECT_EQ(factors[k], x[k] * 1.7f) << n;
     }
+    // With a grey factor per RGB triple (n / 3 of them).
+    std::vector<float> byGrey(n + 1, -7.0f), productsByGrey(n + 1, 0.5f);
+    multiplyByGreyLanes(x, y, byGrey.data(), n / 3);
+    addProductsByGreyLanes(x, y, productsByGrey.data(), n / 3);
+    for (size_t k = 0; k < n / 3 * 3; ++k) {
+      EXPECT_EQ(byGrey[k], x[k] * y[k / 3]) << n;
+      EXPECT_NEAR(productsByGrey[k], 0.5f + x[k] * y[k / 3], 2e-7f) << n;
+    }
+    EXPECT_EQ(byGrey[n / 3 * 3], -7.0f);
+    EXPECT_EQ(productsByGrey[n / 3 * 3], 0.5f);
     // Nothing past n is written.
     EXPECT_EQ(out[n], -7.0f);
     EXPECT_EQ(products[n], 0.5f);

@@ -324,18 +324,6 @@ const std::vector<LayerFrame>& seenFrames(const std::vector<TrainingView>& views
 
 // One worker's row buffers for the passes that run row by row (output row j of every eye's
 // view depends on the front layer's row j only, and writes only its gradient's row j).
-// out[3 i + c] = grey[i] for i < n, c < 3: a grey seen mask's row as the views' channels read
-// it (a lane loop: the scalar one took 4 % of a 1080p optimized-image solve).
-PARALLAX_LANE_KERNEL
-void greyToChannels(const float* grey, float* out, size_t n) {
-  PARALLAX_SIMD
-  for (size_t i = 0; i < n; ++i) {
-    out[3 * i] = grey[i];
-    out[3 * i + 1] = grey[i];
-    out[3 * i + 2] = grey[i];
-  }
-}
-
 struct RowWork {
   explicit RowWork(int width)
       : seen(size_t(width)),
@@ -524,17 +512,19 @@ class ImageLayerPasses {
           Point point;
           for (size_t e = 0; e < views_.size(); ++e) {
             const TrainingView& v = views_[e];
-            const Vec3f* m = seenMask(e, j, w);
             Vec3f* weights = w.eyeWeights.data() + e * width;
-            v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
-            point.energy +=
-                eyeErrorRange(v, w.seen.data(), w.first(j), width, w.residual.data(), weights);
-            v.seen.addFrontGradientRowSeen(w.residual.data(), m, &grad.at(0, j), w.scratch);
-            if (makePreconditioner) {
-              v.seen.viewRowSeen(&ones.at(0, j), m, w.other.data(), w.scratch);
-              for (size_t i = 0; i < width; ++i) w.other[i] = w.other[i] * weights[i];
-              v.seen.addFrontGradientRowSeen(w.other.data(), m, &precondition.at(0, j), w.scratch);
-            }
+            withSeenMask(e, j, w, [&](const auto* m) {
+              v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
+              point.energy +=
+                  eyeErrorRange(v, w.seen.data(), w.first(j), width, w.residual.data(), weights);
+              v.seen.addFrontGradientRowSeen(w.residual.data(), m, &grad.at(0, j), w.scratch);
+              if (makePreconditioner) {
+                v.seen.viewRowSeen(&ones.at(0, j), m, w.other.data(), w.scratch);
+                multiplyLanes(&w.other[0].x, &weights[0].x, &w.other[0].x, 3 * width);
+                v.seen.addFrontGradientRowSeen(w.other.data(), m, &precondition.at(0, j),
+                                               w.scratch);
+              }
+            });
           }
           if (makePreconditioner) invertCurvature(&precondition.at(0, j), width);
           Vec3f* const pRow = p ? p + size_t(j) * width : nullptr;
@@ -542,21 +532,22 @@ class ImageLayerPasses {
                               pRow, width);
           for (size_t e = 0; e < views_.size(); ++e) {
             const TrainingView& v = views_[e];
-            const Vec3f* m = seenMask(e, j, w);
             const Vec3f* weights = w.eyeWeights.data() + e * width;
             const bool srgb = v.encodingScale > 0;
-            v.seen.viewRowSeen(&d.at(0, j), m, w.other.data(), w.scratch);
-            const double dd =
-                weightedProducts(w.other.data(), w.other.data(), weights, width, srgb);
-            point.curvatures.dd += dd;
-            if (!pRow || j % planeRowStride_ != 0) continue;
-            point.curvatures.ddSampled += dd;
-            // w.seen (this eye's view of x) is free again: it holds A_e p's row.
-            v.seen.viewRowSeen(pRow, m, w.seen.data(), w.scratch);
-            point.curvatures.dp +=
-                weightedProducts(w.seen.data(), w.other.data(), weights, width, srgb);
-            point.curvatures.pp +=
-                weightedProducts(w.seen.data(), w.seen.data(), weights, width, srgb);
+            withSeenMask(e, j, w, [&](const auto* m) {
+              v.seen.viewRowSeen(&d.at(0, j), m, w.other.data(), w.scratch);
+              const double dd =
+                  weightedProducts(w.other.data(), w.other.data(), weights, width, srgb);
+              point.curvatures.dd += dd;
+              if (!pRow || j % planeRowStride_ != 0) return;
+              point.curvatures.ddSampled += dd;
+              // w.seen (this eye's view of x) is free again: it holds A_e p's row.
+              v.seen.viewRowSeen(pRow, m, w.seen.data(), w.scratch);
+              point.curvatures.dp +=
+                  weightedProducts(w.seen.data(), w.other.data(), weights, width, srgb);
+              point.curvatures.pp +=
+                  weightedProducts(w.seen.data(), w.seen.data(), weights, width, srgb);
+            });
           }
           return point;
         },
@@ -638,16 +629,15 @@ class ImageLayerPasses {
     return blurredSum;
   }
 
-  // The fixed rear layer as eye e sees it through front row j (SeenLayers::seenRearRow), in
-  // w.seenRear: from seenMasks_, else made once per eye and row for every view and adjoint of
-  // that row.
-  const Vec3f* seenMask(size_t e, int j, RowWork& w) const {
-    if (seenMasks_.empty()) {
-      views_[e].seen.seenRearRow(mask_, j, w.seenRear.data(), w.scratch);
-    } else {
-      greyToChannels(seenMasks_[e].data() + w.first(j), &w.seenRear[0].x, w.seenRear.size());
-    }
-    return w.seenRear.data();
+  // body(m) with the fixed rear layer as eye e sees it through front row j
+  // (SeenLayers::seenRearRow): a grey row of seenMasks_ (one float a pixel, which the view and
+  // its adjoint read as every channel's), else made in w.seenRear once per eye and row for every
+  // view and adjoint of that row.
+  template <class Body>
+  void withSeenMask(size_t e, int j, RowWork& w, const Body& body) const {
+    if (!seenMasks_.empty()) return body(seenMasks_[e].data() + w.first(j));
+    views_[e].seen.seenRearRow(mask_, j, w.seenRear.data(), w.scratch);
+    body(static_cast<const Vec3f*>(w.seenRear.data()));
   }
 
   const std::vector<TrainingView>& views_;

@@ -179,15 +179,32 @@ void SeenLayers::viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f
   if (periodBox_) box_.apply(product, out);
 }
 
+void SeenLayers::viewRowSeen(const Vec3f* frontRow, const float* greySeenRear, Vec3f* out,
+                             RowScratch& scratch) const {
+  Vec3f* product =
+      periodBox_ ? (scratch.product.resize(size_t(width_)), scratch.product.data()) : out;
+  multiplyByGreyLanes(&frontRow[0].x, greySeenRear, &product[0].x, size_t(width_));
+  if (periodBox_) box_.apply(product, out);
+}
+
+// B^T residual (or the residual itself without the box), in scratch.filtered.
+const Vec3f* SeenLayers::boxTransposedInScratch(const Vec3f* residual, RowScratch& scratch) const {
+  if (!periodBox_) return residual;
+  scratch.filtered.resize(size_t(width_));
+  box_.applyTransposed(residual, scratch.filtered.data());
+  return scratch.filtered.data();
+}
+
 void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* seenRear,
                                          Vec3f* gradRow, RowScratch& scratch) const {
-  const Vec3f* r = residual;
-  if (periodBox_) {
-    scratch.filtered.resize(size_t(width_));
-    box_.applyTransposed(residual, scratch.filtered.data());
-    r = scratch.filtered.data();
-  }
+  const Vec3f* r = boxTransposedInScratch(residual, scratch);
   addProductsLanes(&r[0].x, &seenRear[0].x, &gradRow[0].x, 3 * size_t(width_));
+}
+
+void SeenLayers::addFrontGradientRowSeen(const Vec3f* residual, const float* greySeenRear,
+                                         Vec3f* gradRow, RowScratch& scratch) const {
+  const Vec3f* r = boxTransposedInScratch(residual, scratch);
+  addProductsByGreyLanes(&r[0].x, greySeenRear, &gradRow[0].x, size_t(width_));
 }
 
 void SeenLayers::viewRow(const LayerRows& front, const LayerRows& rear, int j, Vec3f* out,

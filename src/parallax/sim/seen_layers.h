@@ -87,6 +87,9 @@ class SeenLayers {
   // V_j = B (frontRow .* seenRear) into out (the row's front pixels frontRow[0 .. width())).
   void viewRowSeen(const Vec3f* frontRow, const Vec3f* seenRear, Vec3f* out,
                    RowScratch& scratch) const;
+  // The same with a grey m_j (one value per pixel, for every channel: a grey mask's).
+  void viewRowSeen(const Vec3f* frontRow, const float* greySeenRear, Vec3f* out,
+                   RowScratch& scratch) const;
   // For the rear layer's gradient row by row (each rear row gathers from the output rows that
   // meet it, so rear rows in parallel write disjoint rows): the output rows whose pieces meet
   // rear row r with those pieces' vertical weights, in order;
@@ -102,6 +105,8 @@ class SeenLayers {
                               Vec3f* gradRearRow) const;
   // gradRow[i] += seenRear[i] (B^T residual)[i]: front row j's gradient.
   void addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* seenRear, Vec3f* gradRow,
+                               RowScratch& scratch) const;
+  void addFrontGradientRowSeen(const Vec3f* residual, const float* greySeenRear, Vec3f* gradRow,
                                RowScratch& scratch) const;
 
  private:
@@ -128,6 +133,7 @@ class SeenLayers {
   std::vector<std::vector<std::pair<int, float>>> rearRowSources_;
   // B, the box of one screen period along x (image/box_row.h).
   BoxRow box_;
+  const Vec3f* boxTransposedInScratch(const Vec3f* residual, RowScratch& scratch) const;
 };
 
 }  // namespace parallax
