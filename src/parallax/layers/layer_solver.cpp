@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 
 #include "parallax/core/lane_kernel.h"
@@ -39,8 +40,9 @@ using detail::Curvatures;
 using detail::PlaneStep;
 using detail::planeStep;
 
-// optimizeImageLayer's curvatures that involve the previous step p are sums over every
-// planeRowStride-th row only (scaled by the ratio of <d, d>'s full and sampled sums): they set
+// optimizeImageLayer's whole-image steps (the barrier in front): the curvatures that involve the
+// previous step p are sums over every planeRowStride-th row only (scaled by the ratio of
+// <d, d>'s full and sampled sums): they set
 // only how much of p the step takes, which the solve's objective shows is as good from a
 // quarter of the rows (540p, 7 iterations: 4.55813e-4 against 4.55803e-4 from every row), and
 // the view of p every eye needs for them then costs a quarter of one. Images of fewer rows
@@ -334,7 +336,8 @@ struct RowWork {
   size_t first(int row) const { return size_t(row) * seen.size(); }
   std::vector<Vec3f> seen, residual, weights, other, seenRear;
   std::vector<Vec3f> frameMasks;  // factorizeLayers: every frame's seen mask row
-  std::vector<Vec3f> eyeWeights;  // ImageLayerPasses::addGradientAndStep: every eye's W_e row
+  std::vector<Vec3f> eyeWeights;  // ImageLayerPasses::rowPass: every eye's W_e row
+  std::vector<Vec3f> ones;        // ImageLayerPasses::rowPass: a row of 1 (the preconditioner)
   SeenLayers::RowScratch scratch;
 };
 
@@ -376,38 +379,66 @@ void invertCurvature(Vec3f* curvature, size_t n) {
       curvature[i][c] = curvature[i][c] > 0.0f ? 1.0f / curvature[i][c] : 0.0f;
 }
 
-// One row's share of sum_e <A_e u, A_e v> weighted by W_e: `viewOfU` and `viewOfV` hold A_e u's
-// and A_e v's rows and `weights` W_e's (1 in linear light), n pixels; in running sums in double
-// (value k in lane k mod 16), added in lane order (the same sum for any thread count). 16
-// values at a time as FloatLanes16 (one 512-bit register in the x86-64-v4 clone), the last ones
-// in zeroed lanes (adding +0 changes no sum).
-[[gnu::always_inline]] inline void addWeightedProducts(const float* au, const float* av,
-                                                       const float* w, size_t count, bool srgb,
-                                                       DoubleLanes8& low, DoubleLanes8& high) {
-  FloatLanes16 a{}, other{}, weight{};
-  std::memcpy(&a, au, sizeof(float) * count);
-  std::memcpy(&other, av, sizeof(float) * count);
+// One eye-row's share of the curvatures on the plane of d and p: <A_e d, A_e d>, and with
+// A_e p's row also <A_e d, A_e p> and <A_e p, A_e p>, weighted by W_e (1 in linear light:
+// `weights` is then not read), n pixels. One pass over the rows, 16 values at a time as
+// FloatLanes16 (one 512-bit register in the x86-64-v4 clone), the last ones in zeroed lanes
+// (adding +0 changes no sum); each product summed in 16 running sums in float over the row
+// (value k in lane k mod 16: a row's 5760 values are 360 terms a lane, within a few
+// millionths of the exact sum, and only the step's length depends on it), added in lane order
+// in double (the same sums for any thread count).
+template <bool kWithP>
+[[gnu::always_inline]] inline void addPlaneProducts(const float* ad, const float* ap,
+                                                    const float* w, size_t count, bool srgb,
+                                                    FloatLanes16& dd, FloatLanes16& dp,
+                                                    FloatLanes16& pp) {
+  FloatLanes16 d{}, weight{};
+  std::memcpy(&d, ad, sizeof(float) * count);
   if (srgb) std::memcpy(&weight, w, sizeof(float) * count);
-  const FloatLanes16 b = srgb ? other * weight : other;
-  low += lowHalfInDouble(a) * lowHalfInDouble(b);
-  high += highHalfInDouble(a) * highHalfInDouble(b);
+  const FloatLanes16 wd = srgb ? d * weight : d;
+  dd += wd * d;
+  if constexpr (kWithP) {
+    FloatLanes16 p{};
+    std::memcpy(&p, ap, sizeof(float) * count);
+    dp += wd * p;
+    pp += (srgb ? p * weight : p) * p;
+  }
 }
 
-PARALLAX_LANE_KERNEL
-double weightedProducts(const Vec3f* viewOfU, const Vec3f* viewOfV, const Vec3f* weights, size_t n,
-                        bool srgb) {
-  const float* au = &viewOfU[0].x;
-  const float* av = &viewOfV[0].x;
-  const float* w = &weights[0].x;
-  const size_t values = 3 * n;
-  DoubleLanes8 low{}, high{};
+[[gnu::always_inline]] inline double sumLanes(const FloatLanes16& lanes) {
+  double sum = 0;
+  for (int l = 0; l < 16; ++l) sum += double(lanes[l]);
+  return sum;
+}
+
+// from + k, or null where `from` is (w and ap when not read: no offset is added to null).
+[[gnu::always_inline]] inline const float* at(const float* from, size_t k) {
+  return from ? from + k : from;
+}
+
+template <bool kWithP>
+[[gnu::always_inline]] inline Curvatures planeProductsLoop(const float* ad, const float* ap,
+                                                           const float* w, size_t values,
+                                                           bool srgb) {
+  FloatLanes16 dd{}, dp{}, pp{};
   size_t k = 0;
-  // W_e is read only for sRGB errors (in linear light it may be absent).
   for (; k + 16 <= values; k += 16)
-    addWeightedProducts(au + k, av + k, srgb ? w + k : w, 16, srgb, low, high);
+    addPlaneProducts<kWithP>(ad + k, at(ap, k), at(w, k), 16, srgb, dd, dp, pp);
   if (k < values)
-    addWeightedProducts(au + k, av + k, srgb ? w + k : w, values - k, srgb, low, high);
-  return sumInLaneOrder(low, high);
+    addPlaneProducts<kWithP>(ad + k, at(ap, k), at(w, k), values - k, srgb, dd, dp, pp);
+  Curvatures sums;
+  sums.dd = sumLanes(dd);
+  if (kWithP) sums.ddSampled = sums.dd, sums.dp = sumLanes(dp), sums.pp = sumLanes(pp);
+  return sums;
+}
+
+// viewOfP null: the sums with p stay 0 (and so does ddSampled).
+PARALLAX_LANE_KERNEL
+Curvatures planeProducts(const Vec3f* viewOfD, const Vec3f* viewOfP, const Vec3f* weights, size_t n,
+                         bool srgb) {
+  const float* w = srgb ? &weights[0].x : nullptr;
+  return viewOfP ? planeProductsLoop<true>(&viewOfD[0].x, &viewOfP[0].x, w, 3 * n, srgb)
+                 : planeProductsLoop<false>(&viewOfD[0].x, nullptr, w, 3 * n, srgb);
 }
 
 // The average view of the frames (image in front) on row j into work.seen.
@@ -423,16 +454,15 @@ void averageViewRow(const TrainingView& v, const std::vector<LayerFrame>& frames
 }
 
 // The passes of optimizeImageLayer over every training eye. When the image layer is in front
-// (the barrier behind it, the default order) each pass runs row by row: output row j of every
-// eye's view depends on the image's row j only and writes only its gradient's row j, so a row
-// is one task that walks every eye's view, residual and adjoint for that row in turn, with
-// buffers of one row. No full-size temporaries, every worker busy through the solve, and the
-// result the same for any thread count (sums per row, added in row order). Otherwise (the
-// barrier in front) the whole-image operators, eye by eye.
+// (the barrier behind it, the default order) output row j of every eye's view depends on the
+// image's row j only, so each row is a problem of its own (rowSeparable), solved by rowPass: one
+// task walks every eye's view, residual and adjoint for that row in turn, with buffers of one
+// row (solveRowsSeparately). Otherwise (the barrier in front) the whole-image operators, eye by
+// eye (addGradientAndStep).
 class ImageLayerPasses {
  public:
   int passes() const { return passes_; }
-  // `byRows`: false keeps the whole-image passes (the tests' second code path).
+  // `byRows`: false keeps the whole-image passes in either order (the tests' second code path).
   // `mask`: as the eyes see it (already through the diffuser when the mask is the rear layer).
   // `diffuser`: applied to the image when the image is the rear layer (the barrier in front).
   ImageLayerPasses(const std::vector<TrainingView>& views, const Image& mask, int threads,
@@ -441,12 +471,12 @@ class ImageLayerPasses {
     const bool imageInFront = std::all_of(
         views.begin(), views.end(), [](const TrainingView& v) { return v.seen.imageInFront(); });
     if (!imageInFront && diffuser.active()) imageBlur_ = &diffuser;
-    fused_ = byRows && imageInFront;
+    rowSeparable_ = byRows && imageInFront;
     // A grey mask (every barrier the paper draws) is seen grey: each eye's view of it, one
     // float per pixel, is made once here for the whole solve instead of once per pass.
     const bool grey = std::all_of(mask.pixels().begin(), mask.pixels().end(),
                                   [](const Vec3f& p) { return p.x == p.y && p.y == p.z; });
-    if (fused_ && grey) {
+    if (rowSeparable_ && grey) {
       const int width = views.front().seen.width(), rows = views.front().seen.height();
       // Sized without being written: the row tasks below touch their pages first, in parallel.
       seenMasks_.resize(views.size());
@@ -465,98 +495,86 @@ class ImageLayerPasses {
     }
   }
 
-  // What an iteration needs at the point x, in one pass where the passes are fused by rows:
-  // E at x (returned as `energy`), its gradient (added to `grad`, zero on entry), the descent
-  // direction d there (projectedDirections with `precondition`, which also projects the
-  // previous step p when one is given) and the curvatures of E's Gauss-Newton model on the
-  // plane of d and p: sum_e <A_e u, A_e v>_{W_e} for u, v in {d, p} (as curvatures(x, d, p)).
-  // Row j of the gradient is whole once every eye has added its adjoint to it, so d's row j
-  // follows and every eye's view of it (and of p) is weighted by the W_e already made for the
-  // residual: the curvatures cost one view per eye and direction instead of a pass of their own.
+  // What an iteration needs at the point x: E at x (returned as `energy`), its gradient (added
+  // to `grad`, zero on entry), the descent direction d there (projectedDirections with
+  // `precondition`, which also projects the previous step p when one is given) and the
+  // curvatures of E's Gauss-Newton model on the plane of d and p: sum_e <A_e u, A_e v>_{W_e}
+  // for u, v in {d, p}.
   struct Point {
     double energy = 0;
     Curvatures curvatures;
-    Point& operator+=(const Point& o) {
-      energy += o.energy;
-      curvatures += o.curvatures;
-      return *this;
-    }
   };
-  // With `makePreconditioner` (the first point) the same pass first makes `precondition`, as
-  // addCurvatureDiagonal and invertCurvature would (zero on entry): its row j is whole once
-  // every eye has added its share, before d's row j needs it.
+  // Over the whole image, eye by eye (rowSeparable() false). With `makePreconditioner` (the
+  // first point) `precondition` (zero on entry) is made first: addCurvatureDiagonal, inverted.
   Point addGradientAndStep(const Image& x, Image& grad, Image& precondition, Image& d,
                            Image* previousStep, bool makePreconditioner = false) const {
-    Vec3f* const p = previousStep ? previousStep->pixels().data() : nullptr;
-    if (!fused_) {
-      if (makePreconditioner) {
-        addCurvatureDiagonal(x, precondition);
-        invertCurvature(precondition.pixels().data(), precondition.pixels().size());
-      }
-      Point point;
-      point.energy = addGradient(x, grad);
-      projectedDirections(x.pixels().data(), grad.pixels().data(), precondition.pixels().data(),
-                          d.pixels().data(), p, d.pixels().size());
-      point.curvatures = curvatures(x, d, previousStep);
-      return point;
+    if (rowSeparable_) throw std::logic_error("ImageLayerPasses: the rows are solved separately");
+    if (makePreconditioner) {
+      addCurvatureDiagonal(x, precondition);
+      invertCurvature(precondition.pixels().data(), precondition.pixels().size());
     }
-    ++passes_;
-    const size_t width = size_t(x.width());
-    const Image ones = makePreconditioner ? Image(x.width(), x.height(), Vec3f(1.0f)) : Image();
-    // Tasks of 16 rows: each holds every eye's weights for its row (54 eyes x 1920 pixels:
-    // 1.2 MB), made once per task.
-    return sumOverRows<Point>(
-        views_, threads_,
-        [&](int j, RowWork& w) {
-          w.eyeWeights.resize(views_.size() * width);
-          Point point;
-          for (size_t e = 0; e < views_.size(); ++e) {
-            const TrainingView& v = views_[e];
-            Vec3f* weights = w.eyeWeights.data() + e * width;
-            withSeenMask(e, j, w, [&](const auto* m) {
-              v.seen.viewRowSeen(&x.at(0, j), m, w.seen.data(), w.scratch);
-              point.energy +=
-                  eyeErrorRange(v, w.seen.data(), w.first(j), width, w.residual.data(), weights);
-              v.seen.addFrontGradientRowSeen(w.residual.data(), m, &grad.at(0, j), w.scratch);
-              if (makePreconditioner) {
-                v.seen.viewRowSeen(&ones.at(0, j), m, w.other.data(), w.scratch);
-                multiplyLanes(&w.other[0].x, &weights[0].x, &w.other[0].x, 3 * width);
-                v.seen.addFrontGradientRowSeen(w.other.data(), m, &precondition.at(0, j),
-                                               w.scratch);
-              }
-            });
-          }
-          if (makePreconditioner) invertCurvature(&precondition.at(0, j), width);
-          Vec3f* const pRow = p ? p + size_t(j) * width : nullptr;
-          projectedDirections(&x.at(0, j), &grad.at(0, j), &precondition.at(0, j), &d.at(0, j),
-                              pRow, width);
-          for (size_t e = 0; e < views_.size(); ++e) {
-            const TrainingView& v = views_[e];
-            const Vec3f* weights = w.eyeWeights.data() + e * width;
-            const bool srgb = v.encodingScale > 0;
-            withSeenMask(e, j, w, [&](const auto* m) {
-              v.seen.viewRowSeen(&d.at(0, j), m, w.other.data(), w.scratch);
-              const double dd =
-                  weightedProducts(w.other.data(), w.other.data(), weights, width, srgb);
-              point.curvatures.dd += dd;
-              if (!pRow || j % planeRowStride_ != 0) return;
-              point.curvatures.ddSampled += dd;
-              // w.seen (this eye's view of x) is free again: it holds A_e p's row.
-              v.seen.viewRowSeen(pRow, m, w.seen.data(), w.scratch);
-              point.curvatures.dp +=
-                  weightedProducts(w.seen.data(), w.other.data(), weights, width, srgb);
-              point.curvatures.pp +=
-                  weightedProducts(w.seen.data(), w.seen.data(), weights, width, srgb);
-            });
-          }
-          return point;
-        },
-        16);
+    Point point;
+    point.energy = addGradient(x, grad);
+    projectedDirections(x.pixels().data(), grad.pixels().data(), precondition.pixels().data(),
+                        d.pixels().data(), previousStep ? previousStep->pixels().data() : nullptr,
+                        d.pixels().size());
+    point.curvatures = curvatures(x, d, previousStep);
+    return point;
+  }
+
+  // Whether each image row is a problem of its own: with the image in front, output row j of
+  // every eye's view depends on the image's row j only (the mask fixed), so E is a sum of one
+  // term per row, each a function of its row alone.
+  bool rowSeparable() const { return rowSeparable_; }
+
+  // addGradientAndStep for image row j alone (rowSeparable() only), in one pass over the eyes'
+  // rows: its rows given by pointer (x, grad, precondition, d: the image's width each; p the
+  // previous step's row, or null). Row j of the gradient is whole once every eye has added its
+  // adjoint to it, so d follows, and every eye's view of it (and of p) is weighted by the W_e
+  // already made for the residual: the curvatures cost one view per eye and direction, not a
+  // pass of their own. With `makePreconditioner` the preconditioner's row first (every eye's
+  // share of sum_e A_e^T W_e A_e 1, then inverted).
+  Point rowPass(int j, const Vec3f* x, Vec3f* grad, Vec3f* precondition, Vec3f* d, Vec3f* p,
+                bool makePreconditioner, RowWork& w) const {
+    const size_t width = w.seen.size();
+    if (makePreconditioner) w.ones.assign(width, Vec3f(1.0f));
+    w.eyeWeights.resize(views_.size() * width);
+    Point point;
+    for (size_t e = 0; e < views_.size(); ++e) {
+      const TrainingView& v = views_[e];
+      Vec3f* weights = w.eyeWeights.data() + e * width;
+      withSeenMask(e, j, w, [&](const auto* m) {
+        v.seen.viewRowSeen(x, m, w.seen.data(), w.scratch);
+        point.energy +=
+            eyeErrorRange(v, w.seen.data(), w.first(j), width, w.residual.data(), weights);
+        v.seen.addFrontGradientRowSeen(w.residual.data(), m, grad, w.scratch);
+        if (makePreconditioner) {
+          v.seen.viewRowSeen(w.ones.data(), m, w.other.data(), w.scratch);
+          multiplyLanes(&w.other[0].x, &weights[0].x, &w.other[0].x, 3 * width);
+          v.seen.addFrontGradientRowSeen(w.other.data(), m, precondition, w.scratch);
+        }
+      });
+    }
+    if (makePreconditioner) invertCurvature(precondition, width);
+    projectedDirections(x, grad, precondition, d, p, width);
+    for (size_t e = 0; e < views_.size(); ++e) {
+      const TrainingView& v = views_[e];
+      const Vec3f* weights = w.eyeWeights.data() + e * width;
+      const bool srgb = v.encodingScale > 0;
+      withSeenMask(e, j, w, [&](const auto* m) {
+        v.seen.viewRowSeen(d, m, w.other.data(), w.scratch);
+        // w.seen (this eye's view of x) is free again: it holds A_e p's row.
+        if (p) v.seen.viewRowSeen(p, m, w.seen.data(), w.scratch);
+        point.curvatures +=
+            planeProducts(w.other.data(), p ? w.seen.data() : nullptr, weights, width, srgb);
+      });
+    }
+    return point;
   }
 
  private:
   // The whole-image passes (the barrier in front, or the tests' second code path), which
-  // addGradientAndStep runs when the passes are not fused by rows.
+  // addGradientAndStep runs.
   // grad += sum_e A_e^T dE_e/dV_e at the image x; returns sum_e E_e there.
   double addGradient(const Image& x, Image& grad) const {
     ++passes_;
@@ -646,8 +664,8 @@ class ImageLayerPasses {
   int planeRowStride_ = planeRowStride(views_.front().seen.height());
   mutable int passes_ = 0;
   std::vector<UninitializedLargeVector<float>>
-      seenMasks_;  // per eye, with a grey mask and the fused passes
-  bool fused_ = false;
+      seenMasks_;  // per eye, with a grey mask and the rows solved separately
+  bool rowSeparable_ = false;
   const RearDiffuser* imageBlur_ = nullptr;
 };
 
@@ -769,36 +787,32 @@ double layerObjective(const std::vector<TrainingView>& views, const std::vector<
 
 namespace {
 
-Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
-                      int iterations, int threads, SolveReport* report,
-                      const SolveProgress& progress, bool byRows, const RearDiffuser& diffuser) {
-  checkViews(views);
-  clampToUnit(image);
-  // With the image in front the mask is the rear layer: the eyes see it through the diffuser,
-  // once and for all (it is fixed). Otherwise the passes blur the image.
-  const bool maskIsRear = views.front().seen.imageInFront();
-  const Image seenMask = maskIsRear && diffuser.active() ? diffuser.apply(mask, threads) : mask;
-  const ImageLayerPasses passes(views, seenMask, threads, byRows, diffuser);
-  const double norm = normaliser(views);
+// The iterations of optimizeImageLayer on the layer x: the whole image, or one row of it when
+// the rows are solved separately (ImageLayerPasses::rowSeparable). `pass(x, grad,
+// precondition, d, p, makePreconditioner)` is ImageLayerPasses::addGradientAndStep at x (or its
+// rowPass): E there (as the passes sum it, before the normaliser), its gradient, the direction
+// and the curvatures. Returns E before and after each iteration; stops early where a step no
+// longer lowers E. `afterIteration(done, E)` after each.
+template <class Pass, class AfterIteration>
+std::vector<double> descend(Image& image, int iterations, const Pass& pass,
+                            const AfterIteration& afterIteration) {
   // A diagonal preconditioner: 1 / (sum_e A_e^T W_e A_e 1) at the starting layers, the
   // curvature each pixel would have if its neighbours moved with it (the scaling of SART and of
   // the multiplicative updates). It keeps pixels seen by many eyes from taking the step of
   // pixels seen by few.
   // It is made in the pass of the first gradient.
   Image precondition(image.width(), image.height());
-  // Gradient of E (times 1 / norm): sum over eyes of A_e^T dE_e/dV_e, made in the pass that
-  // evaluates E: at the start, then at each point the line search tries (the accepted one's is
-  // the next iteration's).
-  // The projected, preconditioned direction d there (no move out of [0, 1] at a bound), the
-  // previous step p projected the same way, and the curvatures on their plane come from the
-  // same pass.
+  // Gradient of E: sum over eyes of A_e^T dE_e/dV_e, made in the pass that evaluates E: at the
+  // start, then at each point the line search tries (the accepted one's is the next
+  // iteration's). The projected, preconditioned direction d there (no move out of [0, 1] at a
+  // bound), the previous step p projected the same way, and the curvatures on their plane come
+  // from the same pass.
   const int width = image.width(), height = image.height();
   Image grad(width, height), nextGrad, d(width, height), nextD(width, height), next;
   Image p, nextP(width, height), move(width, height);
-  auto point = passes.addGradientAndStep(image, grad, precondition, d, nullptr, true);
-  double e = point.energy * norm;
-  SolveReport local;
-  local.objective.push_back(e);
+  auto point = pass(image, grad, precondition, d, nullptr, true);
+  double e = point.energy;
+  std::vector<double> energies{e};
   for (int it = 0; it < iterations; ++it) {
     // The exact step of the quadratic (Gauss-Newton: of its model) on the plane of d and the
     // previous step p (A_e linear in the image with the mask fixed): planeStep.
@@ -820,17 +834,15 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
         for (size_t i = 0; i < nextP.pixels().size(); ++i)
           nextP.pixels()[i] = next.pixels()[i] - image.pixels()[i];
         nextGrad = Image(width, height);
-        const auto nextPoint =
-            passes.addGradientAndStep(next, nextGrad, precondition, nextD, &nextP);
-        const double eNext = nextPoint.energy * norm;
-        if (eNext < e) {
+        const auto nextPoint = pass(next, nextGrad, precondition, nextD, &nextP, false);
+        if (nextPoint.energy < e) {
           std::swap(image, next);
           std::swap(grad, nextGrad);
           std::swap(d, nextD);
           if (p.empty()) p = Image(width, height);
           std::swap(p, nextP);
           point = nextPoint;
-          e = eNext;
+          e = nextPoint.energy;
           return true;
         }
       }
@@ -840,11 +852,95 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
     const bool lowered =
         lowersAlong(plane) || (plane.b != 0 && lowersAlong({-slope / point.curvatures.dd, 0.0}));
     if (!lowered) break;
-    local.objective.push_back(e);
-    ++local.iterations;
-    if (progress) progress(local.iterations, iterations, e);
+    energies.push_back(e);
+    afterIteration(it + 1, e);
   }
-  local.passes = passes.passes();
+  return energies;
+}
+
+// optimizeImageLayer with its rows solved separately (ImageLayerPasses::rowSeparable): each row
+// runs all its iterations in one task, with its own steps, on its eyes' rows of targets and seen
+// masks (about a megabyte at 1920 pixels and 54 eyes: they stay in this core's cache through
+// the row's passes instead of streaming from memory in every pass). Each row's step is the
+// minimiser of its own model, where a whole-image step is one compromise for all rows.
+// `progress(rows done, rows, the objective of the rows done so far)`.
+Image solveRowsSeparately(const ImageLayerPasses& passes, Image image, int iterations, int threads,
+                          double norm, SolveReport& report, const SolveProgress& progress) {
+  const int width = image.width(), rows = image.height();
+  std::vector<std::vector<double>> energies(static_cast<size_t>(rows));
+  std::vector<int> rowPasses(size_t(rows), 0);
+  std::mutex progressMutex;
+  int rowsDone = 0;
+  double doneEnergy = 0;
+  parallelFor(rows, threads, 1, [&](int64_t begin, int64_t end) {
+    RowWork work(width);
+    Image row(width, 1);
+    for (int64_t j = begin; j != end; ++j) {
+      std::copy_n(&image.at(0, int(j)), width, &row.at(0, 0));
+      int& count = rowPasses[size_t(j)];
+      const auto rowPass = [&](const Image& x, Image& grad, Image& precondition, Image& d, Image* p,
+                               bool makePreconditioner) {
+        ++count;
+        return passes.rowPass(int(j), &x.at(0, 0), &grad.at(0, 0), &precondition.at(0, 0),
+                              &d.at(0, 0), p ? &p->at(0, 0) : nullptr, makePreconditioner, work);
+      };
+      energies[size_t(j)] = descend(row, iterations, rowPass, [](int, double) {});
+      std::copy_n(&row.at(0, 0), width, &image.at(0, int(j)));
+      if (!progress) continue;
+      const std::lock_guard lock(progressMutex);
+      ++rowsDone;
+      doneEnergy += energies[size_t(j)].back();
+      progress(rowsDone, rows, doneEnergy * norm * double(rows) / double(rowsDone));
+    }
+  });
+  // E after k iterations: every row's after its k-th (or its last, where it stopped early),
+  // added in row order (the same sum for any thread count).
+  size_t longest = 0;
+  int64_t passCount = 0;
+  for (int j = 0; j < rows; ++j) {
+    longest = std::max(longest, energies[size_t(j)].size());
+    passCount += rowPasses[size_t(j)];
+  }
+  report.objective.assign(longest, 0.0);
+  for (size_t k = 0; k < longest; ++k) {
+    for (const std::vector<double>& rowEnergies : energies)
+      report.objective[k] += rowEnergies[std::min(k, rowEnergies.size() - 1)];
+    report.objective[k] *= norm;
+  }
+  report.iterations = int(longest) - 1;
+  // In passes over every row (each reads every eye's target row once).
+  report.passes = int((passCount + rows - 1) / rows);
+  return image;
+}
+
+Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
+                      int iterations, int threads, SolveReport* report,
+                      const SolveProgress& progress, bool byRows, const RearDiffuser& diffuser) {
+  checkViews(views);
+  clampToUnit(image);
+  // With the image in front the mask is the rear layer: the eyes see it through the diffuser,
+  // once and for all (it is fixed). Otherwise the passes blur the image.
+  const bool maskIsRear = views.front().seen.imageInFront();
+  const Image seenMask = maskIsRear && diffuser.active() ? diffuser.apply(mask, threads) : mask;
+  const ImageLayerPasses passes(views, seenMask, threads, byRows, diffuser);
+  const double norm = normaliser(views);
+  SolveReport local;
+  if (passes.rowSeparable()) {
+    image =
+        solveRowsSeparately(passes, std::move(image), iterations, threads, norm, local, progress);
+  } else {
+    const auto wholePass = [&](const Image& x, Image& grad, Image& precondition, Image& d, Image* p,
+                               bool makePreconditioner) {
+      return passes.addGradientAndStep(x, grad, precondition, d, p, makePreconditioner);
+    };
+    const auto afterIteration = [&](int done, double e) {
+      if (progress) progress(done, iterations, e * norm);
+    };
+    local.objective = descend(image, iterations, wholePass, afterIteration);
+    for (double& e : local.objective) e *= norm;
+    local.iterations = int(local.objective.size()) - 1;
+    local.passes = passes.passes();
+  }
   if (report) *report = local;
   return image;
 }
