@@ -113,8 +113,7 @@ void benchLayers(const std::string& displayPath, const std::string& scenePath,
   training.threads = sampling.threads;
   const Panel& panel = design.spec.imagePanel;
   checkMemoryEstimate(
-      trainingBytes(design, training) +
-          (request.method == "optimized-image" ? seenMaskBytes(design, training) : 0.0) +
+      trainingHeldBytes(design, training, request.method) +
           double(panel.width) * panel.height * sizeof(Vec3f) * (4.0 * request.rank + 6.0),
       displayPath.empty() ? "the built-in display" : displayPath,
       "the training views of --layers " + request.method, "use a smaller display");

@@ -19,6 +19,24 @@ double defaultBrightness(const std::string& method, int rank) {
   return method == "nmf" ? 1.05 * std::max(2.0, double(rank)) : 1.0;
 }
 
+// nmf's start: T copies of the slit image; masks of T slit phases a period / T apart, their
+// closed pixels at 0.2 so that the updates can open them (a zero stays zero under them).
+std::vector<LayerFrame> nmfStart(const LayerFrame& slits, double periodPx, int rank) {
+  std::vector<LayerFrame> frames;
+  for (int t = 0; t < rank; ++t) {
+    Image mask = slits.mask;
+    const int shift = int(std::lround(periodPx * t / rank));
+    for (int y = 0; y < mask.height(); ++y)
+      for (int x = 0; x < mask.width(); ++x) {
+        const int from = std::clamp(x - shift, 0, mask.width() - 1);
+        const Vec3f v = slits.mask.at(from, y);
+        mask.at(x, y) = Vec3f(std::max(v.x, 0.2f), std::max(v.y, 0.2f), std::max(v.z, 0.2f));
+      }
+    frames.push_back({slits.image, std::move(mask)});
+  }
+  return frames;
+}
+
 }  // namespace
 
 std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
@@ -33,47 +51,46 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   const double slitMean = meanTransmittance(slits.mask);
   const double gain = o.brightness > 0 ? o.brightness : defaultBrightness(o.method, o.rank);
   training.targetScale = slitMean * gain;
-  std::vector<TrainingView> views;
-  {
-    const auto progress = reporter.progress("ideal views");
-    views = trainingViews(scene, accelerator, design, training, progress->callback());
-  }
-  const double trainSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int iterations = o.iterations.value_or(kDefaultLayerIterations);
-  SolveReport report;
-  std::vector<LayerFrame> frames;
-  // The bar goes before the result line: it lives for the solve only.
-  auto progress = reporter.progress("layers " + o.method);
-  const SolveProgress onIteration = [&](int done, int total, double objective) {
-    progress->detail(printed("objective %.4g", objective));
-    progress->update(done, total);
-  };
   // A diffuser foil blurs the rear layer (sim/diffuser.h); its pixels are the rear panel's.
   const Panel& rear =
       design.spec.order == LayerOrder::BarrierBack ? design.spec.maskPanel : design.spec.imagePanel;
   const RearDiffuser diffuser{o.diffuser.value_or(design.spec.diffuserSigmaMm), rear.pitchMm};
-  if (o.method == "optimized-image") {
-    frames.push_back({optimizeImageLayer(views, slits.image, slits.mask, iterations,
-                                         training.threads, &report, onIteration, diffuser),
+  SolveReport report;
+  std::vector<LayerFrame> frames;
+  std::vector<TrainingView> views;
+  double trainSeconds = 0;
+  // The solve's progress bar: it lives for the solve only (it goes before the result line).
+  std::unique_ptr<Progress> progress;
+  const SolveProgress onIteration = [&](int done, int total, double objective) {
+    progress->detail(printed("objective %.4g", objective));
+    progress->update(done, total);
+  };
+  if (solvesByBands(design, training, o.method)) {
+    // The ideal views a band of rows at a time, each band solved before the next is rendered:
+    // one band's targets held instead of every eye's whole view (layers/training.h).
+    views = trainingEyes(design, training);
+    const IdealViewBands bands(scene, accelerator, design, training);
+    progress = reporter.progress("ideal views and layers " + o.method);
+    frames.push_back({optimizeImageLayerByBands(views, std::cref(bands), kTargetBandRows,
+                                                slits.image, slits.mask, iterations,
+                                                training.threads, &report, onIteration, diffuser),
                       slits.mask});
+    trainSeconds = bands.seconds();
   } else {
-    // Start: T copies of the slit image; masks of T slit phases a period / T apart, their closed
-    // pixels at 0.2 so that the updates can open them (a zero stays zero under them).
-    const double period = design.slitPeriodPx;
-    for (int t = 0; t < o.rank; ++t) {
-      Image mask = slits.mask;
-      const int shift = int(std::lround(period * t / o.rank));
-      for (int y = 0; y < mask.height(); ++y)
-        for (int x = 0; x < mask.width(); ++x) {
-          const int from = std::clamp(x - shift, 0, mask.width() - 1);
-          const Vec3f v = slits.mask.at(from, y);
-          mask.at(x, y) = Vec3f(std::max(v.x, 0.2f), std::max(v.y, 0.2f), std::max(v.z, 0.2f));
-        }
-      frames.push_back({slits.image, std::move(mask)});
+    {
+      const auto viewsProgress = reporter.progress("ideal views");
+      views = trainingViews(scene, accelerator, design, training, viewsProgress->callback());
     }
-    frames = factorizeLayers(views, std::move(frames), iterations, training.threads, &report,
-                             onIteration, diffuser);
+    trainSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    progress = reporter.progress("layers " + o.method);
+    if (o.method == "optimized-image")
+      frames.push_back({optimizeImageLayer(views, slits.image, slits.mask, iterations,
+                                           training.threads, &report, onIteration, diffuser),
+                        slits.mask});
+    else
+      frames = factorizeLayers(views, nmfStart(slits, design.slitPeriodPx, o.rank), iterations,
+                               training.threads, &report, onIteration, diffuser);
   }
   progress.reset();
   const double seconds =

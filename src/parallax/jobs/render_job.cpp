@@ -169,9 +169,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
     const DisplayDesign& design = *display->barrierDesign();
     const double layerBytes = double(design.spec.imagePanel.width) * design.spec.imagePanel.height *
                               sizeof(Vec3f) * (4.0 * r.layers.rank + 6.0);
-    const double seenMasks =
-        r.layers.method == "optimized-image" ? seenMaskBytes(design, plan.training) : 0.0;
-    checkMemoryEstimate(trainingBytes(design, plan.training) + seenMasks + layerBytes,
+    checkMemoryEstimate(trainingHeldBytes(design, plan.training, r.layers.method) + layerBytes,
                         r.display.empty() ? "the built-in display" : r.display,
                         "the training views of {layers} " + r.layers.method,
                         "use fewer {train_eyes} or a smaller display");

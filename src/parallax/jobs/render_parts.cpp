@@ -144,8 +144,7 @@ std::pair<double, std::string> framePictureBytes(const RenderRequest& r, const R
   // Solved layers: the slits' layers stay while the solver holds its training views (their
   // ideal images and the eyes' sampling tables) and per frame two layers and their gradients.
   const double solver =
-      trainingBytes(*design, plan.training) +
-      (r.layers.method == "optimized-image" ? seenMaskBytes(*design, plan.training) : 0.0) +
+      trainingHeldBytes(*design, plan.training, r.layers.method) +
       imageBytes(image.width, image.height, kFloatRgbPixelBytes, 4.0 * r.layers.rank + 6.0) +
       imageBytes(image.width, image.height) + imageBytes(mask.width, mask.height);
   return {std::max(layers, solver), "the training views of {layers} " + r.layers.method};

@@ -465,9 +465,11 @@ class ImageLayerPasses {
   // `byRows`: false keeps the whole-image passes in either order (the tests' second code path).
   // `mask`: as the eyes see it (already through the diffuser when the mask is the rear layer).
   // `diffuser`: applied to the image when the image is the rear layer (the barrier in front).
+  // `firstRow`, `rows`: the image rows solved (rowSeparable() only; rows < 0: to the last),
+  // for which the views hold targets and the grey mask's views are made.
   ImageLayerPasses(const std::vector<TrainingView>& views, const Image& mask, int threads,
-                   bool byRows, const RearDiffuser& diffuser)
-      : views_(views), mask_(mask), threads_(threads) {
+                   bool byRows, const RearDiffuser& diffuser, int firstRow = 0, int rows = -1)
+      : views_(views), mask_(mask), threads_(threads), firstRow_(firstRow) {
     const bool imageInFront = std::all_of(
         views.begin(), views.end(), [](const TrainingView& v) { return v.seen.imageInFront(); });
     if (!imageInFront && diffuser.active()) imageBlur_ = &diffuser;
@@ -476,8 +478,9 @@ class ImageLayerPasses {
     // float per pixel, is made once here for the whole solve instead of once per pass.
     const bool grey = std::all_of(mask.pixels().begin(), mask.pixels().end(),
                                   [](const Vec3f& p) { return p.x == p.y && p.y == p.z; });
+    if (rows < 0) rows = views.front().seen.height() - firstRow;
     if (rowSeparable_ && grey) {
-      const int width = views.front().seen.width(), rows = views.front().seen.height();
+      const int width = views.front().seen.width();
       // Sized without being written: the row tasks below touch their pages first, in parallel.
       seenMasks_.resize(views.size());
       for (UninitializedLargeVector<float>& seenMask : seenMasks_)
@@ -485,10 +488,10 @@ class ImageLayerPasses {
       parallelFor(rows, threads, 2, [&](int64_t begin, int64_t end) {
         std::vector<Vec3f> row(static_cast<size_t>(width));
         SeenLayers::RowScratch scratch;
-        for (int64_t j = begin; j != end; ++j)
+        for (int64_t k = begin; k != end; ++k)
           for (size_t e = 0; e < views.size(); ++e) {
-            views[e].seen.seenRearRow(mask, int(j), row.data(), scratch);
-            float* into = seenMasks_[e].data() + size_t(j) * size_t(width);
+            views[e].seen.seenRearRow(mask, firstRow + int(k), row.data(), scratch);
+            float* into = seenMasks_[e].data() + size_t(k) * size_t(width);
             for (int i = 0; i < width; ++i) into[i] = row[size_t(i)].x;
           }
       });
@@ -545,8 +548,8 @@ class ImageLayerPasses {
       Vec3f* weights = w.eyeWeights.data() + e * width;
       withSeenMask(e, j, w, [&](const auto* m) {
         v.seen.viewRowSeen(x, m, w.seen.data(), w.scratch);
-        point.energy +=
-            eyeErrorRange(v, w.seen.data(), w.first(j), width, w.residual.data(), weights);
+        point.energy += eyeErrorRange(v, w.seen.data(), w.first(j - v.firstTargetRow), width,
+                                      w.residual.data(), weights);
         v.seen.addFrontGradientRowSeen(w.residual.data(), m, grad, w.scratch);
         if (makePreconditioner) {
           v.seen.viewRowSeen(w.ones.data(), m, w.other.data(), w.scratch);
@@ -653,7 +656,7 @@ class ImageLayerPasses {
   // view and adjoint of that row.
   template <class Body>
   void withSeenMask(size_t e, int j, RowWork& w, const Body& body) const {
-    if (!seenMasks_.empty()) return body(seenMasks_[e].data() + w.first(j));
+    if (!seenMasks_.empty()) return body(seenMasks_[e].data() + w.first(j - firstRow_));
     views_[e].seen.seenRearRow(mask_, j, w.seenRear.data(), w.scratch);
     body(static_cast<const Vec3f*>(w.seenRear.data()));
   }
@@ -661,6 +664,7 @@ class ImageLayerPasses {
   const std::vector<TrainingView>& views_;
   const Image& mask_;
   int threads_;
+  int firstRow_ = 0;
   int planeRowStride_ = planeRowStride(views_.front().seen.height());
   mutable int passes_ = 0;
   std::vector<UninitializedLargeVector<float>>
@@ -863,55 +867,78 @@ std::vector<double> descend(Image& image, int iterations, const Pass& pass,
 // masks (about a megabyte at 1920 pixels and 54 eyes: they stay in this core's cache through
 // the row's passes instead of streaming from memory in every pass). Each row's step is the
 // minimiser of its own model, where a whole-image step is one compromise for all rows.
-// `progress(rows done, rows, the objective of the rows done so far)`.
-Image solveRowsSeparately(const ImageLayerPasses& passes, Image image, int iterations, int threads,
-                          double norm, SolveReport& report, const SolveProgress& progress) {
-  const int width = image.width(), rows = image.height();
-  std::vector<std::vector<double>> energies(static_cast<size_t>(rows));
-  std::vector<int> rowPasses(size_t(rows), 0);
-  std::mutex progressMutex;
-  int rowsDone = 0;
-  double doneEnergy = 0;
-  parallelFor(rows, threads, 1, [&](int64_t begin, int64_t end) {
-    RowWork work(width);
-    Image row(width, 1);
-    for (int64_t j = begin; j != end; ++j) {
-      std::copy_n(&image.at(0, int(j)), width, &row.at(0, 0));
-      int& count = rowPasses[size_t(j)];
-      const auto rowPass = [&](const Image& x, Image& grad, Image& precondition, Image& d, Image* p,
-                               bool makePreconditioner) {
-        ++count;
-        return passes.rowPass(int(j), &x.at(0, 0), &grad.at(0, 0), &precondition.at(0, 0),
-                              &d.at(0, 0), p ? &p->at(0, 0) : nullptr, makePreconditioner, work);
-      };
-      energies[size_t(j)] = descend(row, iterations, rowPass, [](int, double) {});
-      std::copy_n(&row.at(0, 0), width, &image.at(0, int(j)));
-      if (!progress) continue;
-      const std::lock_guard lock(progressMutex);
-      ++rowsDone;
-      doneEnergy += energies[size_t(j)].back();
-      progress(rowsDone, rows, doneEnergy * norm * double(rows) / double(rowsDone));
-    }
-  });
+// RowSolves keeps every row's E per iteration and its passes, and tells `progress(rows done,
+// rows, the objective of the rows done so far)`.
+class RowSolves {
+ public:
+  RowSolves(int rows, double norm, const SolveProgress& progress)
+      : energies_(static_cast<size_t>(rows)),
+        passes_(size_t(rows), 0),
+        norm_(norm),
+        progress_(progress) {}
+
+  // Rows [firstRow, lastRow) of `image`, with `passes` made for them.
+  void solve(const ImageLayerPasses& passes, Image& image, int firstRow, int lastRow,
+             int iterations, int threads) {
+    const int width = image.width();
+    parallelFor(lastRow - firstRow, threads, 1, [&](int64_t begin, int64_t end) {
+      RowWork work(width);
+      Image row(width, 1);
+      for (int64_t k = begin; k != end; ++k) {
+        const int j = firstRow + int(k);
+        std::copy_n(&image.at(0, j), width, &row.at(0, 0));
+        int& count = passes_[size_t(j)];
+        const auto rowPass = [&](const Image& x, Image& grad, Image& precondition, Image& d,
+                                 Image* p, bool makePreconditioner) {
+          ++count;
+          return passes.rowPass(j, &x.at(0, 0), &grad.at(0, 0), &precondition.at(0, 0),
+                                &d.at(0, 0), p ? &p->at(0, 0) : nullptr, makePreconditioner,
+                                work);
+        };
+        energies_[size_t(j)] = descend(row, iterations, rowPass, [](int, double) {});
+        std::copy_n(&row.at(0, 0), width, &image.at(0, j));
+        if (progress_) told(energies_[size_t(j)].back());
+      }
+    });
+  }
+
   // E after k iterations: every row's after its k-th (or its last, where it stopped early),
-  // added in row order (the same sum for any thread count).
-  size_t longest = 0;
-  int64_t passCount = 0;
-  for (int j = 0; j < rows; ++j) {
-    longest = std::max(longest, energies[size_t(j)].size());
-    passCount += rowPasses[size_t(j)];
+  // added in row order (the same sum for any thread count); passes in passes over every row.
+  void report(SolveReport& report) const {
+    size_t longest = 0;
+    int64_t passCount = 0;
+    for (size_t j = 0; j < energies_.size(); ++j) {
+      longest = std::max(longest, energies_[j].size());
+      passCount += passes_[j];
+    }
+    report.objective.assign(longest, 0.0);
+    for (size_t k = 0; k < longest; ++k) {
+      for (const std::vector<double>& rowEnergies : energies_)
+        report.objective[k] += rowEnergies[std::min(k, rowEnergies.size() - 1)];
+      report.objective[k] *= norm_;
+    }
+    report.iterations = int(longest) - 1;
+    const int64_t rows = int64_t(energies_.size());
+    report.passes = int((passCount + rows - 1) / rows);
   }
-  report.objective.assign(longest, 0.0);
-  for (size_t k = 0; k < longest; ++k) {
-    for (const std::vector<double>& rowEnergies : energies)
-      report.objective[k] += rowEnergies[std::min(k, rowEnergies.size() - 1)];
-    report.objective[k] *= norm;
+
+ private:
+  void told(double rowEnergy) {
+    const std::lock_guard lock(mutex_);
+    ++done_;
+    doneEnergy_ += rowEnergy;
+    const int rows = int(energies_.size());
+    progress_(done_, rows, doneEnergy_ * norm_ * double(rows) / double(done_));
   }
-  report.iterations = int(longest) - 1;
-  // In passes over every row (each reads every eye's target row once).
-  report.passes = int((passCount + rows - 1) / rows);
-  return image;
-}
+
+  std::vector<std::vector<double>> energies_;
+  std::vector<int> passes_;
+  double norm_;
+  const SolveProgress& progress_;
+  std::mutex mutex_;
+  int done_ = 0;
+  double doneEnergy_ = 0;
+};
 
 Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
                       int iterations, int threads, SolveReport* report,
@@ -926,8 +953,9 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
   const double norm = normaliser(views);
   SolveReport local;
   if (passes.rowSeparable()) {
-    image =
-        solveRowsSeparately(passes, std::move(image), iterations, threads, norm, local, progress);
+    RowSolves solves(image.height(), norm, progress);
+    solves.solve(passes, image, 0, image.height(), iterations, threads);
+    solves.report(local);
   } else {
     const auto wholePass = [&](const Image& x, Image& grad, Image& precondition, Image& d, Image* p,
                                bool makePreconditioner) {
@@ -946,6 +974,37 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
 }
 
 }  // namespace
+
+Image optimizeImageLayerByBands(std::vector<TrainingView>& views, const BandTargets& targets,
+                                int bandRows, Image image, const Image& mask, int iterations,
+                                int threads, SolveReport* report, const SolveProgress& progress,
+                                const RearDiffuser& diffuser) {
+  if (views.empty()) throw std::invalid_argument("layer solver: no training views");
+  const bool imageInFront = std::all_of(views.begin(), views.end(), [](const TrainingView& v) {
+    return v.seen.imageInFront() && v.encodingScale > 0;
+  });
+  if (!imageInFront || bandRows < 1)
+    throw std::invalid_argument(
+        "layer solver: bands need the image in front, sRGB errors and a band of rows");
+  clampToUnit(image);
+  const Image seenMask = diffuser.active() ? diffuser.apply(mask, threads) : mask;
+  const int width = views.front().seen.width(), rows = views.front().seen.height();
+  RowSolves solves(rows, normaliser(views), progress);
+  for (int firstRow = 0; firstRow < rows; firstRow += bandRows) {
+    const int count = std::min(bandRows, rows - firstRow);
+    targets(firstRow, count, views);
+    for (const TrainingView& v : views)
+      if (v.firstTargetRow != firstRow ||
+          v.encodedTarget.size() != 3 * size_t(width) * size_t(count))
+        throw std::invalid_argument("layer solver: a band's targets are not its rows'");
+    const ImageLayerPasses passes(views, seenMask, threads, true, diffuser, firstRow, count);
+    solves.solve(passes, image, firstRow, firstRow + count, iterations, threads);
+  }
+  SolveReport local;
+  solves.report(local);
+  if (report) *report = local;
+  return image;
+}
 
 Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
                          int iterations, int threads, SolveReport* report,

@@ -51,6 +51,9 @@ struct TrainingView {
   // Empty: the solvers read `target`.
   UninitializedLargeVector<uint16_t> encodedTarget = {};
   float linearUnit = 0.0f;
+  // The view row that the target's first row is (optimizeImageLayerByBands: the targets of one
+  // band of rows at a time; 0 otherwise, the target being the whole view).
+  int firstTargetRow = 0;
   // Fills encodedTarget (and linearUnit) and frees target.
   void encodeTarget(int threads = 0);
   // Row j of the target in linear light, decoded when it is kept in 16 bits (into `row`, which
@@ -94,6 +97,19 @@ using SolveProgress = std::function<void(int done, int total, double objective)>
 Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
                          int iterations, int threads = 0, SolveReport* report = nullptr,
                          const SolveProgress& progress = {}, const RearDiffuser& diffuser = {});
+
+// optimizeImageLayer with the targets made a band of rows at a time, as the solve reaches them
+// (the image in front, sRGB errors: each image row is a problem of its own; the display's box
+// along rows only): `targets(firstRow, rows, views)` sets every view's encodedTarget to rows
+// [firstRow, firstRow + rows) of its target (and firstTargetRow to firstRow), bands of
+// `bandRows` rows from the top. The same layers and report as optimizeImageLayer on the whole
+// targets, holding one band's targets at a time instead of every eye's whole view.
+using BandTargets = std::function<void(int firstRow, int rows, std::vector<TrainingView>& views)>;
+Image optimizeImageLayerByBands(std::vector<TrainingView>& views, const BandTargets& targets,
+                                int bandRows, Image image, const Image& mask, int iterations,
+                                int threads = 0, SolveReport* report = nullptr,
+                                const SolveProgress& progress = {},
+                                const RearDiffuser& diffuser = {});
 
 namespace detail {
 // E's Gauss-Newton curvatures on the plane of the descent direction d and the previous step p:

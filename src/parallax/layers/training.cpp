@@ -1,6 +1,13 @@
 #include "parallax/layers/training.h"
 
+#include <chrono>
+#include <stdexcept>
+
+#include "parallax/camera/display_camera.h"
+#include "parallax/core/parallel.h"
 #include "parallax/quality/viewer_quality.h"
+#include "parallax/render/render.h"
+#include "parallax/sim/simulated_display.h"
 
 namespace parallax {
 
@@ -24,6 +31,94 @@ double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options
 double trainingBytes(const DisplayDesign& design, const TrainingOptions& options) {
   // Targets are kept in 16 bits per channel (TrainingView::encodeTarget).
   return trainingPixels(design, options) * 3.0 * sizeof(uint16_t);
+}
+
+bool solvesByBands(const DisplayDesign& design, const TrainingOptions& options,
+                   const std::string& method) {
+  return method == "optimized-image" && options.srgbWeights &&
+         design.spec.order == LayerOrder::BarrierBack && design.spec.mask.kind != MaskKind::Pinholes;
+}
+
+double trainingHeldBytes(const DisplayDesign& design, const TrainingOptions& options,
+                         const std::string& method) {
+  const double whole = trainingBytes(design, options) +
+                       (method == "optimized-image" ? seenMaskBytes(design, options) : 0.0);
+  if (!solvesByBands(design, options, method)) return whole;
+  const Panel& front = design.spec.imagePanel;
+  // A band's share, and per worker an eye's band rendered and boxed in floats.
+  const double band = std::min(1.0, double(kTargetBandRows) / double(front.height));
+  return whole * band + imageBytes(front.width, std::min(front.height, kTargetBandRows),
+                                   kFloatRgbPixelBytes, 2.0 * workerCount(options.threads));
+}
+
+std::vector<TrainingView> trainingEyes(const DisplayDesign& design,
+                                       const TrainingOptions& options) {
+  std::vector<TrainingView> views;
+  for (const DenseEye& eye : denseEyes(design, options.eyesPerView, options.distances))
+    views.push_back({SeenLayers(design, eye.position), Image(),
+                     options.srgbWeights ? float(options.targetScale) : 0.0f});
+  return views;
+}
+
+struct IdealViewBands::Impl {
+  const DisplayDesign& design;
+  TrainingOptions options;
+  std::unique_ptr<DisplayModel> display;
+  std::vector<std::unique_ptr<WindowCamera>> cameras;
+  std::vector<std::unique_ptr<TileRenderer>> renderers;
+  int width = 0, height = 0;
+  double seconds = 0;
+};
+
+IdealViewBands::IdealViewBands(const Scene& scene, const Accelerator& accelerator,
+                               const DisplayDesign& design, const TrainingOptions& options)
+    : impl_(std::make_unique<Impl>(Impl{design, options, makeBarrierDisplay(design), {}, {}})) {
+  Impl& i = *impl_;
+  const Panel& front = design.spec.imagePanel;
+  i.width = front.width, i.height = front.height;
+  // As idealView renders them (quality/viewer_quality.cpp).
+  RenderSettings settings;
+  settings.samplesPerPixel = options.referenceSamplesPerPixel;
+  settings.bounces = options.bounces;
+  for (const DenseEye& eye : denseEyes(design, options.eyesPerView, options.distances)) {
+    i.cameras.push_back(std::make_unique<WindowCamera>(eye.position, *i.display, scene.display,
+                                                       i.width, i.height,
+                                                       i.display->horizontalParallaxOnly()));
+    i.renderers.push_back(
+        std::make_unique<TileRenderer>(scene, accelerator, *i.cameras.back(), settings));
+  }
+}
+
+IdealViewBands::~IdealViewBands() = default;
+
+double IdealViewBands::seconds() const {
+  return impl_->seconds;
+}
+
+void IdealViewBands::operator()(int firstRow, int rows, std::vector<TrainingView>& views) const {
+  Impl& i = *impl_;
+  const auto start = std::chrono::steady_clock::now();
+  if (views.size() != i.renderers.size() || firstRow % TileGrid::kRows != 0 || rows < 1 ||
+      firstRow + rows > i.height)
+    throw std::invalid_argument("IdealViewBands: not the training eyes' rows");
+  parallelFor(int64_t(views.size()), i.options.threads, 1, [&](int64_t begin, int64_t end) {
+    for (int64_t e = begin; e != end; ++e) {
+      const TileRenderer& renderer = *i.renderers[size_t(e)];
+      Image band(i.width, rows);
+      RenderStats stats;
+      for (int tile = 0; tile < renderer.tileCount(); ++tile) {
+        const int band0 = renderer.tileBand(tile) * TileGrid::kRows;
+        if (band0 >= firstRow && band0 < firstRow + rows)
+          renderer.renderTile(tile, band, firstRow, stats);
+      }
+      TrainingView& v = views[size_t(e)];
+      v.target = atDisplayResolution(i.design, band);
+      for (Vec3f& p : v.target.pixels()) p = p * float(i.options.targetScale);
+      v.encodeTarget(1);
+      v.firstTargetRow = firstRow;
+    }
+  });
+  i.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
@@ -36,9 +38,47 @@ double trainingBytes(const DisplayDesign& design, const TrainingOptions& options
 // one float per pixel (layer_solver.cpp, ImageLayerPasses).
 double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options);
 
+// Whether `method`'s solve makes its targets a band of rows at a time as it goes
+// (optimizeImageLayerByBands): optimized-image with sRGB errors, the image in front and a box
+// along rows only (slits; a pinhole mask's box spans rows too). Its targets then hold
+// kTargetBandRows rows of every eye at a time instead of whole views.
+bool solvesByBands(const DisplayDesign& design, const TrainingOptions& options,
+                   const std::string& method);
+inline constexpr int kTargetBandRows = 64;  // four of the renderer's tile rows
+// Bytes `method`'s solve holds for its training eyes: their targets (trainingBytes) and, for
+// optimized-image, the mask as they see it (seenMaskBytes), whole or a band's (solvesByBands);
+// for the caller's memory check before building them.
+double trainingHeldBytes(const DisplayDesign& design, const TrainingOptions& options,
+                         const std::string& method);
+
 std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,
                                         const DisplayDesign& design, const TrainingOptions& options,
                                         const std::function<void(int, int)>& progress = {});
+
+// The training eyes of trainingViews, in its order, without their targets (for
+// optimizeImageLayerByBands, whose targets IdealViewBands makes).
+std::vector<TrainingView> trainingEyes(const DisplayDesign& design, const TrainingOptions& options);
+
+// trainingViews' targets a band of rows at a time (optimizeImageLayerByBands' BandTargets): each
+// eye's ideal view rendered on the renderer's tiles of those rows only, through the display's box
+// along rows, scaled and encoded as trainingViews makes them, so the same codes. Needs
+// solvesByBands. One camera and tile renderer per eye, made once; eyes in parallel.
+class IdealViewBands {
+ public:
+  IdealViewBands(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& design,
+                 const TrainingOptions& options);
+  ~IdealViewBands();
+  IdealViewBands(const IdealViewBands&) = delete;
+  IdealViewBands& operator=(const IdealViewBands&) = delete;
+  // `firstRow` a multiple of the renderer's tile rows (TileGrid::kRows).
+  void operator()(int firstRow, int rows, std::vector<TrainingView>& views) const;
+  // Wall time spent in operator() so far.
+  double seconds() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // The mean transmittance of a layer (over pixels and channels).
 double meanTransmittance(const Image& layer);

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <stdexcept>
 #include <vector>
 
 #include "parallax/core/parallel.h"
@@ -20,11 +21,11 @@ namespace {
 
 // A packet's pixels come through all their samples in a row (tile_packets.h), so each lane
 // adds its samples' radiance up in the packet itself, and the pixel is written once, after the
-// last sample.
+// last sample. `image` holds the film's rows from `firstRow` on.
 PARALLAX_LANE_KERNEL void renderTile(int tile, const TileGrid& grid, const Camera& camera,
                                      const PacketTracer& tracer, const PacketWalk& walk,
                                      const RenderSettings& settings, const Look& look, Image& image,
-                                     RenderStats& stats) {
+                                     int firstRow, RenderStats& stats) {
   Color16 sum, weight;
   sum.fill(0.0f);
   weight.fill(1.0f);
@@ -104,11 +105,11 @@ PARALLAX_LANE_KERNEL void renderTile(int tile, const TileGrid& grid, const Camer
             const int c = column + dc, r = row + dr;
             if (c < 0 || c >= shape.columns || r < 0 || r >= shape.rows) continue;
             const int other = r * shape.columns + c;
-            if (packet.x[other] >= image.width() || packet.y[other] >= image.height()) continue;
+            if (packet.x[other] >= grid.filmWidth || packet.y[other] >= grid.filmHeight) continue;
             neighboursAgree &= std::abs(mean[other] - mean[lane]) <= neighbourLimit;
           }
           if (!neighboursAgree) continue;
-          image.at(packet.x[lane], packet.y[lane]) = pixel(lane, taken);
+          image.at(packet.x[lane], packet.y[lane] - firstRow) = pixel(lane, taken);
           packet.rays.active[lane] = 0;
           --packet.activeCount;
         }
@@ -116,7 +117,8 @@ PARALLAX_LANE_KERNEL void renderTile(int tile, const TileGrid& grid, const Camer
     }
     if (packet.pass != last) return;
     for (int lane = 0; lane < 16; ++lane)
-      if (packet.rays.active[lane]) image.at(packet.x[lane], packet.y[lane]) = pixel(lane, taken);
+      if (packet.rays.active[lane])
+        image.at(packet.x[lane], packet.y[lane] - firstRow) = pixel(lane, taken);
   });
 }
 
@@ -157,8 +159,16 @@ int TileRenderer::tileBand(int tile) const {
 }
 
 void TileRenderer::renderTile(int tile, Image& image, RenderStats& stats) const {
+  renderTile(tile, image, 0, stats);
+}
+
+void TileRenderer::renderTile(int tile, Image& image, int firstRow, RenderStats& stats) const {
   const Impl& i = *impl_;
-  parallax::renderTile(tile, i.grid, i.camera, i.tracer, i.walk, i.settings, i.look, image, stats);
+  if (image.width() != i.grid.filmWidth || i.grid.y0(tile) < firstRow ||
+      std::min(i.grid.y0(tile) + TileGrid::kRows, i.grid.filmHeight) > firstRow + image.height())
+    throw std::logic_error("TileRenderer: the tile's rows are not in the image");
+  parallax::renderTile(tile, i.grid, i.camera, i.tracer, i.walk, i.settings, i.look, image,
+                       firstRow, stats);
 }
 
 Image render(const Scene& scene, const Accelerator& accelerator, const Camera& camera,

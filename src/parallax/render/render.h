@@ -101,6 +101,10 @@ class TileRenderer {
   // The band (TileGrid::kRows film rows) a tile lies in.
   int tileBand(int tile) const;
   void renderTile(int tile, Image& image, RenderStats& stats) const;
+  // The same into `image` holding only film rows [firstRow, firstRow + image.height()) (the
+  // tile's rows among them): the same pixels as a whole film's rows (their random streams
+  // depend on the film pixel only), for callers that go through a film band by band.
+  void renderTile(int tile, Image& image, int firstRow, RenderStats& stats) const;
 
  private:
   struct Impl;
