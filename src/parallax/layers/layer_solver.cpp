@@ -891,9 +891,8 @@ class RowSolves {
         const auto rowPass = [&](const Image& x, Image& grad, Image& precondition, Image& d,
                                  Image* p, bool makePreconditioner) {
           ++count;
-          return passes.rowPass(j, &x.at(0, 0), &grad.at(0, 0), &precondition.at(0, 0),
-                                &d.at(0, 0), p ? &p->at(0, 0) : nullptr, makePreconditioner,
-                                work);
+          return passes.rowPass(j, &x.at(0, 0), &grad.at(0, 0), &precondition.at(0, 0), &d.at(0, 0),
+                                p ? &p->at(0, 0) : nullptr, makePreconditioner, work);
         };
         energies_[size_t(j)] = descend(row, iterations, rowPass, [](int, double) {});
         std::copy_n(&row.at(0, 0), width, &image.at(0, j));

@@ -309,6 +309,68 @@ TEST(OptimizeImageLayer, RowsSolvedSeparatelyAreEachRowsOwnWholeImageSolve) {
   }
 }
 
+// The targets a band of rows at a time (optimizeImageLayerByBands): the same layers, objectives
+// and passes as the solve on the whole targets, with bands of 1, 3 and 7 rows (the last band a
+// part), a grey and a tinted mask, and through a diffuser; it refuses what it cannot solve by
+// bands (the barrier in front, linear-light errors) and a band of other rows.
+TEST(OptimizeImageLayer, TargetsByBandsSolveAsTheWholeTargets) {
+  const DisplayDesign d = smallImageInFront();
+  const Image grey = maskLayerImage(d);
+  Image tinted = grey;
+  for (Vec3f& p : tinted.pixels()) p = p * Vec3f(1.0f, 0.8f, 0.6f);
+  const Image start(45, 7, Vec3f(0.4f));
+  for (const auto& [mask, sigma] :
+       {std::pair{grey, 0.0}, std::pair{tinted, 0.0}, std::pair{grey, 0.7}}) {
+    const RearDiffuser diffuser{sigma, 1.0};
+    std::vector<TrainingView> whole = viewsOf(d, randomImage(45, 7, 5), mask, 0.02f);
+    for (TrainingView& v : whole) {
+      v.encodingScale = 0.8f;
+      v.encodeTarget(1);
+    }
+    SolveReport expected;
+    const Image a = optimizeImageLayer(whole, start, mask, 6, 2, &expected, {}, diffuser);
+    for (const int bandRows : {1, 3, 7}) {
+      SCOPED_TRACE(bandRows);
+      std::vector<TrainingView> views = whole;
+      int bandsMade = 0;
+      const BandTargets rowsOfWhole = [&](int firstRow, int rows, std::vector<TrainingView>& into) {
+        ++bandsMade;
+        for (size_t e = 0; e < into.size(); ++e) {
+          const auto from = whole[e].encodedTarget.begin() + 3 * 45 * firstRow;
+          into[e].encodedTarget.assign(from, from + 3 * 45 * rows);
+          into[e].firstTargetRow = firstRow;
+        }
+      };
+      SolveReport byBands;
+      int told = 0;
+      const Image b = optimizeImageLayerByBands(
+          views, rowsOfWhole, bandRows, start, mask, 6, 2, &byBands,
+          [&](int done, int total, double) {
+            told = std::max(told, done);
+            EXPECT_EQ(total, 7);
+          },
+          diffuser);
+      EXPECT_EQ(bandsMade, (7 + bandRows - 1) / bandRows);
+      EXPECT_EQ(told, 7);
+      EXPECT_EQ(a.pixels(), b.pixels());
+      EXPECT_EQ(expected.objective, byBands.objective);
+      EXPECT_EQ(expected.iterations, byBands.iterations);
+      EXPECT_EQ(expected.passes, byBands.passes);
+    }
+  }
+  std::vector<TrainingView> views = viewsOf(d, randomImage(45, 7, 5), grey, 0.02f);
+  const BandTargets shifted = [](int firstRow, int rows, std::vector<TrainingView>& into) {
+    for (TrainingView& v : into) {
+      v.encodedTarget.assign(3 * 45 * size_t(rows), 0);
+      v.firstTargetRow = firstRow + 1;
+    }
+  };
+  for (TrainingView& v : views) v.encodingScale = 0.8f;
+  EXPECT_THROW(optimizeImageLayerByBands(views, shifted, 3, start, grey, 2), std::invalid_argument);
+  for (TrainingView& v : views) v.encodingScale = 0.0f;
+  EXPECT_THROW(optimizeImageLayerByBands(views, shifted, 3, start, grey, 2), std::invalid_argument);
+}
+
 // The arithmetic sRGB encoding against IEC 61966-2-1's formula in double, over [0, 1] (both
 // segments), below 0 and above 1 (clamped: slope 0).
 TEST(SrgbEncode, IsTheStandardsFormula) {

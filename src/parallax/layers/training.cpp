@@ -36,7 +36,8 @@ double trainingBytes(const DisplayDesign& design, const TrainingOptions& options
 bool solvesByBands(const DisplayDesign& design, const TrainingOptions& options,
                    const std::string& method) {
   return method == "optimized-image" && options.srgbWeights &&
-         design.spec.order == LayerOrder::BarrierBack && design.spec.mask.kind != MaskKind::Pinholes;
+         design.spec.order == LayerOrder::BarrierBack &&
+         design.spec.mask.kind != MaskKind::Pinholes;
 }
 
 double trainingHeldBytes(const DisplayDesign& design, const TrainingOptions& options,

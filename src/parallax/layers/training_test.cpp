@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "parallax/core/parallel.h"
 #include "parallax/quality/viewer_quality.h"
 
 namespace parallax {
@@ -77,6 +78,59 @@ TEST(Training, TargetsAreTheScaledIdealViewsOfTheDenseEyes) {
     held += double(encoded[i].encodedTarget.size()) * sizeof(uint16_t);
   }
   EXPECT_EQ(trainingBytes(d, options), held);
+}
+
+// The targets a band of rows at a time (IdealViewBands, for optimizeImageLayerByBands): every
+// band's codes are the rows of trainingViews' whole targets (the same renders, box, scale and
+// encoding), on a panel of three tile rows and a part; which solves go by bands, and what they
+// hold.
+TEST(Training, BandsOfTargetsAreTheWholeTargetsRows) {
+  DisplaySpec spec = defaultDisplaySpec();
+  spec.imagePanel.width = spec.maskPanel.width = 72;
+  spec.imagePanel.height = spec.maskPanel.height = 53;
+  const DisplayDesign d = designDisplay(spec);
+  Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  TrainingOptions options;
+  options.eyesPerView = 1;
+  options.distances = {0.9, 1.1};
+  options.referenceSamplesPerPixel = 4;
+  options.targetScale = 0.3;
+  options.srgbWeights = true;
+  EXPECT_TRUE(solvesByBands(d, options, "optimized-image"));
+  EXPECT_FALSE(solvesByBands(d, options, "nmf"));
+  const std::vector<TrainingView> whole = trainingViews(scene, accel, d, options);
+  std::vector<TrainingView> bands = trainingEyes(d, options);
+  ASSERT_EQ(bands.size(), whole.size());
+  const IdealViewBands make(scene, accel, d, options);
+  for (const int bandRows : {16, 32}) {
+    for (int firstRow = 0; firstRow < 53; firstRow += bandRows) {
+      const int rows = std::min(bandRows, 53 - firstRow);
+      make(firstRow, rows, bands);
+      for (size_t e = 0; e < whole.size(); ++e) {
+        EXPECT_EQ(bands[e].seen.eye().x, whole[e].seen.eye().x);
+        EXPECT_EQ(bands[e].encodingScale, whole[e].encodingScale);
+        ASSERT_EQ(bands[e].firstTargetRow, firstRow);
+        ASSERT_EQ(bands[e].encodedTarget.size(), 3 * 72 * size_t(rows));
+        EXPECT_TRUE(std::equal(bands[e].encodedTarget.begin(), bands[e].encodedTarget.end(),
+                               whole[e].encodedTarget.begin() + 3 * 72 * size_t(firstRow)))
+            << e << " " << firstRow;
+      }
+    }
+  }
+  EXPECT_THROW(make(8, 16, bands), std::invalid_argument);  // not on a tile row
+  // Held: one band's share of the whole targets and seen masks, and the bands' float renders.
+  const double whole53 = trainingBytes(d, options) + seenMaskBytes(d, options);
+  EXPECT_EQ(trainingHeldBytes(d, options, "nmf"), trainingBytes(d, options));
+  EXPECT_NEAR(trainingHeldBytes(d, options, "optimized-image"),
+              whole53 + 2.0 * workerCount(0) * 72 * 53 * 12, 1.0);  // a band is all 53 rows
+  DisplaySpec tall = spec;
+  tall.imagePanel.height = tall.maskPanel.height = 640;
+  const DisplayDesign t = designDisplay(tall);
+  EXPECT_NEAR(trainingHeldBytes(t, options, "optimized-image"),
+              (trainingBytes(t, options) + seenMaskBytes(t, options)) / 10.0 +
+                  2.0 * workerCount(0) * 72 * 64 * 12,
+              1.0);
 }
 
 // The encoding is S(t / c) (IEC 61966-2-1) in 16 bits, against the standard's formula.

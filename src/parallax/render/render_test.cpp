@@ -2,6 +2,8 @@
 // light, shadows from a sphere, mirrors, ambient, and thread-count independence.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include <cmath>
 
 #include "parallax/image/metrics.h"
@@ -214,6 +216,37 @@ TEST(Render, TilesRenderedOneAtATimeMakeTheSameImage) {
   EXPECT_EQ(image.pixels(), expected.pixels());
   EXPECT_EQ(tiles.totalRays(), whole.totalRays());
   EXPECT_EQ(tiles.cameraMisses, whole.cameraMisses);
+}
+
+// A band of film rows at a time (TileRenderer::renderTile into an image of those rows only):
+// each band's pixels are the whole film's rows, adaptive sampling included (its neighbours are
+// the packet's own); a tile outside the band's image is refused.
+TEST(Render, TilesRenderedIntoABandOfRowsAreTheFilmsRows) {
+  const Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  const CameraSpec& c = *scene.camera;
+  const PinholeCamera camera(c.eye, c.lookAt, c.up, c.fovDegrees, 75, 41);
+  for (const bool adaptive : {false, true}) {
+    RenderSettings settings;
+    settings.samplesPerPixel = 4;
+    settings.adaptive = adaptive;
+    const Image expected = render(scene, accel, camera, settings);
+    const TileRenderer renderer(scene, accel, camera, settings);
+    for (int firstRow = 0; firstRow < 41; firstRow += 2 * TileGrid::kRows) {
+      const int rows = std::min(2 * TileGrid::kRows, 41 - firstRow);
+      Image band(75, rows);
+      RenderStats stats;
+      for (int tile = 0; tile < renderer.tileCount(); ++tile) {
+        const int tileRow = renderer.tileBand(tile) * TileGrid::kRows;
+        if (tileRow >= firstRow && tileRow < firstRow + rows)
+          renderer.renderTile(tile, band, firstRow, stats);
+        else
+          EXPECT_THROW(renderer.renderTile(tile, band, firstRow, stats), std::logic_error);
+      }
+      for (int y = 0; y < rows; ++y)
+        for (int x = 0; x < 75; ++x) ASSERT_EQ(band.at(x, y), expected.at(x, firstRow + y));
+    }
+  }
 }
 
 // Adaptive sampling: a flat picture stops every pixel after its first stratified group (n of
