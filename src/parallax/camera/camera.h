@@ -24,9 +24,13 @@ struct alignas(64) FilmSamples16 {
 // The default, a 4 x 4 block of neighbouring pixels, suits any camera with one eye.
 // `shareJitter`: the camera's rays stay parallel across the packet only if its lanes share
 // the sub-pixel and aperture jitter (the display camera), so the render loop shares it.
+// `aperture`: the camera reads the film samples' aperture coordinates (the display camera: where
+// in its slit or lens a ray passes); the others ignore them, and the render loop does not draw
+// them (it skips their draws, so every other random number stays the same).
 struct PacketShape {
   int columns = 4, rows = 4, stride = 1;
   bool shareJitter = false;
+  bool aperture = false;
 };
 
 class Camera {

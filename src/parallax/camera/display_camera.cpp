@@ -142,14 +142,14 @@ Ray DisplayCamera::generateRay(const FilmSample& s) const {
 PacketShape DisplayCamera::packetShape() const {
   // Rays that do not fan through a shared aperture (a lenticular's subpixels, each in its own
   // direction) are best packed as neighbouring pixels, like any camera's.
-  if (!display_->columnFans()) return {};
+  if (!display_->columnFans()) return {4, 4, 1, false, true};
   // One film column, sixteen rows: a fan of rays in one vertical plane through one aperture,
   // which traverses the BVH like a pinhole camera's column of pixels. Columns of the same view
   // lie a whole screen period apart (9 px by default), so a wider packet would spread over
   // several millimetres of scene and cost Embree more (docs/architecture.md, "Speed").
   // The fan stays parallel under super-sampling only if its lanes share their jitter: the
   // aperture jitter alone turns a ray by up to a quarter period over the gap (0.2 rad).
-  return {1, 16, 1, true};
+  return {1, 16, 1, true, true};
 }
 
 WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayModel& display,

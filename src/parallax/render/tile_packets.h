@@ -58,6 +58,9 @@ struct PacketWalk {
   int samplesPerPixel = 1;
   uint64_t seed = 0;
   bool shareJitter = false;
+  // What the camera asks for (PacketShape::aperture): without it the aperture's two draws are
+  // skipped, not made (film samples' apertureU and V then hold their strata's centres).
+  bool drawsAperture = true;
   // The order the sample indices are visited in. Plain: 0 .. spp-1. Progressive (for adaptive
   // sampling, which may stop a pixel after any whole group): with spp = n^2, n groups of n
   // samples, group j holding sample u n + x with u = (x + s_j) mod n for x = 0 .. n-1: each

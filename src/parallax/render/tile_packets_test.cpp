@@ -98,6 +98,39 @@ TEST(TilePackets, EachPixelKeepsItsStrataWhetherOrNotJitterIsShared) {
   }
 }
 
+// Cameras that ignore the aperture coordinates (all but the display camera) get their draws
+// skipped: the same film positions and the same shading streams as when they are drawn, so the
+// same pictures; the display camera, which reads them, still gets them drawn.
+TEST(TilePackets, SkippedApertureDrawsLeaveTheFilmAndTheStreams) {
+  const DisplayDesign design = designDisplay(smallDisplay());
+  const WindowCamera window({10, 0, design.viewDistanceMm}, design, {}, 150, 40, true);
+  const DisplayCamera display(design, {});
+  EXPECT_FALSE(window.packetShape().aperture);
+  EXPECT_TRUE(display.packetShape().aperture);
+  EXPECT_FALSE(PacketWalk(4, 3, JitterSharing::Auto, window).drawsAperture);
+  EXPECT_TRUE(PacketWalk(4, 3, JitterSharing::Auto, display).drawsAperture);
+  for (const int spp : {4, 9}) {
+    const PacketWalk skipping(spp, 3, JitterSharing::Pixel, window);
+    PacketWalk drawing = skipping;
+    drawing.drawsAperture = true;
+    const TileGrid grid(window);
+    int compared = 0;
+    for (int tile = 0; tile < grid.count(); ++tile)
+      forEachPacket(grid, tile, window, skipping, [&](const FilmPacket& p) {
+        FilmPacket drawn = p;
+        samplePacket(drawing, stratificationOrder(spp), drawn);
+        for (int lane = 0; lane < 16; ++lane) {
+          if (!p.rays.active[lane]) continue;
+          ASSERT_EQ(p.film.x[lane], drawn.film.x[lane]);
+          ASSERT_EQ(p.film.y[lane], drawn.film.y[lane]);
+          ASSERT_EQ(p.rngs[size_t(lane)].state(), drawn.rngs[size_t(lane)].state());
+          ++compared;
+        }
+      });
+    EXPECT_EQ(compared, 150 * 40 * spp);
+  }
+}
+
 // The largest difference in horizontal slope dx/dz between the active lanes of a packet, in
 // the display's frame (a default placement: display mm = scene units / width).
 double widestHorizontalSpread(const Camera& camera, JitterSharing jitter) {
