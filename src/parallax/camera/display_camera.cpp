@@ -155,7 +155,7 @@ PacketShape DisplayCamera::packetShape() const {
 WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayModel& display,
                            const DisplayPlacement& placement, int width, int height,
                            bool horizontalOnly)
-    : width_(width), height_(height), horizontalOnly_(horizontalOnly) {
+    : width_(width), height_(height) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("camera size must be positive");
   if (!(eyeMm.z > 0))
     throw std::invalid_argument("the eye must be in front of the display (z > 0)");
@@ -163,16 +163,17 @@ WindowCamera::WindowCamera(const Vec3d& eyeMm, const DisplayModel& display,
   const Transform world = worldFromDisplay(placement, window);
   const float w = float(window.widthMm), h = float(window.heightMm);
   const Vec3d eyeSeen = display.intendedEye(eyeMm);
-  eye_ = world.point(toFloat(eyeSeen));
-  corner_ = world.point({-0.5f * w, 0.5f * h, 0.0f});
-  stepX_ = world.vector({w / float(width), 0.0f, 0.0f});
-  stepY_ = world.vector({0.0f, -h / float(height), 0.0f});
-  worldUp_ = world.vector({0.0f, 1.0f, 0.0f});
-  eyeZ_ = float(eyeSeen.z);
-  eyeHeight_ = float(eyeMm.y);
-  frontHalfHeight_ = 0.5f * h;
-  viewLineY_ = float(window.eyeMm.y);
-  viewDistance_ = float(window.eyeMm.z);
+  p_.eye = world.point(toFloat(eyeSeen));
+  p_.corner = world.point({-0.5f * w, 0.5f * h, 0.0f});
+  p_.stepX = world.vector({w / float(width), 0.0f, 0.0f});
+  p_.stepY = world.vector({0.0f, -h / float(height), 0.0f});
+  p_.up = world.vector({0.0f, 1.0f, 0.0f});
+  p_.frontHalfHeight = 0.5f * h;
+  p_.rowStepMm = h / float(height);
+  p_.viewLineY = float(window.eyeMm.y);
+  p_.eyeHeight = float(eyeMm.y);
+  p_.depthRatio = float(eyeSeen.z) / float(window.eyeMm.z);
+  p_.horizontalOnly = horizontalOnly;
 }
 
 namespace {
@@ -180,21 +181,18 @@ namespace {
 // WindowCamera's rays, generateRay's formulas in the same order for 16 lanes (a loop outside the
 // class: GCC cannot make ISA clones of a virtual function, core/lane_kernel.h). With
 // `horizontalOnly` the origin moves along the display's up by `shift` (generateRay's
-// originY - eyeHeight); without, shift is 0 and the origin is the eye.
-struct WindowRayParameters {
-  Vec3f eye, corner, stepX, stepY, up;
-  float frontHalfHeight, rowStepMm, viewLineY, eyeZ, viewDistance, eyeHeight;
-  bool horizontalOnly;
-};
-
-PARALLAX_LANE_KERNEL void windowRays16(const WindowRayParameters p, const FilmSamples16& s,
+// originY - eyeHeight); without, shift is 0 and the origin is the eye. The constants are read
+// in place (a copy of them per packet, made field by field on the stack and read back whole,
+// stalled on store forwarding) and the ratio of depths is one product (a division per packet
+// was a tenth of the camera's time).
+PARALLAX_LANE_KERNEL void windowRays16(const WindowRayParameters& p, const FilmSamples16& s,
                                        RayPacket16& __restrict out) {
   for (int i = 0; i < 16; ++i) {
     const float tx = p.corner.x + p.stepX.x * s.x[i] + p.stepY.x * s.y[i];
     const float ty = p.corner.y + p.stepX.y * s.x[i] + p.stepY.y * s.y[i];
     const float tz = p.corner.z + p.stepX.z * s.x[i] + p.stepY.z * s.y[i];
     const float frontY = p.frontHalfHeight - s.y[i] * p.rowStepMm;
-    const float originY = frontY + (p.viewLineY - frontY) * p.eyeZ / p.viewDistance;
+    const float originY = frontY + (p.viewLineY - frontY) * p.depthRatio;
     const float shift = p.horizontalOnly ? originY - p.eyeHeight : 0.0f;
     const float ox = p.eye.x + p.up.x * shift, oy = p.eye.y + p.up.y * shift,
                 oz = p.eye.z + p.up.z * shift;
@@ -208,21 +206,18 @@ PARALLAX_LANE_KERNEL void windowRays16(const WindowRayParameters p, const FilmSa
 }  // namespace
 
 void WindowCamera::generateRays16(const FilmSamples16& s, RayPacket16& out) const {
-  windowRays16({eye_, corner_, stepX_, stepY_, worldUp_, frontHalfHeight_,
-                2.0f * frontHalfHeight_ / float(height_), viewLineY_, eyeZ_, viewDistance_,
-                eyeHeight_, horizontalOnly_},
-               s, out);
+  windowRays16(p_, s, out);
 }
 
 Ray WindowCamera::generateRay(const FilmSample& s) const {
-  const Vec3f target = corner_ + stepX_ * s.x + stepY_ * s.y;
-  if (!horizontalOnly_) return {eye_, target - eye_};
+  const Vec3f target = p_.corner + p_.stepX * s.x + p_.stepY * s.y;
+  if (!p_.horizontalOnly) return {p_.eye, target - p_.eye};
   // The line through the front point F at height y_F: x toward the eye, y toward the view
   // line, so at the eye's depth it is (x_e, y_F + (y_e - y_F) z_e / D).
-  const float frontY = frontHalfHeight_ - s.y * (2.0f * frontHalfHeight_ / float(height_));
-  const float originY = frontY + (viewLineY_ - frontY) * eyeZ_ / viewDistance_;
-  // eye_ sits at the eye's height; move the origin along the display's up to originY.
-  const Vec3f origin = eye_ + worldUp_ * (originY - eyeHeight_);
+  const float frontY = p_.frontHalfHeight - s.y * p_.rowStepMm;
+  const float originY = frontY + (p_.viewLineY - frontY) * p_.depthRatio;
+  // eye sits at the eye's height; move the origin along the display's up to originY.
+  const Vec3f origin = p_.eye + p_.up * (originY - p_.eyeHeight);
   return {origin, target - origin};
 }
 

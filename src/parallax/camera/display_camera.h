@@ -57,6 +57,14 @@ class DisplayCamera final : public Camera {
 // design has a virtual gap: the picture the display means to show that eye). With `horizontalOnly`,
 // the vertical perspective is the display's instead of the eye's: every ray meets the view line y =
 // y_e, z = D in y (one-axis perspective, what a slit display can show; section 2.2).
+// WindowCamera's ray formulas' constants, made once (generateRays16 reads them in place).
+struct WindowRayParameters {
+  Vec3f eye, corner, stepX, stepY, up;  // up: display +y in the scene (scaled)
+  float frontHalfHeight = 0, rowStepMm = 0, viewLineY = 0, eyeHeight = 0;  // mm
+  float depthRatio = 0;  // the eye's z over the view distance
+  bool horizontalOnly = false;
+};
+
 class WindowCamera final : public Camera {
  public:
   WindowCamera(const Vec3d& eyeMm, const DisplayModel& display, const DisplayPlacement& placement,
@@ -73,16 +81,12 @@ class WindowCamera final : public Camera {
   // The film as a pinhole grid (the benchmark's limit rays); the eye's own perspective, so
   // only for a camera without `horizontalOnly`.
   PinholeGrid grid(int samplesPerPixel) const {
-    return {eye_, corner_, stepX_, stepY_, width_, height_, samplesPerPixel};
+    return {p_.eye, p_.corner, p_.stepX, p_.stepY, width_, height_, samplesPerPixel};
   }
 
  private:
-  Vec3f eye_, corner_, stepX_, stepY_;
   int width_, height_;
-  bool horizontalOnly_;
-  Vec3f worldUp_;                   // display +y in the scene (scaled)
-  float eyeZ_ = 0, eyeHeight_ = 0;  // the eye's z and y (mm)
-  float frontHalfHeight_ = 0, viewLineY_ = 0, viewDistance_ = 0;  // mm
+  WindowRayParameters p_;
 };
 
 }  // namespace parallax
