@@ -10,8 +10,9 @@
 //   - optimizeImageLayer: the mask fixed (the paper's slits), V is linear in the image layer and
 //     E a least-squares problem in it (on sRGB values, solved by Gauss-Newton steps): projected
 //     gradient descent, preconditioned by 1 / (sum_e A_e^T W_e A_e 1), with the step that
-//     minimises E's Gauss-Newton model along the projected direction, halved until E decreases
-//     (so E never increases);
+//     minimises E's Gauss-Newton model on the plane of the projected direction and the previous
+//     step, halved until E decreases (so E never increases); each image row on its own where
+//     the rows are independent (the image in front);
 //   - factorizeLayers: both layers of T frames by weighted non-negative multiplicative updates
 //     (Lee and Seung 2001; Lanman et al. 2010, HR3D, eq. 7-8; Wetzstein et al. 2012, Tensor
 //     Displays): x <- clamp(x * (A^T t) / (A^T V), 0, 1) for all frames' images, then all their
@@ -90,8 +91,12 @@ struct SolveReport {
 double layerObjective(const std::vector<TrainingView>& views, const std::vector<LayerFrame>& frames,
                       int threads = 0, const RearDiffuser& diffuser = {});
 
-// The image layer for the fixed `mask`, starting from `image` (clamped to [0, 1]).
-// Told after each iteration: (iterations done, iterations asked, objective), for progress.
+// The image layer for the fixed `mask`, starting from `image` (clamped to [0, 1]). With the
+// image in front (the barrier behind it) each image row is a problem of its own (row j of every
+// view depends on the image's row j only) and is solved on its own, all its iterations in one
+// task with its own steps (docs/content-adaptive.md, "Each row its own problem").
+// Told as the solve goes, for progress: (iterations done, iterations asked, objective), or,
+// where the rows are solved on their own, (rows done, rows, the objective of those rows).
 using SolveProgress = std::function<void(int done, int total, double objective)>;
 
 Image optimizeImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
@@ -138,9 +143,10 @@ PlaneStep planeStep(double gd, double gp, Curvatures h);
 // against encoded targets (layer_solver.cpp, vectorised arithmetic), for the tests.
 void srgbEncode(float x, float& encoded, float& slope);
 
-// optimizeImageLayer with its passes eye by eye over whole images, as it runs with the barrier
-// in front; with the image in front it runs them row by row, every eye in one pass over a row
-// (layer_solver.cpp, ImageLayerPasses). For the tests: both must give the same layers.
+// optimizeImageLayer with whole-image steps, its passes eye by eye over whole images, as it runs
+// with the barrier in front; with the image in front it solves each row on its own, every eye
+// in one pass over the row (layer_solver.cpp, RowSolves). For the tests: on a problem whose
+// other rows are solved already, both must give the same row.
 Image optimizeImageLayerByEye(const std::vector<TrainingView>& views, Image image,
                               const Image& mask, int iterations, int threads = 0,
                               SolveReport* report = nullptr, const RearDiffuser& diffuser = {});
