@@ -15,10 +15,10 @@
 namespace parallax {
 namespace {
 
-DisplayDesign smallDisplay() {
+DisplayDesign smallDisplay(int height = 12) {
   DisplaySpec s = defaultDisplaySpec();
   s.imagePanel.width = s.maskPanel.width = 72;
-  s.imagePanel.height = s.maskPanel.height = 12;
+  s.imagePanel.height = s.maskPanel.height = height;
   return designDisplay(s);
 }
 
@@ -85,18 +85,12 @@ TEST(Training, TargetsAreTheScaledIdealViewsOfTheDenseEyes) {
 // encoding), on a panel of three tile rows and a part; which solves go by bands, and what they
 // hold.
 TEST(Training, BandsOfTargetsAreTheWholeTargetsRows) {
-  DisplaySpec spec = defaultDisplaySpec();
-  spec.imagePanel.width = spec.maskPanel.width = 72;
-  spec.imagePanel.height = spec.maskPanel.height = 53;
-  const DisplayDesign d = designDisplay(spec);
+  const DisplayDesign d = smallDisplay(53);
   Scene scene = defaultScene();
   const Accelerator accel(scene);
   TrainingOptions options;
-  options.eyesPerView = 1;
-  options.distances = {0.9, 1.1};
-  options.referenceSamplesPerPixel = 4;
-  options.targetScale = 0.3;
-  options.srgbWeights = true;
+  options.eyesPerView = 1, options.distances = {0.9, 1.1};
+  options.referenceSamplesPerPixel = 4, options.targetScale = 0.3, options.srgbWeights = true;
   EXPECT_TRUE(solvesByBands(d, options, "optimized-image"));
   EXPECT_FALSE(solvesByBands(d, options, "nmf"));
   const std::vector<TrainingView> whole = trainingViews(scene, accel, d, options);
@@ -124,9 +118,7 @@ TEST(Training, BandsOfTargetsAreTheWholeTargetsRows) {
   EXPECT_EQ(trainingHeldBytes(d, options, "nmf"), trainingBytes(d, options));
   EXPECT_NEAR(trainingHeldBytes(d, options, "optimized-image"),
               whole53 + 2.0 * workerCount(0) * 72 * 53 * 12, 1.0);  // a band is all 53 rows
-  DisplaySpec tall = spec;
-  tall.imagePanel.height = tall.maskPanel.height = 640;
-  const DisplayDesign t = designDisplay(tall);
+  const DisplayDesign t = smallDisplay(640);
   EXPECT_NEAR(trainingHeldBytes(t, options, "optimized-image"),
               (trainingBytes(t, options) + seenMaskBytes(t, options)) / 10.0 +
                   2.0 * workerCount(0) * 72 * 64 * 12,
