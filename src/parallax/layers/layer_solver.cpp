@@ -453,25 +453,33 @@ void averageViewRow(const TrainingView& v, const std::vector<LayerFrame>& frames
     scaleLanes(&work.seen[0].x, 1.0f / float(frames.size()), 3 * work.seen.size());
 }
 
+// Whether each image row is a problem of its own for optimizeImageLayer: with the image in
+// front, output row j of every eye's view depends on the image's row j only (the mask fixed),
+// so E is a sum of one term per row, each a function of its row alone.
+bool rowsSeparable(const std::vector<TrainingView>& views) {
+  return std::all_of(views.begin(), views.end(),
+                     [](const TrainingView& v) { return v.seen.imageInFront(); });
+}
+
 // The passes of optimizeImageLayer over every training eye. When the image layer is in front
 // (the barrier behind it, the default order) output row j of every eye's view depends on the
-// image's row j only, so each row is a problem of its own (rowSeparable), solved by rowPass: one
+// image's row j only, so each row is a problem of its own (rowsSeparable), solved by rowPass: one
 // task walks every eye's view, residual and adjoint for that row in turn, with buffers of one
 // row (solveRowsSeparately). Otherwise (the barrier in front) the whole-image operators, eye by
 // eye (addGradientAndStep).
 class ImageLayerPasses {
  public:
   int passes() const { return passes_; }
-  // `byRows`: false keeps the whole-image passes in either order (the tests' second code path).
+  // `byRows`: rows solved on their own by rowPass (rowsSeparable only); false: the whole-image
+  // passes of addGradientAndStep, in either order (also the tests' second code path).
   // `mask`: as the eyes see it (already through the diffuser when the mask is the rear layer).
   // `diffuser`: applied to the image when the image is the rear layer (the barrier in front).
-  // `firstRow`, `rows`: the image rows solved (rowSeparable() only; rows < 0: to the last),
+  // `firstRow`, `rows`: the image rows solved (byRows only; rows < 0: to the last),
   // for which the views hold targets and the grey mask's views are made.
   ImageLayerPasses(const std::vector<TrainingView>& views, const Image& mask, int threads,
                    bool byRows, const RearDiffuser& diffuser, int firstRow = 0, int rows = -1)
       : views_(views), mask_(mask), threads_(threads), firstRow_(firstRow) {
-    const bool imageInFront = std::all_of(
-        views.begin(), views.end(), [](const TrainingView& v) { return v.seen.imageInFront(); });
+    const bool imageInFront = rowsSeparable(views);
     if (!imageInFront && diffuser.active()) imageBlur_ = &diffuser;
     rowSeparable_ = byRows && imageInFront;
     // A grey mask (every barrier the paper draws) is seen grey: each eye's view of it, one
@@ -507,7 +515,7 @@ class ImageLayerPasses {
     double energy = 0;
     Curvatures curvatures;
   };
-  // Over the whole image, eye by eye (rowSeparable() false). With `makePreconditioner` (the
+  // Over the whole image, eye by eye (byRows false). With `makePreconditioner` (the
   // first point) `precondition` (zero on entry) is made first: addCurvatureDiagonal, inverted.
   Point addGradientAndStep(const Image& x, Image& grad, Image& precondition, Image& d,
                            Image* previousStep, bool makePreconditioner = false) const {
@@ -525,12 +533,7 @@ class ImageLayerPasses {
     return point;
   }
 
-  // Whether each image row is a problem of its own: with the image in front, output row j of
-  // every eye's view depends on the image's row j only (the mask fixed), so E is a sum of one
-  // term per row, each a function of its row alone.
-  bool rowSeparable() const { return rowSeparable_; }
-
-  // addGradientAndStep for image row j alone (rowSeparable() only), in one pass over the eyes'
+  // addGradientAndStep for image row j alone (byRows only), in one pass over the eyes'
   // rows: its rows given by pointer (x, grad, precondition, d: the image's width each; p the
   // previous step's row, or null). Row j of the gradient is whole once every eye has added its
   // adjoint to it, so d follows, and every eye's view of it (and of p) is weighted by the W_e
@@ -792,7 +795,7 @@ double layerObjective(const std::vector<TrainingView>& views, const std::vector<
 namespace {
 
 // The iterations of optimizeImageLayer on the layer x: the whole image, or one row of it when
-// the rows are solved separately (ImageLayerPasses::rowSeparable). `pass(x, grad,
+// the rows are solved separately (rowsSeparable). `pass(x, grad,
 // precondition, d, p, makePreconditioner)` is ImageLayerPasses::addGradientAndStep at x (or its
 // rowPass): E there (as the passes sum it, before the normaliser), its gradient, the direction
 // and the curvatures. Returns E before and after each iteration; stops early where a step no
@@ -862,7 +865,7 @@ std::vector<double> descend(Image& image, int iterations, const Pass& pass,
   return energies;
 }
 
-// optimizeImageLayer with its rows solved separately (ImageLayerPasses::rowSeparable): each row
+// optimizeImageLayer with its rows solved separately (rowsSeparable): each row
 // runs all its iterations in one task, with its own steps, on its eyes' rows of targets and seen
 // masks (about a megabyte at 1920 pixels and 54 eyes: they stay in this core's cache through
 // the row's passes instead of streaming from memory in every pass). Each row's step is the
@@ -939,6 +942,26 @@ class RowSolves {
   double doneEnergy_ = 0;
 };
 
+// optimizeImageLayer's rows solved on their own, a band of `bandRows` rows at a time (all of them
+// at once for whole targets): `beforeBand(firstRow, rows)` readies the views' targets for the
+// band's rows, then the band's passes are made and its rows solved. `seenMask`: the mask as the
+// eyes see it (through the diffuser: the mask is the rear layer).
+template <class BeforeBand>
+void solveRowBands(const std::vector<TrainingView>& views, Image& image, const Image& seenMask,
+                   int bandRows, const BeforeBand& beforeBand, int iterations, int threads,
+                   const RearDiffuser& diffuser, const SolveProgress& progress,
+                   SolveReport& report) {
+  const int rows = image.height();
+  RowSolves solves(rows, normaliser(views), progress);
+  for (int firstRow = 0; firstRow < rows; firstRow += bandRows) {
+    const int count = std::min(bandRows, rows - firstRow);
+    beforeBand(firstRow, count);
+    const ImageLayerPasses passes(views, seenMask, threads, true, diffuser, firstRow, count);
+    solves.solve(passes, image, firstRow, firstRow + count, iterations, threads);
+  }
+  solves.report(report);
+}
+
 Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const Image& mask,
                       int iterations, int threads, SolveReport* report,
                       const SolveProgress& progress, bool byRows, const RearDiffuser& diffuser) {
@@ -948,14 +971,14 @@ Image solveImageLayer(const std::vector<TrainingView>& views, Image image, const
   // once and for all (it is fixed). Otherwise the passes blur the image.
   const bool maskIsRear = views.front().seen.imageInFront();
   const Image seenMask = maskIsRear && diffuser.active() ? diffuser.apply(mask, threads) : mask;
-  const ImageLayerPasses passes(views, seenMask, threads, byRows, diffuser);
-  const double norm = normaliser(views);
   SolveReport local;
-  if (passes.rowSeparable()) {
-    RowSolves solves(image.height(), norm, progress);
-    solves.solve(passes, image, 0, image.height(), iterations, threads);
-    solves.report(local);
+  if (byRows && rowsSeparable(views)) {
+    solveRowBands(
+        views, image, seenMask, image.height(), [](int, int) {}, iterations, threads, diffuser,
+        progress, local);
   } else {
+    const ImageLayerPasses passes(views, seenMask, threads, false, diffuser);
+    const double norm = normaliser(views);
     const auto wholePass = [&](const Image& x, Image& grad, Image& precondition, Image& d, Image* p,
                                bool makePreconditioner) {
       return passes.addGradientAndStep(x, grad, precondition, d, p, makePreconditioner);
@@ -979,28 +1002,23 @@ Image optimizeImageLayerByBands(std::vector<TrainingView>& views, const BandTarg
                                 int threads, SolveReport* report, const SolveProgress& progress,
                                 const RearDiffuser& diffuser) {
   if (views.empty()) throw std::invalid_argument("layer solver: no training views");
-  const bool imageInFront = std::all_of(views.begin(), views.end(), [](const TrainingView& v) {
-    return v.seen.imageInFront() && v.encodingScale > 0;
-  });
-  if (!imageInFront || bandRows < 1)
+  const bool srgb = std::all_of(views.begin(), views.end(),
+                                [](const TrainingView& v) { return v.encodingScale > 0; });
+  if (!rowsSeparable(views) || !srgb || bandRows < 1)
     throw std::invalid_argument(
         "layer solver: bands need the image in front, sRGB errors and a band of rows");
   clampToUnit(image);
   const Image seenMask = diffuser.active() ? diffuser.apply(mask, threads) : mask;
-  const int width = views.front().seen.width(), rows = views.front().seen.height();
-  RowSolves solves(rows, normaliser(views), progress);
-  for (int firstRow = 0; firstRow < rows; firstRow += bandRows) {
-    const int count = std::min(bandRows, rows - firstRow);
-    targets(firstRow, count, views);
+  const size_t width = size_t(views.front().seen.width());
+  const auto makeTargets = [&](int firstRow, int rows) {
+    targets(firstRow, rows, views);
     for (const TrainingView& v : views)
-      if (v.firstTargetRow != firstRow ||
-          v.encodedTarget.size() != 3 * size_t(width) * size_t(count))
+      if (v.firstTargetRow != firstRow || v.encodedTarget.size() != 3 * width * size_t(rows))
         throw std::invalid_argument("layer solver: a band's targets are not its rows'");
-    const ImageLayerPasses passes(views, seenMask, threads, true, diffuser, firstRow, count);
-    solves.solve(passes, image, firstRow, firstRow + count, iterations, threads);
-  }
+  };
   SolveReport local;
-  solves.report(local);
+  solveRowBands(views, image, seenMask, bandRows, makeTargets, iterations, threads, diffuser,
+                progress, local);
   if (report) *report = local;
   return image;
 }
