@@ -22,6 +22,7 @@ BoxRow::BoxRow(int columns, double widthPx) : columns_(columns) {
   }
   interiorBegin_ = std::min(columns_, int(std::ceil(-a_)));
   interiorEnd_ = std::max(interiorBegin_, std::min(columns_, int(std::floor(columns_ - b_)) + 1));
+  makeEdges();
 }
 
 double BoxRow::windowLo(int x) const {
@@ -99,41 +100,55 @@ void stencil(const float* from, int offset, int step, const float* taps, int tap
 
 }  // namespace
 
-void BoxRow::apply(const Vec3f* row, Vec3f* out) const {
-  stencil(&row[0].x, 3 * firstTap_, 3, taps_.data(), int(taps_.size()), &out[0].x,
-          3 * interiorBegin_, 3 * interiorEnd_);
+// The edge columns' terms in the order the sums below add them (the arithmetic of summing each
+// window directly, in double: precomputed here because those few columns cost as much as the
+// whole row's stencil when their overlaps were worked out on every call).
+void BoxRow::makeEdges() {
   const auto edge = [&](int x) {
     const double lo = windowLo(x), hi = windowHi(x);
-    double sum[3] = {0, 0, 0};
-    for (int k = std::max(0, int(std::floor(lo))); k < std::min(columns_, int(std::ceil(hi)));
-         ++k) {
-      const double overlap = overlapWithPixel(k, lo, hi);
-      for (int c = 0; c < 3; ++c) sum[c] += overlap * row[k][c];
-    }
-    for (int c = 0; c < 3; ++c) out[x][c] = float(sum[c] / (hi - lo));
+    EdgeColumn column{x, hi - lo, {}};
+    for (int k = std::max(0, int(std::floor(lo))); k < std::min(columns_, int(std::ceil(hi))); ++k)
+      column.terms.push_back({k, overlapWithPixel(k, lo, hi)});
+    edges_.push_back(std::move(column));
   };
   for (int x = 0; x < interiorBegin_; ++x) edge(x);
   for (int x = interiorEnd_; x < columns_; ++x) edge(x);
+  // Pixel k meets the windows of x = k - d for the taps d; inside, all of those are interior.
+  const int lastTap = firstTap_ + int(taps_.size()) - 1;
+  transposedBegin_ = std::min(columns_, interiorBegin_ + lastTap);
+  transposedEnd_ = std::max(transposedBegin_, interiorEnd_ + firstTap_);
+  const auto transposedEdge = [&](int k) {
+    EdgeColumn column{k, 1.0, {}};
+    for (int x = std::max(0, k - lastTap); x <= std::min(columns_ - 1, k - firstTap_); ++x) {
+      const double lo = windowLo(x), hi = windowHi(x);
+      column.terms.push_back({x, overlapWithPixel(k, lo, hi) / (hi - lo)});
+    }
+    transposedEdges_.push_back(std::move(column));
+  };
+  for (int k = 0; k < transposedBegin_; ++k) transposedEdge(k);
+  for (int k = transposedEnd_; k < columns_; ++k) transposedEdge(k);
+}
+
+void BoxRow::edgeSums(const std::vector<EdgeColumn>& columns, const Vec3f* in, Vec3f* out) {
+  for (const EdgeColumn& column : columns) {
+    double sum[3] = {0, 0, 0};
+    for (const EdgeTerm& term : column.terms)
+      for (int c = 0; c < 3; ++c) sum[c] += term.weight * in[term.from][c];
+    // B^T's length 1 divides exactly.
+    for (int c = 0; c < 3; ++c) out[column.column][c] = float(sum[c] / column.length);
+  }
+}
+
+void BoxRow::apply(const Vec3f* row, Vec3f* out) const {
+  stencil(&row[0].x, 3 * firstTap_, 3, taps_.data(), int(taps_.size()), &out[0].x,
+          3 * interiorBegin_, 3 * interiorEnd_);
+  edgeSums(edges_, row, out);
 }
 
 void BoxRow::applyTransposed(const Vec3f* row, Vec3f* out) const {
-  // Pixel k meets the windows of x = k - d for the taps d; inside, all of those are interior.
-  const int lastTap = firstTap_ + int(taps_.size()) - 1;
-  const int begin = std::min(columns_, interiorBegin_ + lastTap),
-            end = std::max(begin, interiorEnd_ + firstTap_);
-  stencil(&row[0].x, -3 * firstTap_, -3, taps_.data(), int(taps_.size()), &out[0].x, 3 * begin,
-          3 * end);
-  const auto edge = [&](int k) {
-    double sum[3] = {0, 0, 0};
-    for (int x = std::max(0, k - lastTap); x <= std::min(columns_ - 1, k - firstTap_); ++x) {
-      const double lo = windowLo(x), hi = windowHi(x);
-      const double weight = overlapWithPixel(k, lo, hi) / (hi - lo);
-      for (int c = 0; c < 3; ++c) sum[c] += weight * row[x][c];
-    }
-    for (int c = 0; c < 3; ++c) out[k][c] = float(sum[c]);
-  };
-  for (int k = 0; k < begin; ++k) edge(k);
-  for (int k = end; k < columns_; ++k) edge(k);
+  stencil(&row[0].x, -3 * firstTap_, -3, taps_.data(), int(taps_.size()), &out[0].x,
+          3 * transposedBegin_, 3 * transposedEnd_);
+  edgeSums(transposedEdges_, row, out);
 }
 
 }  // namespace parallax

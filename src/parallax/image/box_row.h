@@ -35,9 +35,28 @@ class BoxRow {
   // tap_d = |[d, d+1] n [a, b]| / w.
   int firstTap_ = 0, interiorBegin_ = 0, interiorEnd_ = 0;
   std::vector<float> taps_;
+  // The columns whose window the row clips (outputs of B, and inputs of B^T whose windows are
+  // not all interior), made once: each one's terms (the pixel or output read, and its weight),
+  // summed in double in this order. B: the overlaps |[k, k+1] n window_x|, the sum divided by
+  // the clipped window's length; B^T: overlap / length per term.
+  struct EdgeTerm {
+    int from;
+    double weight;
+  };
+  struct EdgeColumn {
+    int column;
+    double length;  // B: the clipped window's length; B^T: 1
+    std::vector<EdgeTerm> terms;
+  };
+  std::vector<EdgeColumn> edges_, transposedEdges_;
+  // out[column] = the sum of weight x in[from] over each column's terms, over its length.
+  static void edgeSums(const std::vector<EdgeColumn>& columns, const Vec3f* in, Vec3f* out);
+  // Where B^T's stencil runs: pixels [transposedBegin_, transposedEnd_).
+  int transposedBegin_ = 0, transposedEnd_ = 0;
   // Output x's window clipped to the row, [lo, hi].
   double windowLo(int x) const;
   double windowHi(int x) const;
+  void makeEdges();
 };
 
 }  // namespace parallax
