@@ -1,5 +1,8 @@
 #include "parallax/core/lane_kernel.h"
 
+#include <algorithm>
+#include <cstring>
+
 namespace parallax {
 
 // The same test GCC's ifunc resolvers make for target_clones("arch=x86-64-v4", "arch=x86-64-v3",
@@ -57,6 +60,52 @@ void addProductsByGreyLanes(const float* rgb, const float* grey, float* into, si
     into[3 * i + 1] += rgb[3 * i + 1] * grey[i];
     into[3 * i + 2] += rgb[3 * i + 2] * grey[i];
   }
+}
+
+namespace {
+
+template <bool kThree>
+[[gnu::always_inline]] inline void addProductStep(const float* a, const float* b, const float* c,
+                                                  size_t count, DoubleLanes8& low,
+                                                  DoubleLanes8& high) {
+  FloatLanes16 x{}, y{}, z{};
+  std::memcpy(&x, a, sizeof(float) * count);
+  std::memcpy(&y, b, sizeof(float) * count);
+  FloatLanes16 product = x * y;
+  if constexpr (kThree) {
+    std::memcpy(&z, c, sizeof(float) * count);
+    product *= z;
+  }
+  low += lowHalfInDouble(product);
+  high += highHalfInDouble(product);
+}
+
+template <bool kThree>
+[[gnu::always_inline]] inline double sumOfProductsLoop(const float* a, const float* b,
+                                                       const float* c, size_t n) {
+  // Four chains of running sums (a chain's additions wait on each other: one chain would leave
+  // the loop waiting on the adder's latency).
+  DoubleLanes8 low[4] = {}, high[4] = {};
+  size_t k = 0;
+  for (; k + 64 <= n; k += 64)
+    for (int chain = 0; chain < 4; ++chain) {
+      const size_t at = k + 16 * size_t(chain);
+      addProductStep<kThree>(a + at, b + at, kThree ? c + at : c, 16, low[chain], high[chain]);
+    }
+  // The last values in zeroed lanes (adding +0 changes no sum).
+  for (int chain = 0; k < n; k += 16, ++chain)
+    addProductStep<kThree>(a + k, b + k, kThree ? c + k : c, std::min<size_t>(16, n - k),
+                           low[chain], high[chain]);
+  double sum = 0;
+  for (int chain = 0; chain < 4; ++chain) sum += sumInLaneOrder(low[chain], high[chain]);
+  return sum;
+}
+
+}  // namespace
+
+PARALLAX_LANE_KERNEL
+double sumOfProductsLanes(const float* a, const float* b, const float* c, size_t n) {
+  return c ? sumOfProductsLoop<true>(a, b, c, n) : sumOfProductsLoop<false>(a, b, c, n);
 }
 
 }  // namespace parallax

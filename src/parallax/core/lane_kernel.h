@@ -92,6 +92,10 @@ void scaleLanes(float* values, float factor, size_t n);
 // grey[i], and into[3 i + c] += rgb[3 i + c] grey[i].
 void multiplyByGreyLanes(const float* rgb, const float* grey, float* out, size_t pixels);
 void addProductsByGreyLanes(const float* rgb, const float* grey, float* into, size_t pixels);
+// sum_k a[k] b[k] c[k] (c null: sum_k a[k] b[k]): each product in float, summed in double in
+// 4 chains of 16 running sums (value k in chain (k / 16) mod 4, lane k mod 16), added chain by
+// chain in lane order: the same sum on every CPU.
+double sumOfProductsLanes(const float* a, const float* b, const float* c, size_t n);
 
 // Which version of the lane kernels this process runs: "x86-64-v4" (AVX-512), "x86-64-v3"
 // (AVX2, FMA) or "x86-64" (the baseline) when they were cloned; "native" when the build was

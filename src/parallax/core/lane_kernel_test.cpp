@@ -90,5 +90,31 @@ TEST(LaneKernel, RowArithmeticIsTheScalarLoop) {
   }
 }
 
+// The sums of products against the same products summed in double in the kernel's order (value
+// k in chain k / 16 mod 4 and lane k mod 16; each chain's lanes in order, then the chains): the
+// same double, for every remainder of 64, from odd offsets.
+TEST(LaneKernel, SumsOfProductsAreTheLaneOrderedSums) {
+  std::vector<float> a(150), b(150), c(150);
+  for (size_t k = 0; k < a.size(); ++k)
+    a[k] = 0.37f * float(k % 13) - 1.1f, b[k] = 0.011f * float((k * 7) % 17) + 0.3f,
+    c[k] = 1.0f / float(k + 3);
+  for (size_t n = 0; n <= 140; ++n) {
+    const float *x = a.data() + 1, *y = b.data() + 3, *z = c.data() + 5;
+    double lanes2[4][16] = {}, lanes3[4][16] = {};
+    for (size_t k = 0; k < n; ++k) {
+      lanes2[k / 16 % 4][k % 16] += double(x[k] * y[k]);
+      lanes3[k / 16 % 4][k % 16] += double(x[k] * y[k] * z[k]);
+    }
+    double two = 0, three = 0;
+    for (int chain = 0; chain < 4; ++chain) {
+      double chain2 = 0, chain3 = 0;
+      for (int l = 0; l < 16; ++l) chain2 += lanes2[chain][l], chain3 += lanes3[chain][l];
+      two += chain2, three += chain3;
+    }
+    EXPECT_EQ(sumOfProductsLanes(x, y, nullptr, n), two) << n;
+    EXPECT_EQ(sumOfProductsLanes(x, y, z, n), three) << n;
+  }
+}
+
 }  // namespace
 }  // namespace parallax

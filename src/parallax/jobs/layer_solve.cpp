@@ -78,6 +78,8 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
                       slits.mask});
     trainSeconds = bands.seconds();
   } else {
+    // nmf with the image in front reads the targets only through B^T (TrainingView::boxedTarget).
+    training.boxedTargets = o.method == "nmf" && design.spec.order == LayerOrder::BarrierBack;
     {
       const auto viewsProgress = reporter.progress("ideal views");
       views = trainingViews(scene, accelerator, design, training, viewsProgress->callback());

@@ -282,9 +282,14 @@ double normaliser(const std::vector<TrainingView>& views) {
                 double(views.size()));
 }
 
-void checkViews(const std::vector<TrainingView>& views) {
+// `boxedTargets`: whether the solver reads targets kept as B^T t (factorizeLayers with the
+// image in front); elsewhere they are refused.
+void checkViews(const std::vector<TrainingView>& views, bool boxedTargets = false) {
   if (views.empty()) throw std::invalid_argument("layer solver: no training views");
   for (const TrainingView& v : views) {
+    if (v.boxedTarget && !boxedTargets)
+      throw std::invalid_argument(
+          "layer solver: a target kept as B^T t, which this solve cannot read");
     const bool sized =
         v.encodedTarget.empty()
             ? v.target.width() == v.seen.width() && v.target.height() == v.seen.height()
@@ -451,6 +456,35 @@ void averageViewRow(const TrainingView& v, const std::vector<LayerFrame>& frames
   }
   if (frames.size() > 1)
     scaleLanes(&work.seen[0].x, 1.0f / float(frames.size()), 3 * work.seen.size());
+}
+
+// factorizeLayers' pass over eye v's row j with the image in front: every frame's mask as the
+// eye sees it through the row (into w.frameMasks, made once for the view and both updates'
+// sums), the average view V_j (w.seen) and E_j at these layers; with `withBoxedTarget` also
+// B^T t_j (w.residual), which a boxed target (TrainingView::boxedTarget) needs for E_j anyway:
+// E_j = |V_j|^2 / 2 - <P_j, B^T t_j> + |t_j|^2 / 2 with P_j = sum_t front_t,j .* m_t,j / T.
+double frameRowError(const TrainingView& v, const std::vector<LayerFrame>& frames, int j,
+                     RowWork& w, bool withBoxedTarget) {
+  const size_t width = w.seen.size(), values = 3 * width;
+  std::vector<Vec3f>& masks = w.frameMasks;
+  masks.resize(frames.size() * width);
+  for (size_t t = 0; t < frames.size(); ++t) {
+    Vec3f* m = masks.data() + t * width;
+    v.seen.seenRearRow(frames[t].mask, j, m, w.scratch);
+    std::vector<Vec3f>& into = t == 0 ? w.seen : w.other;
+    v.seen.viewRowSeen(&frames[t].image.at(0, j), m, into.data(), w.scratch);
+    if (t > 0) addScaledLanes(&w.other[0].x, 1.0f, &w.seen[0].x, values);
+  }
+  const float inverseCount = 1.0f / float(frames.size());
+  if (frames.size() > 1) scaleLanes(&w.seen[0].x, inverseCount, values);
+  if (withBoxedTarget || v.boxedTarget) v.boxedTargetRow(j, w.residual.data(), w.other.data());
+  if (!v.boxedTarget) return eyeErrorRange(v, w.seen.data(), w.first(j), width, nullptr, nullptr);
+  double cross = 0;
+  for (size_t t = 0; t < frames.size(); ++t)
+    cross += sumOfProductsLanes(&frames[t].image.at(0, j).x, &masks[t * width].x, &w.residual[0].x,
+                                values);
+  return 0.5 * sumOfProductsLanes(&w.seen[0].x, &w.seen[0].x, nullptr, values) -
+         cross / double(frames.size()) + 0.5 * v.rowTargetSquares[size_t(j)];
 }
 
 // Whether each image row is a problem of its own for optimizeImageLayer: with the image in
@@ -759,8 +793,40 @@ void TrainingView::encodeTarget(int threads) {
   target = Image();
 }
 
+void TrainingView::encodeBoxedTarget(int threads) {
+  if (encodingScale > 0 || target.empty())
+    throw std::logic_error("TrainingView::encodeBoxedTarget: not a linear target");
+  const int rows = target.height();
+  const size_t width = size_t(target.width());
+  rowTargetSquares.assign(size_t(rows), 0.0);
+  // Row by row in place: |t_j|^2, then t_j replaced by B^T t_j.
+  parallelFor(rows, threads, 8, [&](int64_t begin, int64_t end) {
+    std::vector<Vec3f> boxed(width);
+    for (int64_t j = begin; j != end; ++j) {
+      Vec3f* row = &target.at(0, int(j));
+      rowTargetSquares[size_t(j)] = sumOfProductsLanes(&row[0].x, &row[0].x, nullptr, 3 * width);
+      seen.boxTransposedRowInto(row, boxed.data());
+      std::copy(boxed.begin(), boxed.end(), row);
+    }
+  });
+  encodeTarget(threads);
+  boxedTarget = true;
+}
+
+void TrainingView::boxedTargetRow(int j, Vec3f* out, Vec3f* scratch) const {
+  const size_t width = size_t(seen.width());
+  if (boxedTarget) {
+    decodeLinearLanes(encodedTarget.data() + 3 * width * size_t(j), &out[0].x, 3 * width,
+                      linearUnit);
+    return;
+  }
+  seen.boxTransposedRowInto(linearTargetRow(j, scratch), out);
+}
+
 const Vec3f* TrainingView::linearTargetRow(int j, Vec3f* row) const {
   const size_t width = size_t(seen.width());
+  if (boxedTarget)
+    throw std::logic_error("TrainingView::linearTargetRow: the target is kept as B^T t");
   if (encodedTarget.empty()) return target.pixels().data() + size_t(j) * width;
   if (!(linearUnit > 0))
     throw std::logic_error("TrainingView::linearTargetRow: the target is kept as sRGB codes");
@@ -1059,14 +1125,14 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
                                         std::vector<LayerFrame> frames, int iterations, int threads,
                                         SolveReport* report, const SolveProgress& progress,
                                         const RearDiffuser& diffuser) {
-  checkViews(views);
+  const bool maskIsRear = views.front().seen.imageInFront();
+  checkViews(views, maskIsRear);
   if (frames.empty()) throw std::invalid_argument("factorizeLayers: no frames");
   for (const TrainingView& v : views)
     if (v.encodingScale > 0)
       throw std::invalid_argument("factorizeLayers: multiplicative updates fit in linear light");
   for (LayerFrame& f : frames) clampToUnit(f.image), clampToUnit(f.mask);
   constexpr float kTiny = 1e-12f;
-  const bool maskIsRear = views.front().seen.imageInFront();
   // With the image in front the objective and the image's update run row by row over every
   // eye (as optimizeImageLayer's passes: row buffers only, the sums per row added in row
   // order); the mask's update gathers rear rows from several output rows, eye by eye.
@@ -1077,10 +1143,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
         seenFrames(views, frames, diffuser, threads, holder);
     return normaliser(views) * sumOverRows(views, threads, [&](int j, RowWork& w) {
              double sum = 0;
-             for (const TrainingView& v : views) {
-               averageViewRow(v, seenLayers, j, w);
-               sum += eyeErrorRange(v, w.seen.data(), w.first(j), w.seen.size(), nullptr, nullptr);
-             }
+             for (const TrainingView& v : views) sum += frameRowError(v, seenLayers, j, w, false);
              return sum;
            });
   };
@@ -1112,23 +1175,11 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       before =
           normaliser(views) * sumOverRows(views, threads, [&](int j, RowWork& w) {
             double sum = 0;
-            std::vector<Vec3f>& masks = w.frameMasks;
-            masks.resize(frames.size() * width);
             for (const TrainingView& v : views) {
-              for (size_t t = 0; t < frames.size(); ++t) {
-                Vec3f* m = masks.data() + t * width;
-                v.seen.seenRearRow(seenLayers[t].mask, j, m, w.scratch);
-                std::vector<Vec3f>& into = t == 0 ? w.seen : w.other;
-                v.seen.viewRowSeen(&seenLayers[t].image.at(0, j), m, into.data(), w.scratch);
-                if (t > 0) addScaledLanes(&w.other[0].x, 1.0f, &w.seen[0].x, 3 * width);
-              }
-              if (frames.size() > 1)
-                scaleLanes(&w.seen[0].x, 1.0f / float(frames.size()), 3 * width);
-              sum += eyeErrorRange(v, w.seen.data(), w.first(j), width, nullptr, nullptr);
-              v.seen.boxTransposedRowInto(v.linearTargetRow(j, w.other.data()), w.residual.data());
+              sum += frameRowError(v, seenLayers, j, w, true);
               v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
               for (size_t t = 0; t < frames.size(); ++t) {
-                const Vec3f* m = masks.data() + t * width;
+                const Vec3f* m = w.frameMasks.data() + t * width;
                 addProductsLanes(&w.residual[0].x, &m[0].x, &numerator[t].at(0, j).x, 3 * width);
                 addProductsLanes(&w.weights[0].x, &m[0].x, &denominator[t].at(0, j).x, 3 * width);
               }
@@ -1169,7 +1220,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
               // Output row j's shares of B^T t and B^T V along a mask row, per frame; each mask
               // row it meets adds them times its vertical weight.
               averageViewRow(v, seenLayers, j, w);
-              v.seen.boxTransposedRowInto(v.linearTargetRow(j, w.other.data()), w.residual.data());
+              v.boxedTargetRow(j, w.residual.data(), w.other.data());
               v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
               alongRow.assign(2 * frames.size() * maskWidth, Vec3f(0.0f));
               for (size_t t = 0; t < frames.size(); ++t) {

@@ -55,11 +55,25 @@ struct TrainingView {
   // The view row that the target's first row is (optimizeImageLayerByBands: the targets of one
   // band of rows at a time; 0 otherwise, the target being the whole view).
   int firstTargetRow = 0;
+  // factorizeLayers' form of the target (encodeBoxedTarget, linear light): the codes hold B^T t
+  // instead of t (round(B^T t / linearUnit), B^T t >= 0), which is all its multiplicative
+  // updates read of the target (their numerators: one box fewer per eye, row and pass), and
+  // rowTargetSquares[j] = |t_j|^2 of each row j, from which with the image in front (P_j =
+  // sum over frames of front_j .* m_j / T) E needs no t either:
+  //     E_j = |V_j - t_j|^2 / 2 = |V_j|^2 / 2 - <P_j, B^T t_j> + |t_j|^2 / 2.
+  bool boxedTarget = false;
+  std::vector<double> rowTargetSquares = {};
   // Fills encodedTarget (and linearUnit) and frees target.
   void encodeTarget(int threads = 0);
+  // The same with B^T t in the codes (boxedTarget), for factorizeLayers; linear light only.
+  void encodeBoxedTarget(int threads = 0);
   // Row j of the target in linear light, decoded when it is kept in 16 bits (into `row`, which
-  // must hold the view's width; the pointer returned is `row`'s or the target's own).
+  // must hold the view's width; the pointer returned is `row`'s or the target's own). Not for a
+  // boxed target.
   const Vec3f* linearTargetRow(int j, Vec3f* row) const;
+  // Row j of B^T t into `out`: decoded (boxedTarget), or the linear target's row through B^T
+  // (`scratch`: the view's width, for its decoding).
+  void boxedTargetRow(int j, Vec3f* out, Vec3f* scratch) const;
   // The whole target in linear light: `target`, or the codes decoded into `holder`.
   const Image& linearTarget(Image& holder, int threads = 0) const;
 };

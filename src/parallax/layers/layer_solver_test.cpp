@@ -514,6 +514,73 @@ TEST(FactorizeLayers, TargetsInSixteenBitsSolveAsTheFloatTargets) {
   }
 }
 
+// Targets kept as B^T t (TrainingView::encodeBoxedTarget, nmf with the image in front): the
+// codes are within u / 2 of B^T t made by the whole-image operator (SeenLayers::boxTransposed,
+// a second code path), the row squares are |t_j|^2, and the multiplicative updates give the
+// float targets' layers and objectives (E from <P, B^T t> and |t|^2 instead of from V - t), with
+// and without a diffuser, at ranks 1 and 2. Solves that read t itself refuse them.
+TEST(FactorizeLayers, BoxedTargetsSolveAsTheFloatTargets) {
+  const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
+  const std::vector<TrainingView> floats =
+      viewsOf(d, randomImage(27, 2, 12), Image(27, 2, Vec3f(0.6f)), 0.01f);
+  std::vector<TrainingView> boxed = floats;
+  for (TrainingView& v : boxed) v.encodeBoxedTarget(2);
+  for (size_t e = 0; e < floats.size(); ++e) {
+    const TrainingView& v = boxed[e];
+    ASSERT_TRUE(v.boxedTarget);
+    const Image expected = v.seen.boxTransposed(floats[e].target, 1);
+    std::vector<Vec3f> row(27), scratch(27);
+    for (int j = 0; j < 2; ++j) {
+      v.boxedTargetRow(j, row.data(), scratch.data());
+      double squares = 0;
+      for (int i = 0; i < 27; ++i)
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(row[size_t(i)][c], expected.at(i, j)[c], 0.51f * v.linearUnit);
+          squares += double(floats[e].target.at(i, j)[c]) * floats[e].target.at(i, j)[c];
+        }
+      EXPECT_NEAR(v.rowTargetSquares[size_t(j)], squares, 1e-6 * squares);
+    }
+    EXPECT_THROW(v.linearTargetRow(0, row.data()), std::logic_error);
+  }
+  for (const double sigmaMm : {0.0, 0.4})
+    for (const int rank : {1, 2}) {
+      SCOPED_TRACE(rank);
+      const RearDiffuser diffuser{sigmaMm, d.spec.maskPanel.pitchMm};
+      std::vector<LayerFrame> start;
+      for (int t = 0; t < rank; ++t)
+        start.push_back(
+            {randomImage(27, 2, 20 + t, 0.1f, 0.9f), randomImage(27, 2, 30 + t, 0.1f, 0.9f)});
+      SolveReport a, b;
+      const std::vector<LayerFrame> x = factorizeLayers(floats, start, 12, 2, &a, {}, diffuser);
+      const std::vector<LayerFrame> y = factorizeLayers(boxed, start, 12, 2, &b, {}, diffuser);
+      ASSERT_EQ(a.objective.size(), b.objective.size());
+      EXPECT_LT(b.objective.back(), 0.5 * b.objective.front());
+      for (size_t i = 0; i < a.objective.size(); ++i)
+        EXPECT_NEAR(a.objective[i], b.objective[i], 1e-4 * a.objective[0]) << i;
+      for (size_t t = 0; t < x.size(); ++t)
+        for (size_t i = 0; i < x[t].image.pixels().size(); ++i)
+          for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(x[t].image.pixels()[i][c], y[t].image.pixels()[i][c], 1e-3f);
+            EXPECT_NEAR(x[t].mask.pixels()[i][c], y[t].mask.pixels()[i][c], 1e-3f);
+          }
+    }
+  EXPECT_THROW(optimizeImageLayer(boxed, Image(27, 2, Vec3f(0.4f)), maskLayerImage(d), 2, 2),
+               std::invalid_argument);
+  EXPECT_THROW(layerObjective(boxed, {{Image(27, 2, Vec3f(0.4f)), maskLayerImage(d)}}),
+               std::invalid_argument);
+  // With the barrier in front the updates read t through the whole-image operators.
+  const DisplayDesign front = tinyDisplay(LayerOrder::BarrierFront);
+  std::vector<TrainingView> frontBoxed =
+      viewsOf(front, randomImage(27, 2, 12), Image(27, 2, Vec3f(0.6f)), 0.01f);
+  for (TrainingView& v : frontBoxed) v.encodeBoxedTarget(2);
+  EXPECT_THROW(factorizeLayers(frontBoxed, {{Image(27, 2, Vec3f(0.4f)), maskLayerImage(front)}}, 2),
+               std::invalid_argument);
+  // Only linear-light targets are kept so.
+  std::vector<TrainingView> srgb = floats;
+  srgb.front().encodingScale = 0.5f;
+  EXPECT_THROW(srgb.front().encodeBoxedTarget(), std::logic_error);
+}
+
 // Targets seen through a diffuser (the rear layer blurred, sim/diffuser.h) from layers that can
 // show them exactly: layers solved for the diffuser reach them, layers solved without it do
 // not; in either layer order (the mask blurred, or the image) and for NMF's both layers.

@@ -138,7 +138,10 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
                      options.srgbWeights ? float(options.targetScale) : 0.0f});
     // Targets kept in 16 bits: half the bytes (and, for the sRGB errors, one encoding less per
     // pass).
-    views.back().encodeTarget(options.threads);
+    if (options.boxedTargets)
+      views.back().encodeBoxedTarget(options.threads);
+    else
+      views.back().encodeTarget(options.threads);
     if (progress) progress(int(i) + 1, int(eyes.size()));
   }
   return views;

@@ -28,6 +28,9 @@ struct TrainingOptions {
   // The image layer's errors on sRGB values (TrainingView::encodingScale) instead of in linear
   // light: measured better in mean PSNR, SSIM, worst eye and flicker (docs/content-adaptive.md).
   bool srgbWeights = false;
+  // Targets kept as B^T t (TrainingView::encodeBoxedTarget), for factorizeLayers with the image
+  // in front (linear light); the same bytes.
+  bool boxedTargets = false;
   int threads = 0;
 };
 
