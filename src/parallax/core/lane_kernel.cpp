@@ -42,24 +42,63 @@ void scaleLanes(float* values, float factor, size_t n) {
   for (size_t k = 0; k < n; ++k) values[k] *= factor;
 }
 
+namespace {
+
+// 16 RGB pixels' grey factors (one a pixel) spread over their 48 floats: three vectors of 16,
+// [g0 g0 g0 g1 g1 g1 g2 ...], each one permutation of the 16 greys (where a loop over the pixels
+// left to the vectoriser split the colours into three planes and back: twelve permutations).
+struct GreyTriples {
+  FloatLanes16 first, second, third;
+};
+[[gnu::always_inline]] inline GreyTriples greyTriples(const float* grey) {
+  FloatLanes16 g;
+  std::memcpy(&g, grey, sizeof(g));
+  return {__builtin_shufflevector(g, g, 0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5),
+          __builtin_shufflevector(g, g, 5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10),
+          __builtin_shufflevector(g, g, 10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15,
+                                  15)};
+}
+
+// into[k] = rgb[k] spread[k] (kAdd: += instead) for the 48 floats of 16 pixels.
+template <bool kAdd>
+[[gnu::always_inline]] inline void greyStep(const float* rgb, const float* grey, float* into) {
+  const GreyTriples spread = greyTriples(grey);
+  const FloatLanes16* factors[3] = {&spread.first, &spread.second, &spread.third};
+  for (int part = 0; part < 3; ++part) {
+    FloatLanes16 values, result;
+    std::memcpy(&values, rgb + 16 * part, sizeof(values));
+    result = values * *factors[part];
+    if constexpr (kAdd) {
+      FloatLanes16 sum;
+      std::memcpy(&sum, into + 16 * part, sizeof(sum));
+      result += sum;
+    }
+    std::memcpy(into + 16 * part, &result, sizeof(result));
+  }
+}
+
+template <bool kAdd>
+[[gnu::always_inline]] inline void greyLoop(const float* rgb, const float* grey, float* into,
+                                            size_t pixels) {
+  size_t i = 0;
+  for (; i + 16 <= pixels; i += 16) greyStep<kAdd>(rgb + 3 * i, grey + i, into + 3 * i);
+  for (; i < pixels; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float product = rgb[3 * i + size_t(c)] * grey[i];
+      into[3 * i + size_t(c)] = kAdd ? into[3 * i + size_t(c)] + product : product;
+    }
+}
+
+}  // namespace
+
 PARALLAX_LANE_KERNEL
 void multiplyByGreyLanes(const float* rgb, const float* grey, float* out, size_t pixels) {
-  PARALLAX_SIMD
-  for (size_t i = 0; i < pixels; ++i) {
-    out[3 * i] = rgb[3 * i] * grey[i];
-    out[3 * i + 1] = rgb[3 * i + 1] * grey[i];
-    out[3 * i + 2] = rgb[3 * i + 2] * grey[i];
-  }
+  greyLoop<false>(rgb, grey, out, pixels);
 }
 
 PARALLAX_LANE_KERNEL
 void addProductsByGreyLanes(const float* rgb, const float* grey, float* into, size_t pixels) {
-  PARALLAX_SIMD
-  for (size_t i = 0; i < pixels; ++i) {
-    into[3 * i] += rgb[3 * i] * grey[i];
-    into[3 * i + 1] += rgb[3 * i + 1] * grey[i];
-    into[3 * i + 2] += rgb[3 * i + 2] * grey[i];
-  }
+  greyLoop<true>(rgb, grey, into, pixels);
 }
 
 namespace {
