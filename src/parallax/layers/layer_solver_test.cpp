@@ -454,6 +454,36 @@ TEST(OptimizeImageLayer, EncodedTargetsSolveAsTheFloatTargets) {
               1e-4 * a.objective[0]);
 }
 
+// Float linear-light targets of a random image behind a grey mask, with noise: what the 16-bit
+// and B^T t forms of the targets are checked against.
+std::vector<TrainingView> noisyLinearViews(const DisplayDesign& d) {
+  return viewsOf(d, randomImage(27, 2, 12), Image(27, 2, Vec3f(0.6f)), 0.01f);
+}
+
+// factorizeLayers from the same random start of `rank` frames on two sets of the same views
+// kept differently: the same objectives (within 1e-4 of the first) and layers (within 1e-3), and
+// the objective at least halved.
+void expectSameFactorization(const std::vector<TrainingView>& a, const std::vector<TrainingView>& b,
+                             int rank, const RearDiffuser& diffuser = {}) {
+  std::vector<LayerFrame> start;
+  for (int t = 0; t < rank; ++t)
+    start.push_back(
+        {randomImage(27, 2, 20 + t, 0.1f, 0.9f), randomImage(27, 2, 30 + t, 0.1f, 0.9f)});
+  SolveReport ra, rb;
+  const std::vector<LayerFrame> x = factorizeLayers(a, start, 12, 2, &ra, {}, diffuser);
+  const std::vector<LayerFrame> y = factorizeLayers(b, start, 12, 2, &rb, {}, diffuser);
+  ASSERT_EQ(ra.objective.size(), rb.objective.size());
+  EXPECT_LT(rb.objective.back(), 0.5 * rb.objective.front());
+  for (size_t i = 0; i < ra.objective.size(); ++i)
+    EXPECT_NEAR(ra.objective[i], rb.objective[i], 1e-4 * ra.objective[0]) << i;
+  for (size_t t = 0; t < x.size(); ++t)
+    for (size_t i = 0; i < x[t].image.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(x[t].image.pixels()[i][c], y[t].image.pixels()[i][c], 1e-3f);
+        EXPECT_NEAR(x[t].mask.pixels()[i][c], y[t].mask.pixels()[i][c], 1e-3f);
+      }
+}
+
 // Linear-light targets kept in 16 bits (TrainingView::encodeTarget with encodingScale 0:
 // round(t / u), u = the largest value / 65535) are within u / 2 of the floats (and the float
 // arithmetic's rounding), and give the
@@ -464,8 +494,7 @@ TEST(FactorizeLayers, TargetsInSixteenBitsSolveAsTheFloatTargets) {
   for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
     SCOPED_TRACE(int(order));
     const DisplayDesign d = tinyDisplay(order);
-    const std::vector<TrainingView> floats =
-        viewsOf(d, randomImage(27, 2, 12), Image(27, 2, Vec3f(0.6f)), 0.01f);
+    const std::vector<TrainingView> floats = noisyLinearViews(d);
     std::vector<TrainingView> coded = floats;
     for (TrainingView& v : coded) v.encodeTarget(2);
     for (size_t e = 0; e < floats.size(); ++e) {
@@ -481,25 +510,7 @@ TEST(FactorizeLayers, TargetsInSixteenBitsSolveAsTheFloatTargets) {
           EXPECT_NEAR(decoded.pixels()[i][c], floats[e].target.pixels()[i][c],
                       0.51f * v.linearUnit);
     }
-    for (const int rank : {1, 2}) {
-      std::vector<LayerFrame> start;
-      for (int t = 0; t < rank; ++t)
-        start.push_back(
-            {randomImage(27, 2, 20 + t, 0.1f, 0.9f), randomImage(27, 2, 30 + t, 0.1f, 0.9f)});
-      SolveReport a, b;
-      const std::vector<LayerFrame> x = factorizeLayers(floats, start, 12, 2, &a);
-      const std::vector<LayerFrame> y = factorizeLayers(coded, start, 12, 2, &b);
-      ASSERT_EQ(a.objective.size(), b.objective.size());
-      EXPECT_LT(b.objective.back(), 0.5 * b.objective.front());
-      for (size_t i = 0; i < a.objective.size(); ++i)
-        EXPECT_NEAR(a.objective[i], b.objective[i], 1e-4 * a.objective[0]) << i;
-      for (size_t t = 0; t < x.size(); ++t)
-        for (size_t i = 0; i < x[t].image.pixels().size(); ++i)
-          for (int c = 0; c < 3; ++c) {
-            EXPECT_NEAR(x[t].image.pixels()[i][c], y[t].image.pixels()[i][c], 1e-3f);
-            EXPECT_NEAR(x[t].mask.pixels()[i][c], y[t].mask.pixels()[i][c], 1e-3f);
-          }
-    }
+    for (const int rank : {1, 2}) expectSameFactorization(floats, coded, rank);
     const Image mask = maskLayerImage(d);
     SolveReport a, b;
     const Image x = optimizeImageLayer(floats, Image(27, 2, Vec3f(0.4f)), mask, 6, 2, &a);
@@ -521,8 +532,7 @@ TEST(FactorizeLayers, TargetsInSixteenBitsSolveAsTheFloatTargets) {
 // and without a diffuser, at ranks 1 and 2. Solves that read t itself refuse them.
 TEST(FactorizeLayers, BoxedTargetsSolveAsTheFloatTargets) {
   const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
-  const std::vector<TrainingView> floats =
-      viewsOf(d, randomImage(27, 2, 12), Image(27, 2, Vec3f(0.6f)), 0.01f);
+  const std::vector<TrainingView> floats = noisyLinearViews(d);
   std::vector<TrainingView> boxed = floats;
   for (TrainingView& v : boxed) v.encodeBoxedTarget(2);
   for (size_t e = 0; e < floats.size(); ++e) {
@@ -545,24 +555,7 @@ TEST(FactorizeLayers, BoxedTargetsSolveAsTheFloatTargets) {
   for (const double sigmaMm : {0.0, 0.4})
     for (const int rank : {1, 2}) {
       SCOPED_TRACE(rank);
-      const RearDiffuser diffuser{sigmaMm, d.spec.maskPanel.pitchMm};
-      std::vector<LayerFrame> start;
-      for (int t = 0; t < rank; ++t)
-        start.push_back(
-            {randomImage(27, 2, 20 + t, 0.1f, 0.9f), randomImage(27, 2, 30 + t, 0.1f, 0.9f)});
-      SolveReport a, b;
-      const std::vector<LayerFrame> x = factorizeLayers(floats, start, 12, 2, &a, {}, diffuser);
-      const std::vector<LayerFrame> y = factorizeLayers(boxed, start, 12, 2, &b, {}, diffuser);
-      ASSERT_EQ(a.objective.size(), b.objective.size());
-      EXPECT_LT(b.objective.back(), 0.5 * b.objective.front());
-      for (size_t i = 0; i < a.objective.size(); ++i)
-        EXPECT_NEAR(a.objective[i], b.objective[i], 1e-4 * a.objective[0]) << i;
-      for (size_t t = 0; t < x.size(); ++t)
-        for (size_t i = 0; i < x[t].image.pixels().size(); ++i)
-          for (int c = 0; c < 3; ++c) {
-            EXPECT_NEAR(x[t].image.pixels()[i][c], y[t].image.pixels()[i][c], 1e-3f);
-            EXPECT_NEAR(x[t].mask.pixels()[i][c], y[t].mask.pixels()[i][c], 1e-3f);
-          }
+      expectSameFactorization(floats, boxed, rank, {sigmaMm, d.spec.maskPanel.pitchMm});
     }
   EXPECT_THROW(optimizeImageLayer(boxed, Image(27, 2, Vec3f(0.4f)), maskLayerImage(d), 2, 2),
                std::invalid_argument);
@@ -570,8 +563,7 @@ TEST(FactorizeLayers, BoxedTargetsSolveAsTheFloatTargets) {
                std::invalid_argument);
   // With the barrier in front the updates read t through the whole-image operators.
   const DisplayDesign front = tinyDisplay(LayerOrder::BarrierFront);
-  std::vector<TrainingView> frontBoxed =
-      viewsOf(front, randomImage(27, 2, 12), Image(27, 2, Vec3f(0.6f)), 0.01f);
+  std::vector<TrainingView> frontBoxed = noisyLinearViews(front);
   for (TrainingView& v : frontBoxed) v.encodeBoxedTarget(2);
   EXPECT_THROW(factorizeLayers(frontBoxed, {{Image(27, 2, Vec3f(0.4f)), maskLayerImage(front)}}, 2),
                std::invalid_argument);
