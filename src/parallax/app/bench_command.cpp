@@ -109,6 +109,7 @@ void benchLayers(const std::string& displayPath, const std::string& scenePath,
   const DisplayDesign design = loadDesignOrDefault(displayPath);
   TrainingOptions training;
   training.eyesPerView = request.trainEyes;
+  training.distances = jobs::parseDistances(request.trainDistances, "train_distances");
   training.srgbWeights = request.errorMeasure() == "srgb";
   training.threads = sampling.threads;
   const Panel& panel = design.spec.imagePanel;
@@ -503,6 +504,12 @@ void registerBenchCommand(CLI::App& cli) {
   cmd->add_option("--iterations", options->layers.iterations,
                   "With --layers: solver iterations (default: as render's)")
       ->check(integerIn(1, 1000));
+  cmd->add_option("--train-eyes", options->layers.trainEyes,
+                  "With --layers: training eyes per view (as render's)")
+      ->capture_default_str();
+  cmd->add_option("--train-distances", options->layers.trainDistances,
+                  "With --layers: the training eyes' distances in units of D (as render's)")
+      ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });
 }

@@ -106,6 +106,8 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   // gain), so that views compare with the ideal ones at the brightness the layers aimed at.
   out.set("/layers/normalisation", slitMean * gain);
   out.set("/layers/training_eyes", int(views.size()));
+  for (size_t i = 0; i < training.distances.size(); ++i)
+    out.set("/layers/training_distances/" + std::to_string(i), training.distances[i]);
   out.set("/layers/error", o.errorMeasure());
   out.set("/layers/diffuser_sigma_mm", diffuser.sigmaMm);
   out.set("/layers/training_seconds", trainSeconds);

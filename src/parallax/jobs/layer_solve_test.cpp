@@ -57,5 +57,33 @@ TEST(LayerSolve, BothSolversRunTheDefaultIterations) {
   }
 }
 
+// --train-distances sets the training eyes: K per view at each distance (the small barrier's
+// views times K times the distances), recorded with the layers.
+TEST(LayerSolve, TrainingEyesSitAtTheDistancesAsked) {
+  const Scene scene = defaultScene();
+  RenderRequest request;
+  request.loaded = smallBarrier();
+  request.sampling.spp = 1;
+  request.layers.method = "optimized-image";
+  request.layers.iterations = 1;
+  request.layers.trainEyes = 1;
+  const auto eyes = [&](const std::string& distances, const std::string& recorded) {
+    request.layers.trainDistances = distances;
+    RecordingReporter reporter;
+    const RenderResult result = renderInMemory(request, scene, reporter);
+    EXPECT_NE(result.record.find(recorded), std::string::npos) << result.record;
+    const size_t at = result.record.find("\"training_eyes\": ");
+    EXPECT_NE(at, std::string::npos);
+    return std::stoi(result.record.substr(at + 17));
+  };
+  const int three =
+      eyes("0.8,1,1.25", "\"training_distances\": [\n      0.8,\n      1.0,\n      1.25");
+  const int two = eyes("0.85,1.2", "\"training_distances\": [\n      0.85,\n      1.2");
+  const int one = eyes("1", "\"training_distances\": [\n      1.0");
+  EXPECT_GT(one, 0);
+  EXPECT_EQ(two, 2 * one);
+  EXPECT_EQ(three, 3 * one);
+}
+
 }  // namespace
 }  // namespace parallax::jobs

@@ -54,6 +54,8 @@ void LayersRequest::check() const {
                        "srgb is for {layers} optimized-image (nmf's updates fit in linear light)");
   if (trainEyes < 1 || trainEyes > 16)
     throw RequestError("train_eyes", "must be between 1 and 16 eyes per view");
+  if (parseDistances(trainDistances, "train_distances").size() > 8)
+    throw RequestError("train_distances", "at most 8 distances, got '" + trainDistances + "'");
   if (diffuser && (!(*diffuser >= 0) || !std::isfinite(*diffuser) || *diffuser > 100))
     throw RequestError("diffuser", "must be a blur of 0 to 100 mm (Gaussian sigma)");
   if (diffuser && *diffuser > 0 && !solved())
@@ -161,6 +163,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
                                        r.linear, display.file.name);
   }
   plan.training.eyesPerView = r.layers.trainEyes;
+  plan.training.distances = parseDistances(r.layers.trainDistances, "train_distances");
   plan.training.srgbWeights = r.layers.errorMeasure() == "srgb";
   plan.training.threads = plan.settings.threads;
   plan.training.bounces = plan.settings.bounces;
@@ -172,7 +175,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
     checkMemoryEstimate(trainingHeldBytes(design, plan.training, r.layers.method) + layerBytes,
                         r.display.empty() ? "the built-in display" : r.display,
                         "the training views of {layers} " + r.layers.method,
-                        "use fewer {train_eyes} or a smaller display");
+                        "use fewer {train_eyes} or {train_distances}, or a smaller display");
   }
   return plan;
 }
@@ -217,6 +220,7 @@ MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
        {"{iterations}", std::to_string(r.layers.iterations.value_or(kDefaultLayerIterations))},
        {"{brightness}", madeFromNumber(r.layers.brightness)},
        {"{train_eyes}", std::to_string(r.layers.trainEyes)},
+       {"{train_distances}", r.layers.trainDistances},
        {"{layer_error}", r.layers.error},
        {"{diffuser}", r.layers.diffuser ? madeFromNumber(*r.layers.diffuser) : "display"}});
   addSamplingMadeFrom(made, r.sampling);

@@ -25,15 +25,18 @@ namespace parallax::jobs {
 // descent, plain updates) reached in 10, the default before them.
 inline constexpr int kDefaultLayerIterations = 7;
 
-// layers, rank, iterations, brightness, train_eyes, layer_error: content-adaptive layers
-// (docs/content-adaptive.md) instead of the slits' own.
+// layers, rank, iterations, brightness, train_eyes, train_distances, layer_error: content-adaptive
+// layers (docs/content-adaptive.md) instead of the slits' own.
 struct LayersRequest {
   std::string method = "slits";   // slits, optimized-image or nmf
   int rank = 1;                   // nmf's time-multiplexed frame pairs
   std::optional<int> iterations;  // 1 to 1000; none: kDefaultLayerIterations
   double brightness = 0;          // times the slits' brightness; 0: the method's default
-  int trainEyes = 2;              // training eyes per view at 0.8, 1 and 1.25 D
-  std::string error;              // srgb or linear; "": the method's default
+  int trainEyes = 2;              // training eyes per view at each of trainDistances
+  // The training eyes' distances in units of D (parseDistances); the dense measure's own
+  // eyes sit at 0.8, 1 and 1.25 D between them (docs/content-adaptive.md, "Training eyes").
+  std::string trainDistances = "0.8,1,1.25";
+  std::string error;  // srgb or linear; "": the method's default
   // The panel's diffuser foil (Gaussian sigma, mm) the layers are solved for; none: the display
   // file's diffuser_sigma_mm.
   std::optional<double> diffuser;

@@ -39,6 +39,25 @@ bool parseNumber(const std::string& text, double& value) {
 
 }  // namespace
 
+std::vector<double> parseDistances(const std::string& text, const std::string& field) {
+  std::vector<double> distances;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t end = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, end - start);
+    char* rest = nullptr;
+    const double f = std::strtod(item.c_str(), &rest);
+    if (item.empty() || *rest != '\0' || !(f >= 0.1 && f <= 10))
+      throw RequestError(field,
+                         "expected distances in units of D between 0.1 and 10, separated by "
+                         "commas, got '" +
+                             text + "'");
+    distances.push_back(f);
+    start = end + 1;
+  }
+  return distances;
+}
+
 void checkThreads(int threads) {
   const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
   if (threads < 0 || threads > cores)

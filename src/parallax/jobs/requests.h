@@ -29,6 +29,10 @@ std::string versionText();
 // threads, as the command line's validator does (Python's threads= reaches only this).
 void checkThreads(int threads);
 
+// "0.8,1,1.25": eye distances in units of the design distance D, each 0.1 to 10 (the dense
+// measure's --distances, the training eyes' --train-distances); RequestError naming `field`.
+std::vector<double> parseDistances(const std::string& text, const std::string& field);
+
 // spp, threads, seed, jitter, adaptive, adaptive_threshold, bounces.
 struct SamplingRequest {
   int spp = 16;

@@ -58,6 +58,14 @@ TEST(Requests, ChecksNameTheirFields) {
   EXPECT_EQ(fieldOf([&] { layers.check(); }), "layer_error");
   layers.error = "", layers.trainEyes = 0;
   EXPECT_EQ(fieldOf([&] { layers.check(); }), "train_eyes");
+  layers.trainEyes = 2;
+  for (const char* bad : {"", "1,", "0.05", "1,x", "11", "1,1,1,1,1,1,1,1,1"}) {
+    layers.trainDistances = bad;
+    EXPECT_EQ(fieldOf([&] { layers.check(); }), "train_distances") << bad;
+  }
+  layers.trainDistances = "0.85,1.2";
+  EXPECT_NO_THROW(layers.check());
+  EXPECT_EQ(parseDistances("0.8,1,1.25", "train_distances"), (std::vector<double>{0.8, 1, 1.25}));
   // 0 iterations is no default (a solver runs at least once); the solver's settings without a
   // solver are refused, not ignored.
   layers.trainEyes = 2, layers.iterations = 0;

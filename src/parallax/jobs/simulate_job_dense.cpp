@@ -19,26 +19,6 @@ namespace parallax::jobs {
 
 namespace {
 
-// "0.8,1,1.25": eye distances in units of the design distance D.
-std::vector<double> parseDistances(const std::string& text) {
-  std::vector<double> distances;
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t end = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, end - start);
-    char* rest = nullptr;
-    const double f = std::strtod(item.c_str(), &rest);
-    if (item.empty() || *rest != '\0' || !(f >= 0.1 && f <= 10))
-      throw RequestError("distances",
-                         "expected distances in units of D between 0.1 and 10, separated by "
-                         "commas, got '" +
-                             text + "'");
-    distances.push_back(f);
-    start = end + 1;
-  }
-  return distances;
-}
-
 std::string summaryRow(const char* label, const QualitySummary& s) {
   return printed("%-22s %5d %9.2f %7.4f %9.2f %9.4f", label, s.eyes, s.meanPsnr, s.meanSsim,
                  s.worstPsnr, s.meanFlicker);
@@ -177,7 +157,7 @@ void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
   if (r.eyesPerView < 1 || r.eyesPerView > 64)
     throw RequestError("eyes_per_view",
                        "expected 1 to 64 eyes per view, got " + std::to_string(r.eyesPerView));
-  const std::vector<double> distances = parseDistances(r.distances);
+  const std::vector<double> distances = parseDistances(r.distances, "distances");
   const RenderedReference rendered = renderedScene(in, r);
   const Scene& scene = rendered.scene;
   checkDenseMemory(in, r, scene);

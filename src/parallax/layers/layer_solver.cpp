@@ -1148,8 +1148,13 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
            });
   };
   SolveReport local;
-  local.objective.push_back(objective());
-  local.passes = 1;
+  // With the image in front the first image update's pass evaluates E at the start as well (see
+  // the loop below); otherwise the start's E takes a pass of its own.
+  const bool startInFirstUpdate = maskIsRear && iterations > 0;
+  if (!startInFirstUpdate) {
+    local.objective.push_back(objective());
+    local.passes = 1;
+  }
   // One multiplicative update of every frame's image (updateImages) or mask: numerator
   // sum_e A^T t_e, denominator sum_e A^T V_e, where A is the view's derivative with respect to
   // that frame's layer (the other layer fixed); the 1/T of the average cancels in the ratio.
@@ -1282,6 +1287,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
   // from, the objective the previous iteration left: only the last needs a pass of its own.
   for (int it = 0; it < iterations; ++it) {
     const double before = update(true);
+    if (it == 0 && startInFirstUpdate) local.objective.push_back(before);
     if (it > 0) {
       if (std::isnan(before)) {
         local.objective.push_back(objective());

@@ -73,6 +73,7 @@ jobs::RenderRequest renderRequest(const DisplayDescription& display, const py::k
     r.layers.iterations = kw["iterations"].cast<int>();
   if (kw.contains("brightness")) r.layers.brightness = kw["brightness"].cast<double>();
   if (kw.contains("train_eyes")) r.layers.trainEyes = kw["train_eyes"].cast<int>();
+  text("train_distances", r.layers.trainDistances);
   if (kw.contains("diffuser")) r.layers.diffuser = kw["diffuser"].cast<double>();
   text("layer_error", r.layers.error);
   if (kw.contains("quilt") && !kw["quilt"].is_none()) {
@@ -126,6 +127,7 @@ std::vector<std::string> knownRenderKeywords() {
           "iterations",
           "brightness",
           "train_eyes",
+          "train_distances",
           "diffuser",
           "layer_error",
           "quilt",
