@@ -28,6 +28,23 @@ check "optimized-image lowers its objective" awk -v a="$first" -v b="$last" 'BEG
 check "bench --layers optimized-image" run 0 bench --layers optimized-image --iterations 6 \
   --spp 4 --display "$tmp/small.json" --json
 cp "$tmp/out" "$tmp/bench-oi.json"
+# The training eyes' distances: two instead of three, two thirds of the eyes, in render and bench.
+check "render --train-distances" run 0 render --display "$tmp/small.json" --spp 4 \
+  --layers optimized-image --iterations 2 --train-distances 0.85,1.2 -o "$tmp/oi2"
+check "bench --train-distances" run 0 bench --layers optimized-image --iterations 2 \
+  --spp 4 --display "$tmp/small.json" --train-distances 0.85,1.2 --json
+check "two training distances are two thirds of the eyes, in render and bench" python3 -c '
+import json, sys
+b = json.load(open(sys.argv[1]))["layers"]
+r = json.load(open(sys.argv[2]))["layers"]
+whole = json.load(open(sys.argv[3]))["layers"]
+assert r["training_distances"] == [0.85, 1.2], r
+assert 3 * r["training_eyes"] == 2 * whole["training_eyes"] == 3 * b["eyes"], (r, whole, b)
+' "$tmp/out" "$tmp/oi2/render.json" "$tmp/oi/render.json"
+check "a bad --train-distances is refused naming it" run 2 render --display "$tmp/small.json" \
+  --layers nmf --train-distances 0.85,far -o "$tmp/bad"
+check "the refusal is one line naming the option" one_line_naming "--train-distances"
+check "and writes nothing" test ! -e "$tmp/bad"
 check "bench --layers is render's solve, pass for pass" python3 -c '
 import json, sys
 b = json.load(open(sys.argv[1]))["layers"]
