@@ -1195,8 +1195,10 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       // The mask (rear) update by blocks of mask rows: each block gathers, eye by eye and in
       // the order of the output rows that meet its rows (SeenLayers::rearRowSources: the order
       // of addRearGradient), every frame's share of B^T t and B^T V. An output row's view is
-      // made once per block it meets (a row meets about two mask rows, mostly of one block).
-      // Blocks in parallel write disjoint rows: the same sums for any thread count, and no
+      // made once per block it meets (a row meets about two mask rows, mostly of one block):
+      // blocks of up to 32 rows (the parallel loop halves the rows down to 17-32 at 1080p; at a
+      // grain of 8, blocks of 4-8 rows made about a quarter of the views twice). Blocks in parallel
+      // write disjoint rows: the same sums for any thread count and block size, and no
       // full-size temporaries.
       const int width = views.front().seen.width(), rearRows = frames.front().mask.height();
       struct Share {
@@ -1204,7 +1206,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
         float weight;
       };
       const size_t maskWidth = size_t(frames.front().mask.width());
-      parallelFor(rearRows, threads, 8, [&](int64_t begin, int64_t end) {
+      parallelFor(rearRows, threads, 32, [&](int64_t begin, int64_t end) {
         RowWork w(width);
         std::vector<Share> shares;
         std::vector<Vec3f> alongRow;
