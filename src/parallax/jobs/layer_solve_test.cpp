@@ -10,15 +10,21 @@
 namespace parallax::jobs {
 namespace {
 
-TEST(LayerSolve, NmfFramesLowerTheObjectiveAndAreRecorded) {
-  const Scene scene = defaultScene();
+// `method`'s layers on the small barrier, one sample a pixel, one training eye a view.
+RenderRequest smallLayersRequest(const std::string& method) {
   RenderRequest request;
   request.loaded = smallBarrier();
   request.sampling.spp = 1;
-  request.layers.method = "nmf";
+  request.layers.method = method;
+  request.layers.trainEyes = 1;
+  return request;
+}
+
+TEST(LayerSolve, NmfFramesLowerTheObjectiveAndAreRecorded) {
+  const Scene scene = defaultScene();
+  RenderRequest request = smallLayersRequest("nmf");
   request.layers.rank = 2;
   request.layers.iterations = 3;
-  request.layers.trainEyes = 1;
   RecordingReporter reporter;
   const RenderResult result = renderInMemory(request, scene, reporter);
   ASSERT_EQ(result.frames.size(), 2u);
@@ -44,11 +50,7 @@ TEST(LayerSolve, NmfFramesLowerTheObjectiveAndAreRecorded) {
 TEST(LayerSolve, BothSolversRunTheDefaultIterations) {
   for (const char* method : {"optimized-image", "nmf"}) {
     const Scene scene = defaultScene();
-    RenderRequest request;
-    request.loaded = smallBarrier();
-    request.sampling.spp = 1;
-    request.layers.method = method;
-    request.layers.trainEyes = 1;
+    const RenderRequest request = smallLayersRequest(method);
     RecordingReporter reporter;
     const RenderResult result = renderInMemory(request, scene, reporter);
     ASSERT_EQ(reporter.results.size(), 1u);
@@ -61,12 +63,8 @@ TEST(LayerSolve, BothSolversRunTheDefaultIterations) {
 // views times K times the distances), recorded with the layers.
 TEST(LayerSolve, TrainingEyesSitAtTheDistancesAsked) {
   const Scene scene = defaultScene();
-  RenderRequest request;
-  request.loaded = smallBarrier();
-  request.sampling.spp = 1;
-  request.layers.method = "optimized-image";
+  RenderRequest request = smallLayersRequest("optimized-image");
   request.layers.iterations = 1;
-  request.layers.trainEyes = 1;
   const auto eyes = [&](const std::string& distances, const std::string& recorded) {
     request.layers.trainDistances = distances;
     RecordingReporter reporter;
