@@ -446,43 +446,37 @@ Curvatures planeProducts(const Vec3f* viewOfD, const Vec3f* viewOfP, const Vec3f
                  : planeProductsLoop<false>(&viewOfD[0].x, nullptr, w, 3 * n, srgb);
 }
 
-// The average view of the frames (image in front) on row j into work.seen.
+// The average view of the frames (image in front) on row j into w.seen, with every frame's mask
+// as the eye sees it through the row kept in w.frameMasks (for the sums that follow).
 void averageViewRow(const TrainingView& v, const std::vector<LayerFrame>& frames, int j,
-                    RowWork& work) {
-  for (size_t t = 0; t < frames.size(); ++t) {
-    std::vector<Vec3f>& into = t == 0 ? work.seen : work.other;
-    v.seen.viewRow(frames[t].image, frames[t].mask, j, into.data(), work.scratch);
-    if (t > 0) addScaledLanes(&work.other[0].x, 1.0f, &work.seen[0].x, 3 * into.size());
-  }
-  if (frames.size() > 1)
-    scaleLanes(&work.seen[0].x, 1.0f / float(frames.size()), 3 * work.seen.size());
-}
-
-// factorizeLayers' pass over eye v's row j with the image in front: every frame's mask as the
-// eye sees it through the row (into w.frameMasks, made once for the view and both updates'
-// sums), the average view V_j (w.seen) and E_j at these layers; with `withBoxedTarget` also
-// B^T t_j (w.residual), which a boxed target (TrainingView::boxedTarget) needs for E_j anyway:
-// E_j = |V_j|^2 / 2 - <P_j, B^T t_j> + |t_j|^2 / 2 with P_j = sum_t front_t,j .* m_t,j / T.
-double frameRowError(const TrainingView& v, const std::vector<LayerFrame>& frames, int j,
-                     RowWork& w, bool withBoxedTarget) {
+                    RowWork& w) {
   const size_t width = w.seen.size(), values = 3 * width;
-  std::vector<Vec3f>& masks = w.frameMasks;
-  masks.resize(frames.size() * width);
+  w.frameMasks.resize(frames.size() * width);
   for (size_t t = 0; t < frames.size(); ++t) {
-    Vec3f* m = masks.data() + t * width;
+    Vec3f* m = w.frameMasks.data() + t * width;
     v.seen.seenRearRow(frames[t].mask, j, m, w.scratch);
     std::vector<Vec3f>& into = t == 0 ? w.seen : w.other;
     v.seen.viewRowSeen(&frames[t].image.at(0, j), m, into.data(), w.scratch);
     if (t > 0) addScaledLanes(&w.other[0].x, 1.0f, &w.seen[0].x, values);
   }
-  const float inverseCount = 1.0f / float(frames.size());
-  if (frames.size() > 1) scaleLanes(&w.seen[0].x, inverseCount, values);
+  if (frames.size() > 1) scaleLanes(&w.seen[0].x, 1.0f / float(frames.size()), values);
+}
+
+// factorizeLayers' pass over eye v's row j with the image in front: averageViewRow (the view
+// V_j in w.seen, the seen masks in w.frameMasks, made once for the view and both updates' sums)
+// and E_j at these layers; with `withBoxedTarget` also B^T t_j (w.residual), which a boxed
+// target (TrainingView::boxedTarget) needs for E_j anyway:
+// E_j = |V_j|^2 / 2 - <P_j, B^T t_j> + |t_j|^2 / 2 with P_j = sum_t front_t,j .* m_t,j / T.
+double frameRowError(const TrainingView& v, const std::vector<LayerFrame>& frames, int j,
+                     RowWork& w, bool withBoxedTarget) {
+  averageViewRow(v, frames, j, w);
+  const size_t width = w.seen.size(), values = 3 * width;
   if (withBoxedTarget || v.boxedTarget) v.boxedTargetRow(j, w.residual.data(), w.other.data());
   if (!v.boxedTarget) return eyeErrorRange(v, w.seen.data(), w.first(j), width, nullptr, nullptr);
   double cross = 0;
   for (size_t t = 0; t < frames.size(); ++t)
-    cross += sumOfProductsLanes(&frames[t].image.at(0, j).x, &masks[t * width].x, &w.residual[0].x,
-                                values);
+    cross += sumOfProductsLanes(&frames[t].image.at(0, j).x, &w.frameMasks[t * width].x,
+                                &w.residual[0].x, values);
   return 0.5 * sumOfProductsLanes(&w.seen[0].x, &w.seen[0].x, nullptr, values) -
          cross / double(frames.size()) + 0.5 * v.rowTargetSquares[size_t(j)];
 }
