@@ -107,11 +107,7 @@ void benchLayers(const std::string& displayPath, const std::string& scenePath,
                  const jobs::LayersRequest& request, const SamplingRequest& sampling, bool json) {
   request.check();
   const DisplayDesign design = loadDesignOrDefault(displayPath);
-  TrainingOptions training;
-  training.eyesPerView = request.trainEyes;
-  training.distances = jobs::parseDistances(request.trainDistances, "train_distances");
-  training.srgbWeights = request.errorMeasure() == "srgb";
-  training.threads = sampling.threads;
+  const TrainingOptions training = jobs::trainingOptions(request, sampling.threads);
   const Panel& panel = design.spec.imagePanel;
   checkMemoryEstimate(
       trainingHeldBytes(design, training, request.method) +

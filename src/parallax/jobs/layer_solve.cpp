@@ -39,6 +39,16 @@ std::vector<LayerFrame> nmfStart(const LayerFrame& slits, double periodPx, int r
 
 }  // namespace
 
+TrainingOptions trainingOptions(const LayersRequest& request, int threads, int bounces) {
+  TrainingOptions training;
+  training.eyesPerView = request.trainEyes;
+  training.distances = parseDistances(request.trainDistances, "train_distances");
+  training.srgbWeights = request.errorMeasure() == "srgb";
+  training.threads = threads;
+  training.bounces = bounces;
+  return training;
+}
+
 std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
                                     const Accelerator& accelerator, const DisplayDesign& design,
                                     TrainingOptions training, const LayerFrame& slits,

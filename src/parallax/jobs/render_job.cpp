@@ -162,11 +162,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
     plan.outputNames = pictureSetNames(size_t(r.layers.solved() ? r.layers.rank : 1), layered,
                                        r.linear, display.file.name);
   }
-  plan.training.eyesPerView = r.layers.trainEyes;
-  plan.training.distances = parseDistances(r.layers.trainDistances, "train_distances");
-  plan.training.srgbWeights = r.layers.errorMeasure() == "srgb";
-  plan.training.threads = plan.settings.threads;
-  plan.training.bounces = plan.settings.bounces;
+  plan.training = trainingOptions(r.layers, plan.settings.threads, plan.settings.bounces);
   if (r.layers.solved()) {
     // The training targets and, per frame, two layers and their gradients.
     const DisplayDesign& design = *display->barrierDesign();

@@ -77,6 +77,10 @@ struct LayerSolveFigures {
   int eyes = 0, iterations = 0, passes = 0;      // passes: SolveReport::passes
 };
 
+// The training eyes a layers request asks for (train_eyes, train_distances, the error measure),
+// rendered on `threads` workers with `bounces` (render's and bench's).
+TrainingOptions trainingOptions(const LayersRequest& request, int threads, int bounces = 0);
+
 // Content-adaptive layers from the slit layers (docs/content-adaptive.md): the training views,
 // then the solver; its figures go under /layers of `record` (and into `figures`).
 std::vector<LayerFrame> solveLayers(const LayersRequest& request, const Scene& scene,
