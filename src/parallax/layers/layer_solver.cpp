@@ -293,7 +293,7 @@ void checkViews(const std::vector<TrainingView>& views, bool boxedTargets = fals
     const bool sized =
         v.encodedTarget.empty()
             ? v.target.width() == v.seen.width() && v.target.height() == v.seen.height()
-            : (v.encodingScale > 0 || v.linearUnit > 0) &&
+            : (v.encodingScale > 0 || v.linearUnit > 0 || v.boxedTarget) &&
                   v.encodedTarget.size() == 3 * size_t(v.seen.width()) * v.seen.height();
     if (!sized) throw std::invalid_argument("layer solver: a target's size differs from its view");
   }
@@ -790,28 +790,52 @@ void TrainingView::encodeTarget(int threads) {
 void TrainingView::encodeBoxedTarget(int threads) {
   if (encodingScale > 0 || target.empty())
     throw std::logic_error("TrainingView::encodeBoxedTarget: not a linear target");
-  const int rows = target.height();
-  const size_t width = size_t(target.width());
-  rowTargetSquares.assign(size_t(rows), 0.0);
-  // Row by row in place: |t_j|^2, then t_j replaced by B^T t_j.
-  parallelFor(rows, threads, 8, [&](int64_t begin, int64_t end) {
-    std::vector<Vec3f> boxed(width);
-    for (int64_t j = begin; j != end; ++j) {
-      Vec3f* row = &target.at(0, int(j));
-      rowTargetSquares[size_t(j)] = sumOfProductsLanes(&row[0].x, &row[0].x, nullptr, 3 * width);
-      seen.boxTransposedRowInto(row, boxed.data());
-      std::copy(boxed.begin(), boxed.end(), row);
-    }
+  startBoxedTarget();
+  parallelFor(target.height(), threads, 8, [&](int64_t begin, int64_t end) {
+    encodeBoxedRows(&target.at(0, int(begin)), int(begin), int(end - begin));
   });
-  encodeTarget(threads);
+  target = Image();
+}
+
+void TrainingView::startBoxedTarget() {
+  if (encodingScale > 0)
+    throw std::logic_error("TrainingView::startBoxedTarget: not a linear target");
+  const size_t rows = size_t(seen.height());
+  rowTargetSquares.assign(rows, 0.0);
+  rowUnits.assign(rows, 1.0f);
+  encodedTarget.resize(3 * size_t(seen.width()) * rows);
+  linearUnit = 0.0f;
   boxedTarget = true;
+}
+
+void TrainingView::encodeBoxedRows(Vec3f* rows, int firstRow, int count) {
+  const size_t width = size_t(seen.width());
+  if (!boxedTarget || firstRow < 0 || count < 0 || firstRow + count > seen.height())
+    throw std::logic_error("TrainingView::encodeBoxedRows: not rows of a started boxed target");
+  std::vector<Vec3f> boxed(width);
+  for (int k = 0; k < count; ++k) {
+    const size_t j = size_t(firstRow + k);
+    const Vec3f* row = rows + size_t(k) * width;
+    // |t_j|^2, then B^T t_j in the row's own unit (a value that is not a number makes it so).
+    rowTargetSquares[j] = sumOfProductsLanes(&row[0].x, &row[0].x, nullptr, 3 * width);
+    seen.boxTransposedRowInto(row, boxed.data());
+    float largest = 0;
+    bool numbers = true;
+    for (const Vec3f& p : boxed)
+      for (int c = 0; c < 3; ++c) largest = std::max(largest, p[c]), numbers &= p[c] == p[c];
+    if (!numbers || !std::isfinite(largest))
+      throw std::invalid_argument("TrainingView::encodeBoxedRows: a target value is not finite");
+    rowUnits[j] = largest > 0 ? largest / 65535.0f : 1.0f;
+    encodeLinearLanes(&boxed[0].x, encodedTarget.data() + 3 * width * j, 3 * width,
+                      1.0f / rowUnits[j]);
+  }
 }
 
 void TrainingView::boxedTargetRow(int j, Vec3f* out, Vec3f* scratch) const {
   const size_t width = size_t(seen.width());
   if (boxedTarget) {
     decodeLinearLanes(encodedTarget.data() + 3 * width * size_t(j), &out[0].x, 3 * width,
-                      linearUnit);
+                      rowUnits[size_t(j)]);
     return;
   }
   seen.boxTransposedRowInto(linearTargetRow(j, scratch), out);

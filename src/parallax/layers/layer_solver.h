@@ -61,12 +61,20 @@ struct TrainingView {
   // rowTargetSquares[j] = |t_j|^2 of each row j, from which with the image in front (P_j =
   // sum over frames of front_j .* m_j / T) E needs no t either:
   //     E_j = |V_j - t_j|^2 / 2 = |V_j|^2 / 2 - <P_j, B^T t_j> + |t_j|^2 / 2.
+  // Each row j's codes are in its own unit rowUnits[j] (its largest B^T t / 65535), so that a
+  // band of rows can be encoded as soon as it is rendered (IdealViewBands::wholeBoxedTargets).
   bool boxedTarget = false;
   std::vector<double> rowTargetSquares = {};
+  std::vector<float> rowUnits = {};
   // Fills encodedTarget (and linearUnit) and frees target.
   void encodeTarget(int threads = 0);
   // The same with B^T t in the codes (boxedTarget), for factorizeLayers; linear light only.
   void encodeBoxedTarget(int threads = 0);
+  // Rows firstRow .. firstRow + count - 1 of the linear target (`rows`, the view's width each,
+  // overwritten) into the boxed codes, their units and squares: encodeBoxedTarget a band of rows
+  // at a time, once startBoxedTarget has sized them for the whole view.
+  void startBoxedTarget();
+  void encodeBoxedRows(Vec3f* rows, int firstRow, int count);
   // Row j of the target in linear light, decoded when it is kept in 16 bits (into `row`, which
   // must hold the view's width; the pointer returned is `row`'s or the target's own). Not for a
   // boxed target.

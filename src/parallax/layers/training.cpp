@@ -69,6 +69,9 @@ struct IdealViewBands::Impl {
   std::vector<std::unique_ptr<TileRenderer>> renderers;
   int width = 0, height = 0;
   double seconds = 0;
+  // Eye `eye`'s target on rows firstRow .. firstRow + rows - 1: its ideal view on the tiles of
+  // those rows, through the display's box along rows, times the target scale.
+  Image band(size_t eye, int firstRow, int rows) const;
 };
 
 IdealViewBands::IdealViewBands(const Scene& scene, const Accelerator& accelerator,
@@ -96,6 +99,19 @@ double IdealViewBands::seconds() const {
   return impl_->seconds;
 }
 
+Image IdealViewBands::Impl::band(size_t eye, int firstRow, int rows) const {
+  const TileRenderer& renderer = *renderers[eye];
+  Image band(width, rows);
+  RenderStats stats;
+  for (int tile = 0; tile < renderer.tileCount(); ++tile) {
+    const int band0 = renderer.tileBand(tile) * TileGrid::kRows;
+    if (band0 >= firstRow && band0 < firstRow + rows) renderer.renderTile(tile, band, firstRow, stats);
+  }
+  Image target = atDisplayResolution(design, band);
+  for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);
+  return target;
+}
+
 void IdealViewBands::operator()(int firstRow, int rows, std::vector<TrainingView>& views) const {
   Impl& i = *impl_;
   const auto start = std::chrono::steady_clock::now();
@@ -104,17 +120,8 @@ void IdealViewBands::operator()(int firstRow, int rows, std::vector<TrainingView
     throw std::invalid_argument("IdealViewBands: not the training eyes' rows");
   parallelFor(int64_t(views.size()), i.options.threads, 1, [&](int64_t begin, int64_t end) {
     for (int64_t e = begin; e != end; ++e) {
-      const TileRenderer& renderer = *i.renderers[size_t(e)];
-      Image band(i.width, rows);
-      RenderStats stats;
-      for (int tile = 0; tile < renderer.tileCount(); ++tile) {
-        const int band0 = renderer.tileBand(tile) * TileGrid::kRows;
-        if (band0 >= firstRow && band0 < firstRow + rows)
-          renderer.renderTile(tile, band, firstRow, stats);
-      }
       TrainingView& v = views[size_t(e)];
-      v.target = atDisplayResolution(i.design, band);
-      for (Vec3f& p : v.target.pixels()) p = p * float(i.options.targetScale);
+      v.target = i.band(size_t(e), firstRow, rows);
       v.encodeTarget(1);
       v.firstTargetRow = firstRow;
     }
@@ -122,9 +129,39 @@ void IdealViewBands::operator()(int firstRow, int rows, std::vector<TrainingView
   i.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+void IdealViewBands::wholeBoxedTargets(std::vector<TrainingView>& views,
+                                       const std::function<void(int, int)>& progress) const {
+  Impl& i = *impl_;
+  const auto start = std::chrono::steady_clock::now();
+  if (views.size() != i.renderers.size())
+    throw std::invalid_argument("IdealViewBands: not the training eyes");
+  for (TrainingView& v : views) v.startBoxedTarget();
+  const int bands = (i.height + kTargetBandRows - 1) / kTargetBandRows;
+  for (int b = 0; b < bands; ++b) {
+    const int firstRow = b * kTargetBandRows, rows = std::min(kTargetBandRows, i.height - firstRow);
+    parallelFor(int64_t(views.size()), i.options.threads, 1, [&](int64_t begin, int64_t end) {
+      for (int64_t e = begin; e != end; ++e) {
+        Image target = i.band(size_t(e), firstRow, rows);
+        views[size_t(e)].encodeBoxedRows(target.pixels().data(), firstRow, rows);
+      }
+    });
+    if (progress) progress(b + 1, bands);
+  }
+  i.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,
                                         const DisplayDesign& design, const TrainingOptions& options,
                                         const std::function<void(int, int)>& progress) {
+  // Boxed targets (nmf, the image in front) are encoded row by row: rendered a band of rows at a
+  // time, every eye in parallel, with no whole float view made (a pinhole mask's box spans
+  // rows, so its views are made whole).
+  if (options.boxedTargets && design.spec.order == LayerOrder::BarrierBack &&
+      design.spec.mask.kind != MaskKind::Pinholes) {
+    std::vector<TrainingView> views = trainingEyes(design, options);
+    IdealViewBands(scene, accelerator, design, options).wholeBoxedTargets(views, progress);
+    return views;
+  }
   const std::vector<DenseEye> eyes = denseEyes(design, options.eyesPerView, options.distances);
   std::vector<TrainingView> views;
   views.reserve(eyes.size());

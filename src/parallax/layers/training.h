@@ -75,7 +75,11 @@ class IdealViewBands {
   IdealViewBands& operator=(const IdealViewBands&) = delete;
   // `firstRow` a multiple of the renderer's tile rows (TileGrid::kRows).
   void operator()(int firstRow, int rows, std::vector<TrainingView>& views) const;
-  // Wall time spent in operator() so far.
+  // Every eye's whole target as boxed codes (TrainingView::encodeBoxedTarget), made a band of
+  // kTargetBandRows rows at a time (trainingViews with boxedTargets); progress(bands done, bands).
+  void wholeBoxedTargets(std::vector<TrainingView>& views,
+                         const std::function<void(int, int)>& progress = {}) const;
+  // Wall time spent in operator() and wholeBoxedTargets so far.
   double seconds() const;
 
  private:
