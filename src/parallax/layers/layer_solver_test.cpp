@@ -545,7 +545,7 @@ TEST(FactorizeLayers, BoxedTargetsSolveAsTheFloatTargets) {
       double squares = 0;
       for (int i = 0; i < 27; ++i)
         for (int c = 0; c < 3; ++c) {
-          EXPECT_NEAR(row[size_t(i)][c], expected.at(i, j)[c], 0.51f * v.linearUnit);
+          EXPECT_NEAR(row[size_t(i)][c], expected.at(i, j)[c], 0.51f * v.rowUnits[size_t(j)]);
           squares += double(floats[e].target.at(i, j)[c]) * floats[e].target.at(i, j)[c];
         }
       EXPECT_NEAR(v.rowTargetSquares[size_t(j)], squares, 1e-6 * squares);

@@ -105,7 +105,8 @@ Image IdealViewBands::Impl::band(size_t eye, int firstRow, int rows) const {
   RenderStats stats;
   for (int tile = 0; tile < renderer.tileCount(); ++tile) {
     const int band0 = renderer.tileBand(tile) * TileGrid::kRows;
-    if (band0 >= firstRow && band0 < firstRow + rows) renderer.renderTile(tile, band, firstRow, stats);
+    if (band0 >= firstRow && band0 < firstRow + rows)
+      renderer.renderTile(tile, band, firstRow, stats);
   }
   Image target = atDisplayResolution(design, band);
   for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);

@@ -125,6 +125,53 @@ TEST(Training, BandsOfTargetsAreTheWholeTargetsRows) {
               1.0);
 }
 
+// nmf's boxed targets (the image in front) are made a band of kTargetBandRows rows at a time
+// (IdealViewBands::wholeBoxedTargets): the same codes, row units and row squares as the whole
+// ideal views (quality's idealView, a second render path) scaled and encoded whole
+// (TrainingView::encodeBoxedTarget), on a panel of two whole bands and a part; every row's codes
+// are within half its unit of B^T t in floats.
+TEST(Training, BoxedTargetsByBandsAreTheWholeViewsBoxed) {
+  const int rows = 2 * kTargetBandRows + 22;
+  const DisplayDesign d = smallDisplay(rows);
+  Scene scene = defaultScene();
+  const Accelerator accel(scene);
+  TrainingOptions options;
+  options.eyesPerView = 1, options.distances = {0.9, 1.1};
+  options.referenceSamplesPerPixel = 2, options.targetScale = 0.3, options.boxedTargets = true;
+  int calls = 0, lastDone = 0, lastTotal = 0;
+  const std::vector<TrainingView> bands =
+      trainingViews(scene, accel, d, options,
+                    [&](int done, int total) { ++calls, lastDone = done, lastTotal = total; });
+  EXPECT_EQ(calls, 3);
+  EXPECT_EQ(lastDone, 3);
+  EXPECT_EQ(lastTotal, 3);
+  const std::vector<DenseEye> eyes = denseEyes(d, 1, {0.9, 1.1});
+  ASSERT_EQ(bands.size(), eyes.size());
+  for (size_t e = 0; e < eyes.size(); ++e) {
+    const TrainingView& v = bands[e];
+    ASSERT_TRUE(v.boxedTarget);
+    EXPECT_TRUE(v.target.empty());
+    EXPECT_EQ(v.seen.eye().x, eyes[e].position.x);
+    Image ideal = idealView(scene, accel, d, eyes[e].position, 72, rows, 2, 0, 0);
+    for (Vec3f& p : ideal.pixels()) p = p * 0.3f;
+    TrainingView whole{SeenLayers(d, eyes[e].position), ideal, 0.0f};
+    whole.encodeBoxedTarget(2);
+    EXPECT_TRUE(std::equal(v.encodedTarget.begin(), v.encodedTarget.end(),
+                           whole.encodedTarget.begin(), whole.encodedTarget.end()))
+        << e;
+    EXPECT_EQ(v.rowUnits, whole.rowUnits);
+    EXPECT_EQ(v.rowTargetSquares, whole.rowTargetSquares);
+    const Image boxed = v.seen.boxTransposed(ideal, 1);
+    std::vector<Vec3f> row(72), scratch(72);
+    for (int j = 0; j < rows; ++j) {
+      v.boxedTargetRow(j, row.data(), scratch.data());
+      for (int i = 0; i < 72; ++i)
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(row[size_t(i)][c], boxed.at(i, j)[c], 0.51f * v.rowUnits[size_t(j)]);
+    }
+  }
+}
+
 // The encoding is S(t / c) (IEC 61966-2-1) in 16 bits, against the standard's formula.
 TEST(Training, EncodedTargetsAreTheSrgbFormula) {
   const DisplayDesign d = smallDisplay();
