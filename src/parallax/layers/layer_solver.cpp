@@ -736,11 +736,18 @@ void encodeLinearLanes(const float* values, uint16_t* encoded, size_t n, float i
     encoded[i] = sixteenBitCode(std::clamp(values[i] * inverseUnit, 0.0f, 65535.0f));
 }
 
-// codes[i] x unit into values, n of them.
+// codes[i] x unit into values, n of them. The codes stream from memory, a row of each eye in
+// turn: asked for kPrefetchCodes ahead, a cache line (32 codes) at a time, as
+// encodedErrorLoop does.
 PARALLAX_LANE_KERNEL
 void decodeLinearLanes(const uint16_t* codes, float* values, size_t n, float unit) {
-  PARALLAX_SIMD
-  for (size_t i = 0; i < n; ++i) values[i] = float(codes[i]) * unit;
+  size_t k = 0;
+  for (; k + 32 <= n; k += 32) {
+    __builtin_prefetch(codes + k + kPrefetchCodes);
+    PARALLAX_SIMD
+    for (size_t i = k; i < k + 32; ++i) values[i] = float(codes[i]) * unit;
+  }
+  for (; k < n; ++k) values[k] = float(codes[k]) * unit;
 }
 
 }  // namespace
@@ -1160,6 +1167,9 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
     const std::vector<LayerFrame>& seenLayers =
         seenFrames(views, frames, diffuser, threads, holder);
     return normaliser(views) * sumOverRows(views, threads, [&](int j, RowWork& w) {
+             // The layers stay fixed through the pass: the eyes that see row j's mask through
+             // the same mask rows (one distance) share its vertical blend.
+             w.scratch.keepBlends = true;
              double sum = 0;
              for (const TrainingView& v : views) sum += frameRowError(v, seenLayers, j, w, false);
              return sum;
@@ -1197,6 +1207,7 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       const size_t width = size_t(views.front().seen.width());
       before =
           normaliser(views) * sumOverRows(views, threads, [&](int j, RowWork& w) {
+            w.scratch.keepBlends = true;  // as in `objective`
             double sum = 0;
             for (const TrainingView& v : views) {
               sum += frameRowError(v, seenLayers, j, w, true);

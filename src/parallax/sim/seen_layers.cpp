@@ -142,15 +142,36 @@ void SeenLayers::seenRearRow(const LayerRows& rear, int j, Vec3f* seenRear,
                              RowScratch& scratch) const {
   // m_j[i] = sum_k w_k sum_a w_a rear[r_k][c_a] = sum_a w_a (sum_k w_k rear[r_k])[c_a]: the
   // vertical blend once per row (a vectorised loop), then one pass of the pieces along it.
-  std::vector<Vec3f>& blend = scratch.rearRow;
-  blend.assign(size_t(rearColumns_), Vec3f(0.0f));
+  const Piece* pieces = down_.data() + downStart_[size_t(j)];
+  const size_t pieceCount = downStart_[size_t(j) + 1] - downStart_[size_t(j)];
+  RowScratch::Blend* kept = nullptr;
+  if (scratch.keepBlends) {
+    for (RowScratch::Blend& b : scratch.blends)
+      if (b.rearFirst == rear.first) kept = &b;
+    if (!kept) kept = &scratch.blends.emplace_back(RowScratch::Blend{rear.first, {}, {}, false});
+  }
+  const auto sameRows = [&] {
+    if (kept->pieces.size() != pieceCount || kept->rows.size() != size_t(rearColumns_))
+      return false;
+    for (size_t k = 0; k < pieceCount; ++k)
+      if (kept->pieces[k].rear != pieces[k].rear || kept->pieces[k].weight != pieces[k].weight)
+        return false;
+    return true;
+  };
+  std::vector<Vec3f>& blend = kept ? kept->rows : scratch.rearRow;
   bool any = false;
-  for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k) {
-    const Piece& vertical = down_[k];
-    if (vertical.rear < 0) continue;
-    any = true;
-    addScaledLanes(&rear.row(vertical.rear)->x, vertical.weight, &blend[0].x,
-                   3 * size_t(rearColumns_));
+  if (kept && sameRows()) {
+    any = kept->any;
+  } else {
+    blend.assign(size_t(rearColumns_), Vec3f(0.0f));
+    for (size_t k = 0; k < pieceCount; ++k) {
+      const Piece& vertical = pieces[k];
+      if (vertical.rear < 0) continue;
+      any = true;
+      addScaledLanes(&rear.row(vertical.rear)->x, vertical.weight, &blend[0].x,
+                     3 * size_t(rearColumns_));
+    }
+    if (kept) kept->pieces.assign(pieces, pieces + pieceCount), kept->any = any;
   }
   if (!any) {
     std::fill(seenRear, seenRear + width_, Vec3f(0.0f));

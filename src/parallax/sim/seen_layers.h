@@ -68,6 +68,18 @@ class SeenLayers {
   struct RowScratch {
     std::vector<Vec3f> product, filtered, seenRear;
     std::vector<Vec3f> rearRow;  // seenRearRow: the rear rows under front row j, blended
+    // keepBlends (the caller's promise that no rear layer it passes changes while this scratch
+    // lives): seenRearRow keeps its last blend of each rear layer with the rows and weights it
+    // was made of, and another eye whose row meets the same rear rows with the same weights
+    // (every eye at one distance: their lines of sight differ along x only) takes it as it is.
+    bool keepBlends = false;
+    struct Blend {
+      const Vec3f* rearFirst = nullptr;
+      std::vector<Piece> pieces;
+      std::vector<Vec3f> rows;
+      bool any = false;
+    };
+    std::vector<Blend> blends;
   };
   // V's row j into out[0 .. width()).
   void viewRow(const LayerRows& front, const LayerRows& rear, int j, Vec3f* out,
