@@ -117,6 +117,44 @@ TEST(SeenLayers, SameGradientsForAnyThreadCount) {
 }
 
 // Time-multiplexed frames are seen as the average of their views.
+// A scratch that keeps its blends (RowScratch::keepBlends) gives every eye's seen rear row as a
+// fresh scratch does: eyes at one distance (the same rear rows and weights: the blend taken
+// again), at another distance and height (made anew), two rear layers in turn (one blend each),
+// and an eye of the first distance again after them. The eyes at one distance do share it.
+TEST(SeenLayers, KeptBlendsGiveTheSeenRearRowsOfAFreshScratch) {
+  const DisplayDesign d = smallDisplay(LayerOrder::BarrierBack, 90, 12);
+  const Image first = randomImage(d.spec.maskPanel.width, d.spec.maskPanel.height, 5);
+  const Image second = randomImage(d.spec.maskPanel.width, d.spec.maskPanel.height, 6);
+  const std::vector<Vec3d> eyes{
+      {-20, 0, 600}, {15, 0, 600}, {40, 0, 600}, {0, 7, 480}, {5, 0, 600}};
+  const int width = d.spec.imagePanel.width;
+  SeenLayers::RowScratch kept;
+  kept.keepBlends = true;
+  for (int j = 0; j < d.spec.imagePanel.height; ++j)
+    for (const Vec3d& eye : eyes) {
+      const SeenLayers seen(d, eye);
+      for (const Image* rear : {&first, &second}) {
+        std::vector<Vec3f> fresh(static_cast<size_t>(width)), reused(static_cast<size_t>(width));
+        SeenLayers::RowScratch scratch;
+        seen.seenRearRow(*rear, j, fresh.data(), scratch);
+        seen.seenRearRow(*rear, j, reused.data(), kept);
+        for (int i = 0; i < width; ++i)
+          ASSERT_EQ(fresh[size_t(i)], reused[size_t(i)]) << j << " " << i;
+      }
+    }
+  EXPECT_EQ(kept.blends.size(), 2u);
+  // The eyes at 600 mm see a row through the same rear rows and weights.
+  SeenLayers::RowScratch one;
+  one.keepBlends = true;
+  std::vector<Vec3f> row(static_cast<size_t>(width));
+  SeenLayers(d, eyes[0]).seenRearRow(first, 5, row.data(), one);
+  const std::vector<Piece> pieces = one.blends.front().pieces;
+  ASSERT_FALSE(pieces.empty());
+  one.blends.front().rows.assign(one.blends.front().rows.size(), Vec3f(0.5f));
+  SeenLayers(d, eyes[1]).seenRearRow(first, 5, row.data(), one);
+  for (const Vec3f& p : row) EXPECT_LE(p.x, 0.5f + 1e-6f);  // read from the kept (altered) blend
+}
+
 TEST(SimulatedFrames, SeeTheAverageOfTheFramesViews) {
   const DisplayDesign d = smallDisplay(LayerOrder::BarrierBack, 90, 8);
   const std::unique_ptr<DisplayModel> model = makeBarrierDisplay(d);
