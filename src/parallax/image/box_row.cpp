@@ -3,8 +3,15 @@
 #include "parallax/core/lane_kernel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <utility>
+
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#define PARALLAX_SHIFTED_STENCIL 1
+#endif
 
 #include "parallax/core/error.h"
 
@@ -92,13 +99,94 @@ template <int kTaps = 2>
     return stencilLoop<0>(from, offset, step, taps, tapCount, into, begin, end);
 }
 
+#ifdef PARALLAX_SHIFTED_STENCIL
+// stencilLoop on AVX-512 CPUs for taps 3 floats apart (a pixel's channels): the 16 inputs of
+// every tap of 16 outputs lie in the few vectors from the lowest tap's, so those are loaded
+// once and each tap's 16 are shifted out of two of them (valignd) instead of loaded again (one
+// unaligned 64-byte load a tap, two cache lines for most: the loads, not the multiply-adds, set
+// the loop's pace; GCC's own shuffles of vector extensions became two-source permutations that
+// ran no faster). The same multiply-adds in the same tap order as stencilLoop's x86-64-v4
+// clone, so the same sums. Taps t at from + n + offset + step t, step 3 or -3 (the transpose:
+// tap t is then the (count - 1 - t)-th from the lowest). Reads nothing stencilLoop would not:
+// it stops where its last vector would pass the last float stencilLoop reads, and returns the
+// output it stopped at for stencilLoop to go on from.
+template <int kShift>
+[[gnu::always_inline, gnu::target("avx512f")]] inline __m512 shiftedOut(const __m512i* vectors) {
+  if constexpr (kShift % 16 == 0)
+    return _mm512_castsi512_ps(vectors[kShift / 16]);
+  else
+    // (The all-lanes mask form: the plain one's undefined source trips -Wmaybe-uninitialized.)
+    return _mm512_castsi512_ps(_mm512_mask_alignr_epi32(vectors[kShift / 16], __mmask16(0xFFFF),
+                                                        vectors[kShift / 16 + 1],
+                                                        vectors[kShift / 16], kShift % 16));
+}
+
+template <int kTaps, bool kBackward, int... kT>
+[[gnu::target("avx512f")]] int shiftedStencil(const float* from, int offset, const float* taps,
+                                              float* into, int begin, int end,
+                                              std::integer_sequence<int, kT...>) {
+  constexpr int kSpan = 3 * (kTaps - 1);                // floats from the lowest tap to the highest
+  constexpr int kVectors = (kSpan + 15) / 16 + 1;       // the vectors that hold every tap's 16
+  const int lowest = offset - (kBackward ? kSpan : 0);  // the lowest tap's offset
+  // Tap t's floats from the lowest tap's.
+  constexpr auto tapShift = [](int t) { return kBackward ? kSpan - 3 * t : 3 * t; };
+  __m512 weights[kTaps];
+  for (int t = 0; t < kTaps; ++t) weights[t] = _mm512_set1_ps(taps[t]);
+  int n = begin;
+  for (; n + 16 <= end && n + 16 * kVectors <= end + kSpan; n += 16) {
+    const float* source = from + (n + lowest);
+    __m512i vectors[kVectors];
+    for (int v = 0; v < kVectors; ++v) vectors[v] = _mm512_loadu_si512(source + 16 * v);
+    __m512 sum = _mm512_mul_ps(weights[0], shiftedOut<tapShift(0)>(vectors));
+    ((sum = kT == 0 ? sum : _mm512_fmadd_ps(weights[kT], shiftedOut<tapShift(kT)>(vectors), sum)),
+     ...);
+    _mm512_storeu_ps(into + n, sum);
+  }
+  return n;
+}
+
+template <int kTaps = 2>
+int shiftedStencilOfCount(const float* from, int offset, int step, const float* taps, int tapCount,
+                          float* into, int begin, int end) {
+  if (tapCount == kTaps) {
+    constexpr auto kAll = std::make_integer_sequence<int, kTaps>();
+    return step > 0 ? shiftedStencil<kTaps, false>(from, offset, taps, into, begin, end, kAll)
+                    : shiftedStencil<kTaps, true>(from, offset, taps, into, begin, end, kAll);
+  }
+  if constexpr (kTaps < BoxRow::kMostTaps)
+    return shiftedStencilOfCount<kTaps + 1>(from, offset, step, taps, tapCount, into, begin, end);
+  else
+    return begin;
+}
+
+std::atomic<bool> shiftedStencilAllowed{true};
+
+bool shiftedStencilRuns() {
+  static const bool runs = __builtin_cpu_supports("avx512f");
+  return runs && shiftedStencilAllowed.load(std::memory_order_relaxed);
+}
+#endif
+
 PARALLAX_LANE_KERNEL
 void stencil(const float* from, int offset, int step, const float* taps, int tapCount, float* into,
              int begin, int end) {
+#ifdef PARALLAX_SHIFTED_STENCIL
+  if ((step == 3 || step == -3) && tapCount >= 2 && shiftedStencilRuns())
+    begin = shiftedStencilOfCount(from, offset, step, taps, tapCount, into, begin, end);
+#endif
   stencilOfCount(from, offset, step, taps, tapCount, into, begin, end);
 }
 
 }  // namespace
+
+bool allowShiftedStencil(bool allow) {
+#ifdef PARALLAX_SHIFTED_STENCIL
+  return shiftedStencilAllowed.exchange(allow);
+#else
+  (void)allow;
+  return false;
+#endif
+}
 
 // The edge columns' terms in the order the sums below add them (the arithmetic of summing each
 // window directly, in double: precomputed here because those few columns cost as much as the

@@ -11,6 +11,11 @@
 
 namespace parallax {
 
+// Whether CPUs with AVX-512 run the stencil's shifted-vector loop (box_row.cpp, the same sums as
+// the plain one), for the test that holds the two to the same bits; returns the previous
+// setting. On by default.
+bool allowShiftedStencil(bool allow);
+
 class BoxRow {
  public:
   // Widths up to this many taps run as a stencil with the taps in registers.
