@@ -1221,14 +1221,17 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
             return sum;
           });
     } else if (maskIsRear) {
-      // The mask (rear) update by blocks of mask rows: each block gathers, eye by eye and in
-      // the order of the output rows that meet its rows (SeenLayers::rearRowSources: the order
-      // of addRearGradient), every frame's share of B^T t and B^T V. An output row's view is
-      // made once per block it meets (a row meets about two mask rows, mostly of one block):
-      // blocks of up to 32 rows (the parallel loop halves the rows down to 17-32 at 1080p; at a
-      // grain of 8, blocks of 4-8 rows made about a quarter of the views twice). Blocks in parallel
-      // write disjoint rows: the same sums for any thread count and block size, and no
-      // full-size temporaries.
+      // The mask (rear) update by blocks of mask rows, each block's sums gathered from the output
+      // rows that meet its rows (SeenLayers::rearRowSources). The eyes at one distance see
+      // every output row through the same mask rows with the same weights (their lines of
+      // sight differ along x only), so they go as a group: for each output row the group's
+      // shares of B^T t and B^T V along a mask row are added up eye by eye (each eye's view of
+      // the row made once, its mask blend shared), then added to each mask row it meets times
+      // that row's vertical weight, once for the whole group. Every mask row receives them by
+      // group, then output row, in order, whatever the blocks: the same sums for any thread
+      // count. Blocks of up to 32 rows (an output row meets about two mask rows, mostly of one
+      // block: its views are made again for each block it meets); blocks in parallel write
+      // disjoint rows, and no full-size temporaries.
       const int width = views.front().seen.width(), rearRows = frames.front().mask.height();
       struct Share {
         int outputRow, maskRow;
@@ -1237,15 +1240,22 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       const size_t maskWidth = size_t(frames.front().mask.width());
       parallelFor(rearRows, threads, 32, [&](int64_t begin, int64_t end) {
         RowWork w(width);
+        w.scratch.keepBlends = true;  // the layers stay fixed through the pass
         std::vector<Share> shares;
         std::vector<Vec3f> alongRow;
-        for (const TrainingView& v : views) {
-          // The block's (output row, mask row) pairs by output row, each output row's mask rows
-          // in row order, so that every mask row receives its output rows in rearRowSources'
-          // order.
+        const auto sameSources = [&](const TrainingView& a, const TrainingView& b) {
+          for (int64_t r = begin; r != end; ++r)
+            if (a.seen.rearRowSources(int(r)) != b.seen.rearRowSources(int(r))) return false;
+          return true;
+        };
+        for (size_t first = 0, last = 0; first < views.size(); first = last) {
+          last = first + 1;
+          while (last < views.size() && sameSources(views[first], views[last])) ++last;
+          // The group's (output row, mask row) pairs by output row, each output row's mask rows
+          // in row order.
           shares.clear();
           for (int64_t r = begin; r != end; ++r)
-            for (const auto& [j, weight] : v.seen.rearRowSources(int(r)))
+            for (const auto& [j, weight] : views[first].seen.rearRowSources(int(r)))
               shares.push_back({j, int(r), weight});
           std::stable_sort(shares.begin(), shares.end(), [](const Share& a, const Share& b) {
             return a.outputRow < b.outputRow;
@@ -1253,18 +1263,21 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
           for (size_t k = 0; k < shares.size(); ++k) {
             const int j = shares[k].outputRow;
             if (k == 0 || shares[k - 1].outputRow != j) {
-              // Output row j's shares of B^T t and B^T V along a mask row, per frame; each mask
-              // row it meets adds them times its vertical weight.
-              averageViewRow(v, seenLayers, j, w);
-              v.boxedTargetRow(j, w.residual.data(), w.other.data());
-              v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
+              // Output row j's shares of B^T t and B^T V along a mask row, per frame, summed
+              // over the group's eyes.
               alongRow.assign(2 * frames.size() * maskWidth, Vec3f(0.0f));
-              for (size_t t = 0; t < frames.size(); ++t) {
-                const Image& front = seenLayers[t].image;
-                v.seen.addRearGradientFromRow(w.residual.data(), front, j, 1.0f,
-                                              &alongRow[2 * t * maskWidth]);
-                v.seen.addRearGradientFromRow(w.weights.data(), front, j, 1.0f,
-                                              &alongRow[(2 * t + 1) * maskWidth]);
+              for (size_t e = first; e < last; ++e) {
+                const TrainingView& v = views[e];
+                averageViewRow(v, seenLayers, j, w);
+                v.boxedTargetRow(j, w.residual.data(), w.other.data());
+                v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
+                for (size_t t = 0; t < frames.size(); ++t) {
+                  const Image& front = seenLayers[t].image;
+                  v.seen.addRearGradientFromRow(w.residual.data(), front, j, 1.0f,
+                                                &alongRow[2 * t * maskWidth]);
+                  v.seen.addRearGradientFromRow(w.weights.data(), front, j, 1.0f,
+                                                &alongRow[(2 * t + 1) * maskWidth]);
+                }
               }
             }
             const int r = shares[k].maskRow;

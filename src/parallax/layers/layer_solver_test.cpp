@@ -616,6 +616,51 @@ TEST(OptimizeImageLayer, SolvesForTheDiffuser) {
   }
 }
 
+// The mask update goes by blocks of mask rows (their split depends on the thread count) and by
+// groups of eyes that see the rows through the same mask rows (one distance and height): the
+// same layers bit for bit for 1, 2 and 3 threads on a panel of 100 rows (blocks of 17-32), and
+// the same layers within float rounding when the eyes come in an order where no two neighbours
+// share their mask rows (every group one eye: the sums in another order), with boxed targets
+// at rank 2, an eye above the others among them.
+TEST(FactorizeLayers, SameLayersForAnyThreadCountAndEyeOrder) {
+  DisplaySpec spec = tinyDisplay(LayerOrder::BarrierBack).spec;
+  spec.imagePanel.height = spec.maskPanel.height = 100;
+  const DisplayDesign d = designDisplay(spec);
+  const Image image = randomImage(27, 100, 41, 0.1f, 0.9f), mask = randomImage(27, 100, 42);
+  std::vector<Vec3d> eyes = eyesAcross(d);
+  eyes.insert(eyes.begin() + 3, {0.1 * d.viewZoneWidthMm, 4.0, d.viewDistanceMm});
+  std::vector<TrainingView> grouped;
+  for (const Vec3d& eye : eyes) {
+    SeenLayers seen(d, eye);
+    Image target = seen.view(image, mask);
+    grouped.push_back({std::move(seen), std::move(target)});
+    grouped.back().encodeBoxedTarget(1);
+  }
+  std::vector<TrainingView> mixed;
+  for (size_t k = 0; k < 8; ++k)  // 22 eyes: 0, 8, 16, 1, 9, 17, ...: no neighbours share rows
+    for (size_t e = k; e < grouped.size(); e += 8) mixed.push_back(grouped[e]);
+  ASSERT_EQ(mixed.size(), grouped.size());
+  std::vector<LayerFrame> start;
+  for (int t = 0; t < 2; ++t)
+    start.push_back(
+        {randomImage(27, 100, 50 + t, 0.2f, 0.8f), randomImage(27, 100, 60 + t, 0.2f, 0.8f)});
+  const std::vector<LayerFrame> one = factorizeLayers(grouped, start, 3, 1);
+  for (const int threads : {2, 3}) {
+    const std::vector<LayerFrame> many = factorizeLayers(grouped, start, 3, threads);
+    for (size_t t = 0; t < 2; ++t) {
+      EXPECT_EQ(one[t].image.pixels(), many[t].image.pixels()) << threads;
+      EXPECT_EQ(one[t].mask.pixels(), many[t].mask.pixels()) << threads;
+    }
+  }
+  const std::vector<LayerFrame> other = factorizeLayers(mixed, start, 3, 2);
+  for (size_t t = 0; t < 2; ++t)
+    for (size_t i = 0; i < one[t].mask.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_NEAR(one[t].mask.pixels()[i][c], other[t].mask.pixels()[i][c], 1e-4f) << i;
+        ASSERT_NEAR(one[t].image.pixels()[i][c], other[t].image.pixels()[i][c], 1e-4f) << i;
+      }
+}
+
 TEST(FactorizeLayers, SolvesForTheDiffuser) {
   const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
   const RearDiffuser diffuser{0.8, 1.0};
