@@ -187,25 +187,25 @@ double meanSquaredError(const Image& a, const Image& b, MetricEncoding encoding)
 
 namespace {
 
-// out[l] = S(in[l]) for l < count <= 16, as one FloatLanes16. Always inlined, as are the other
-// helpers of the lane kernels here: a lambda or a function left out of line would be compiled
-// for the baseline, not for the kernel's clone.
+// out[l] = S(in[l]) for l < count <= 32, as two FloatLanes16 side by side
+// (srgbEncodeArithmetic). Always inlined, as are the other helpers of the lane kernels here: a
+// lambda or a function left out of line would be compiled for the baseline, not for the kernel's
+// clone.
 [[gnu::always_inline]] inline void srgbEncodeLanes(const float* in, float* out, size_t count) {
-  FloatLanes16 values{};
-  std::memcpy(&values, in, sizeof(float) * count);
-  FloatLanes16 encoded, slope;
-  srgbEncodeArithmetic<FloatLanes16, IntLanes16>(values, encoded, slope);
-  std::memcpy(out, &encoded, sizeof(float) * count);
+  FloatLanes16 values[2] = {}, encoded[2], slope[2];
+  std::memcpy(values, in, sizeof(float) * count);
+  srgbEncodeArithmetic<FloatLanes16, IntLanes16, 2>(values, encoded, slope);
+  std::memcpy(out, encoded, sizeof(float) * count);
 }
 
 }  // namespace
 
-// 16 values at a time as FloatLanes16 (one 512-bit register in the x86-64-v4 clone, where GCC's
-// vectoriser chose 256-bit ones); the last n mod 16 through the same lanes.
+// 32 values at a time as FloatLanes16 (one 512-bit register in the x86-64-v4 clone, where GCC's
+// vectoriser chose 256-bit ones); the last n mod 32 through the same lanes.
 PARALLAX_LANE_KERNEL void srgbEncodeValues(const float* __restrict in, float* __restrict out,
                                            size_t n) {
   size_t k = 0;
-  for (; k + 16 <= n; k += 16) srgbEncodeLanes(in + k, out + k, 16);
+  for (; k + 32 <= n; k += 32) srgbEncodeLanes(in + k, out + k, 32);
   if (k < n) srgbEncodeLanes(in + k, out + k, n - k);
 }
 

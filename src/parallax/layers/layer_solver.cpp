@@ -75,32 +75,36 @@ constexpr int kLanes = 16;
 // 16 running sums in double, one per lane (value k in lane k mod 16), added in lane order at
 // the end: the same sum for any thread count. The last n mod 16 values go through the same
 // lanes, the unused ones zero. Returns sum (S(v / c) - target)^2 / 2.
-template <bool kResidual, bool kWeights>
+template <bool kResidual, bool kWeights, int kN>
 [[gnu::always_inline]] inline void encodedErrorStep(const float* seen, const uint16_t* encoded,
                                                     size_t at, int count, float inv,
                                                     float* residual, float* weights,
                                                     DoubleLanes8& low, DoubleLanes8& high) {
-  FloatLanes16 values{};
-  HalfWordLanes16 codes{};
-  std::memcpy(&values, seen + at, sizeof(float) * size_t(count));
-  std::memcpy(&codes, encoded + at, sizeof(uint16_t) * size_t(count));
-  FloatLanes16 value, slope;
-  srgbEncodeArithmetic<FloatLanes16, IntLanes16>(values * inv, value, slope);
-  FloatLanes16 diff = value - convertLanes<FloatLanes16>(codes) * kInverseEncodedUnit;
-  if (count < 16)
-    for (int l = count; l < 16; ++l) diff[l] = 0.0f;
-  slope *= inv;
-  if constexpr (kResidual) {
-    const FloatLanes16 r = slope * diff;
-    std::memcpy(residual + at, &r, sizeof(float) * size_t(count));
+  // kN vectors of 16 (the last `count` values in all: fewer than 16 only for kN = 1), encoded
+  // side by side (srgbEncodeArithmetic), their squares added to the sums in value order.
+  FloatLanes16 values[kN] = {}, value[kN], slope[kN];
+  HalfWordLanes16 codes[kN] = {};
+  std::memcpy(values, seen + at, sizeof(float) * size_t(count));
+  std::memcpy(codes, encoded + at, sizeof(uint16_t) * size_t(count));
+  for (int v = 0; v < kN; ++v) values[v] *= inv;
+  srgbEncodeArithmetic<FloatLanes16, IntLanes16, kN>(values, value, slope);
+  for (int v = 0; v < kN; ++v) {
+    FloatLanes16 diff = value[v] - convertLanes<FloatLanes16>(codes[v]) * kInverseEncodedUnit;
+    if (count < 16)
+      for (int l = count; l < 16; ++l) diff[l] = 0.0f;
+    const FloatLanes16 s = slope[v] * inv;
+    if constexpr (kResidual) {
+      const FloatLanes16 r = s * diff;
+      std::memcpy(residual + at + 16 * size_t(v), &r, sizeof(float) * size_t(std::min(count, 16)));
+    }
+    if constexpr (kWeights) {
+      const FloatLanes16 w = s * s;
+      std::memcpy(weights + at + 16 * size_t(v), &w, sizeof(float) * size_t(std::min(count, 16)));
+    }
+    const DoubleLanes8 first = lowHalfInDouble(diff), second = highHalfInDouble(diff);
+    low += first * first;
+    high += second * second;
   }
-  if constexpr (kWeights) {
-    const FloatLanes16 w = slope * slope;
-    std::memcpy(weights + at, &w, sizeof(float) * size_t(count));
-  }
-  const DoubleLanes8 first = lowHalfInDouble(diff), second = highHalfInDouble(diff);
-  low += first * first;
-  high += second * second;
 }
 
 constexpr size_t kPrefetchCodes = 512;
@@ -111,15 +115,16 @@ template <bool kResidual, bool kWeights>
                                                       float* weights) {
   DoubleLanes8 low{}, high{};
   size_t k = 0;
-  for (; k + 16 <= n; k += 16) {
+  for (; k + 32 <= n; k += 32) {
     // The targets stream from memory, a row of each eye in turn: ask for them a kilobyte ahead
     // (their loads stalled the loop otherwise, the prefetcher starting anew with each row).
     __builtin_prefetch(encoded + k + kPrefetchCodes);
-    encodedErrorStep<kResidual, kWeights>(seen, encoded, k, 16, inv, residual, weights, low, high);
+    encodedErrorStep<kResidual, kWeights, 2>(seen, encoded, k, 32, inv, residual, weights, low,
+                                             high);
   }
-  if (k < n)
-    encodedErrorStep<kResidual, kWeights>(seen, encoded, k, int(n - k), inv, residual, weights, low,
-                                          high);
+  for (; k < n; k += 16)
+    encodedErrorStep<kResidual, kWeights, 1>(seen, encoded, k, int(std::min<size_t>(16, n - k)),
+                                             inv, residual, weights, low, high);
   return 0.5 * sumInLaneOrder(low, high);
 }
 
@@ -717,14 +722,27 @@ namespace {
   return uint16_t(std::min(rounded, 65535));
 }
 
-// round(65535 S(v / c)) of n values.
+// sixteenBitCode of 16 lanes (the same arithmetic).
+[[gnu::always_inline]] inline HalfWordLanes16 sixteenBitCodes(FloatLanes16 scaled) {
+  IntLanes16 rounded = convertLanes<IntLanes16>(scaled);
+  rounded += scaled - convertLanes<FloatLanes16>(rounded) >= 0.5f ? 1 : 0;
+  rounded = rounded < 65535 ? rounded : 65535;
+  return __builtin_convertvector(rounded, HalfWordLanes16);
+}
+
+// round(65535 S(v / c)) of n values, 32 at a time as two FloatLanes16 side by side
+// (srgbEncodeArithmetic), the last ones in zeroed lanes.
 PARALLAX_LANE_KERNEL
 void encodeTargetLanes(const float* values, uint16_t* encoded, size_t n, float inv) {
-  PARALLAX_SIMD
-  for (size_t i = 0; i < n; ++i) {
-    float value = 0, slope = 0;
-    srgbEncodeArithmetic(values[i] * inv, value, slope);
-    encoded[i] = sixteenBitCode(value * kEncodedUnit);
+  for (size_t k = 0; k < n; k += 32) {
+    const size_t count = std::min<size_t>(32, n - k);
+    FloatLanes16 in[2] = {}, out[2], slope[2];
+    std::memcpy(in, values + k, sizeof(float) * count);
+    for (FloatLanes16& v : in) v *= inv;
+    srgbEncodeArithmetic<FloatLanes16, IntLanes16, 2>(in, out, slope);
+    const HalfWordLanes16 codes[2] = {sixteenBitCodes(out[0] * kEncodedUnit),
+                                      sixteenBitCodes(out[1] * kEncodedUnit)};
+    std::memcpy(encoded + k, codes, sizeof(uint16_t) * count);
   }
 }
 
