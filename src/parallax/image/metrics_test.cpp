@@ -167,7 +167,7 @@ TEST(Metrics, SrgbEncodedIsTheStandardsFormula) {
 // layer solvers' errors use) is the one-value encoding bit for bit: the same operations in the
 // same order, wherever the lanes come from: both segments, the clamps below 0 and above 1, the
 // values next to the segments' border, 1 and the smallest ones, infinities.
-TEST(SrgbEncode, SixteenLanesAreSixteenSingleValues) {
+TEST(SrgbEncode, LanesSideBySideAreSingleValues) {
   std::vector<float> values = {-INFINITY,
                                -1.0f,
                                -0.0f,
@@ -189,7 +189,7 @@ TEST(SrgbEncode, SixteenLanesAreSixteenSingleValues) {
   Rng rng(5);
   for (int i = 0; i < 4000; ++i) values.push_back(float(rng.uniform()));
   for (int i = 0; i < 400; ++i) values.push_back(std::ldexp(float(rng.uniform()), -int(i % 90)));
-  while (values.size() % 16) values.push_back(0.25f);
+  while (values.size() % 48) values.push_back(0.25f);
   for (size_t base = 0; base < values.size(); base += 16) {
     FloatLanes16 x, encoded, slope;
     for (int l = 0; l < 16; ++l) x[l] = values[base + size_t(l)];
@@ -200,6 +200,20 @@ TEST(SrgbEncode, SixteenLanesAreSixteenSingleValues) {
       EXPECT_EQ(std::bit_cast<uint32_t>(encoded[l]), std::bit_cast<uint32_t>(oneEncoded)) << x[l];
       EXPECT_EQ(std::bit_cast<uint32_t>(slope[l]), std::bit_cast<uint32_t>(oneSlope)) << x[l];
     }
+  }
+  // Three vectors side by side (the steps interleaved) give each value's own bits as well.
+  for (size_t base = 0; base < values.size(); base += 48) {
+    FloatLanes16 x[3], encoded[3], slope[3];
+    for (int v = 0; v < 3; ++v)
+      for (int l = 0; l < 16; ++l) x[v][l] = values[base + 16 * size_t(v) + size_t(l)];
+    srgbEncodeArithmetic<FloatLanes16, IntLanes16, 3>(x, encoded, slope);
+    for (int v = 0; v < 3; ++v)
+      for (int l = 0; l < 16; ++l) {
+        float oneEncoded = 0, oneSlope = 0;
+        srgbEncodeArithmetic(x[v][l], oneEncoded, oneSlope);
+        EXPECT_EQ(std::bit_cast<uint32_t>(encoded[v][l]), std::bit_cast<uint32_t>(oneEncoded));
+        EXPECT_EQ(std::bit_cast<uint32_t>(slope[v][l]), std::bit_cast<uint32_t>(oneSlope));
+      }
   }
 }
 
