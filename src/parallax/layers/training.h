@@ -64,8 +64,9 @@ std::vector<TrainingView> trainingEyes(const DisplayDesign& design, const Traini
 
 // trainingViews' targets a band of rows at a time (optimizeImageLayerByBands' BandTargets): each
 // eye's ideal view rendered on the renderer's tiles of those rows only, through the display's box
-// along rows, scaled and encoded as trainingViews makes them, so the same codes. Needs
-// solvesByBands. One camera and tile renderer per eye, made once; eyes in parallel.
+// along rows, scaled and encoded as trainingViews makes them, so the same codes. Needs the image
+// in front and a box along rows only (slits: solvesByBands, or nmf's boxed targets). One camera
+// and tile renderer per eye, made once; eyes in parallel.
 class IdealViewBands {
  public:
   IdealViewBands(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& design,
