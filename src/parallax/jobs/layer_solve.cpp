@@ -2,7 +2,6 @@
 // eyes across the view zone, then the optimised image layer or the weighted NMF of both layers.
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 
 #include "parallax/core/memory.h"
@@ -47,7 +46,6 @@ TrainingOptions trainingOptions(const LayersRequest& request, int threads, int b
   training.srgbWeights = request.errorMeasure() == "srgb";
   training.threads = threads;
   training.bounces = bounces;
-  if (const char* e = std::getenv("PARALLAX_TRAIN_SPP")) training.referenceSamplesPerPixel = std::atoi(e);
   return training;
 }
 
