@@ -8,7 +8,10 @@
 // inlined into a kernel is compiled with it; calls out of it stay baseline, so no AVX
 // instruction can reach a CPU without AVX. A build for an AVX-512 machine (-DPARALLAX_NATIVE=ON
 // there) has nothing wider to dispatch to and makes no clones; neither do clang builds (the
-// fuzzers).
+// fuzzers). A loop that only AVX-512's own instructions make fast (intrinsics, which a clone for
+// the baseline cannot compile) is a function of its own marked target("avx512f"), named
+// ...Avx512..., and called only where __builtin_cpu_supports("avx512f") said yes
+// (image/box_row.cpp's stencil); tests/portable_isa_test.sh lets such names through.
 #pragma once
 
 #include <cstddef>

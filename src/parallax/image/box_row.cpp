@@ -122,9 +122,9 @@ template <int kShift>
 }
 
 template <int kTaps, bool kBackward, int... kT>
-[[gnu::target("avx512f")]] int shiftedStencil(const float* from, int offset, const float* taps,
-                                              float* into, int begin, int end,
-                                              std::integer_sequence<int, kT...>) {
+[[gnu::target("avx512f")]] int shiftedStencilAvx512(const float* from, int offset,
+                                                    const float* taps, float* into, int begin,
+                                                    int end, std::integer_sequence<int, kT...>) {
   constexpr int kSpan = 3 * (kTaps - 1);                // floats from the lowest tap to the highest
   constexpr int kVectors = (kSpan + 15) / 16 + 1;       // the vectors that hold every tap's 16
   const int lowest = offset - (kBackward ? kSpan : 0);  // the lowest tap's offset
@@ -146,22 +146,23 @@ template <int kTaps, bool kBackward, int... kT>
 }
 
 template <int kTaps = 2>
-int shiftedStencilOfCount(const float* from, int offset, int step, const float* taps, int tapCount,
-                          float* into, int begin, int end) {
+int shiftedStencilAvx512OfCount(const float* from, int offset, int step, const float* taps,
+                                int tapCount, float* into, int begin, int end) {
   if (tapCount == kTaps) {
     constexpr auto kAll = std::make_integer_sequence<int, kTaps>();
-    return step > 0 ? shiftedStencil<kTaps, false>(from, offset, taps, into, begin, end, kAll)
-                    : shiftedStencil<kTaps, true>(from, offset, taps, into, begin, end, kAll);
+    return step > 0 ? shiftedStencilAvx512<kTaps, false>(from, offset, taps, into, begin, end, kAll)
+                    : shiftedStencilAvx512<kTaps, true>(from, offset, taps, into, begin, end, kAll);
   }
   if constexpr (kTaps < BoxRow::kMostTaps)
-    return shiftedStencilOfCount<kTaps + 1>(from, offset, step, taps, tapCount, into, begin, end);
+    return shiftedStencilAvx512OfCount<kTaps + 1>(from, offset, step, taps, tapCount, into, begin,
+                                                  end);
   else
     return begin;
 }
 
 std::atomic<bool> shiftedStencilAllowed{true};
 
-bool shiftedStencilRuns() {
+bool shiftedStencilAvx512Runs() {
   static const bool runs = __builtin_cpu_supports("avx512f");
   return runs && shiftedStencilAllowed.load(std::memory_order_relaxed);
 }
@@ -171,8 +172,8 @@ PARALLAX_LANE_KERNEL
 void stencil(const float* from, int offset, int step, const float* taps, int tapCount, float* into,
              int begin, int end) {
 #ifdef PARALLAX_SHIFTED_STENCIL
-  if ((step == 3 || step == -3) && tapCount >= 2 && shiftedStencilRuns())
-    begin = shiftedStencilOfCount(from, offset, step, taps, tapCount, into, begin, end);
+  if ((step == 3 || step == -3) && tapCount >= 2 && shiftedStencilAvx512Runs())
+    begin = shiftedStencilAvx512OfCount(from, offset, step, taps, tapCount, into, begin, end);
 #endif
   stencilOfCount(from, offset, step, taps, tapCount, into, begin, end);
 }
