@@ -33,11 +33,21 @@ double trainingBytes(const DisplayDesign& design, const TrainingOptions& options
   return trainingPixels(design, options) * 3.0 * sizeof(uint16_t);
 }
 
+namespace {
+
+// Whether the targets' rows can be made a band at a time (IdealViewBands): the image in front,
+// whose row j every eye's view row j depends on, and a box along rows (a pinhole mask's box
+// spans rows).
+bool targetRowsByBands(const DisplayDesign& design) {
+  return design.spec.order == LayerOrder::BarrierBack &&
+         design.spec.mask.kind != MaskKind::Pinholes;
+}
+
+}  // namespace
+
 bool solvesByBands(const DisplayDesign& design, const TrainingOptions& options,
                    const std::string& method) {
-  return method == "optimized-image" && options.srgbWeights &&
-         design.spec.order == LayerOrder::BarrierBack &&
-         design.spec.mask.kind != MaskKind::Pinholes;
+  return method == "optimized-image" && options.srgbWeights && targetRowsByBands(design);
 }
 
 double trainingHeldBytes(const DisplayDesign& design, const TrainingOptions& options,
@@ -155,10 +165,8 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
                                         const DisplayDesign& design, const TrainingOptions& options,
                                         const std::function<void(int, int)>& progress) {
   // Boxed targets (nmf, the image in front) are encoded row by row: rendered a band of rows at a
-  // time, every eye in parallel, with no whole float view made (a pinhole mask's box spans
-  // rows, so its views are made whole).
-  if (options.boxedTargets && design.spec.order == LayerOrder::BarrierBack &&
-      design.spec.mask.kind != MaskKind::Pinholes) {
+  // time, every eye in parallel, with no whole float view made.
+  if (options.boxedTargets && targetRowsByBands(design)) {
     std::vector<TrainingView> views = trainingEyes(design, options);
     IdealViewBands(scene, accelerator, design, options).wholeBoxedTargets(views, progress);
     return views;
