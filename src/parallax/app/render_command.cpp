@@ -98,6 +98,10 @@ void registerRenderCommand(CLI::App& cli) {
                   "solved for what eyes see through it (default: the display file's "
                   "diffuser_sigma_mm, else none; docs/content-adaptive.md)")
       ->type_name("MM");
+  cmd->add_flag("--color-filters", request.layers.colorFilters,
+                "With --layers optimized-image or nmf: solve for what eyes see through the panels' "
+                "colour filters (as simulate --color-filters: one channel a stripe of an RGB or "
+                "BGR panel; docs/content-adaptive.md)");
   cmd->add_option("--train-eyes", request.layers.trainEyes,
                   "Training eyes per view at each --train-distances for optimised layers")
       ->capture_default_str();

@@ -44,6 +44,7 @@ TrainingOptions trainingOptions(const LayersRequest& request, int threads, int b
   training.eyesPerView = request.trainEyes;
   training.distances = parseDistances(request.trainDistances, "train_distances");
   training.srgbWeights = request.errorMeasure() == "srgb";
+  training.colourFilters = request.colorFilters;
   training.threads = threads;
   training.bounces = bounces;
   return training;
@@ -120,6 +121,7 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
     out.set("/layers/training_distances/" + std::to_string(i), training.distances[i]);
   out.set("/layers/error", o.errorMeasure());
   out.set("/layers/diffuser_sigma_mm", diffuser.sigmaMm);
+  out.set("/layers/color_filters", o.colorFilters);
   out.set("/layers/training_seconds", trainSeconds);
   out.set("/layers/seconds", seconds);
   out.set("/layers/passes", report.passes);

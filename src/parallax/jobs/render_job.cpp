@@ -62,6 +62,10 @@ void LayersRequest::check() const {
     throw RequestError("diffuser",
                        "applies to {layers} optimized-image or nmf (the layers solved for a "
                        "panel with a diffuser foil); slits are the same with or without one");
+  if (colorFilters && !solved())
+    throw RequestError("color_filters",
+                       "applies to {layers} optimized-image or nmf (the layers solved for the "
+                       "panels' colour filters); slits are the same with or without them");
 }
 
 namespace {
@@ -218,7 +222,8 @@ MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
        {"{train_eyes}", std::to_string(r.layers.trainEyes)},
        {"{train_distances}", r.layers.trainDistances},
        {"{layer_error}", r.layers.error},
-       {"{diffuser}", r.layers.diffuser ? madeFromNumber(*r.layers.diffuser) : "display"}});
+       {"{diffuser}", r.layers.diffuser ? madeFromNumber(*r.layers.diffuser) : "display"},
+       {"{color_filters}", r.layers.colorFilters ? "on" : "off"}});
   addSamplingMadeFrom(made, r.sampling);
   addSequenceMadeFrom(made, r.sequence);
   addFileContent(made, r.display);

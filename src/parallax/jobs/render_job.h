@@ -25,7 +25,8 @@ namespace parallax::jobs {
 // descent, plain updates) reached in 10, the default before them.
 inline constexpr int kDefaultLayerIterations = 7;
 
-// layers, rank, iterations, brightness, train_eyes, train_distances, layer_error: content-adaptive
+// layers, rank, iterations, brightness, train_eyes, train_distances, layer_error, diffuser,
+// color_filters: content-adaptive
 // layers (docs/content-adaptive.md) instead of the slits' own.
 struct LayersRequest {
   std::string method = "slits";   // slits, optimized-image or nmf
@@ -40,6 +41,9 @@ struct LayersRequest {
   // The panel's diffuser foil (Gaussian sigma, mm) the layers are solved for; none: the display
   // file's diffuser_sigma_mm.
   std::optional<double> diffuser;
+  // Solve through the panels' colour filters (simulate --color-filters: a panel with an RGB or
+  // BGR order passes one channel a stripe), so that the layers undo the colour fringes they make.
+  bool colorFilters = false;
   bool solved() const { return method != "slits"; }
   // The error measure the image layer is fitted in: srgb for optimized-image, linear for nmf.
   std::string errorMeasure() const;

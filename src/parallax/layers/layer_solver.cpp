@@ -520,7 +520,7 @@ class ImageLayerPasses {
     const bool grey = std::all_of(mask.pixels().begin(), mask.pixels().end(),
                                   [](const Vec3f& p) { return p.x == p.y && p.y == p.z; });
     if (rows < 0) rows = views.front().seen.height() - firstRow;
-    if (rowSeparable_ && grey) {
+    if (rowSeparable_ && grey && views.front().seen.seesGreyAsGrey()) {
       const int width = views.front().seen.width();
       // Sized without being written: the row tasks below touch their pages first, in parallel.
       seenMasks_.resize(views.size());

@@ -38,6 +38,10 @@ namespace {
 // Whether the targets' rows can be made a band at a time (IdealViewBands): the image in front,
 // whose row j every eye's view row j depends on, and a box along rows (a pinhole mask's box
 // spans rows).
+SeenOptics seenOptics(const TrainingOptions& options) {
+  return {.colourFilters = options.colourFilters};
+}
+
 bool targetRowsByBands(const DisplayDesign& design) {
   return design.spec.order == LayerOrder::BarrierBack &&
          design.spec.mask.kind != MaskKind::Pinholes;
@@ -66,7 +70,7 @@ std::vector<TrainingView> trainingEyes(const DisplayDesign& design,
                                        const TrainingOptions& options) {
   std::vector<TrainingView> views;
   for (const DenseEye& eye : denseEyes(design, options.eyesPerView, options.distances))
-    views.push_back({SeenLayers(design, eye.position), Image(),
+    views.push_back({SeenLayers(design, eye.position, seenOptics(options)), Image(),
                      options.srgbWeights ? float(options.targetScale) : 0.0f});
   return views;
 }
@@ -175,7 +179,7 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
   std::vector<TrainingView> views;
   views.reserve(eyes.size());
   for (size_t i = 0; i < eyes.size(); ++i) {
-    SeenLayers seen(design, eyes[i].position);
+    SeenLayers seen(design, eyes[i].position, seenOptics(options));
     Image target =
         idealView(scene, accelerator, design, eyes[i].position, seen.width(), seen.height(),
                   options.referenceSamplesPerPixel, options.threads, options.bounces);

@@ -31,6 +31,8 @@ struct TrainingOptions {
   // Targets kept as B^T t (TrainingView::encodeBoxedTarget), for factorizeLayers with the image
   // in front (linear light); the same bytes.
   bool boxedTargets = false;
+  // The eyes see the layers through the panels' colour filters (SeenOptics::colourFilters).
+  bool colourFilters = false;
   int threads = 0;
 };
 

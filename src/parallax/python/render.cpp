@@ -75,6 +75,7 @@ jobs::RenderRequest renderRequest(const DisplayDescription& display, const py::k
   if (kw.contains("train_eyes")) r.layers.trainEyes = kw["train_eyes"].cast<int>();
   text("train_distances", r.layers.trainDistances);
   if (kw.contains("diffuser")) r.layers.diffuser = kw["diffuser"].cast<double>();
+  if (kw.contains("color_filters")) r.layers.colorFilters = kw["color_filters"].cast<bool>();
   text("layer_error", r.layers.error);
   if (kw.contains("quilt") && !kw["quilt"].is_none()) {
     r.quilt.wanted = true;
@@ -129,6 +130,7 @@ std::vector<std::string> knownRenderKeywords() {
           "train_eyes",
           "train_distances",
           "diffuser",
+          "color_filters",
           "layer_error",
           "quilt",
           "size",

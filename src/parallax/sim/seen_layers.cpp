@@ -27,8 +27,8 @@ void checkLayer(const LayerRows& layer, int columns, int rows, const char* what)
 
 }  // namespace
 
-SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool periodBox)
-    : design_(design), eye_(eye), periodBox_(periodBox) {
+SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, const SeenOptics& optics)
+    : design_(design), eye_(eye), periodBox_(optics.periodBox) {
   const DisplaySpec& spec = design.spec;
   imageInFront_ = spec.order == LayerOrder::BarrierBack;
   const Panel& front = imageInFront_ ? spec.imagePanel : spec.maskPanel;
@@ -46,8 +46,20 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
     const double rearX = eye.x + ((t - 0.5) * frontWidth - eye.x) * stretch;
     return (rearX + 0.5 * rear.widthMm()) / rear.pitchMm;
   };
-  piecesAlongAxis(width_, frontColumns_, rearColumns_, column(0), column(1) - column(0), 0, -1,
-                  across_, acrossStart_);
+  // Stripes per pixel of each layer (simulator.cpp's makeLayer).
+  const auto stripes = [&](const Panel& panel) {
+    return optics.colourFilters && panel.subpixels != SubpixelOrder::None ? 3 : 1;
+  };
+  const int frontStripes = stripes(front), rearStripes = stripes(rear);
+  seesGreyAsGrey_ = frontStripes == 1 && rearStripes == 1;
+  if (seesGreyAsGrey_) {
+    piecesAlongAxis(width_, frontColumns_, rearColumns_, column(0), column(1) - column(0), 0, -1,
+                    across_, acrossStart_);
+    acrossWeights_.resize(across_.size());
+    for (size_t a = 0; a < across_.size(); ++a) acrossWeights_[a] = Vec3f(across_[a].weight);
+  } else {
+    makeFilteredPieces(frontStripes, rearStripes, front, rear, column(0), column(1) - column(0));
+  }
   const auto row = [&](double t) {
     const double rearY = eye.y + ((0.5 - t) * frontHeight - eye.y) * stretch;
     return (0.5 * rear.heightMm() - rearY) / rear.pitchMm;
@@ -73,6 +85,45 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, bool perio
   box_ = BoxRow(width_, design.screenPeriodMm / (frontWidth / double(width_)));
 }
 
+// The pieces across between the layers' stripes (one cell a stripe, as the simulator's striped
+// layers), merged per rear pixel: a piece whose front and rear stripes pass channel c adds its
+// share, times the stripes per pixel of both layers, to channel c of its rear pixel's weight.
+// Pieces that pass no channel are dropped.
+void SeenLayers::makeFilteredPieces(int frontStripes, int rearStripes, const Panel& front,
+                                    const Panel& rear, double u0, double du) {
+  std::vector<Piece> cells;
+  std::vector<uint32_t> cellStart;
+  piecesAlongAxis(width_, frontStripes * frontColumns_, rearStripes * rearColumns_,
+                  u0 * rearStripes, du * rearStripes, 0, -1, cells, cellStart);
+  const float unfiltered = float(frontStripes * rearStripes);
+  across_.clear();
+  acrossWeights_.clear();
+  acrossStart_.assign(size_t(width_) + 1, 0);
+  for (int i = 0; i < width_; ++i) {
+    acrossStart_[size_t(i)] = uint32_t(across_.size());
+    for (uint32_t k = cellStart[size_t(i)]; k < cellStart[size_t(i) + 1]; ++k) {
+      const Piece& cell = cells[k];
+      if (cell.front / frontStripes != i)
+        throw std::logic_error("SeenLayers: a piece leaves its column");
+      Vec3f pass(1.0f);
+      if (frontStripes == 3) pass = pass * stripePasses(front.subpixels, cell.front % 3);
+      if (rearStripes == 3 && cell.rear >= 0)
+        pass = pass * stripePasses(rear.subpixels, cell.rear % 3);
+      if (pass == Vec3f(0.0f)) continue;
+      const int rearPixel = cell.rear < 0 ? -1 : cell.rear / rearStripes;
+      const Vec3f weight = pass * (cell.weight * unfiltered);
+      if (across_.size() > acrossStart_[size_t(i)] && across_.back().rear == rearPixel) {
+        across_.back().weight += cell.weight;
+        acrossWeights_.back() += weight;
+      } else {
+        across_.push_back({i, rearPixel, cell.weight});
+        acrossWeights_.push_back(weight);
+      }
+    }
+  }
+  acrossStart_[size_t(width_)] = uint32_t(across_.size());
+}
+
 void SeenLayers::makeAcrossRuns() {
   acrossFirst_.assign(3 * size_t(width_), 0.0f);
   acrossSecond_.assign(3 * size_t(width_), 0.0f);
@@ -88,9 +139,10 @@ void SeenLayers::makeAcrossRuns() {
       continue;
     }
     const int shift = pieces[0].rear - i;
+    const Vec3f* weights = &acrossWeights_[begin];
     for (int c = 0; c < 3; ++c) {
-      acrossFirst_[3 * size_t(i) + size_t(c)] = pieces[0].weight;
-      acrossSecond_[3 * size_t(i) + size_t(c)] = count == 2 ? pieces[1].weight : 0.0f;
+      acrossFirst_[3 * size_t(i) + size_t(c)] = weights[0][c];
+      acrossSecond_[3 * size_t(i) + size_t(c)] = count == 2 ? weights[1][c] : 0.0f;
     }
     if (!acrossRuns_.empty() && acrossRuns_.back().end == i && acrossRuns_.back().shift == shift)
       ++acrossRuns_.back().end;
@@ -186,7 +238,7 @@ void SeenLayers::seenRearRow(const LayerRows& rear, int j, Vec3f* seenRear,
     Vec3f light(0.0f);
     for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
       const Piece& p = across_[a];
-      if (p.rear >= 0) light += blend[size_t(p.rear)] * p.weight;
+      if (p.rear >= 0) light += blend[size_t(p.rear)] * acrossWeights_[a];
     }
     seenRear[i] = light;
   }
@@ -297,7 +349,7 @@ void SeenLayers::addRearGradientFromRow(const Vec3f* filtered, const Image& fron
     for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
       const Piece& p = across_[a];
       if (p.rear < 0) continue;
-      gradRearRow[p.rear] += v * frontRow[p.front] * p.weight;
+      gradRearRow[p.rear] += v * frontRow[p.front] * acrossWeights_[a];
     }
   }
 }

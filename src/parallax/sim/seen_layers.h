@@ -1,9 +1,10 @@
 // What one eye sees on a two-layer display as a bilinear function of the two layers, with its
 // adjoints: the operator the layer solvers (layers/) fit layers with. It is the simulator's
 // exact view (simulator.h: the product of the two layers' box pixels integrated over each output
-// pixel, pinhole eye, no colour filters or diffuser) at the front layer's resolution,
-// unnormalised (backlight 1), followed by the box one screen period wide along x that the dense
-// measure compares views through (atDisplayResolution):
+// pixel, pinhole eye, no diffuser; optionally through the panels' colour filters) at the front
+// layer's resolution, unnormalised (backlight 1; with colour filters, each filtered layer's 1/3
+// undone as the simulator's normalisation does), followed by the box one screen period wide
+// along x that the dense measure compares views through (atDisplayResolution):
 //
 //     V = B P(front, rear),   P(front, rear)[o] = sum over pieces k of o: w_k front[f_k] rear[r_k]
 //
@@ -38,15 +39,28 @@ struct LayerRows {
   const Vec3f* row(int y) const { return first + size_t(y) * stride; }
 };
 
+// What the operator models besides the layers' box pixels.
+struct SeenOptics {
+  bool periodBox = true;  // apply B (false: V = P, for tests and other measures)
+  // The simulator's colour filters (SimulationOptions::colourFilters): a layer whose panel has
+  // an RGB or BGR order is three vertical stripes a pixel, stripe c passing channel c only. The
+  // stripes run down the columns, so they change the pieces across a row alone: channel c of
+  // output pixel i meets the rear pixels under the front's stripe c that pass channel c, each
+  // with its own weight (the weights per channel of acrossWeights_).
+  bool colourFilters = false;
+};
+
 class SeenLayers {
  public:
-  // `periodBox`: apply B (false: V = P, for tests and other measures).
-  SeenLayers(const DisplayDesign& design, const Vec3d& eyeMm, bool periodBox = true);
+  SeenLayers(const DisplayDesign& design, const Vec3d& eyeMm, const SeenOptics& optics = {});
 
   int width() const { return width_; }
   int height() const { return height_; }
   bool imageInFront() const { return imageInFront_; }
   const Vec3d& eye() const { return eye_; }
+  // Whether every channel of a pixel is seen with the same weights (no colour filters on
+  // either layer), so that a grey rear layer is seen grey (the solvers' one-float seen masks).
+  bool seesGreyAsGrey() const { return seesGreyAsGrey_; }
 
   // V for the layers as panel images (front and rear in the display's layer order).
   Image view(const LayerRows& front, const LayerRows& rear, int threads = 0) const;
@@ -124,10 +138,15 @@ class SeenLayers {
  private:
   DisplayDesign design_;
   Vec3d eye_;
-  bool imageInFront_ = true, periodBox_ = true;
+  bool imageInFront_ = true, periodBox_ = true, seesGreyAsGrey_ = true;
   int width_ = 0, height_ = 0, frontColumns_ = 0, frontRows_ = 0, rearColumns_ = 0, rearRows_ = 0;
+  // The pieces across in front and rear pixels (front == the output column), with their weights
+  // per channel in acrossWeights_ (all three the piece's weight without colour filters).
   std::vector<Piece> across_, down_;
+  std::vector<Vec3f> acrossWeights_;
   std::vector<uint32_t> acrossStart_, downStart_;
+  void makeFilteredPieces(int frontStripes, int rearStripes, const Panel& front, const Panel& rear,
+                          double u0, double du);
   // The pieces across in runs for vectorised loops: the eye sees rear cells at the front's
   // pitch times the gap's small stretch, so nearly every column i meets rear cells i + s and
   // i + s + 1 (weights first, second; second 0 for one piece), with the shift s constant over

@@ -38,7 +38,7 @@ TEST(SeenLayers, EqualsTheSimulatorsExactViewInBothLayerOrders) {
     const auto simulated = simulateDisplay(*model, LayerImages{image, mask}, options);
     for (const Vec3d eye : {Vec3d{0, 0, 600}, Vec3d{-37.5, 4, 520}, Vec3d{61, -3, 790}}) {
       const SeenLayers seen(d, eye);
-      const SeenLayers unboxed(d, eye, false);
+      const SeenLayers unboxed(d, eye, {.periodBox = false});
       const bool front = order == LayerOrder::BarrierBack;
       const Image a = front ? seen.view(image, mask) : seen.view(mask, image);
       const Image b = front ? unboxed.view(image, mask) : unboxed.view(mask, image);
@@ -69,7 +69,7 @@ TEST(SeenLayers, EqualsTheSimulatorsExactViewWithARearPanelOfAnotherPitch) {
   options.normalisation = 0.5;
   const auto simulated = simulateDisplay(*model, LayerImages{image, mask}, options);
   for (const Vec3d eye : {Vec3d{0, 0, 600}, Vec3d{-37.5, 4, 520}}) {
-    const Image a = SeenLayers(d, eye, false).view(image, mask);
+    const Image a = SeenLayers(d, eye, {.periodBox = false}).view(image, mask);
     const Image raw = simulated->view(eye);
     for (size_t i = 0; i < a.pixels().size(); ++i)
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.pixels()[i][c], 0.5f * raw.pixels()[i][c], 1e-5f);
@@ -81,6 +81,57 @@ TEST(SeenLayers, EqualsTheSimulatorsExactViewWithARearPanelOfAnotherPitch) {
     const double vy = dot(seen.view(image, mask), y);
     EXPECT_NEAR(vy, dot(mask, gRear), 1e-4 * vy);
   }
+}
+
+// Through colour filters (SeenOptics::colourFilters) the operator reads the layers' pixels
+// through their stripes, the simulator its striped cells (a second code path): equal in both
+// layer orders, with the mask panel in RGB, BGR or no stripes, its adjoints with them; and not
+// the view without filters.
+TEST(SeenLayers, ThroughColourFiltersEqualsTheSimulatorsStripedView) {
+  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront})
+    for (const SubpixelOrder maskStripes :
+         {SubpixelOrder::RGB, SubpixelOrder::BGR, SubpixelOrder::None}) {
+      DisplaySpec s = smallDisplay(order, 90, 8).spec;
+      s.maskPanel.subpixels = maskStripes;
+      const DisplayDesign d = designDisplay(s);
+      const Image image = randomImage(d.spec.imagePanel.width, d.spec.imagePanel.height, 11);
+      const Image mask = randomImage(d.spec.maskPanel.width, d.spec.maskPanel.height, 12);
+      const std::unique_ptr<DisplayModel> model = makeBarrierDisplay(d);
+      SimulationOptions options;
+      options.colourFilters = true;
+      options.normalisation = 0.5;                  // the simulator then scales by (stripes) / 0.5
+      options.width = 3 * d.spec.imagePanel.width;  // view()'s general path, three columns a pixel
+      const auto simulated = simulateDisplay(*model, LayerImages{image, mask}, options);
+      const bool front = order == LayerOrder::BarrierBack;
+      for (const Vec3d eye : {Vec3d{0, 0, 600}, Vec3d{-37.5, 4, 520}, Vec3d{61, -3, 790}}) {
+        const SeenLayers seen(d, eye, {.periodBox = false, .colourFilters = true});
+        EXPECT_FALSE(seen.seesGreyAsGrey());
+        const Image a = front ? seen.view(image, mask) : seen.view(mask, image);
+        // The simulator's view three columns a pixel, summed back to pixels (exact integrals
+        // add up).
+        const Image raw = simulated->view(eye);
+        const Image plain = front ? SeenLayers(d, eye, {.periodBox = false}).view(image, mask)
+                                  : SeenLayers(d, eye, {.periodBox = false}).view(mask, image);
+        double differs = 0;
+        for (int y = 0; y < a.height(); ++y)
+          for (int x = 0; x < a.width(); ++x) {
+            const Vec3f sum =
+                (raw.at(3 * x, y) + raw.at(3 * x + 1, y) + raw.at(3 * x + 2, y)) * (0.5f / 3.0f);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.at(x, y)[c], sum[c], 1e-5f) << x;
+            differs = std::max(differs, double(std::abs(a.at(x, y).x - plain.at(x, y).x)));
+          }
+        EXPECT_GT(differs, 0.05);
+        const SeenLayers boxed(d, eye, {.colourFilters = true});
+        const Image f = randomImage(90, 8, 13), r = randomImage(90, 8, 14);
+        const Image y = randomImage(boxed.width(), boxed.height(), 15);
+        Image gFront(90, 8), gRear(90, 8);
+        boxed.addFrontGradient(y, r, gFront);
+        boxed.addRearGradient(y, f, gRear);
+        const double vy = dot(boxed.view(f, r), y);
+        EXPECT_NEAR(vy, dot(f, gFront), 1e-4 * vy);
+        EXPECT_NEAR(vy, dot(r, gRear), 1e-4 * vy);
+      }
+    }
 }
 
 TEST(SeenLayers, AdjointsPassTheDotProductTest) {

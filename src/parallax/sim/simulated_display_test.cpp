@@ -61,17 +61,21 @@ TEST(SimulatedDisplay, SeenIsTheViewAtTheDisplaysResolution) {
     const LayerImages layers{ramp(90, 30), maskLayerImage(d)};
     Image dimmer = ramp(90, 30);
     for (Vec3f& p : dimmer.pixels()) p = p * 0.5f;
-    SimulationOptions plain, diffused, pupil, filters, sampled, resized;
+    SimulationOptions plain, diffused, pupil, filters, filtersDiffused, sampled, resized;
     diffused.diffuserSigmaMm = 0.7;
     diffused.backlight = Vec3f(0.9f, 1.0f, 0.8f);
     pupil.pupilDiameterMm = 3;
     filters.colourFilters = true;
+    filters.backlight = Vec3f(0.9f, 1.0f, 0.8f);
+    filtersDiffused = filters;
+    filtersDiffused.diffuserSigmaMm = 0.7;
     sampled.samplesPerPixel = 4;
     resized.width = 180;
     for (const auto& [options, fast] : {std::pair{plain, true},
                                         {diffused, true},
                                         {pupil, false},
-                                        {filters, false},
+                                        {filters, true},
+                                        {filtersDiffused, false},
                                         {sampled, false},
                                         {resized, false}}) {
       EXPECT_EQ(DisplaySimulator(d, layers, options).viewsThroughSeenLayers(), fast);

@@ -5,6 +5,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "parallax/core/math.h"
+#include "parallax/display/display.h"
+
 namespace parallax {
 
 // One piece of an output pixel along one axis: the front-layer cell and the rear-layer cell the
@@ -24,5 +27,13 @@ struct Piece {
 void piecesAlongAxis(int count, int frontCells, int rearCells, double u0, double du,
                      int samplesPerAxis, int outside, std::vector<Piece>& pieces,
                      std::vector<uint32_t>& start);
+
+// The channels stripe s (0, 1, 2 from the left) of a pixel passes under colour filters: a
+// one in the channel of that stripe.
+inline Vec3f stripePasses(SubpixelOrder order, int stripe) {
+  Vec3f pass(0.0f);
+  pass[order == SubpixelOrder::BGR ? 2 - stripe : stripe] = 1.0f;
+  return pass;
+}
 
 }  // namespace parallax
