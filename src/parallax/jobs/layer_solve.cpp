@@ -66,7 +66,10 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   // A diffuser foil blurs the rear layer (sim/diffuser.h); its pixels are the rear panel's.
   const Panel& rear =
       design.spec.order == LayerOrder::BarrierBack ? design.spec.maskPanel : design.spec.imagePanel;
-  const RearDiffuser diffuser{o.diffuser.value_or(design.spec.diffuserSigmaMm), rear.pitchMm};
+  // Through the colour filters it blurs the light the rear stripes pass (RearDiffuser::stripes).
+  const RearDiffuser diffuser{o.diffuser.value_or(design.spec.diffuserSigmaMm), rear.pitchMm,
+                              o.colorFilters ? rear.subpixels : SubpixelOrder::None};
+  training.rearStripeCells = diffuser.striped();
   SolveReport report;
   std::vector<LayerFrame> frames;
   std::vector<TrainingView> views;

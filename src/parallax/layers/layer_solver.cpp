@@ -626,7 +626,7 @@ class ImageLayerPasses {
       sum += eyeError(v, viewOf(v.seen, xs, mask_, threads_), &residual, nullptr);
       addImageGradient(v, residual, mask_, into, threads_);
     }
-    if (imageBlur_) addScaled(grad, imageBlur_->apply(blurredSum, threads_), 1.0f);
+    if (imageBlur_) addScaled(grad, imageBlur_->applyTransposed(blurredSum, threads_), 1.0f);
     return sum;
   }
 
@@ -668,7 +668,7 @@ class ImageLayerPasses {
       addImageGradient(v, elementwise(viewOf(v.seen, onesSeen, mask_, threads_), weights), mask_,
                        into, threads_);
     }
-    if (imageBlur_) addScaled(out, imageBlur_->apply(blurredSum, threads_), 1.0f);
+    if (imageBlur_) addScaled(out, imageBlur_->applyTransposed(blurredSum, threads_), 1.0f);
   }
 
   // The image as the eyes see it: through the diffuser when it is the rear layer.
@@ -678,11 +678,11 @@ class ImageLayerPasses {
     return holder;
   }
   // Where the eyes' sums for the image go: straight into `out`, or (the image blurred) into a
-  // zeroed `blurredSum`, which the caller then adds to `out` through G^T = G (the diffuser is
-  // its own transpose).
+  // zeroed `blurredSum` (the seen image's size), which the caller then adds to `out` through
+  // the diffuser's transpose.
   Image& throughDiffuser(Image& out, Image& blurredSum) const {
     if (!imageBlur_) return out;
-    blurredSum = Image(out.width(), out.height());
+    blurredSum = Image(imageBlur_->seenColumns(out.width()), out.height());
     return blurredSum;
   }
 
@@ -887,7 +887,13 @@ const Image& TrainingView::linearTarget(Image& holder, int threads) const {
 }
 
 Image RearDiffuser::apply(const Image& layer, int threads) const {
+  if (striped()) return stripedDiffuserBlurred(layer, stripes, sigmaMm, pitchMm, threads);
   return active() ? diffuserBlurred(layer, sigmaMm, pitchMm, threads) : layer;
+}
+
+Image RearDiffuser::applyTransposed(const Image& seen, int threads) const {
+  if (striped()) return stripedDiffuserBlurredTransposed(seen, stripes, sigmaMm, pitchMm, threads);
+  return apply(seen, threads);
 }
 
 double layerObjective(const std::vector<TrainingView>& views, const std::vector<LayerFrame>& frames,
@@ -1205,14 +1211,15 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
   // sum_e A^T t_e, denominator sum_e A^T V_e, where A is the view's derivative with respect to
   // that frame's layer (the other layer fixed); the 1/T of the average cancels in the ratio.
   // Through a diffuser the views see G rear: the front's A holds G rear, and the rear's A is
-  // P_rear G, so its sums pass through G^T = G (non-negative, so the updates stay
-  // multiplicative and never increase E).
+  // P_rear G, so its sums pass through G^T = G (S^T G through the rear's colour filters:
+  // non-negative, so the updates stay multiplicative and never increase E).
   const auto update = [&](bool updateImages) {
     std::vector<LayerFrame> holder;
     const std::vector<LayerFrame>& seenLayers =
         seenFrames(views, frames, diffuser, threads, holder);
+    // The sums are made for the layer as the eyes see it (the seen rear layer's size).
     std::vector<Image> numerator, denominator;
-    for (const LayerFrame& f : frames) {
+    for (const LayerFrame& f : seenLayers) {
       const Image& x = updateImages ? f.image : f.mask;
       numerator.emplace_back(x.width(), x.height());
       denominator.emplace_back(x.width(), x.height());
@@ -1250,12 +1257,12 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       // count. Blocks of up to 32 rows (an output row meets about two mask rows, mostly of one
       // block: its views are made again for each block it meets); blocks in parallel write
       // disjoint rows, and no full-size temporaries.
-      const int width = views.front().seen.width(), rearRows = frames.front().mask.height();
+      const int width = views.front().seen.width(), rearRows = seenLayers.front().mask.height();
       struct Share {
         int outputRow, maskRow;
         float weight;
       };
-      const size_t maskWidth = size_t(frames.front().mask.width());
+      const size_t maskWidth = size_t(seenLayers.front().mask.width());
       parallelFor(rearRows, threads, 32, [&](int64_t begin, int64_t end) {
         RowWork w(width);
         w.scratch.keepBlends = true;  // the layers stay fixed through the pass
@@ -1327,8 +1334,8 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
     const bool rearUpdated = updateImages != maskIsRear;
     for (size_t t = 0; t < frames.size(); ++t) {
       if (rearUpdated && diffuser.active()) {
-        numerator[t] = diffuser.apply(numerator[t], threads);
-        denominator[t] = diffuser.apply(denominator[t], threads);
+        numerator[t] = diffuser.applyTransposed(numerator[t], threads);
+        denominator[t] = diffuser.applyTransposed(denominator[t], threads);
       }
       Image& x = updateImages ? frames[t].image : frames[t].mask;
       for (size_t i = 0; i < x.pixels().size(); ++i)

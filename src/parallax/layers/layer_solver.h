@@ -96,9 +96,20 @@ struct LayerFrame {
 // V = B P(front, G rear): G in the views, and G^T = G on the rear layer's gradient.
 struct RearDiffuser {
   double sigmaMm = 0, pitchMm = 0;
+  // The rear panel's colour-filter stripes when the eyes see through the filters (None: they
+  // do not, or the panel has none): the foil blurs the light the stripes pass, so the rear
+  // layer is seen as its stripe cells blurred (sim/diffuser.h, stripedDiffuserBlurred: three
+  // times as wide), which the views' SeenLayers read as such (SeenOptics::rearStripeCells).
+  SubpixelOrder stripes = SubpixelOrder::None;
   bool active() const { return sigmaMm > 0 && pitchMm > 0; }
-  // G applied to a rear layer (or to a gradient of one: G is its own transpose).
+  bool striped() const { return active() && stripes != SubpixelOrder::None; }
+  // G (G S when striped) applied to a rear layer: the layer as the eyes see it.
   Image apply(const Image& layer, int threads = 0) const;
+  // Its transpose on a gradient of the seen layer: G itself (G is symmetric), S^T G when
+  // striped.
+  Image applyTransposed(const Image& seen, int threads = 0) const;
+  // The seen layer's columns for a rear layer of `columns`.
+  int seenColumns(int columns) const { return striped() ? 3 * columns : columns; }
 };
 
 struct SolveReport {

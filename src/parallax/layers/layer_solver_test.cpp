@@ -616,63 +616,88 @@ TEST(OptimizeImageLayer, SolvesForTheDiffuser) {
   }
 }
 
-// Targets seen through the panels' colour filters (SeenOptics::colourFilters) from layers that
+// Targets seen through the panels' colour filters (SeenOptics::colourFilters), and a diffuser
+// when `diffuser` is active (striped: it blurs the light the rear stripes pass), from layers that
 // can show them exactly, held by eyes that see through the filters (`filters`) or not: layers
 // solved through them reach the targets (seen through them), layers solved without do not; in
 // either layer order, with a grey mask (no grey seen masks through filters) and for NMF's both
 // layers, and the rows solved separately agree with the whole-image passes.
 std::vector<TrainingView> viewsThroughFilters(const DisplayDesign& d, const Image& image,
-                                              const Image& mask, bool filters) {
+                                              const Image& mask, bool filters,
+                                              const RearDiffuser& diffuser) {
   std::vector<TrainingView> views;
   for (const Vec3d& eye : eyesAcross(d)) {
-    const SeenLayers through(d, eye, {.colourFilters = true});
-    Image target = through.imageInFront() ? through.view(image, mask) : through.view(mask, image);
-    views.push_back({SeenLayers(d, eye, {.colourFilters = filters}), std::move(target)});
+    const SeenLayers through(d, eye,
+                             {.colourFilters = true, .rearStripeCells = diffuser.striped()});
+    Image target = through.imageInFront() ? through.view(image, diffuser.apply(mask))
+                                          : through.view(mask, diffuser.apply(image));
+    views.push_back(
+        {SeenLayers(d, eye,
+                    {.colourFilters = filters, .rearStripeCells = filters && diffuser.striped()}),
+         std::move(target)});
   }
   return views;
 }
 
+// The diffusers of these tests: none, and 0.8 pixels through the rear's RGB stripes; and the
+// same blur as a solver that ignores the filters takes it.
+std::vector<RearDiffuser> stripedDiffusers() {
+  return {RearDiffuser{}, RearDiffuser{0.8, 1.0, SubpixelOrder::RGB}};
+}
+RearDiffuser withoutStripes(const RearDiffuser& diffuser) {
+  return {diffuser.sigmaMm, diffuser.pitchMm};
+}
+
 TEST(OptimizeImageLayer, SolvesForTheColourFilters) {
-  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
-    SCOPED_TRACE(int(order));
-    const DisplayDesign d = tinyDisplay(order);
-    const Image mask = maskLayerImage(d);
-    const Image truth = randomImage(27, 2, 19, 0.3f, 0.7f);
-    const std::vector<TrainingView> views = viewsThroughFilters(d, truth, mask, true);
-    const Image start(27, 2, Vec3f(0.5f));
-    SolveReport aware;
-    const Image solved = optimizeImageLayer(views, start, mask, 300, 1, &aware);
-    EXPECT_TRUE(inUnitBox(solved));
-    expectNonIncreasing(aware.objective);
-    const double eAware = layerObjective(views, {{solved, mask}}, 1);
-    EXPECT_NEAR(eAware, aware.objective.back(), 1e-9 + 1e-6 * eAware);
-    EXPECT_LT(eAware, 1e-3 * aware.objective.front());
-    const Image unaware =
-        optimizeImageLayer(viewsThroughFilters(d, truth, mask, false), start, mask, 300, 1);
-    const double eUnaware = layerObjective(views, {{unaware, mask}}, 1);
-    EXPECT_GT(eUnaware, 3.0 * eAware) << eUnaware << " " << eAware;
-    const Image byEye = detail::optimizeImageLayerByEye(views, start, mask, 300, 1, nullptr);
-    for (size_t i = 0; i < solved.pixels().size(); ++i)
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(byEye.pixels()[i][c], solved.pixels()[i][c], 1e-4f);
-  }
+  for (const RearDiffuser& diffuser : stripedDiffusers())
+    for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+      SCOPED_TRACE(int(order) + 10 * diffuser.active());
+      const DisplayDesign d = tinyDisplay(order);
+      const Image mask = maskLayerImage(d);
+      const Image truth = randomImage(27, 2, 19, 0.3f, 0.7f);
+      const std::vector<TrainingView> views = viewsThroughFilters(d, truth, mask, true, diffuser);
+      const Image start(27, 2, Vec3f(0.5f));
+      SolveReport aware;
+      const Image solved = optimizeImageLayer(views, start, mask, 300, 1, &aware, {}, diffuser);
+      EXPECT_TRUE(inUnitBox(solved));
+      expectNonIncreasing(aware.objective);
+      const double eAware = layerObjective(views, {{solved, mask}}, 1, diffuser);
+      EXPECT_NEAR(eAware, aware.objective.back(), 1e-9 + 1e-6 * eAware);
+      EXPECT_LT(eAware, 1e-3 * aware.objective.front());
+      const Image unaware =
+          optimizeImageLayer(viewsThroughFilters(d, truth, mask, false, diffuser), start, mask, 300,
+                             1, nullptr, {}, withoutStripes(diffuser));
+      const double eUnaware = layerObjective(views, {{unaware, mask}}, 1, diffuser);
+      EXPECT_GT(eUnaware, 3.0 * eAware) << eUnaware << " " << eAware;
+      const Image byEye =
+          detail::optimizeImageLayerByEye(views, start, mask, 300, 1, nullptr, diffuser);
+      for (size_t i = 0; i < solved.pixels().size(); ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(byEye.pixels()[i][c], solved.pixels()[i][c], 1e-4f);
+    }
 }
 
 TEST(FactorizeLayers, SolvesForTheColourFilters) {
-  const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
-  const Image image = randomImage(27, 2, 24, 0.2f, 0.9f), mask = randomImage(27, 2, 26, 0.2f, 1.0f);
-  const std::vector<TrainingView> views = viewsThroughFilters(d, image, mask, true);
-  const std::vector<LayerFrame> start{{Image(27, 2, Vec3f(0.5f)), Image(27, 2, Vec3f(0.5f))}};
-  SolveReport aware;
-  const std::vector<LayerFrame> solved = factorizeLayers(views, start, 200, 1, &aware);
-  expectNonIncreasing(aware.objective);
-  EXPECT_TRUE(inUnitBox(solved[0].image) && inUnitBox(solved[0].mask));
-  const double eAware = layerObjective(views, solved, 1);
-  EXPECT_NEAR(eAware, aware.objective.back(), 1e-9 + 1e-6 * eAware);
-  const std::vector<LayerFrame> unaware =
-      factorizeLayers(viewsThroughFilters(d, image, mask, false), start, 200, 1);
-  const double eUnaware = layerObjective(views, unaware, 1);
-  EXPECT_LT(2.0 * eAware, eUnaware) << eAware << " " << eUnaware;
-  EXPECT_LT(eAware, 0.1 * aware.objective.front());
+  for (const RearDiffuser& diffuser : stripedDiffusers()) {
+    SCOPED_TRACE(diffuser.active());
+    const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
+    const Image image = randomImage(27, 2, 24, 0.2f, 0.9f);
+    const Image mask = randomImage(27, 2, 26, 0.2f, 1.0f);
+    const std::vector<TrainingView> views = viewsThroughFilters(d, image, mask, true, diffuser);
+    const std::vector<LayerFrame> start{{Image(27, 2, Vec3f(0.5f)), Image(27, 2, Vec3f(0.5f))}};
+    SolveReport aware;
+    const std::vector<LayerFrame> solved =
+        factorizeLayers(views, start, 200, 1, &aware, {}, diffuser);
+    expectNonIncreasing(aware.objective);
+    EXPECT_TRUE(inUnitBox(solved[0].image) && inUnitBox(solved[0].mask));
+    const double eAware = layerObjective(views, solved, 1, diffuser);
+    EXPECT_NEAR(eAware, aware.objective.back(), 1e-9 + 1e-6 * eAware);
+    const std::vector<LayerFrame> unaware =
+        factorizeLayers(viewsThroughFilters(d, image, mask, false, diffuser), start, 200, 1,
+                        nullptr, {}, withoutStripes(diffuser));
+    const double eUnaware = layerObjective(views, unaware, 1, diffuser);
+    EXPECT_LT(2.0 * eAware, eUnaware) << eAware << " " << eUnaware;
+    EXPECT_LT(eAware, 0.1 * aware.objective.front());
+  }
 }
 
 // The mask update goes by blocks of mask rows (their split depends on the thread count) and by

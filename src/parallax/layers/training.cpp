@@ -39,7 +39,7 @@ namespace {
 // whose row j every eye's view row j depends on, and a box along rows (a pinhole mask's box
 // spans rows).
 SeenOptics seenOptics(const TrainingOptions& options) {
-  return {.colourFilters = options.colourFilters};
+  return {.colourFilters = options.colourFilters, .rearStripeCells = options.rearStripeCells};
 }
 
 bool targetRowsByBands(const DisplayDesign& design) {

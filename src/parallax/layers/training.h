@@ -33,6 +33,9 @@ struct TrainingOptions {
   bool boxedTargets = false;
   // The eyes see the layers through the panels' colour filters (SeenOptics::colourFilters).
   bool colourFilters = false;
+  // With colourFilters and a diffuser: the rear layer is seen as its stripe cells blurred
+  // (RearDiffuser::striped, SeenOptics::rearStripeCells).
+  bool rearStripeCells = false;
   int threads = 0;
 };
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "parallax/core/parallel.h"
+#include "parallax/sim/view_pieces.h"
 
 namespace parallax {
 
@@ -69,6 +70,33 @@ void diffuserBlur(Vec3f* cells, int columns, int rows, size_t stride, double sig
       std::copy(blurred.data() + size_t(y) * stride, blurred.data() + size_t(y) * stride + columns,
                 cells + size_t(y) * stride);
   }
+}
+
+Image stripedDiffuserBlurred(const Image& layer, SubpixelOrder order, double sigmaMm,
+                             double pitchMm, int threads) {
+  Image cells(3 * layer.width(), layer.height());
+  for (int y = 0; y < layer.height(); ++y)
+    for (int x = 0; x < layer.width(); ++x)
+      for (int s = 0; s < 3; ++s)
+        cells.at(3 * x + s, y) = layer.at(x, y) * stripePasses(order, s) * 3.0f;
+  if (sigmaMm > 0 && pitchMm > 0)
+    diffuserBlur(cells.pixels().data(), cells.width(), cells.height(), size_t(cells.width()),
+                 3.0 * sigmaMm / pitchMm, sigmaMm / pitchMm, threads);
+  return cells;
+}
+
+Image stripedDiffuserBlurredTransposed(const Image& cells, SubpixelOrder order, double sigmaMm,
+                                       double pitchMm, int threads) {
+  Image blurred = cells;
+  if (sigmaMm > 0 && pitchMm > 0)
+    diffuserBlur(blurred.pixels().data(), blurred.width(), blurred.height(),
+                 size_t(blurred.width()), 3.0 * sigmaMm / pitchMm, sigmaMm / pitchMm, threads);
+  Image layer(cells.width() / 3, cells.height());
+  for (int y = 0; y < layer.height(); ++y)
+    for (int x = 0; x < layer.width(); ++x)
+      for (int s = 0; s < 3; ++s)
+        layer.at(x, y) += blurred.at(3 * x + s, y) * stripePasses(order, s) * 3.0f;
+  return layer;
 }
 
 Image diffuserBlurred(const Image& layer, double sigmaMm, double pitchMm, int threads) {

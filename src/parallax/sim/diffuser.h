@@ -13,6 +13,7 @@
 #include <cstddef>
 
 #include "parallax/core/math.h"
+#include "parallax/display/display.h"
 #include "parallax/image/image.h"
 
 namespace parallax {
@@ -25,5 +26,17 @@ void diffuserBlur(Vec3f* cells, int columns, int rows, size_t stride, double sig
 // An image of a panel whose pixels are pitchMm apart, blurred by a diffuser of sigmaMm (a copy;
 // the image itself when sigmaMm is 0).
 Image diffuserBlurred(const Image& layer, double sigmaMm, double pitchMm, int threads = 0);
+
+// A rear layer seen through its colour filters and then the diffuser (simulator.h: the foil
+// blurs the light the stripes pass, so the stripes come first): S, three cells a pixel, cell
+// 3x + s holding the channel stripe s passes (view_pieces.h, stripePasses) times 3 (the stripe's
+// 1/3 undone, as SeenLayers' filtered pieces undo it), blurred with sigma in cells (a third of
+// the pitch across, the pitch down): G S, an image three times as wide, which SeenLayers reads
+// as its rear layer's cells (SeenOptics::rearStripeCells). Its transpose S^T G^T = S^T G takes a
+// gradient of those cells back to the pixels: pixel x's channel c is 3 times its stripe's cell.
+Image stripedDiffuserBlurred(const Image& layer, SubpixelOrder order, double sigmaMm,
+                             double pitchMm, int threads = 0);
+Image stripedDiffuserBlurredTransposed(const Image& cells, SubpixelOrder order, double sigmaMm,
+                                       double pitchMm, int threads = 0);
 
 }  // namespace parallax

@@ -35,8 +35,10 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, const Seen
   const Panel& rear = imageInFront_ ? spec.maskPanel : spec.imagePanel;
   frontColumns_ = width_ = front.width;
   frontRows_ = height_ = front.height;
-  rearColumns_ = rear.width;
+  const bool rearCells = optics.colourFilters && optics.rearStripeCells;
+  rearColumns_ = rear.width * (rearCells ? 3 : 1);
   rearRows_ = rear.height;
+  const double rearCellMm = rear.pitchMm / (rearCells ? 3 : 1);
   // The simulator's geometry (DisplaySimulator::view): x across the front layer is
   // (t - 1/2) frontWidth, and the eye's line through it meets the rear layer stretched by
   // (e.z + g) / e.z about the eye.
@@ -44,14 +46,14 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, const Seen
   const double frontWidth = front.widthMm(), frontHeight = front.heightMm();
   const auto column = [&](double t) {
     const double rearX = eye.x + ((t - 0.5) * frontWidth - eye.x) * stretch;
-    return (rearX + 0.5 * rear.widthMm()) / rear.pitchMm;
+    return (rearX + 0.5 * rear.widthMm()) / rearCellMm;
   };
   // Stripes per pixel of each layer (simulator.cpp's makeLayer).
   const auto stripes = [&](const Panel& panel) {
     return optics.colourFilters && panel.subpixels != SubpixelOrder::None ? 3 : 1;
   };
-  const int frontStripes = stripes(front), rearStripes = stripes(rear);
-  seesGreyAsGrey_ = frontStripes == 1 && rearStripes == 1;
+  const int frontStripes = stripes(front), rearStripes = rearCells ? 1 : stripes(rear);
+  seesGreyAsGrey_ = frontStripes == 1 && rearStripes == 1 && !rearCells;
   if (seesGreyAsGrey_) {
     piecesAlongAxis(width_, frontColumns_, rearColumns_, column(0), column(1) - column(0), 0, -1,
                     across_, acrossStart_);

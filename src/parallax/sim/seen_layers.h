@@ -48,6 +48,11 @@ struct SeenOptics {
   // output pixel i meets the rear pixels under the front's stripe c that pass channel c, each
   // with its own weight (the weights per channel of acrossWeights_).
   bool colourFilters = false;
+  // With colourFilters: the rear layer comes as its stripe cells, three a pixel, already
+  // filtered (and blurred: sim/diffuser.h, stripedDiffuserBlurred), so each cell passes what it
+  // holds; the front layer's pixels pass through their stripes. For a diffuser, which blurs the
+  // light the rear stripes pass.
+  bool rearStripeCells = false;
 };
 
 class SeenLayers {

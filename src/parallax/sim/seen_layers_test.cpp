@@ -6,6 +6,7 @@
 
 #include "parallax/core/random.h"
 #include "parallax/display/display_model.h"
+#include "parallax/sim/diffuser.h"
 #include "parallax/sim/sim_test_support.h"
 #include "parallax/sim/simulated_display.h"
 #include "parallax/sim/simulator.h"
@@ -132,6 +133,32 @@ TEST(SeenLayers, ThroughColourFiltersEqualsTheSimulatorsStripedView) {
         EXPECT_NEAR(vy, dot(r, gRear), 1e-4 * vy);
       }
     }
+}
+
+// The rear layer's stripes two ways: SeenLayers' filtered pieces on its pixels, and its stripe
+// cells (sim/diffuser.h, unblurred) read as they are (SeenOptics::rearStripeCells); and the
+// stripe cells' blur and its transpose pass the dot-product test.
+TEST(SeenLayers, RearStripeCellsAreTheRearPixelsThroughTheirFilters) {
+  for (const SubpixelOrder stripes : {SubpixelOrder::RGB, SubpixelOrder::BGR}) {
+    DisplaySpec s = smallDisplay(LayerOrder::BarrierBack, 90, 8).spec;
+    s.maskPanel.subpixels = stripes;
+    const DisplayDesign d = designDisplay(s);
+    const Image front = randomImage(90, 8, 21), rear = randomImage(90, 8, 22);
+    const double pitch = d.spec.maskPanel.pitchMm;
+    for (const Vec3d eye : {Vec3d{0, 0, 600}, Vec3d{-37.5, 4, 520}}) {
+      const Image a = SeenLayers(d, eye, {.colourFilters = true}).view(front, rear);
+      const Image b = SeenLayers(d, eye, {.colourFilters = true, .rearStripeCells = true})
+                          .view(front, stripedDiffuserBlurred(rear, stripes, 0.0, pitch));
+      for (size_t i = 0; i < a.pixels().size(); ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.pixels()[i][c], b.pixels()[i][c], 1e-5f) << i;
+    }
+    const Image cells = randomImage(270, 8, 23);
+    const Image blurred = stripedDiffuserBlurred(rear, stripes, 0.7, pitch);
+    const Image back = stripedDiffuserBlurredTransposed(cells, stripes, 0.7, pitch);
+    ASSERT_EQ(blurred.width(), 270);
+    ASSERT_EQ(back.width(), 90);
+    EXPECT_NEAR(dot(blurred, cells), dot(rear, back), 1e-5 * dot(blurred, cells));
+  }
 }
 
 TEST(SeenLayers, AdjointsPassTheDotProductTest) {

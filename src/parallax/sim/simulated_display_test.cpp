@@ -75,7 +75,7 @@ TEST(SimulatedDisplay, SeenIsTheViewAtTheDisplaysResolution) {
                                         {diffused, true},
                                         {pupil, false},
                                         {filters, true},
-                                        {filtersDiffused, false},
+                                        {filtersDiffused, true},
                                         {sampled, false},
                                         {resized, false}}) {
       EXPECT_EQ(DisplaySimulator(d, layers, options).viewsThroughSeenLayers(), fast);

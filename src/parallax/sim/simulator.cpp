@@ -133,38 +133,34 @@ DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages laye
   }
   scale_ = normaliser / double(pupilPoints({}).size());
 
-  // Colour filters pass SeenLayers' pixels through its stripes (SeenOptics::colourFilters), so
-  // it reads the layers' pixels; a diffuser blurs the stripes' light, which only the striped
-  // cells here hold.
-  const bool filtered = front_.striped || rear_.striped;
   viewsThroughSeenLayers_ = options.samplesPerPixel == 0 && !(options.pupilDiameterMm > 0) &&
-                            !(filtered && options.diffuserSigmaMm > 0) &&
                             width_ == frontPanel.width && height_ == frontPanel.height &&
                             design.spec.mask.kind != MaskKind::Pinholes;
-  if (viewsThroughSeenLayers_ && filtered) {
-    filteredPixels_ = imageInFront ? std::move(layers)
-                                   : LayerImages{std::move(layers.mask), std::move(layers.image)};
-    // SeenLayers undoes the stripes' 1/3 itself.
-    filteredScale_ = scale_ / ((front_.striped ? 3.0 : 1.0) * (rear_.striped ? 3.0 : 1.0));
+  if (viewsThroughSeenLayers_ && front_.striped) {
+    // SeenLayers passes the front layer's pixels through their stripes itself, and undoes their
+    // 1/3.
+    frontPixels_ = imageInFront ? std::move(layers.image) : std::move(layers.mask);
+    filteredScale_ = scale_ / 3.0;
   }
 }
 
 Image DisplaySimulator::seen(const Vec3d& eye) const {
   if (!viewsThroughSeenLayers()) return atDisplayResolution(design_, view(eye));
   checkEye(eye);
+  // The rear cells as they are (striped, blurred), each row read up to its dark end cell.
+  const LayerRows rear(rear_.cells.data(), size_t(rear_.columns + 1), rear_.columns, rear_.rows);
+  const SeenOptics optics{.colourFilters = options_.colourFilters,
+                          .rearStripeCells = rear_.striped};
   Image out;
   double scale = scale_;
-  if (!filteredPixels_.image.empty()) {
-    // The layers' pixels through SeenLayers' stripes (the front layer in .image).
-    out = SeenLayers(design_, eye, {.colourFilters = true})
-              .view(filteredPixels_.image, filteredPixels_.mask, options_.threads);
+  if (front_.striped) {
+    // The front layer's pixels through SeenLayers' stripes.
+    out = SeenLayers(design_, eye, optics).view(frontPixels_, rear, options_.threads);
     scale = filteredScale_;
   } else {
-    // The cells as they are (the rear ones blurred), each row read up to its dark end cell.
     const LayerRows front(front_.cells.data(), size_t(front_.columns + 1), front_.columns,
                           front_.rows);
-    const LayerRows rear(rear_.cells.data(), size_t(rear_.columns + 1), rear_.columns, rear_.rows);
-    out = SeenLayers(design_, eye).view(front, rear, options_.threads);
+    out = SeenLayers(design_, eye, optics).view(front, rear, options_.threads);
   }
   const Vec3f scale3 = options_.backlight * float(scale);
   forRows(out.height(), threads_, [&](int begin, int end) {

@@ -74,10 +74,10 @@ class DisplaySimulator {
   Image view(const Vec3d& eyeMm) const;
 
   // The view at the display's resolution: atDisplayResolution(design, view(eyeMm)), what the
-  // dense measure compares. With exact integration, a pinhole eye, not both colour filters and a
-  // diffuser, the front layer's resolution and slits (viewsThroughSeenLayers) it is made in one
-  // pass of SeenLayers' vectorised rows (seen_layers.h: the same operator, equal to float
-  // rounding), otherwise as written.
+  // dense measure compares. With exact integration, a pinhole eye, the front layer's resolution
+  // and slits (viewsThroughSeenLayers) it is made in one pass of SeenLayers' vectorised rows
+  // (seen_layers.h: the same operator, equal to float rounding; colour filters and a diffuser
+  // too), otherwise as written.
   Image seen(const Vec3d& eyeMm) const;
   bool viewsThroughSeenLayers() const { return viewsThroughSeenLayers_; }
 
@@ -108,9 +108,9 @@ class DisplaySimulator {
   double maskMean_ = 0;
   bool viewsThroughSeenLayers_ = false;
   double scale_ = 1;  // normalisation / pupil samples
-  // seen() through colour filters: the layers' pixels (the front one in .image) for SeenLayers,
-  // and scale_ without the stripes' 1/3s, which SeenLayers undoes itself.
-  LayerImages filteredPixels_;
+  // seen() through the front layer's colour filters: its pixels for SeenLayers, and scale_
+  // without the stripes' 1/3, which SeenLayers undoes itself.
+  Image frontPixels_;
   double filteredScale_ = 1;
   int width_ = 0, height_ = 0, threads_ = 1;
 };
