@@ -126,6 +126,19 @@ check "a negative diffuser in a display file exits 2" run 2 render --display "$t
   -o "$tmp/x"
 check "names the file and the key" one_line_naming "badfoil.json: /diffuser_sigma_mm"
 
+# Through the panels' colour filters (--color-filters, as simulate's): solved for them, recorded,
+# and refused for slits.
+check "render --layers optimized-image --color-filters" run 0 render --display "$tmp/small.json" \
+  --spp 4 --layers optimized-image --iterations 6 --train-eyes 2 --color-filters -o "$tmp/oic"
+check "the colour filters are recorded" test "$(record_number "$tmp/oic/render.json" color_filters)" = True
+check "and not when off" test "$(record_number "$tmp/oi/render.json" color_filters)" = False
+check "layers solved for the colour filters differ" bash -c "! cmp -s '$tmp/oi/image.png' '$tmp/oic/image.png'"
+check "simulate --color-filters sees them" run 0 simulate "$tmp/oic" --eye 0,0,600 --color-filters \
+  -o "$tmp/filtered-seen.png"
+check "--color-filters with slits exits 2" run 2 render --display "$tmp/small.json" --color-filters \
+  -o "$tmp/x"
+check "names --color-filters" one_line_naming "--color-filters"
+
 check "unknown --layers exits 2" run 2 render --display "$tmp/small.json" --layers best -o "$tmp/x"
 check "unknown --layers names the option" one_line_naming "--layers"
 check "--rank without nmf exits 2" run 2 render --display "$tmp/small.json" \

@@ -320,6 +320,22 @@ def test_layers_for_a_diffuser_are_the_clis(scene, small, tmp_path):
         parallax.render(scene, small, diffuser=0.4)
 
 
+def test_layers_for_colour_filters_are_the_clis(scene, small, tmp_path):
+    # render(color_filters=True) is render --color-filters: the same image layer, recorded.
+    made = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
+                           train_eyes=1, color_filters=True)
+    assert made.record["layers"]["color_filters"] is True
+    result = cli("render", "--display", SMALL, "--spp", 1, "--layers", "optimized-image",
+                 "--iterations", 2, "--train-eyes", 1, "--color-filters", "-o", tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert np.array_equal(parallax.to_srgb8(made.image), rgb(read_png(tmp_path / "image.png")))
+    plain = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
+                            train_eyes=1)
+    assert not np.array_equal(plain.image, made.image)
+    with pytest.raises(parallax.Error, match=r"^color_filters: applies to layers optimized-image"):
+        parallax.render(scene, small, color_filters=True)
+
+
 def test_estimate_memory_is_the_clis_estimate(scene, small, tmp_path):
     # The same figure as `parallax --estimate`, within what the two processes hold besides
     # (the interpreter and numpy, about 10-60 MiB); a bigger picture needs more, by its pixels.
