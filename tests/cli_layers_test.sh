@@ -139,6 +139,22 @@ check "--color-filters with slits exits 2" run 2 render --display "$tmp/small.js
   -o "$tmp/x"
 check "names --color-filters" one_line_naming "--color-filters"
 
+# Eyes with a pupil (--pupil, as simulate's): solved for, recorded, refused for slits and out of
+# range.
+check "render --layers optimized-image --pupil 4" run 0 render --display "$tmp/small.json" \
+  --spp 4 --layers optimized-image --iterations 6 --train-eyes 2 --pupil 4 --pupil-samples 3 \
+  -o "$tmp/oip"
+check "the pupil is recorded" test "$(record_number "$tmp/oip/render.json" pupil_mm)" = 4.0
+check "with its samples" test "$(record_number "$tmp/oip/render.json" pupil_samples)" = 3
+check "--pupil with slits exits 2" run 2 render --display "$tmp/small.json" --pupil 4 -o "$tmp/x"
+check "names --pupil" one_line_naming "--pupil"
+check "--pupil-samples 65 exits 2" run 2 render --display "$tmp/small.json" --spp 4 \
+  --layers optimized-image --pupil 4 --pupil-samples 65 -o "$tmp/x"
+check "names --pupil-samples" one_line_naming "--pupil-samples"
+check "--pupil-samples without --pupil exits 2" run 2 render --display "$tmp/small.json" \
+  --layers optimized-image --pupil-samples 4 -o "$tmp/x"
+check "and no output" test ! -e "$tmp/x"
+
 check "unknown --layers exits 2" run 2 render --display "$tmp/small.json" --layers best -o "$tmp/x"
 check "unknown --layers names the option" one_line_naming "--layers"
 check "--rank without nmf exits 2" run 2 render --display "$tmp/small.json" \

@@ -102,6 +102,15 @@ void registerRenderCommand(CLI::App& cli) {
                 "With --layers optimized-image or nmf: solve for what eyes see through the panels' "
                 "colour filters (as simulate --color-filters: one channel a stripe of an RGB or "
                 "BGR panel; docs/content-adaptive.md)");
+  CLI::Option* pupil =
+      cmd->add_option("--pupil", request.layers.pupil,
+                      "With --layers optimized-image or nmf: solve for eyes with a pupil of this "
+                      "diameter in mm (0 to 100; as simulate --pupil), each view the average "
+                      "over --pupil-samples points of it (default 0: pinhole eyes)");
+  cmd->add_option("--pupil-samples", request.layers.pupilSamples,
+                  "Points averaged over the --pupil, 1 to 64 (the solve's time grows with them)")
+      ->capture_default_str()
+      ->needs(pupil);
   cmd->add_option("--train-eyes", request.layers.trainEyes,
                   "Training eyes per view at each --train-distances for optimised layers")
       ->capture_default_str();

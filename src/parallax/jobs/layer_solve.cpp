@@ -45,6 +45,8 @@ TrainingOptions trainingOptions(const LayersRequest& request, int threads, int b
   training.distances = parseDistances(request.trainDistances, "train_distances");
   training.srgbWeights = request.errorMeasure() == "srgb";
   training.colourFilters = request.colorFilters;
+  training.pupilDiameterMm = request.pupil;
+  training.pupilSamples = request.pupilSamples;
   training.threads = threads;
   training.bounces = bounces;
   return training;
@@ -125,6 +127,8 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   out.set("/layers/error", o.errorMeasure());
   out.set("/layers/diffuser_sigma_mm", diffuser.sigmaMm);
   out.set("/layers/color_filters", o.colorFilters);
+  out.set("/layers/pupil_mm", o.pupil);
+  out.set("/layers/pupil_samples", o.pupil > 0 ? o.pupilSamples : 1);
   out.set("/layers/training_seconds", trainSeconds);
   out.set("/layers/seconds", seconds);
   out.set("/layers/passes", report.passes);

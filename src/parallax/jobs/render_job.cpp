@@ -62,6 +62,15 @@ void LayersRequest::check() const {
     throw RequestError("diffuser",
                        "applies to {layers} optimized-image or nmf (the layers solved for a "
                        "panel with a diffuser foil); slits are the same with or without one");
+  if (!(pupil >= 0 && pupil <= 100))
+    throw RequestError("pupil", "must be a number from 0 to 100 (mm; 0: a pinhole eye)");
+  if (pupil > 0 && !solved())
+    throw RequestError("pupil",
+                       "applies to {layers} optimized-image or nmf (the layers solved "
+                       "for eyes with a pupil); slits are the same for any eye");
+  // Each sample is a pinhole eye of the solve's operator: the solve's time grows with them.
+  if (pupilSamples < 1 || pupilSamples > 64)
+    throw RequestError("pupil_samples", "must be a whole number from 1 to 64");
   if (colorFilters && !solved())
     throw RequestError("color_filters",
                        "applies to {layers} optimized-image or nmf (the layers solved for the "
@@ -223,7 +232,9 @@ MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
        {"{train_distances}", r.layers.trainDistances},
        {"{layer_error}", r.layers.error},
        {"{diffuser}", r.layers.diffuser ? madeFromNumber(*r.layers.diffuser) : "display"},
-       {"{color_filters}", r.layers.colorFilters ? "on" : "off"}});
+       {"{color_filters}", r.layers.colorFilters ? "on" : "off"},
+       {"{pupil}", madeFromNumber(r.layers.pupil)},
+       {"{pupil_samples}", std::to_string(r.layers.pupil > 0 ? r.layers.pupilSamples : 1)}});
   addSamplingMadeFrom(made, r.sampling);
   addSequenceMadeFrom(made, r.sequence);
   addFileContent(made, r.display);

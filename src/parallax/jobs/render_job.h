@@ -26,7 +26,7 @@ namespace parallax::jobs {
 inline constexpr int kDefaultLayerIterations = 7;
 
 // layers, rank, iterations, brightness, train_eyes, train_distances, layer_error, diffuser,
-// color_filters: content-adaptive
+// color_filters, pupil, pupil_samples: content-adaptive
 // layers (docs/content-adaptive.md) instead of the slits' own.
 struct LayersRequest {
   std::string method = "slits";   // slits, optimized-image or nmf
@@ -44,6 +44,10 @@ struct LayersRequest {
   // Solve through the panels' colour filters (simulate --color-filters: a panel with an RGB or
   // BGR order passes one channel a stripe), so that the layers undo the colour fringes they make.
   bool colorFilters = false;
+  // Solve for eyes with a pupil of this diameter (mm; 0: pinhole eyes), each eye's view the
+  // average over pupilSamples points of it (simulate --pupil, --pupil-samples).
+  double pupil = 0.0;
+  int pupilSamples = 16;
   bool solved() const { return method != "slits"; }
   // The error measure the image layer is fitted in: srgb for optimized-image, linear for nmf.
   std::string errorMeasure() const;

@@ -1258,11 +1258,16 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
       // block: its views are made again for each block it meets); blocks in parallel write
       // disjoint rows, and no full-size temporaries.
       const int width = views.front().seen.width(), rearRows = seenLayers.front().mask.height();
+      // A pupil's sights (SeenLayers::sights) meet the mask rows each with their own weights:
+      // an output row's shares are made per sight, from the view made once.
+      const size_t sights = size_t(views.front().seen.sights());
       struct Share {
         int outputRow, maskRow;
         float weight;
+        int sight;
       };
       const size_t maskWidth = size_t(seenLayers.front().mask.width());
+      const size_t shareSize = 2 * frames.size() * maskWidth;  // one sight's
       parallelFor(rearRows, threads, 32, [&](int64_t begin, int64_t end) {
         RowWork w(width);
         w.scratch.keepBlends = true;  // the layers stay fixed through the pass
@@ -1280,38 +1285,41 @@ std::vector<LayerFrame> factorizeLayers(const std::vector<TrainingView>& views,
           // in row order.
           shares.clear();
           for (int64_t r = begin; r != end; ++r)
-            for (const auto& [j, weight] : views[first].seen.rearRowSources(int(r)))
-              shares.push_back({j, int(r), weight});
+            for (const auto& [j, weight, sight] : views[first].seen.rearRowSources(int(r)))
+              shares.push_back({j, int(r), weight, sight});
           std::stable_sort(shares.begin(), shares.end(), [](const Share& a, const Share& b) {
             return a.outputRow < b.outputRow;
           });
           for (size_t k = 0; k < shares.size(); ++k) {
             const int j = shares[k].outputRow;
             if (k == 0 || shares[k - 1].outputRow != j) {
-              // Output row j's shares of B^T t and B^T V along a mask row, per frame, summed
-              // over the group's eyes.
-              alongRow.assign(2 * frames.size() * maskWidth, Vec3f(0.0f));
+              // Output row j's shares of B^T t and B^T V along a mask row, per sight and
+              // frame, summed over the group's eyes.
+              alongRow.assign(sights * shareSize, Vec3f(0.0f));
               for (size_t e = first; e < last; ++e) {
                 const TrainingView& v = views[e];
                 averageViewRow(v, seenLayers, j, w);
                 v.boxedTargetRow(j, w.residual.data(), w.other.data());
                 v.seen.boxTransposedRowInto(w.seen.data(), w.weights.data());
-                for (size_t t = 0; t < frames.size(); ++t) {
-                  const Image& front = seenLayers[t].image;
-                  v.seen.addRearGradientFromRow(w.residual.data(), front, j, 1.0f,
-                                                &alongRow[2 * t * maskWidth]);
-                  v.seen.addRearGradientFromRow(w.weights.data(), front, j, 1.0f,
-                                                &alongRow[(2 * t + 1) * maskWidth]);
-                }
+                for (size_t sight = 0; sight < sights; ++sight)
+                  for (size_t t = 0; t < frames.size(); ++t) {
+                    const Image& front = seenLayers[t].image;
+                    Vec3f* into = &alongRow[sight * shareSize + 2 * t * maskWidth];
+                    v.seen.addRearGradientFromRow(w.residual.data(), front, j, 1.0f, into,
+                                                  int(sight));
+                    v.seen.addRearGradientFromRow(w.weights.data(), front, j, 1.0f,
+                                                  into + maskWidth, int(sight));
+                  }
               }
             }
             const int r = shares[k].maskRow;
             const float weight = shares[k].weight;
+            const Vec3f* sightShares = &alongRow[size_t(shares[k].sight) * shareSize];
             for (size_t t = 0; t < frames.size(); ++t) {
               float* num = &numerator[t].at(0, r).x;
               float* den = &denominator[t].at(0, r).x;
-              const float* numShare = &alongRow[2 * t * maskWidth].x;
-              const float* denShare = &alongRow[(2 * t + 1) * maskWidth].x;
+              const float* numShare = &sightShares[2 * t * maskWidth].x;
+              const float* denShare = &sightShares[(2 * t + 1) * maskWidth].x;
               addScaledLanes(numShare, weight, num, 3 * maskWidth);
               addScaledLanes(denShare, weight, den, 3 * maskWidth);
             }

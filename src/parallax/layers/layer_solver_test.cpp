@@ -700,6 +700,73 @@ TEST(FactorizeLayers, SolvesForTheColourFilters) {
   }
 }
 
+// Eyes with a pupil (SeenOptics::pupilDiameterMm): targets seen as the average over a wide
+// pupil's points (5 of 60 mm: a tenth of a pixel's shift on the rear layer), from layers that
+// can show them exactly, held by eyes with that pupil or pinhole eyes (`pupilMm` 0): layers
+// solved for the pupil reach them, layers solved for pinhole eyes do not; in either layer order
+// (the image behind: its gradient gathers every sight's) and for NMF's both layers, whose mask
+// update goes by sights, the same for any thread count.
+std::vector<TrainingView> viewsThroughPupil(const DisplayDesign& d, const Image& image,
+                                            const Image& mask, double pupilMm) {
+  std::vector<TrainingView> views;
+  for (const Vec3d& eye : eyesAcross(d)) {
+    const SeenLayers through(d, eye, {.pupilDiameterMm = 60, .pupilSamples = 5});
+    Image target = through.imageInFront() ? through.view(image, mask) : through.view(mask, image);
+    views.push_back(
+        {SeenLayers(d, eye, {.pupilDiameterMm = pupilMm, .pupilSamples = 5}), std::move(target)});
+  }
+  return views;
+}
+
+TEST(OptimizeImageLayer, SolvesForThePupil) {
+  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+    SCOPED_TRACE(int(order));
+    const DisplayDesign d = tinyDisplay(order);
+    const Image mask = maskLayerImage(d);
+    const Image truth = randomImage(27, 2, 29, 0.3f, 0.7f);
+    const std::vector<TrainingView> views = viewsThroughPupil(d, truth, mask, 60);
+    ASSERT_EQ(views.front().seen.sights(), 5);
+    const Image start(27, 2, Vec3f(0.5f));
+    SolveReport aware;
+    const Image solved = optimizeImageLayer(views, start, mask, 300, 1, &aware);
+    expectNonIncreasing(aware.objective);
+    const double eAware = layerObjective(views, {{solved, mask}}, 1);
+    EXPECT_NEAR(eAware, aware.objective.back(), 1e-9 + 1e-6 * eAware);
+    EXPECT_LT(eAware, 1e-3 * aware.objective.front());
+    const Image unaware =
+        optimizeImageLayer(viewsThroughPupil(d, truth, mask, 0), start, mask, 300, 1);
+    const double eUnaware = layerObjective(views, {{unaware, mask}}, 1);
+    EXPECT_GT(eUnaware, 3.0 * eAware) << eUnaware << " " << eAware;
+    const Image byEye = detail::optimizeImageLayerByEye(views, start, mask, 300, 1, nullptr);
+    for (size_t i = 0; i < solved.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(byEye.pixels()[i][c], solved.pixels()[i][c], 1e-4f);
+  }
+}
+
+TEST(FactorizeLayers, SolvesForThePupil) {
+  const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
+  const Image image = randomImage(27, 2, 34, 0.2f, 0.9f), mask = randomImage(27, 2, 36, 0.2f, 1.0f);
+  const std::vector<TrainingView> views = viewsThroughPupil(d, image, mask, 60);
+  const auto boxed = [](std::vector<TrainingView> v) {  // as render's nmf holds them
+    for (TrainingView& one : v) one.encodeBoxedTarget(1);
+    return v;
+  };
+  const std::vector<LayerFrame> start{{Image(27, 2, Vec3f(0.5f)), Image(27, 2, Vec3f(0.5f))}};
+  SolveReport aware;
+  const std::vector<LayerFrame> solved = factorizeLayers(boxed(views), start, 200, 1, &aware);
+  expectNonIncreasing(aware.objective);
+  const double eAware = layerObjective(views, solved, 1);
+  EXPECT_NEAR(eAware, aware.objective.back(), 1e-6 + 1e-3 * eAware);  // the targets' rounding
+  EXPECT_LT(eAware, 0.1 * aware.objective.front());
+  const std::vector<LayerFrame> two = factorizeLayers(boxed(views), start, 200, 2);
+  EXPECT_EQ(two[0].image.pixels(), solved[0].image.pixels());
+  EXPECT_EQ(two[0].mask.pixels(), solved[0].mask.pixels());
+  const std::vector<LayerFrame> unaware =
+      factorizeLayers(boxed(viewsThroughPupil(d, image, mask, 0)), start, 200, 1);
+  const double eUnaware = layerObjective(views, unaware, 1);
+  EXPECT_LT(2.0 * eAware, eUnaware) << eAware << " " << eUnaware;
+}
+
 // The mask update goes by blocks of mask rows (their split depends on the thread count) and by
 // groups of eyes that see the rows through the same mask rows (one distance and height): the
 // same layers bit for bit for 1, 2 and 3 threads on a panel of 100 rows (blocks of 17-32), and
@@ -767,10 +834,12 @@ TEST(FactorizeLayers, SolvesForTheDiffuser) {
 // The (over-relaxed) multiplicative updates against dense ones on the probed light field,
 // channel 0: front =
 // image (barrier-back), rear = mask, seen as G rear through a diffuser (G probed from the blur
-// one pixel at a time, the identity without one), so that the rear's sums pass through G^T.
+// one pixel at a time, the identity without one), so that the rear's sums pass through G^T; and
+// by eyes with a pupil, whose sights the mask's sums gather one by one (the light field probed
+// from their average view).
 TEST(FactorizeLayers, MatchesDenseMultiplicativeUpdatesOnTheLightField) {
-  for (const double sigma : {0.0, 1.1}) {
-    SCOPED_TRACE(sigma);
+  for (const auto& [sigma, pupil] : {std::pair{0.0, 0.0}, {1.1, 0.0}, {0.0, 60.0}}) {
+    SCOPED_TRACE(sigma + 100 * pupil);
     const DisplayDesign d = tinyDisplay(LayerOrder::BarrierBack);
     const int w = 27, h = 1;
     DisplaySpec spec = d.spec;
@@ -779,8 +848,12 @@ TEST(FactorizeLayers, MatchesDenseMultiplicativeUpdatesOnTheLightField) {
     const RearDiffuser diffuser{sigma, 1.0};
     const Image truthImage = randomImage(w, h, 8, 0.2f, 0.9f);
     const Image truthMask = randomImage(w, h, 9, 0.2f, 0.9f);
-    const std::vector<TrainingView> views =
-        viewsThroughDiffuser(flat, truthImage, truthMask, diffuser);
+    std::vector<TrainingView> views;
+    for (const Vec3d& eye : eyesAcross(flat)) {
+      SeenLayers seen(flat, eye, {.pupilDiameterMm = pupil, .pupilSamples = 5});
+      Image target = seen.view(truthImage, diffuser.apply(truthMask));
+      views.push_back({std::move(seen), std::move(target)});
+    }
     const std::vector<Coefficient> field = probeLightField(views, w, h);
     ASSERT_FALSE(field.empty());
     std::vector<std::vector<double>> blur(size_t(w), std::vector<double>(size_t(w), 0.0));

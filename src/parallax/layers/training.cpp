@@ -39,7 +39,10 @@ namespace {
 // whose row j every eye's view row j depends on, and a box along rows (a pinhole mask's box
 // spans rows).
 SeenOptics seenOptics(const TrainingOptions& options) {
-  return {.colourFilters = options.colourFilters, .rearStripeCells = options.rearStripeCells};
+  return {.colourFilters = options.colourFilters,
+          .rearStripeCells = options.rearStripeCells,
+          .pupilDiameterMm = options.pupilDiameterMm,
+          .pupilSamples = options.pupilSamples};
 }
 
 bool targetRowsByBands(const DisplayDesign& design) {

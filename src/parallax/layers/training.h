@@ -36,6 +36,9 @@ struct TrainingOptions {
   // With colourFilters and a diffuser: the rear layer is seen as its stripe cells blurred
   // (RearDiffuser::striped, SeenOptics::rearStripeCells).
   bool rearStripeCells = false;
+  // Eyes with a pupil (SeenOptics::pupilDiameterMm, pupilSamples): each a pupil's sights.
+  double pupilDiameterMm = 0;
+  int pupilSamples = 16;
   int threads = 0;
 };
 

@@ -76,6 +76,8 @@ jobs::RenderRequest renderRequest(const DisplayDescription& display, const py::k
   text("train_distances", r.layers.trainDistances);
   if (kw.contains("diffuser")) r.layers.diffuser = kw["diffuser"].cast<double>();
   if (kw.contains("color_filters")) r.layers.colorFilters = kw["color_filters"].cast<bool>();
+  if (kw.contains("pupil")) r.layers.pupil = kw["pupil"].cast<double>();
+  if (kw.contains("pupil_samples")) r.layers.pupilSamples = kw["pupil_samples"].cast<int>();
   text("layer_error", r.layers.error);
   if (kw.contains("quilt") && !kw["quilt"].is_none()) {
     r.quilt.wanted = true;
@@ -131,6 +133,8 @@ std::vector<std::string> knownRenderKeywords() {
           "train_distances",
           "diffuser",
           "color_filters",
+          "pupil",
+          "pupil_samples",
           "layer_error",
           "quilt",
           "size",

@@ -334,6 +334,18 @@ def test_layers_for_colour_filters_are_the_clis(scene, small, tmp_path):
     assert not np.array_equal(plain.image, made.image)
     with pytest.raises(parallax.Error, match=r"^color_filters: applies to layers optimized-image"):
         parallax.render(scene, small, color_filters=True)
+    # render(pupil=, pupil_samples=) is render --pupil --pupil-samples.
+    seen = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
+                           train_eyes=1, pupil=4, pupil_samples=3)
+    assert seen.record["layers"]["pupil_mm"] == 4 and seen.record["layers"]["pupil_samples"] == 3
+    result = cli("render", "--display", SMALL, "--spp", 1, "--layers", "optimized-image",
+                 "--iterations", 2, "--train-eyes", 1, "--pupil", 4, "--pupil-samples", 3,
+                 "-o", tmp_path / "pupil")
+    assert result.returncode == 0, result.stderr
+    assert np.array_equal(parallax.to_srgb8(seen.image),
+                          rgb(read_png(tmp_path / "pupil" / "image.png")))
+    with pytest.raises(parallax.Error, match=r"^pupil_samples: must be a whole number from 1"):
+        parallax.render(scene, small, layers="optimized-image", pupil=4, pupil_samples=0)
 
 
 def test_estimate_memory_is_the_clis_estimate(scene, small, tmp_path):

@@ -39,49 +39,59 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, const Seen
   rearColumns_ = rear.width * (rearCells ? 3 : 1);
   rearRows_ = rear.height;
   const double rearCellMm = rear.pitchMm / (rearCells ? 3 : 1);
-  // The simulator's geometry (DisplaySimulator::view): x across the front layer is
-  // (t - 1/2) frontWidth, and the eye's line through it meets the rear layer stretched by
-  // (e.z + g) / e.z about the eye.
-  const double stretch = (eye.z + design.gapMm) / eye.z;
-  const double frontWidth = front.widthMm(), frontHeight = front.heightMm();
-  const auto column = [&](double t) {
-    const double rearX = eye.x + ((t - 0.5) * frontWidth - eye.x) * stretch;
-    return (rearX + 0.5 * rear.widthMm()) / rearCellMm;
-  };
   // Stripes per pixel of each layer (simulator.cpp's makeLayer).
   const auto stripes = [&](const Panel& panel) {
     return optics.colourFilters && panel.subpixels != SubpixelOrder::None ? 3 : 1;
   };
   const int frontStripes = stripes(front), rearStripes = rearCells ? 1 : stripes(rear);
   seesGreyAsGrey_ = frontStripes == 1 && rearStripes == 1 && !rearCells;
-  if (seesGreyAsGrey_) {
-    piecesAlongAxis(width_, frontColumns_, rearColumns_, column(0), column(1) - column(0), 0, -1,
-                    across_, acrossStart_);
-    acrossWeights_.resize(across_.size());
-    for (size_t a = 0; a < across_.size(); ++a) acrossWeights_[a] = Vec3f(across_[a].weight);
-  } else {
-    makeFilteredPieces(frontStripes, rearStripes, front, rear, column(0), column(1) - column(0));
-  }
-  const auto row = [&](double t) {
-    const double rearY = eye.y + ((0.5 - t) * frontHeight - eye.y) * stretch;
-    return (0.5 * rear.heightMm() - rearY) / rear.pitchMm;
-  };
-  piecesAlongAxis(height_, frontRows_, rearRows_, row(0), row(1) - row(0), 0, -1, down_,
-                  downStart_);
-  // The views are at the front layer's resolution: every piece of output pixel (i, j) lies in
-  // front pixel (i, j), which the row operators' split P_j = front_j .* m_j relies on.
-  for (int i = 0; i < width_; ++i)
-    for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a)
-      if (across_[a].front != i) throw std::logic_error("SeenLayers: a piece leaves its column");
-  for (int j = 0; j < height_; ++j)
-    for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k)
-      if (down_[k].front != j) throw std::logic_error("SeenLayers: a piece leaves its row");
-  makeAcrossRuns();
+  const std::vector<Vec3d> points = pupilPoints(eye, optics.pupilDiameterMm, optics.pupilSamples);
+  const float share = 1.0f / float(points.size());  // each sight's share of the average
+  const double frontWidth = front.widthMm(), frontHeight = front.heightMm();
   rearRowSources_.assign(size_t(rearRows_), {});
-  for (int j = 0; j < height_; ++j)
-    for (uint32_t k = downStart_[size_t(j)]; k < downStart_[size_t(j) + 1]; ++k)
-      if (down_[k].rear >= 0)
-        rearRowSources_[size_t(down_[k].rear)].push_back({j, down_[k].weight});
+  for (const Vec3d& point : points) {
+    Sight& sight = sights_.emplace_back();
+    // The simulator's geometry (DisplaySimulator::view): x across the front layer is
+    // (t - 1/2) frontWidth, and the line from the point through it meets the rear layer
+    // stretched by (e.z + g) / e.z about the point.
+    const double stretch = (point.z + design.gapMm) / point.z;
+    const auto column = [&](double t) {
+      const double rearX = point.x + ((t - 0.5) * frontWidth - point.x) * stretch;
+      return (rearX + 0.5 * rear.widthMm()) / rearCellMm;
+    };
+    if (seesGreyAsGrey_) {
+      piecesAlongAxis(width_, frontColumns_, rearColumns_, column(0), column(1) - column(0), 0, -1,
+                      sight.across, sight.acrossStart);
+      sight.acrossWeights.resize(sight.across.size());
+      for (size_t a = 0; a < sight.across.size(); ++a)
+        sight.acrossWeights[a] = Vec3f(sight.across[a].weight * share);
+    } else {
+      makeFilteredPieces(sight, frontStripes, rearStripes, front, rear, column(0),
+                         column(1) - column(0));
+      for (Vec3f& w : sight.acrossWeights) w = w * share;
+    }
+    const auto row = [&](double t) {
+      const double rearY = point.y + ((0.5 - t) * frontHeight - point.y) * stretch;
+      return (0.5 * rear.heightMm() - rearY) / rear.pitchMm;
+    };
+    piecesAlongAxis(height_, frontRows_, rearRows_, row(0), row(1) - row(0), 0, -1, sight.down,
+                    sight.downStart);
+    // The views are at the front layer's resolution: every piece of output pixel (i, j) lies
+    // in front pixel (i, j), which the row operators' split P_j = front_j .* m_j relies on.
+    for (int i = 0; i < width_; ++i)
+      for (uint32_t a = sight.acrossStart[size_t(i)]; a < sight.acrossStart[size_t(i) + 1]; ++a)
+        if (sight.across[a].front != i)
+          throw std::logic_error("SeenLayers: a piece leaves its column");
+    for (int j = 0; j < height_; ++j)
+      for (uint32_t k = sight.downStart[size_t(j)]; k < sight.downStart[size_t(j) + 1]; ++k)
+        if (sight.down[k].front != j) throw std::logic_error("SeenLayers: a piece leaves its row");
+    makeAcrossRuns(sight);
+    const int s = int(sights_.size()) - 1;
+    for (int j = 0; j < height_; ++j)
+      for (uint32_t k = sight.downStart[size_t(j)]; k < sight.downStart[size_t(j) + 1]; ++k)
+        if (sight.down[k].rear >= 0)
+          rearRowSources_[size_t(sight.down[k].rear)].push_back({j, sight.down[k].weight, s});
+  }
 
   // B: boxFilterX(view, period) (image/box_row.h).
   box_ = BoxRow(width_, design.screenPeriodMm / (frontWidth / double(width_)));
@@ -91,18 +101,22 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, const Seen
 // layers), merged per rear pixel: a piece whose front and rear stripes pass channel c adds its
 // share, times the stripes per pixel of both layers, to channel c of its rear pixel's weight.
 // Pieces that pass no channel are dropped.
-void SeenLayers::makeFilteredPieces(int frontStripes, int rearStripes, const Panel& front,
-                                    const Panel& rear, double u0, double du) {
+void SeenLayers::makeFilteredPieces(Sight& sight, int frontStripes, int rearStripes,
+                                    const Panel& front, const Panel& rear, double u0,
+                                    double du) const {
   std::vector<Piece> cells;
   std::vector<uint32_t> cellStart;
   piecesAlongAxis(width_, frontStripes * frontColumns_, rearStripes * rearColumns_,
                   u0 * rearStripes, du * rearStripes, 0, -1, cells, cellStart);
   const float unfiltered = float(frontStripes * rearStripes);
-  across_.clear();
-  acrossWeights_.clear();
-  acrossStart_.assign(size_t(width_) + 1, 0);
+  std::vector<Piece>& across = sight.across;
+  std::vector<Vec3f>& weights = sight.acrossWeights;
+  across.clear();
+  weights.clear();
+  sight.acrossStart.assign(size_t(width_) + 1, 0);
   for (int i = 0; i < width_; ++i) {
-    acrossStart_[size_t(i)] = uint32_t(across_.size());
+    const uint32_t first = uint32_t(across.size());
+    sight.acrossStart[size_t(i)] = first;
     for (uint32_t k = cellStart[size_t(i)]; k < cellStart[size_t(i) + 1]; ++k) {
       const Piece& cell = cells[k];
       if (cell.front / frontStripes != i)
@@ -114,42 +128,44 @@ void SeenLayers::makeFilteredPieces(int frontStripes, int rearStripes, const Pan
       if (pass == Vec3f(0.0f)) continue;
       const int rearPixel = cell.rear < 0 ? -1 : cell.rear / rearStripes;
       const Vec3f weight = pass * (cell.weight * unfiltered);
-      if (across_.size() > acrossStart_[size_t(i)] && across_.back().rear == rearPixel) {
-        across_.back().weight += cell.weight;
-        acrossWeights_.back() += weight;
+      if (across.size() > first && across.back().rear == rearPixel) {
+        across.back().weight += cell.weight;
+        weights.back() += weight;
       } else {
-        across_.push_back({i, rearPixel, cell.weight});
-        acrossWeights_.push_back(weight);
+        across.push_back({i, rearPixel, cell.weight});
+        weights.push_back(weight);
       }
     }
   }
-  acrossStart_[size_t(width_)] = uint32_t(across_.size());
+  sight.acrossStart[size_t(width_)] = uint32_t(across.size());
 }
 
-void SeenLayers::makeAcrossRuns() {
-  acrossFirst_.assign(3 * size_t(width_), 0.0f);
-  acrossSecond_.assign(3 * size_t(width_), 0.0f);
+void SeenLayers::makeAcrossRuns(Sight& sight) const {
+  sight.acrossFirst.assign(3 * size_t(width_), 0.0f);
+  sight.acrossSecond.assign(3 * size_t(width_), 0.0f);
   for (int i = 0; i < width_; ++i) {
-    const uint32_t begin = acrossStart_[size_t(i)], count = acrossStart_[size_t(i) + 1] - begin;
-    const Piece* pieces = &across_[begin];
+    const uint32_t begin = sight.acrossStart[size_t(i)];
+    const uint32_t count = sight.acrossStart[size_t(i) + 1] - begin;
+    const Piece* pieces = &sight.across[begin];
     // Two cells read, so the second must lie inside the rear layer even when its weight is 0.
     const bool even = (count == 1 || count == 2) && pieces[0].rear >= 0 &&
                       pieces[0].rear + 1 < rearColumns_ &&
                       (count == 1 || pieces[1].rear == pieces[0].rear + 1);
     if (!even) {
-      unevenColumns_.push_back(i);
+      sight.unevenColumns.push_back(i);
       continue;
     }
     const int shift = pieces[0].rear - i;
-    const Vec3f* weights = &acrossWeights_[begin];
+    const Vec3f* weights = &sight.acrossWeights[begin];
     for (int c = 0; c < 3; ++c) {
-      acrossFirst_[3 * size_t(i) + size_t(c)] = weights[0][c];
-      acrossSecond_[3 * size_t(i) + size_t(c)] = count == 2 ? weights[1][c] : 0.0f;
+      sight.acrossFirst[3 * size_t(i) + size_t(c)] = weights[0][c];
+      sight.acrossSecond[3 * size_t(i) + size_t(c)] = count == 2 ? weights[1][c] : 0.0f;
     }
-    if (!acrossRuns_.empty() && acrossRuns_.back().end == i && acrossRuns_.back().shift == shift)
-      ++acrossRuns_.back().end;
+    std::vector<AcrossRun>& runs = sight.acrossRuns;
+    if (!runs.empty() && runs.back().end == i && runs.back().shift == shift)
+      ++runs.back().end;
     else
-      acrossRuns_.push_back({i, i + 1, shift});
+      runs.push_back({i, i + 1, shift});
   }
 }
 
@@ -194,15 +210,27 @@ Image SeenLayers::boxTransposed(const Image& view, int threads) const {
 
 void SeenLayers::seenRearRow(const LayerRows& rear, int j, Vec3f* seenRear,
                              RowScratch& scratch) const {
+  sightRearRow(sights_[0], 0, rear, j, seenRear, scratch);
+  if (sights_.size() == 1) return;
+  // A pupil: the sights' m_j added up (their weights carry the 1/N of the average).
+  scratch.sightRow.resize(size_t(width_));
+  for (size_t s = 1; s < sights_.size(); ++s) {
+    sightRearRow(sights_[s], int(s), rear, j, scratch.sightRow.data(), scratch);
+    addScaledLanes(&scratch.sightRow[0].x, 1.0f, &seenRear[0].x, 3 * size_t(width_));
+  }
+}
+
+void SeenLayers::sightRearRow(const Sight& sight, int s, const LayerRows& rear, int j,
+                              Vec3f* seenRear, RowScratch& scratch) const {
   // m_j[i] = sum_k w_k sum_a w_a rear[r_k][c_a] = sum_a w_a (sum_k w_k rear[r_k])[c_a]: the
   // vertical blend once per row (a vectorised loop), then one pass of the pieces along it.
-  const Piece* pieces = down_.data() + downStart_[size_t(j)];
-  const size_t pieceCount = downStart_[size_t(j) + 1] - downStart_[size_t(j)];
+  const Piece* pieces = sight.down.data() + sight.downStart[size_t(j)];
+  const size_t pieceCount = sight.downStart[size_t(j) + 1] - sight.downStart[size_t(j)];
   RowScratch::Blend* kept = nullptr;
   if (scratch.keepBlends) {
     for (RowScratch::Blend& b : scratch.blends)
-      if (b.rearFirst == rear.first) kept = &b;
-    if (!kept) kept = &scratch.blends.emplace_back(RowScratch::Blend{rear.first, {}, {}, false});
+      if (b.rearFirst == rear.first && b.sight == s) kept = &b;
+    if (!kept) kept = &scratch.blends.emplace_back(RowScratch::Blend{rear.first, s, {}, {}, false});
   }
   const auto sameRows = [&] {
     if (kept->pieces.size() != pieceCount || kept->rows.size() != size_t(rearColumns_))
@@ -231,16 +259,16 @@ void SeenLayers::seenRearRow(const LayerRows& rear, int j, Vec3f* seenRear,
     std::fill(seenRear, seenRear + width_, Vec3f(0.0f));
     return;
   }
-  for (const AcrossRun& run : acrossRuns_) {
+  for (const AcrossRun& run : sight.acrossRuns) {
     const size_t first = 3 * size_t(run.begin);
-    gatherRun(&blend[size_t(run.begin + run.shift)].x, &acrossFirst_[first], &acrossSecond_[first],
-              &seenRear[run.begin].x, 3 * size_t(run.end - run.begin));
+    gatherRun(&blend[size_t(run.begin + run.shift)].x, &sight.acrossFirst[first],
+              &sight.acrossSecond[first], &seenRear[run.begin].x, 3 * size_t(run.end - run.begin));
   }
-  for (const int i : unevenColumns_) {
+  for (const int i : sight.unevenColumns) {
     Vec3f light(0.0f);
-    for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
-      const Piece& p = across_[a];
-      if (p.rear >= 0) light += blend[size_t(p.rear)] * acrossWeights_[a];
+    for (uint32_t a = sight.acrossStart[size_t(i)]; a < sight.acrossStart[size_t(i) + 1]; ++a) {
+      const Piece& p = sight.across[a];
+      if (p.rear >= 0) light += blend[size_t(p.rear)] * sight.acrossWeights[a];
     }
     seenRear[i] = light;
   }
@@ -325,8 +353,9 @@ void SeenLayers::addRearGradient(const Image& residual, const Image& front, Imag
   const Image r = boxTransposed(residual, threads);
   // Each rear row gathers from the output rows that meet it, in row order.
   forEachRow(rearRows_, threads, [&](int rearRow) {
-    for (const auto& [j, weight] : rearRowSources_[size_t(rearRow)])
-      addRearGradientFromRow(&r.at(0, j), front, j, weight, &gradRear.at(0, rearRow));
+    for (const RearSource& source : rearRowSources_[size_t(rearRow)])
+      addRearGradientFromRow(&r.at(0, source.outputRow), front, source.outputRow, source.weight,
+                             &gradRear.at(0, rearRow), source.sight);
   });
 }
 
@@ -338,20 +367,21 @@ void SeenLayers::boxTransposedRowInto(const Vec3f* residual, Vec3f* filtered) co
 }
 
 void SeenLayers::addRearGradientFromRow(const Vec3f* filtered, const Image& front, int j,
-                                        float weight, Vec3f* gradRearRow) const {
+                                        float weight, Vec3f* gradRearRow, int s) const {
+  const Sight& sight = sights_[size_t(s)];
   const Vec3f* frontRow = &front.at(0, j);  // output row j lies in front row j
-  for (const AcrossRun& run : acrossRuns_) {
+  for (const AcrossRun& run : sight.acrossRuns) {
     const size_t first = 3 * size_t(run.begin);
-    scatterRun(&filtered[run.begin].x, &frontRow[run.begin].x, weight, &acrossFirst_[first],
-               &acrossSecond_[first], &gradRearRow[run.begin + run.shift].x,
+    scatterRun(&filtered[run.begin].x, &frontRow[run.begin].x, weight, &sight.acrossFirst[first],
+               &sight.acrossSecond[first], &gradRearRow[run.begin + run.shift].x,
                3 * size_t(run.end - run.begin));
   }
-  for (const int i : unevenColumns_) {
+  for (const int i : sight.unevenColumns) {
     const Vec3f v = filtered[i] * weight;
-    for (uint32_t a = acrossStart_[size_t(i)]; a < acrossStart_[size_t(i) + 1]; ++a) {
-      const Piece& p = across_[a];
+    for (uint32_t a = sight.acrossStart[size_t(i)]; a < sight.acrossStart[size_t(i) + 1]; ++a) {
+      const Piece& p = sight.across[a];
       if (p.rear < 0) continue;
-      gradRearRow[p.rear] += v * frontRow[p.front] * acrossWeights_[a];
+      gradRearRow[p.rear] += v * frontRow[p.front] * sight.acrossWeights[a];
     }
   }
 }

@@ -53,6 +53,13 @@ struct SeenOptics {
   // holds; the front layer's pixels pass through their stripes. For a diffuser, which blurs the
   // light the rear stripes pass.
   bool rearStripeCells = false;
+  // The simulator's pupil (SimulationOptions::pupilDiameterMm, pupilSamples): the view is the
+  // average of the pinhole views from pupilSamples points of a disk of this diameter around
+  // the eye (pupilPoints, view_pieces.h). Each point is a sight with its own pieces; the rear
+  // layer as the eye sees it is their average, m_j = 1/N sum_p m_j^p (output pixel i lies in
+  // front pixel i from every point), so the split P_j = front_j .* m_j holds. 0: a pinhole eye.
+  double pupilDiameterMm = 0;
+  int pupilSamples = 16;
 };
 
 class SeenLayers {
@@ -66,6 +73,8 @@ class SeenLayers {
   // Whether every channel of a pixel is seen with the same weights (no colour filters on
   // either layer), so that a grey rear layer is seen grey (the solvers' one-float seen masks).
   bool seesGreyAsGrey() const { return seesGreyAsGrey_; }
+  // The points the eye sees from: 1 for a pinhole eye, the pupil's samples otherwise.
+  int sights() const { return int(sights_.size()); }
 
   // V for the layers as panel images (front and rear in the display's layer order).
   Image view(const LayerRows& front, const LayerRows& rear, int threads = 0) const;
@@ -86,7 +95,8 @@ class SeenLayers {
   // addFrontGradient(), which are made of these. `scratch` is the caller's, one per worker.
   struct RowScratch {
     std::vector<Vec3f> product, filtered, seenRear;
-    std::vector<Vec3f> rearRow;  // seenRearRow: the rear rows under front row j, blended
+    std::vector<Vec3f> rearRow;   // seenRearRow: the rear rows under front row j, blended
+    std::vector<Vec3f> sightRow;  // seenRearRow: one sight's m_j, for a pupil's
     // keepBlends (the caller's promise that no rear layer it passes changes while this scratch
     // lives): seenRearRow keeps its last blend of each rear layer with the rows and weights it
     // was made of, and another eye whose row meets the same rear rows with the same weights
@@ -94,6 +104,7 @@ class SeenLayers {
     bool keepBlends = false;
     struct Blend {
       const Vec3f* rearFirst = nullptr;
+      int sight = 0;
       std::vector<Piece> pieces;
       std::vector<Vec3f> rows;
       bool any = false;
@@ -123,17 +134,21 @@ class SeenLayers {
                    RowScratch& scratch) const;
   // For the rear layer's gradient row by row (each rear row gathers from the output rows that
   // meet it, so rear rows in parallel write disjoint rows): the output rows whose pieces meet
-  // rear row r with those pieces' vertical weights, in order;
-  const std::vector<std::pair<int, float>>& rearRowSources(int r) const {
-    return rearRowSources_[size_t(r)];
-  }
+  // rear row r with those pieces' vertical weights and their sight, sight by sight, in order;
+  struct RearSource {
+    int outputRow = 0;
+    float weight = 0;
+    int sight = 0;
+    bool operator==(const RearSource&) const = default;
+  };
+  const std::vector<RearSource>& rearRowSources(int r) const { return rearRowSources_[size_t(r)]; }
   // B^T on one output row (filtered[0 .. width()), which it overwrites);
   void boxTransposedRowInto(const Vec3f* residual, Vec3f* filtered) const;
   // and gradRearRow[p.rear] += weight w_a front(i, j) filtered[i] over the across pieces a of
   // each output column i of row j: output row j's share of a rear row whose vertical piece has
-  // `weight` (rearRowSources). addRearGradient is made of these.
+  // `weight` (rearRowSources), seen from `sight`. addRearGradient is made of these.
   void addRearGradientFromRow(const Vec3f* filtered, const Image& front, int j, float weight,
-                              Vec3f* gradRearRow) const;
+                              Vec3f* gradRearRow, int sight = 0) const;
   // gradRow[i] += seenRear[i] (B^T residual)[i]: front row j's gradient.
   void addFrontGradientRowSeen(const Vec3f* residual, const Vec3f* seenRear, Vec3f* gradRow,
                                RowScratch& scratch) const;
@@ -145,28 +160,35 @@ class SeenLayers {
   Vec3d eye_;
   bool imageInFront_ = true, periodBox_ = true, seesGreyAsGrey_ = true;
   int width_ = 0, height_ = 0, frontColumns_ = 0, frontRows_ = 0, rearColumns_ = 0, rearRows_ = 0;
-  // The pieces across in front and rear pixels (front == the output column), with their weights
-  // per channel in acrossWeights_ (all three the piece's weight without colour filters).
-  std::vector<Piece> across_, down_;
-  std::vector<Vec3f> acrossWeights_;
-  std::vector<uint32_t> acrossStart_, downStart_;
-  void makeFilteredPieces(int frontStripes, int rearStripes, const Panel& front, const Panel& rear,
-                          double u0, double du);
   // The pieces across in runs for vectorised loops: the eye sees rear cells at the front's
   // pitch times the gap's small stretch, so nearly every column i meets rear cells i + s and
   // i + s + 1 (weights first, second; second 0 for one piece), with the shift s constant over
   // hundreds of columns. A run is such a stretch of columns with one shift; the weights are
   // per float of the row (three per column). Columns of any other form (the row's ends, a rear
-  // layer of another pitch) are `unevenColumns_`, read through their pieces.
+  // layer of another pitch) are `unevenColumns`, read through their pieces.
   struct AcrossRun {
     int begin = 0, end = 0, shift = 0;
   };
-  std::vector<AcrossRun> acrossRuns_;
-  std::vector<float> acrossFirst_, acrossSecond_;
-  std::vector<int> unevenColumns_;
-  void makeAcrossRuns();
-  // For each rear row, the output rows whose pieces meet it and those pieces' weights.
-  std::vector<std::vector<std::pair<int, float>>> rearRowSources_;
+  // What one point of the eye sees: the pieces across in front and rear pixels (front == the
+  // output column) with their weights per channel in acrossWeights (all three the piece's
+  // weight without colour filters; times 1/N for a pupil's N points), and down.
+  struct Sight {
+    std::vector<Piece> across, down;
+    std::vector<Vec3f> acrossWeights;
+    std::vector<uint32_t> acrossStart, downStart;
+    std::vector<AcrossRun> acrossRuns;
+    std::vector<float> acrossFirst, acrossSecond;
+    std::vector<int> unevenColumns;
+  };
+  std::vector<Sight> sights_;
+  void makeFilteredPieces(Sight& sight, int frontStripes, int rearStripes, const Panel& front,
+                          const Panel& rear, double u0, double du) const;
+  void makeAcrossRuns(Sight& sight) const;
+  // One sight's m_j (seenRearRow).
+  void sightRearRow(const Sight& sight, int s, const LayerRows& rear, int j, Vec3f* seenRear,
+                    RowScratch& scratch) const;
+  // For each rear row, the output rows whose pieces meet it, those pieces' weights and sights.
+  std::vector<std::vector<RearSource>> rearRowSources_;
   // B, the box of one screen period along x (image/box_row.h).
   BoxRow box_;
   const Vec3f* boxTransposedInScratch(const Vec3f* residual, RowScratch& scratch) const;

@@ -161,23 +161,26 @@ TEST(SeenLayers, RearStripeCellsAreTheRearPixelsThroughTheirFilters) {
   }
 }
 
+// For a pinhole eye and through a pupil (its sights' adjoints gathered by rearRowSources).
 TEST(SeenLayers, AdjointsPassTheDotProductTest) {
-  for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
-    const DisplayDesign d = smallDisplay(order, 60, 6);
-    const SeenLayers seen(d, {12, 2, 560});
-    const Image front = randomImage(60, 6, 1), rear = randomImage(60, 6, 2);
-    const Image y = randomImage(seen.width(), seen.height(), 4);
-    const Image v = seen.view(front, rear);
-    Image gFront(60, 6), gRear(60, 6);
-    seen.addFrontGradient(y, rear, gFront);
-    seen.addRearGradient(y, front, gRear);
-    // V is linear in each layer: <V(front, rear), y> = <front, A_rear^T y> = <rear, A_front^T y>.
-    EXPECT_NEAR(dot(v, y), dot(front, gFront), 1e-4 * dot(v, y));
-    EXPECT_NEAR(dot(v, y), dot(rear, gRear), 1e-4 * dot(v, y));
-    const Image boxed = seen.box(y), back = seen.boxTransposed(y);
-    EXPECT_NEAR(dot(boxed, v), dot(y, seen.boxTransposed(v)), 1e-4 * dot(boxed, v));
-    EXPECT_GT(dot(back, back), 0.0);
-  }
+  for (const double pupil : {0.0, 40.0})
+    for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+      const DisplayDesign d = smallDisplay(order, 60, 6);
+      const SeenLayers seen(d, {12, 2, 560}, {.pupilDiameterMm = pupil, .pupilSamples = 4});
+      EXPECT_EQ(seen.sights(), pupil > 0 ? 4 : 1);
+      const Image front = randomImage(60, 6, 1), rear = randomImage(60, 6, 2);
+      const Image y = randomImage(seen.width(), seen.height(), 4);
+      const Image v = seen.view(front, rear);
+      Image gFront(60, 6), gRear(60, 6);
+      seen.addFrontGradient(y, rear, gFront);
+      seen.addRearGradient(y, front, gRear);
+      // V is linear in each layer: <V(front, rear), y> = <front, A_rear^T y> = <rear, A_front^T y>.
+      EXPECT_NEAR(dot(v, y), dot(front, gFront), 1e-4 * dot(v, y));
+      EXPECT_NEAR(dot(v, y), dot(rear, gRear), 1e-4 * dot(v, y));
+      const Image boxed = seen.box(y), back = seen.boxTransposed(y);
+      EXPECT_NEAR(dot(boxed, v), dot(y, seen.boxTransposed(v)), 1e-4 * dot(boxed, v));
+      EXPECT_GT(dot(back, back), 0.0);
+    }
 }
 
 TEST(SeenLayers, SameGradientsForAnyThreadCount) {

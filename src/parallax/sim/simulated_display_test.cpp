@@ -61,7 +61,8 @@ TEST(SimulatedDisplay, SeenIsTheViewAtTheDisplaysResolution) {
     const LayerImages layers{ramp(90, 30), maskLayerImage(d)};
     Image dimmer = ramp(90, 30);
     for (Vec3f& p : dimmer.pixels()) p = p * 0.5f;
-    SimulationOptions plain, diffused, pupil, filters, filtersDiffused, sampled, resized;
+    SimulationOptions plain, diffused, pupil, filters, filtersDiffused, everything, sampled,
+        resized;
     diffused.diffuserSigmaMm = 0.7;
     diffused.backlight = Vec3f(0.9f, 1.0f, 0.8f);
     pupil.pupilDiameterMm = 3;
@@ -69,13 +70,17 @@ TEST(SimulatedDisplay, SeenIsTheViewAtTheDisplaysResolution) {
     filters.backlight = Vec3f(0.9f, 1.0f, 0.8f);
     filtersDiffused = filters;
     filtersDiffused.diffuserSigmaMm = 0.7;
+    everything = filtersDiffused;
+    everything.pupilDiameterMm = 5;
+    everything.pupilSamples = 5;
     sampled.samplesPerPixel = 4;
     resized.width = 180;
     for (const auto& [options, fast] : {std::pair{plain, true},
                                         {diffused, true},
-                                        {pupil, false},
+                                        {pupil, true},
                                         {filters, true},
                                         {filtersDiffused, true},
+                                        {everything, true},
                                         {sampled, false},
                                         {resized, false}}) {
       EXPECT_EQ(DisplaySimulator(d, layers, options).viewsThroughSeenLayers(), fast);

@@ -133,14 +133,16 @@ DisplaySimulator::DisplaySimulator(const DisplayDesign& design, LayerImages laye
   }
   scale_ = normaliser / double(pupilPoints({}).size());
 
-  viewsThroughSeenLayers_ = options.samplesPerPixel == 0 && !(options.pupilDiameterMm > 0) &&
-                            width_ == frontPanel.width && height_ == frontPanel.height &&
+  viewsThroughSeenLayers_ = options.samplesPerPixel == 0 && width_ == frontPanel.width &&
+                            height_ == frontPanel.height &&
                             design.spec.mask.kind != MaskKind::Pinholes;
+  // SeenLayers averages the pupil's sights itself.
+  seenScale_ = normaliser;
   if (viewsThroughSeenLayers_ && front_.striped) {
     // SeenLayers passes the front layer's pixels through their stripes itself, and undoes their
     // 1/3.
     frontPixels_ = imageInFront ? std::move(layers.image) : std::move(layers.mask);
-    filteredScale_ = scale_ / 3.0;
+    seenScale_ = normaliser / 3.0;
   }
 }
 
@@ -150,38 +152,28 @@ Image DisplaySimulator::seen(const Vec3d& eye) const {
   // The rear cells as they are (striped, blurred), each row read up to its dark end cell.
   const LayerRows rear(rear_.cells.data(), size_t(rear_.columns + 1), rear_.columns, rear_.rows);
   const SeenOptics optics{.colourFilters = options_.colourFilters,
-                          .rearStripeCells = rear_.striped};
+                          .rearStripeCells = rear_.striped,
+                          .pupilDiameterMm = options_.pupilDiameterMm,
+                          .pupilSamples = options_.pupilSamples};
   Image out;
-  double scale = scale_;
   if (front_.striped) {
     // The front layer's pixels through SeenLayers' stripes.
     out = SeenLayers(design_, eye, optics).view(frontPixels_, rear, options_.threads);
-    scale = filteredScale_;
   } else {
     const LayerRows front(front_.cells.data(), size_t(front_.columns + 1), front_.columns,
                           front_.rows);
     out = SeenLayers(design_, eye, optics).view(front, rear, options_.threads);
   }
-  const Vec3f scale3 = options_.backlight * float(scale);
+  const Vec3f scale = options_.backlight * float(seenScale_);
   forRows(out.height(), threads_, [&](int begin, int end) {
     for (int y = begin; y < end; ++y)
-      for (int x = 0; x < out.width(); ++x) out.at(x, y) = out.at(x, y) * scale3;
+      for (int x = 0; x < out.width(); ++x) out.at(x, y) = out.at(x, y) * scale;
   });
   return out;
 }
 
 std::vector<Vec3d> DisplaySimulator::pupilPoints(const Vec3d& eye) const {
-  if (!(options_.pupilDiameterMm > 0)) return {eye};
-  // Fibonacci (Vogel) spiral: equal-area rings, points a golden angle apart.
-  const int n = options_.pupilSamples;
-  const double goldenAngle = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
-  std::vector<Vec3d> points(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    const double r = 0.5 * options_.pupilDiameterMm * std::sqrt((i + 0.5) / n);
-    const double angle = i * goldenAngle;
-    points[size_t(i)] = {eye.x + r * std::cos(angle), eye.y + r * std::sin(angle), eye.z};
-  }
-  return points;
+  return parallax::pupilPoints(eye, options_.pupilDiameterMm, options_.pupilSamples);
 }
 
 Image DisplaySimulator::view(const Vec3d& eye) const {

@@ -74,10 +74,10 @@ class DisplaySimulator {
   Image view(const Vec3d& eyeMm) const;
 
   // The view at the display's resolution: atDisplayResolution(design, view(eyeMm)), what the
-  // dense measure compares. With exact integration, a pinhole eye, the front layer's resolution
-  // and slits (viewsThroughSeenLayers) it is made in one pass of SeenLayers' vectorised rows
-  // (seen_layers.h: the same operator, equal to float rounding; colour filters and a diffuser
-  // too), otherwise as written.
+  // dense measure compares. With exact integration, the front layer's resolution and slits
+  // (viewsThroughSeenLayers) it is made in one pass of SeenLayers' vectorised rows
+  // (seen_layers.h: the same operator, equal to float rounding; colour filters, a diffuser and
+  // a pupil too), otherwise as written.
   Image seen(const Vec3d& eyeMm) const;
   bool viewsThroughSeenLayers() const { return viewsThroughSeenLayers_; }
 
@@ -108,10 +108,11 @@ class DisplaySimulator {
   double maskMean_ = 0;
   bool viewsThroughSeenLayers_ = false;
   double scale_ = 1;  // normalisation / pupil samples
-  // seen() through the front layer's colour filters: its pixels for SeenLayers, and scale_
-  // without the stripes' 1/3, which SeenLayers undoes itself.
+  // seen() through SeenLayers: the front layer's pixels when it has colour filters (SeenLayers
+  // passes them through the stripes), and the normalisation without the stripes' 1/3 and the
+  // pupil's 1/N, which SeenLayers undoes and averages itself.
   Image frontPixels_;
-  double filteredScale_ = 1;
+  double seenScale_ = 1;
   int width_ = 0, height_ = 0, threads_ = 1;
 };
 

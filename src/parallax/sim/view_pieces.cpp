@@ -61,4 +61,16 @@ void piecesAlongAxis(int count, int frontCells, int rearCells, double u0, double
   start[size_t(count)] = uint32_t(pieces.size());
 }
 
+std::vector<Vec3d> pupilPoints(const Vec3d& eye, double diameterMm, int samples) {
+  if (!(diameterMm > 0)) return {eye};
+  const double goldenAngle = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+  std::vector<Vec3d> points(static_cast<size_t>(samples));
+  for (int i = 0; i < samples; ++i) {
+    const double r = 0.5 * diameterMm * std::sqrt((i + 0.5) / samples);
+    const double angle = i * goldenAngle;
+    points[size_t(i)] = {eye.x + r * std::cos(angle), eye.y + r * std::sin(angle), eye.z};
+  }
+  return points;
+}
+
 }  // namespace parallax

@@ -28,6 +28,11 @@ void piecesAlongAxis(int count, int frontCells, int rearCells, double u0, double
                      int samplesPerAxis, int outside, std::vector<Piece>& pieces,
                      std::vector<uint32_t>& start);
 
+// The points a pupil of `diameterMm` around `eye` is sampled at, in the plane z = eye.z: a
+// Fibonacci (Vogel) spiral of `samples` points (equal-area rings, points a golden angle apart:
+// deterministic, evenly spread); the eye itself for a pinhole eye (diameter 0).
+std::vector<Vec3d> pupilPoints(const Vec3d& eye, double diameterMm, int samples);
+
 // The channels stripe s (0, 1, 2 from the left) of a pixel passes under colour filters: a
 // one in the channel of that stripe.
 inline Vec3f stripePasses(SubpixelOrder order, int stripe) {

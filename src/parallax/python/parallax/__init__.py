@@ -111,7 +111,8 @@ def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
            layer_error: Optional[str] = None, distance: float = 0.0,
            lens_spot: Optional[float] = None, bundles: Optional[str] = None,
            fit: Optional[str] = None, focus=None, depth_budget=None,
-           diffuser: Optional[float] = None, color_filters: bool = False) -> RenderResult:
+           diffuser: Optional[float] = None, color_filters: bool = False,
+           pupil: float = 0.0, pupil_samples: int = 16) -> RenderResult:
     """`parallax render`: the image and mask layers of a barrier display (the slits', direct
     mapping's, or content-adaptive layers solved for eyes across the view zone), or a lenticular
     panel's interlaced picture (`lenticular render`), made for the lens optics lens_spot and
@@ -125,7 +126,7 @@ def render(scene: Optional[Scene] = None, display: Optional[Display] = None, *,
                  train_eyes=train_eyes, train_distances=train_distances,
                  layer_error=layer_error, distance=distance,
                  lens_spot=lens_spot, bundles=bundles, diffuser=diffuser,
-                 color_filters=color_filters),
+                 color_filters=color_filters, pupil=pupil, pupil_samples=pupil_samples),
         **_framing(fit, focus, depth_budget))
     image, mask = frames[0]
     return RenderResult(image, mask, json.loads(record), frames)
