@@ -304,46 +304,38 @@ def test_solved_layers_and_direct_mapping_in_memory(scene, small, tmp_path):
         parallax.render(scene, small, rank=2)
 
 
-def test_layers_for_a_diffuser_are_the_clis(scene, small, tmp_path):
-    # render(diffuser=) is render --diffuser: the same image layer, the blur recorded.
+def solved_as_the_cli(scene, small, out, keywords, flags):
+    """render(**keywords) of a small optimized-image solve and `render FLAGS` of the same: the
+    same image layer (the CLI's PNG); returns the Python result."""
     made = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
-                           train_eyes=1, diffuser=0.4)
+                           train_eyes=1, **keywords)
+    result = cli("render", "--display", SMALL, "--spp", 1, "--layers", "optimized-image",
+                 "--iterations", 2, "--train-eyes", 1, *flags, "-o", out)
+    assert result.returncode == 0, result.stderr
+    assert np.array_equal(parallax.to_srgb8(made.image), rgb(read_png(out / "image.png")))
+    return made
+
+
+def test_layers_for_the_panels_optics_are_the_clis(scene, small, tmp_path):
+    # render(diffuser=, color_filters=, pupil=, pupil_samples=) are render --diffuser,
+    # --color-filters, --pupil, --pupil-samples: the same image layer, recorded, and each
+    # another layer than the plain solve's; refused with slits.
+    plain = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
+                            train_eyes=1)
+    made = solved_as_the_cli(scene, small, tmp_path / "foil", {"diffuser": 0.4},
+                             ["--diffuser", 0.4])
     assert made.record["layers"]["diffuser_sigma_mm"] == 0.4
-    result = cli("render", "--display", SMALL, "--spp", 1, "--layers", "optimized-image",
-                 "--iterations", 2, "--train-eyes", 1, "--diffuser", 0.4, "-o", tmp_path)
-    assert result.returncode == 0, result.stderr
-    assert np.array_equal(parallax.to_srgb8(made.image), rgb(read_png(tmp_path / "image.png")))
-    plain = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
-                            train_eyes=1)
     assert not np.array_equal(plain.image, made.image)
-    with pytest.raises(parallax.Error, match=r"^diffuser: applies to layers optimized-image"):
-        parallax.render(scene, small, diffuser=0.4)
-
-
-def test_layers_for_colour_filters_are_the_clis(scene, small, tmp_path):
-    # render(color_filters=True) is render --color-filters: the same image layer, recorded.
-    made = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
-                           train_eyes=1, color_filters=True)
+    made = solved_as_the_cli(scene, small, tmp_path / "filters", {"color_filters": True},
+                             ["--color-filters"])
     assert made.record["layers"]["color_filters"] is True
-    result = cli("render", "--display", SMALL, "--spp", 1, "--layers", "optimized-image",
-                 "--iterations", 2, "--train-eyes", 1, "--color-filters", "-o", tmp_path)
-    assert result.returncode == 0, result.stderr
-    assert np.array_equal(parallax.to_srgb8(made.image), rgb(read_png(tmp_path / "image.png")))
-    plain = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
-                            train_eyes=1)
     assert not np.array_equal(plain.image, made.image)
-    with pytest.raises(parallax.Error, match=r"^color_filters: applies to layers optimized-image"):
-        parallax.render(scene, small, color_filters=True)
-    # render(pupil=, pupil_samples=) is render --pupil --pupil-samples.
-    seen = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
-                           train_eyes=1, pupil=4, pupil_samples=3)
-    assert seen.record["layers"]["pupil_mm"] == 4 and seen.record["layers"]["pupil_samples"] == 3
-    result = cli("render", "--display", SMALL, "--spp", 1, "--layers", "optimized-image",
-                 "--iterations", 2, "--train-eyes", 1, "--pupil", 4, "--pupil-samples", 3,
-                 "-o", tmp_path / "pupil")
-    assert result.returncode == 0, result.stderr
-    assert np.array_equal(parallax.to_srgb8(seen.image),
-                          rgb(read_png(tmp_path / "pupil" / "image.png")))
+    made = solved_as_the_cli(scene, small, tmp_path / "pupil", {"pupil": 4, "pupil_samples": 3},
+                             ["--pupil", 4, "--pupil-samples", 3])
+    assert made.record["layers"]["pupil_mm"] == 4 and made.record["layers"]["pupil_samples"] == 3
+    for keyword, value in (("diffuser", 0.4), ("color_filters", True), ("pupil", 4)):
+        with pytest.raises(parallax.Error, match=rf"^{keyword}: applies to layers optimized-image"):
+            parallax.render(scene, small, **{keyword: value})
     with pytest.raises(parallax.Error, match=r"^pupil_samples: must be a whole number from 1"):
         parallax.render(scene, small, layers="optimized-image", pupil=4, pupil_samples=0)
 
