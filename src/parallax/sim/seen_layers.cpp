@@ -36,6 +36,7 @@ SeenLayers::SeenLayers(const DisplayDesign& design, const Vec3d& eye, const Seen
   frontColumns_ = width_ = front.width;
   frontRows_ = height_ = front.height;
   const bool rearCells = optics.colourFilters && optics.rearStripeCells;
+  rearStripeCells_ = rearCells;
   rearColumns_ = rear.width * (rearCells ? 3 : 1);
   rearRows_ = rear.height;
   const double rearCellMm = rear.pitchMm / (rearCells ? 3 : 1);
@@ -151,6 +152,30 @@ void SeenLayers::makeAcrossRuns(Sight& sight) const {
     const bool even = (count == 1 || count == 2) && pieces[0].rear >= 0 &&
                       pieces[0].rear + 1 < rearColumns_ &&
                       (count == 1 || pieces[1].rear == pieces[0].rear + 1);
+    if (rearStripeCells_) {
+      // Consecutive cells, every term's read inside the row (kStripeTerms cells from the
+      // first).
+      bool consecutive = count >= 1 && count <= uint32_t(kStripeTerms) && pieces[0].rear >= 0 &&
+                         pieces[0].rear + kStripeTerms <= rearColumns_;
+      for (uint32_t m = 1; consecutive && m < count; ++m)
+        consecutive = pieces[m].rear == pieces[0].rear + int(m);
+      if (!consecutive) {
+        sight.unevenColumns.push_back(i);
+        continue;
+      }
+      sight.stripeWeights.resize(size_t(kStripeTerms) * 3 * size_t(width_), 0.0f);
+      for (uint32_t m = 0; m < count; ++m)
+        for (int c = 0; c < 3; ++c)
+          sight.stripeWeights[(m * size_t(width_) + size_t(i)) * 3 + size_t(c)] =
+              sight.acrossWeights[begin + m][c];
+      const int shift = pieces[0].rear - 3 * i;
+      std::vector<AcrossRun>& runs = sight.stripeRuns;
+      if (!runs.empty() && runs.back().end == i && runs.back().shift == shift)
+        ++runs.back().end;
+      else
+        runs.push_back({i, i + 1, shift});
+      continue;
+    }
     if (!even) {
       sight.unevenColumns.push_back(i);
       continue;
@@ -192,6 +217,45 @@ void scatterRun(const float* filtered, const float* front, float weight, const f
 }
 
 }  // namespace
+
+// Plane q of a row of stripe cells (cells 3i' + q) starts at planes[q * planeCells].
+void SeenLayers::gatherStripeRuns(const Sight& sight, const Vec3f* cells, Vec3f* out,
+                                  std::vector<Vec3f>& planes) const {
+  const size_t planeCells = size_t(rearColumns_ / 3);
+  planes.resize(3 * planeCells);
+  for (size_t i = 0; i < planeCells; ++i)
+    for (size_t q = 0; q < 3; ++q) planes[q * planeCells + i] = cells[3 * i + q];
+  for (const AcrossRun& run : sight.stripeRuns) {
+    const size_t n = 3 * size_t(run.end - run.begin);
+    float* into = &out[run.begin].x;
+    for (int m = 0; m < kStripeTerms; ++m) {
+      // Cell 3i + s + m is plane q = (s + m) mod 3's cell i + (s + m - q) / 3 (s may be
+      // negative; the run's first cell is inside the row).
+      const int q = ((run.shift + m) % 3 + 3) % 3;
+      const Vec3f* plane =
+          &planes[size_t(q) * planeCells + size_t(run.begin + (run.shift + m - q) / 3)];
+      const float* weights =
+          &sight.stripeWeights[(size_t(m) * size_t(width_) + size_t(run.begin)) * 3];
+      if (m == 0)
+        multiplyLanes(weights, &plane->x, into, n);
+      else
+        addProductsLanes(weights, &plane->x, into, n);
+    }
+  }
+}
+
+void SeenLayers::scatterStripeRuns(const Sight& sight, const Vec3f* filtered, const Vec3f* frontRow,
+                                   float weight, Vec3f* cells) const {
+  for (const AcrossRun& run : sight.stripeRuns)
+    for (int i = run.begin; i < run.end; ++i) {
+      const Vec3f v = filtered[i] * weight * frontRow[i];
+      Vec3f* into = cells + 3 * i + run.shift;
+      for (int m = 0; m < kStripeTerms; ++m) {
+        const float* w = &sight.stripeWeights[(size_t(m) * size_t(width_) + size_t(i)) * 3];
+        into[m] += v * Vec3f(w[0], w[1], w[2]);
+      }
+    }
+}
 
 Image SeenLayers::box(const Image& view, int threads) const {
   if (!periodBox_) return view;
@@ -264,6 +328,7 @@ void SeenLayers::sightRearRow(const Sight& sight, int s, const LayerRows& rear, 
     gatherRun(&blend[size_t(run.begin + run.shift)].x, &sight.acrossFirst[first],
               &sight.acrossSecond[first], &seenRear[run.begin].x, 3 * size_t(run.end - run.begin));
   }
+  if (!sight.stripeRuns.empty()) gatherStripeRuns(sight, blend.data(), seenRear, scratch.planes);
   for (const int i : sight.unevenColumns) {
     Vec3f light(0.0f);
     for (uint32_t a = sight.acrossStart[size_t(i)]; a < sight.acrossStart[size_t(i) + 1]; ++a) {
@@ -376,6 +441,7 @@ void SeenLayers::addRearGradientFromRow(const Vec3f* filtered, const Image& fron
                &sight.acrossSecond[first], &gradRearRow[run.begin + run.shift].x,
                3 * size_t(run.end - run.begin));
   }
+  scatterStripeRuns(sight, filtered, frontRow, weight, gradRearRow);
   for (const int i : sight.unevenColumns) {
     const Vec3f v = filtered[i] * weight;
     for (uint32_t a = sight.acrossStart[size_t(i)]; a < sight.acrossStart[size_t(i) + 1]; ++a) {

@@ -97,6 +97,7 @@ class SeenLayers {
     std::vector<Vec3f> product, filtered, seenRear;
     std::vector<Vec3f> rearRow;   // seenRearRow: the rear rows under front row j, blended
     std::vector<Vec3f> sightRow;  // seenRearRow: one sight's m_j, for a pupil's
+    std::vector<Vec3f> planes;    // the rear stripe cells as three planes (Sight::stripeRuns)
     // keepBlends (the caller's promise that no rear layer it passes changes while this scratch
     // lives): seenRearRow keeps its last blend of each rear layer with the rows and weights it
     // was made of, and another eye whose row meets the same rear rows with the same weights
@@ -178,12 +179,26 @@ class SeenLayers {
     std::vector<uint32_t> acrossStart, downStart;
     std::vector<AcrossRun> acrossRuns;
     std::vector<float> acrossFirst, acrossSecond;
+    // Rear stripe cells (SeenOptics::rearStripeCells) are three a front pixel, so a column
+    // meets four or five of them: columns i whose pieces are the cells 3i + s + m (m below
+    // kStripeTerms) go in runs of one s, which read the blended cells as three planes (plane q:
+    // the cells 3i' + q), term m a shifted read of plane (s + m) mod 3 with its weights per
+    // float (stripeWeights, kStripeTerms rows of 3 width floats).
+    std::vector<AcrossRun> stripeRuns;
+    std::vector<float> stripeWeights;
     std::vector<int> unevenColumns;
   };
+  static constexpr int kStripeTerms = 5;
+  bool rearStripeCells_ = false;
   std::vector<Sight> sights_;
   void makeFilteredPieces(Sight& sight, int frontStripes, int rearStripes, const Panel& front,
                           const Panel& rear, double u0, double du) const;
   void makeAcrossRuns(Sight& sight) const;
+  // The stripe runs' reads and their transpose (Sight::stripeRuns) on a row of cells.
+  void gatherStripeRuns(const Sight& sight, const Vec3f* cells, Vec3f* out,
+                        std::vector<Vec3f>& planes) const;
+  void scatterStripeRuns(const Sight& sight, const Vec3f* filtered, const Vec3f* frontRow,
+                         float weight, Vec3f* cells) const;
   // One sight's m_j (seenRearRow).
   void sightRearRow(const Sight& sight, int s, const LayerRows& rear, int j, Vec3f* seenRear,
                     RowScratch& scratch) const;

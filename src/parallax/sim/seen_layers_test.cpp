@@ -151,6 +151,13 @@ TEST(SeenLayers, RearStripeCellsAreTheRearPixelsThroughTheirFilters) {
                           .view(front, stripedDiffuserBlurred(rear, stripes, 0.0, pitch));
       for (size_t i = 0; i < a.pixels().size(); ++i)
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.pixels()[i][c], b.pixels()[i][c], 1e-5f) << i;
+      // The cells' adjoint (their runs of four or five cells a column, read as planes).
+      const SeenLayers seen(d, eye, {.colourFilters = true, .rearStripeCells = true});
+      const Image cells = randomImage(270, 8, 24), y = randomImage(90, 8, 25);
+      Image gCells(270, 8);
+      seen.addRearGradient(y, front, gCells);
+      const double vy = dot(seen.view(front, cells), y);
+      EXPECT_NEAR(vy, dot(cells, gCells), 1e-5 * vy);
     }
     const Image cells = randomImage(270, 8, 23);
     const Image blurred = stripedDiffuserBlurred(rear, stripes, 0.7, pitch);
