@@ -500,6 +500,14 @@ bool rowsSeparable(const std::vector<TrainingView>& views) {
 // task walks every eye's view, residual and adjoint for that row in turn, with buffers of one
 // row (solveRowsSeparately). Otherwise (the barrier in front) the whole-image operators, eye by
 // eye (addGradientAndStep).
+// Each eye's view of a fixed mask over the rows a solve works on (ImageLayerPasses): one float
+// a pixel for a grey mask seen grey, else three; kept by the caller across bands of rows so that
+// their blocks are not handed back and touched anew for every band.
+struct SeenMasks {
+  std::vector<UninitializedLargeVector<float>> grey;
+  std::vector<UninitializedLargeVector<Vec3f>> colour;
+};
+
 class ImageLayerPasses {
  public:
   int passes() const { return passes_; }
@@ -509,9 +517,16 @@ class ImageLayerPasses {
   // `diffuser`: applied to the image when the image is the rear layer (the barrier in front).
   // `firstRow`, `rows`: the image rows solved (byRows only; rows < 0: to the last),
   // for which the views hold targets and the grey mask's views are made.
+  // `store`: where the seen masks are kept (none: in the passes themselves).
   ImageLayerPasses(const std::vector<TrainingView>& views, const Image& mask, int threads,
-                   bool byRows, const RearDiffuser& diffuser, int firstRow = 0, int rows = -1)
-      : views_(views), mask_(mask), threads_(threads), firstRow_(firstRow) {
+                   bool byRows, const RearDiffuser& diffuser, int firstRow = 0, int rows = -1,
+                   SeenMasks* store = nullptr)
+      : views_(views),
+        mask_(mask),
+        threads_(threads),
+        firstRow_(firstRow),
+        seenMasks_(store ? store->grey : ownSeenMasks_.grey),
+        seenColourMasks_(store ? store->colour : ownSeenMasks_.colour) {
     const bool imageInFront = rowsSeparable(views);
     if (!imageInFront && diffuser.active()) imageBlur_ = &diffuser;
     rowSeparable_ = byRows && imageInFront;
@@ -520,19 +535,33 @@ class ImageLayerPasses {
     const bool grey = std::all_of(mask.pixels().begin(), mask.pixels().end(),
                                   [](const Vec3f& p) { return p.x == p.y && p.y == p.z; });
     if (rows < 0) rows = views.front().seen.height() - firstRow;
-    if (rowSeparable_ && grey && views.front().seen.seesGreyAsGrey()) {
+    // Through colour filters (or a tinted mask) it is seen in colour: three floats a pixel,
+    // kept for a band of rows (optimizeImageLayerByBands) only.
+    const bool greySeen = grey && views.front().seen.seesGreyAsGrey();
+    const bool kept = rowSeparable_ && (greySeen || rows <= kTargetBandRows);
+    // The store's vectors keep their blocks from band to band (only the kind in use is kept).
+    seenMasks_.resize(kept && greySeen ? views.size() : 0);
+    seenColourMasks_.resize(kept && !greySeen ? views.size() : 0);
+    if (kept) {
       const int width = views.front().seen.width();
-      // Sized without being written: the row tasks below touch their pages first, in parallel.
-      seenMasks_.resize(views.size());
-      for (UninitializedLargeVector<float>& seenMask : seenMasks_)
-        seenMask.resize(size_t(width) * size_t(rows));
+      // Sized without being written: the row tasks below touch their pages first, in parallel
+      // (a band's blocks again after the first band's: no new pages).
+      const size_t values = size_t(width) * size_t(rows);
+      for (UninitializedLargeVector<float>& seenMask : seenMasks_) seenMask.resize(values);
+      for (UninitializedLargeVector<Vec3f>& seenMask : seenColourMasks_) seenMask.resize(values);
       parallelFor(rows, threads, 2, [&](int64_t begin, int64_t end) {
         std::vector<Vec3f> row(static_cast<size_t>(width));
         SeenLayers::RowScratch scratch;
         for (int64_t k = begin; k != end; ++k)
           for (size_t e = 0; e < views.size(); ++e) {
+            const size_t first = size_t(k) * size_t(width);
+            if (!greySeen) {
+              views[e].seen.seenRearRow(mask, firstRow + int(k), &seenColourMasks_[e][first],
+                                        scratch);
+              continue;
+            }
             views[e].seen.seenRearRow(mask, firstRow + int(k), row.data(), scratch);
-            float* into = seenMasks_[e].data() + size_t(k) * size_t(width);
+            float* into = seenMasks_[e].data() + first;
             for (int i = 0; i < width; ++i) into[i] = row[size_t(i)].x;
           }
       });
@@ -693,6 +722,8 @@ class ImageLayerPasses {
   template <class Body>
   void withSeenMask(size_t e, int j, RowWork& w, const Body& body) const {
     if (!seenMasks_.empty()) return body(seenMasks_[e].data() + w.first(j - firstRow_));
+    if (!seenColourMasks_.empty())
+      return body(static_cast<const Vec3f*>(seenColourMasks_[e].data() + w.first(j - firstRow_)));
     views_[e].seen.seenRearRow(mask_, j, w.seenRear.data(), w.scratch);
     body(static_cast<const Vec3f*>(w.seenRear.data()));
   }
@@ -703,8 +734,11 @@ class ImageLayerPasses {
   int firstRow_ = 0;
   int planeRowStride_ = planeRowStride(views_.front().seen.height());
   mutable int passes_ = 0;
-  std::vector<UninitializedLargeVector<float>>
-      seenMasks_;  // per eye, with a grey mask and the rows solved separately
+  // Per eye, with a grey mask seen grey and the rows solved separately; the same seen in colour
+  // (for a band of rows).
+  SeenMasks ownSeenMasks_;
+  std::vector<UninitializedLargeVector<float>>& seenMasks_;
+  std::vector<UninitializedLargeVector<Vec3f>>& seenColourMasks_;
   bool rowSeparable_ = false;
   const RearDiffuser* imageBlur_ = nullptr;
 };
@@ -1068,10 +1102,12 @@ void solveRowBands(const std::vector<TrainingView>& views, Image& image, const I
                    SolveReport& report) {
   const int rows = image.height();
   RowSolves solves(rows, normaliser(views), progress);
+  SeenMasks seenMasks;  // every band's, in the same blocks
   for (int firstRow = 0; firstRow < rows; firstRow += bandRows) {
     const int count = std::min(bandRows, rows - firstRow);
     beforeBand(firstRow, count);
-    const ImageLayerPasses passes(views, seenMask, threads, true, diffuser, firstRow, count);
+    const ImageLayerPasses passes(views, seenMask, threads, true, diffuser, firstRow, count,
+                                  &seenMasks);
     solves.solve(passes, image, firstRow, firstRow + count, iterations, threads);
   }
   solves.report(report);

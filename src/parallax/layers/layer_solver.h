@@ -91,6 +91,11 @@ struct LayerFrame {
   Image image, mask;
 };
 
+// The rows of a band of optimizeImageLayerByBands (render's optimized-image: training.h,
+// solvesByBands): four of the renderer's tile rows. The solve keeps each eye's mask as seen in
+// colour (three floats a pixel: through colour filters) for bands of at most this many rows.
+inline constexpr int kTargetBandRows = 64;
+
 // A diffuser foil between the panels (sim/diffuser.h): the rear layer is seen blurred by G, a
 // Gaussian of sigmaMm over the rear panel's pixels (pitchMm apart). The solvers then fit
 // V = B P(front, G rear): G in the views, and G^T = G on the rear layer's gradient.

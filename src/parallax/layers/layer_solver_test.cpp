@@ -658,17 +658,22 @@ RearDiffuser withoutStripes(const RearDiffuser& diffuser) {
   return {diffuser.sigmaMm, diffuser.pitchMm};
 }
 
+// Two rows (each eye's mask seen in colour kept for the solve) and 70 (more than a band's rows:
+// seen again each pass).
 TEST(OptimizeImageLayer, SolvesForTheColourFilters) {
-  for (const RearDiffuser& diffuser : stripedDiffusers())
-    for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
-      SCOPED_TRACE(int(order) + 10 * diffuser.active());
-      const DisplayDesign d = tinyDisplay(order);
-      const Image mask = maskLayerImage(d);
-      const Image truth = randomImage(27, 2, 19, 0.3f, 0.7f);
-      expectSolvedForTheOptics(viewsThroughFilters(d, truth, mask, true, diffuser),
-                               viewsThroughFilters(d, truth, mask, false, diffuser), mask, diffuser,
-                               withoutStripes(diffuser));
-    }
+  for (const int rows : {2, kTargetBandRows + 6})
+    for (const RearDiffuser& diffuser : stripedDiffusers())
+      for (const LayerOrder order : {LayerOrder::BarrierBack, LayerOrder::BarrierFront}) {
+        SCOPED_TRACE(int(order) + 10 * diffuser.active() + 100 * rows);
+        DisplaySpec spec = tinyDisplay(order).spec;
+        spec.imagePanel.height = spec.maskPanel.height = rows;
+        const DisplayDesign d = designDisplay(spec);
+        const Image mask = maskLayerImage(d);
+        const Image truth = randomImage(27, rows, 19, 0.3f, 0.7f);
+        expectSolvedForTheOptics(viewsThroughFilters(d, truth, mask, true, diffuser),
+                                 viewsThroughFilters(d, truth, mask, false, diffuser), mask,
+                                 diffuser, withoutStripes(diffuser));
+      }
 }
 
 TEST(FactorizeLayers, SolvesForTheColourFilters) {

@@ -59,9 +59,16 @@ bool solvesByBands(const DisplayDesign& design, const TrainingOptions& options,
 
 double trainingHeldBytes(const DisplayDesign& design, const TrainingOptions& options,
                          const std::string& method) {
-  const double whole = trainingBytes(design, options) +
-                       (method == "optimized-image" ? seenMaskBytes(design, options) : 0.0);
-  if (!solvesByBands(design, options, method)) return whole;
+  // The seen masks: a float a pixel for a grey mask; through colour filters three, kept for a
+  // band of rows only (layer_solver.cpp, ImageLayerPasses).
+  const bool bands = solvesByBands(design, options, method);
+  double seenMasks = 0;
+  if (method == "optimized-image")
+    seenMasks = !options.colourFilters ? seenMaskBytes(design, options)
+                : bands                ? 3.0 * seenMaskBytes(design, options)
+                                       : 0.0;
+  const double whole = trainingBytes(design, options) + seenMasks;
+  if (!bands) return whole;
   const Panel& front = design.spec.imagePanel;
   // A band's share, and per worker an eye's band rendered and boxed in floats.
   const double band = std::min(1.0, double(kTargetBandRows) / double(front.height));

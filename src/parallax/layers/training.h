@@ -46,7 +46,8 @@ struct TrainingOptions {
 // or 16 bits per channel for sRGB errors), for the caller's memory check before building them.
 double trainingBytes(const DisplayDesign& design, const TrainingOptions& options);
 // Bytes optimizeImageLayer holds besides for a grey mask: each training eye's view of the mask,
-// one float per pixel (layer_solver.cpp, ImageLayerPasses).
+// one float per pixel (layer_solver.cpp, ImageLayerPasses; three through colour filters, for a
+// band of rows).
 double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options);
 
 // Whether `method`'s solve makes its targets a band of rows at a time as it goes
@@ -55,7 +56,7 @@ double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options
 // kTargetBandRows rows of every eye at a time instead of whole views.
 bool solvesByBands(const DisplayDesign& design, const TrainingOptions& options,
                    const std::string& method);
-inline constexpr int kTargetBandRows = 64;  // four of the renderer's tile rows
+// (kTargetBandRows: layer_solver.h.)
 // Bytes `method`'s solve holds for its training eyes: their targets (trainingBytes) and, for
 // optimized-image, the mask as they see it (seenMaskBytes), whole or a band's (solvesByBands);
 // for the caller's memory check before building them.
