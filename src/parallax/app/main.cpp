@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
     if (group.isRoot())
       std::printf("would need about %s (peak resident memory, %.0f bytes) for %s\n",
                   parallax::formatGiB(e.estimate().bytes).c_str(), e.estimate().bytes,
-                  e.estimate().what.c_str());
+                  parallax::spellFields(e.estimate().what, parallax::app::optionName).c_str());
   } catch (const parallax::cluster::PeerFailed& e) {
     // Another rank failed and said so at a checkpoint: it prints its message; stop quietly.
     return e.failure().exitCode;

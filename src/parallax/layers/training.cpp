@@ -14,12 +14,28 @@ namespace parallax {
 namespace {
 
 // Training eyes times the front layer's pixels: the pixels of all training views.
+double trainingEyeCount(const DisplayDesign& design, const TrainingOptions& options) {
+  return double(pixelViewCount(design)) * options.eyesPerView * double(options.distances.size());
+}
+
+const Panel& frontPanel(const DisplayDesign& design) {
+  return design.spec.order == LayerOrder::BarrierBack ? design.spec.imagePanel
+                                                      : design.spec.maskPanel;
+}
+
 double trainingPixels(const DisplayDesign& design, const TrainingOptions& options) {
-  const Panel& front =
-      design.spec.order == LayerOrder::BarrierBack ? design.spec.imagePanel : design.spec.maskPanel;
-  const double eyes =
-      double(pixelViewCount(design)) * options.eyesPerView * double(options.distances.size());
-  return eyes * double(front.width) * double(front.height);
+  const Panel& front = frontPanel(design);
+  return trainingEyeCount(design, options) * double(front.width) * double(front.height);
+}
+
+// The eyes' operators with a pupil: each of its sights holds its pieces across a row (about two
+// a column with their weights, runs' weights and starts: under 100 bytes a column) and down a
+// column (under 64 bytes a row, its rear rows' sources included; seen_layers.h).
+double pupilSightBytes(const DisplayDesign& design, const TrainingOptions& options) {
+  if (!(options.pupilDiameterMm > 0)) return 0.0;
+  const Panel& front = frontPanel(design);
+  return trainingEyeCount(design, options) * double(options.pupilSamples) *
+         (100.0 * front.width + 64.0 * front.height);
 }
 
 }  // namespace
@@ -68,12 +84,14 @@ double trainingHeldBytes(const DisplayDesign& design, const TrainingOptions& opt
                 : bands                ? 3.0 * seenMaskBytes(design, options)
                                        : 0.0;
   const double whole = trainingBytes(design, options) + seenMasks;
-  if (!bands) return whole;
+  const double sights = pupilSightBytes(design, options);
+  if (!bands) return whole + sights;
   const Panel& front = design.spec.imagePanel;
   // A band's share, and per worker an eye's band rendered and boxed in floats.
   const double band = std::min(1.0, double(kTargetBandRows) / double(front.height));
-  return whole * band + imageBytes(front.width, std::min(front.height, kTargetBandRows),
-                                   kFloatRgbPixelBytes, 2.0 * workerCount(options.threads));
+  return whole * band + sights +
+         imageBytes(front.width, std::min(front.height, kTargetBandRows), kFloatRgbPixelBytes,
+                    2.0 * workerCount(options.threads));
 }
 
 std::vector<TrainingView> trainingEyes(const DisplayDesign& design,
