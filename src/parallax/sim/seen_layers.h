@@ -1,7 +1,8 @@
 // What one eye sees on a two-layer display as a bilinear function of the two layers, with its
 // adjoints: the operator the layer solvers (layers/) fit layers with. It is the simulator's
 // exact view (simulator.h: the product of the two layers' box pixels integrated over each output
-// pixel, pinhole eye, no diffuser; optionally through the panels' colour filters) at the front
+// pixel; a pinhole eye or a pupil's average, through the panels' colour filters or not:
+// SeenOptics; a diffuser's blur is the caller's, on the rear layer it passes) at the front
 // layer's resolution, unnormalised (backlight 1; with colour filters, each filtered layer's 1/3
 // undone as the simulator's normalisation does), followed by the box one screen period wide
 // along x that the dense measure compares views through (atDisplayResolution):
@@ -46,7 +47,7 @@ struct SeenOptics {
   // an RGB or BGR order is three vertical stripes a pixel, stripe c passing channel c only. The
   // stripes run down the columns, so they change the pieces across a row alone: channel c of
   // output pixel i meets the rear pixels under the front's stripe c that pass channel c, each
-  // with its own weight (the weights per channel of acrossWeights_).
+  // with its own weight (the weights per channel of Sight::acrossWeights).
   bool colourFilters = false;
   // With colourFilters: the rear layer comes as its stripe cells, three a pixel, already
   // filtered (and blurred: sim/diffuser.h, stripedDiffuserBlurred), so each cell passes what it
