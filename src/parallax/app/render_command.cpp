@@ -106,7 +106,8 @@ void registerRenderCommand(CLI::App& cli) {
       cmd->add_option("--pupil", request.layers.pupil,
                       "With --layers optimized-image or nmf: solve for eyes with a pupil of this "
                       "diameter in mm (0 to 100; as simulate --pupil), each view the average "
-                      "over --pupil-samples points of it (default 0: pinhole eyes)");
+                      "over --pupil-samples points of it (default 0: pinhole eyes)")
+          ->type_name("MM");
   cmd->add_option("--pupil-samples", request.layers.pupilSamples,
                   "Points averaged over the --pupil, 1 to 64 (the solve's time grows with them)")
       ->capture_default_str()
