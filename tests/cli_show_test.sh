@@ -129,6 +129,24 @@ done
 check "show says what it plays" grep -q "playing turn_qs4x3a0.75.mp4: 2 frames at 4 frames/s (--fps), interlaced for 96x128 as shown" "$tmp/show.out"
 check "and how fast it went" grep -qE "shown [0-9]+ frames in .* frames/s\); per frame: decode" "$tmp/show.out"
 
+# An X server that is not listening yet (being started with the show, or resetting after its
+# last client left) is waited for a few seconds; one that never comes is one clear line.
+late=":$((500 + RANDOM % 400))"
+DISPLAY=$late "$bin" show "$tmp/r" --windowed --exit-after 1 >"$tmp/late.out" 2>&1 &
+late_show=$!
+sleep 0.7
+Xvfb "$late" -screen 0 200x100x24 -nolisten tcp >/dev/null 2>&1 &
+late_xvfb=$!
+trap 'kill $xvfb $late_xvfb 2>/dev/null; rm -rf "$tmp"' EXIT
+check "a server started after the show is waited for" wait "$late_show"
+# Stopped once it answers: a TERM before its exec would reach the forked shell, not Xvfb.
+for _ in $(seq 300); do xdpyinfo -display "$late" >/dev/null 2>&1 && break; sleep 0.1; done
+kill "$late_xvfb" 2>/dev/null
+wait "$late_xvfb" 2>/dev/null
+check "a server that never comes is one clear line" bash -c "DISPLAY=$late '$bin' show '$tmp/r' \
+  --windowed --exit-after 1 2>'$tmp/gone'; [ \$? -eq 1 ] && [ \$(wc -l <'$tmp/gone') -eq 1 ] \
+  && grep -q 'no display' '$tmp/gone'"
+
 check "quit closes at once" bash -c "DISPLAY=$display timeout 5 '$bin' show '$tmp/r' --windowed \
   --keys quit"
 

@@ -45,6 +45,9 @@ ShowKey keyOf(SDL_Keycode key) {
 // Once per process, and quit only when the process ends: an X server that has no other client
 // resets when the last connection closes, and refuses new ones while it does, so counting the
 // monitors, quitting and starting again for the windows failed about 40 % of the time there.
+// For the same reason a refused first connection is tried again for a few seconds when DISPLAY
+// names a server: one whose last client (a screenshot, the show before) has just left is
+// resetting for some milliseconds, and one started with the show is not listening yet.
 bool initVideo() {
   static bool started = false;
   if (started) return true;
@@ -52,7 +55,13 @@ bool initVideo() {
     const bool wayland = std::getenv("WAYLAND_DISPLAY") && std::getenv("XDG_RUNTIME_DIR");
     SDL_SetHint(SDL_HINT_VIDEODRIVER, wayland ? "wayland,x11,kmsdrm" : "x11,kmsdrm");
   }
-  if (SDL_Init(SDL_INIT_VIDEO) != 0) return false;
+  const char* display = std::getenv("DISPLAY");
+  const bool xServerNamed = display && *display;
+  constexpr int kAttempts = 30;  // 3 s in all, at 100 ms apart
+  for (int attempt = 1; SDL_Init(SDL_INIT_VIDEO) != 0; ++attempt) {
+    if (!xServerNamed || attempt == kAttempts) return false;
+    SDL_Delay(100);
+  }
   started = true;
   std::atexit(SDL_Quit);
   return true;
