@@ -107,7 +107,8 @@ void benchLayers(const std::string& displayPath, const std::string& scenePath,
                  const jobs::LayersRequest& request, const SamplingRequest& sampling, bool json) {
   request.check();
   const DisplayDesign design = loadDesignOrDefault(displayPath);
-  const TrainingOptions training = jobs::trainingOptions(request, sampling.threads);
+  const TrainingOptions training =
+      jobs::trainingOptions(request, sampling.threads, 0, sampling.seed);
   const Panel& panel = design.spec.imagePanel;
   checkMemoryEstimate(
       trainingHeldBytes(design, training, request.method) +
@@ -505,6 +506,10 @@ void registerBenchCommand(CLI::App& cli) {
       ->capture_default_str();
   cmd->add_option("--train-distances", options->layers.trainDistances,
                   "With --layers: the training eyes' distances in units of D (as render's)")
+      ->capture_default_str();
+  cmd->add_option("--train-spp", options->layers.trainSpp,
+                  "With --layers: samples per pixel of the training eyes' ideal views (as "
+                  "render's)")
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });

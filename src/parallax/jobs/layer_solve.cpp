@@ -39,9 +39,12 @@ std::vector<LayerFrame> nmfStart(const LayerFrame& slits, double periodPx, int r
 
 }  // namespace
 
-TrainingOptions trainingOptions(const LayersRequest& request, int threads, int bounces) {
+TrainingOptions trainingOptions(const LayersRequest& request, int threads, int bounces,
+                                uint64_t seed) {
   TrainingOptions training;
   training.eyesPerView = request.trainEyes;
+  training.referenceSamplesPerPixel = request.trainSpp;
+  training.seed = seed;
   training.distances = parseDistances(request.trainDistances, "train_distances");
   training.srgbWeights = request.errorMeasure() == "srgb";
   training.colourFilters = request.colorFilters;
@@ -124,6 +127,7 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   out.set("/layers/training_eyes", int(views.size()));
   for (size_t i = 0; i < training.distances.size(); ++i)
     out.set("/layers/training_distances/" + std::to_string(i), training.distances[i]);
+  out.set("/layers/train_spp", training.referenceSamplesPerPixel);
   out.set("/layers/error", o.errorMeasure());
   out.set("/layers/diffuser_sigma_mm", diffuser.sigmaMm);
   out.set("/layers/color_filters", o.colorFilters);

@@ -54,6 +54,8 @@ void LayersRequest::check() const {
                        "srgb is for {layers} optimized-image (nmf's updates fit in linear light)");
   if (trainEyes < 1 || trainEyes > 16)
     throw RequestError("train_eyes", "must be between 1 and 16 eyes per view");
+  if (trainSpp < 1 || trainSpp > 64)
+    throw RequestError("train_spp", "must be a whole number from 1 to 64 samples per pixel");
   if (parseDistances(trainDistances, "train_distances").size() > 8)
     throw RequestError("train_distances", "at most 8 distances, got '" + trainDistances + "'");
   if (diffuser && (!(*diffuser >= 0) || !std::isfinite(*diffuser) || *diffuser > 100))
@@ -175,7 +177,8 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
     plan.outputNames = pictureSetNames(size_t(r.layers.solved() ? r.layers.rank : 1), layered,
                                        r.linear, display.file.name);
   }
-  plan.training = trainingOptions(r.layers, plan.settings.threads, plan.settings.bounces);
+  plan.training = trainingOptions(r.layers, plan.settings.threads, plan.settings.bounces,
+                                  plan.settings.seed);
   if (r.layers.solved()) {
     // The training targets and, per frame, two layers and their gradients.
     const DisplayDesign& design = *display->barrierDesign();
@@ -230,6 +233,7 @@ MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
        {"{brightness}", madeFromNumber(r.layers.brightness)},
        {"{train_eyes}", std::to_string(r.layers.trainEyes)},
        {"{train_distances}", r.layers.trainDistances},
+       {"{train_spp}", std::to_string(r.layers.trainSpp)},
        {"{layer_error}", r.layers.error},
        {"{diffuser}", r.layers.diffuser ? madeFromNumber(*r.layers.diffuser) : "display"},
        {"{color_filters}", r.layers.colorFilters ? "on" : "off"},

@@ -15,6 +15,7 @@
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/sequence.h"
 #include "parallax/layers/layer_solver.h"
+#include "parallax/layers/training.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax::jobs {
@@ -25,8 +26,8 @@ namespace parallax::jobs {
 // descent, plain updates) reached in 10, the default before them.
 inline constexpr int kDefaultLayerIterations = 7;
 
-// layers, rank, iterations, brightness, train_eyes, train_distances, layer_error, diffuser,
-// color_filters, pupil, pupil_samples: content-adaptive
+// layers, rank, iterations, brightness, train_eyes, train_distances, train_spp, layer_error,
+// diffuser, color_filters, pupil, pupil_samples: content-adaptive
 // layers (docs/content-adaptive.md) instead of the slits' own.
 struct LayersRequest {
   std::string method = "slits";   // slits, optimized-image or nmf
@@ -37,6 +38,8 @@ struct LayersRequest {
   // The training eyes' distances in units of D (parseDistances); the dense measure's own
   // eyes sit at 0.8, 1 and 1.25 D between them (docs/content-adaptive.md, "Training eyes").
   std::string trainDistances = "0.8,1,1.25";
+  // Samples per pixel of the training eyes' ideal views (1 to 64; TrainingOptions).
+  int trainSpp = kDefaultTrainingSpp;
   std::string error;  // srgb or linear; "": the method's default
   // The panel's diffuser foil (Gaussian sigma, mm) the layers are solved for; none: the display
   // file's diffuser_sigma_mm.

@@ -79,7 +79,8 @@ struct LayerSolveFigures {
 
 // The training eyes a layers request asks for (train_eyes, train_distances, the error measure),
 // rendered on `threads` workers with `bounces` (render's and bench's).
-TrainingOptions trainingOptions(const LayersRequest& request, int threads, int bounces = 0);
+TrainingOptions trainingOptions(const LayersRequest& request, int threads, int bounces = 0,
+                                uint64_t seed = 0);
 
 // Content-adaptive layers from the slit layers (docs/content-adaptive.md): the training views,
 // then the solver; its figures go under /layers of `record` (and into `figures`).

@@ -40,6 +40,14 @@ double pupilSightBytes(const DisplayDesign& design, const TrainingOptions& optio
 
 }  // namespace
 
+uint64_t trainingEyeSeed(uint64_t renderSeed, size_t eye) {
+  // SplitMix64 (Steele, Lea and Flood 2014) of the render's seed offset by the eye.
+  uint64_t z = renderSeed + 0x9e3779b97f4a7c15ull * (uint64_t(eye) + 1);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
 double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options) {
   return trainingPixels(design, options) * sizeof(float);
 }
@@ -126,7 +134,9 @@ IdealViewBands::IdealViewBands(const Scene& scene, const Accelerator& accelerato
   RenderSettings settings;
   settings.samplesPerPixel = options.referenceSamplesPerPixel;
   settings.bounces = options.bounces;
+  size_t index = 0;
   for (const DenseEye& eye : denseEyes(design, options.eyesPerView, options.distances)) {
+    settings.seed = trainingEyeSeed(options.seed, index++);
     i.cameras.push_back(std::make_unique<WindowCamera>(eye.position, *i.display, scene.display,
                                                        i.width, i.height,
                                                        i.display->horizontalParallaxOnly()));
@@ -210,7 +220,8 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
     SeenLayers seen(design, eyes[i].position, seenOptics(options));
     Image target =
         idealView(scene, accelerator, design, eyes[i].position, seen.width(), seen.height(),
-                  options.referenceSamplesPerPixel, options.threads, options.bounces);
+                  options.referenceSamplesPerPixel, options.threads, options.bounces,
+                  trainingEyeSeed(options.seed, i));
     for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);
     views.push_back({std::move(seen), std::move(target),
                      options.srgbWeights ? float(options.targetScale) : 0.0f});

@@ -3,6 +3,8 @@
 // display's resolution as the dense measure does, times the brightness the layers aim at.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -15,12 +17,24 @@
 
 namespace parallax {
 
+inline constexpr int kDefaultTrainingSpp = 2;
+
+// Training eye `eye`'s jitter seed (RenderSettings::seed) for a render of seed `renderSeed`: a
+// SplitMix64 step of the two, so that no two eyes, and no eye and the render itself or the
+// truth's ideal views (kTruthJitterSeed, quality/), share their sample positions.
+uint64_t trainingEyeSeed(uint64_t renderSeed, size_t eye);
+
 struct TrainingOptions {
   // K eyes inside every view's window at each distance (units of D). The defaults sit between
   // the dense measure's own eyes (K = 4 at 0.8, 1, 1.25 D), which stay unseen by the solver.
   int eyesPerView = 2;
   std::vector<double> distances{0.8, 1.0, 1.25};
-  int referenceSamplesPerPixel = 4;
+  // Samples per pixel of the ideal views, each eye's jitter its own (trainingEyeSeed): the
+  // solve then averages the targets' sampling errors over its eyes, and 2 spp solve as well as
+  // 4 spp with one jitter for every eye did, in half the ideal views' time (docs/
+  // content-adaptive.md, "The targets' samples").
+  int referenceSamplesPerPixel = kDefaultTrainingSpp;
+  uint64_t seed = 0;  // the render's --seed, from which each eye's jitter seed is drawn
   int bounces = 0;  // of the ideal views: the render's --bounces
   // Targets are the ideal views times targetScale: the slit mask's mean transmittance for the
   // slits' own brightness, times a gain for brighter layers.

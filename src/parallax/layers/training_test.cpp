@@ -45,7 +45,8 @@ TEST(Training, TargetsAreTheScaledIdealViewsOfTheDenseEyes) {
   for (size_t i = 0; i < eyes.size(); ++i) {
     EXPECT_EQ(views[i].seen.eye().x, eyes[i].position.x);
     EXPECT_EQ(views[i].seen.eye().z, eyes[i].position.z);
-    ideals.push_back(idealView(scene, accel, d, eyes[i].position, 72, 12, 1, 0));
+    ideals.push_back(idealView(scene, accel, d, eyes[i].position, 72, 12, 1, 0, 0,
+                               trainingEyeSeed(options.seed, i)));
     const Image& ideal = ideals.back();
     float largest = 0;
     for (const Vec3f& p : ideal.pixels()) largest = std::max({largest, p.x, p.y, p.z});
@@ -138,6 +139,7 @@ TEST(Training, BoxedTargetsByBandsAreTheWholeViewsBoxed) {
   TrainingOptions options;
   options.eyesPerView = 1, options.distances = {0.9, 1.1};
   options.referenceSamplesPerPixel = 2, options.targetScale = 0.3, options.boxedTargets = true;
+  options.seed = 5;
   int calls = 0, lastDone = 0, lastTotal = 0;
   const std::vector<TrainingView> bands =
       trainingViews(scene, accel, d, options,
@@ -152,8 +154,17 @@ TEST(Training, BoxedTargetsByBandsAreTheWholeViewsBoxed) {
     ASSERT_TRUE(v.boxedTarget);
     EXPECT_TRUE(v.target.empty());
     EXPECT_EQ(v.seen.eye().x, eyes[e].position.x);
-    Image ideal = idealView(scene, accel, d, eyes[e].position, 72, rows, 2, 0, 0);
+    Image ideal =
+        idealView(scene, accel, d, eyes[e].position, 72, rows, 2, 0, 0, trainingEyeSeed(5, e));
     for (Vec3f& p : ideal.pixels()) p = p * 0.3f;
+    // Each eye's own jitter: the truth's samples (or another eye's) give other targets.
+    for (const uint64_t other : {kTruthJitterSeed, trainingEyeSeed(5, e + 1), uint64_t(5)}) {
+      Image moved = idealView(scene, accel, d, eyes[e].position, 72, rows, 2, 0, 0, other);
+      for (Vec3f& p : moved.pixels()) p = p * 0.3f;
+      TrainingView elsewhere{SeenLayers(d, eyes[e].position), moved, 0.0f};
+      elsewhere.encodeBoxedTarget(2);
+      EXPECT_NE(v.encodedTarget, elsewhere.encodedTarget) << e << " " << other;
+    }
     TrainingView whole{SeenLayers(d, eyes[e].position), ideal, 0.0f};
     whole.encodeBoxedTarget(2);
     EXPECT_TRUE(std::equal(v.encodedTarget.begin(), v.encodedTarget.end(),
@@ -170,6 +181,19 @@ TEST(Training, BoxedTargetsByBandsAreTheWholeViewsBoxed) {
           ASSERT_NEAR(row[size_t(i)][c], boxed.at(i, j)[c], 0.51f * v.rowUnits[size_t(j)]);
     }
   }
+}
+
+// No two training eyes, of one render or of renders of nearby seeds, draw the same jitter, nor
+// any the truth's ideal views or a render of seed 0 to 9 draw.
+TEST(Training, EveryEyeJittersOnItsOwn) {
+  std::vector<uint64_t> seeds{kTruthJitterSeed};
+  for (uint64_t render = 0; render < 10; ++render) seeds.push_back(render);
+  for (uint64_t render = 0; render < 10; ++render)
+    for (size_t eye = 0; eye < 1000; ++eye) seeds.push_back(trainingEyeSeed(render, eye));
+  std::sort(seeds.begin(), seeds.end());
+  EXPECT_EQ(std::adjacent_find(seeds.begin(), seeds.end()), seeds.end());
+  // The same eye of the same render: the same seed (the targets are deterministic).
+  EXPECT_EQ(trainingEyeSeed(3, 17), trainingEyeSeed(3, 17));
 }
 
 // The encoding is S(t / c) (IEC 61966-2-1) in 16 bits, against the standard's formula.

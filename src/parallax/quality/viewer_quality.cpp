@@ -63,18 +63,20 @@ std::vector<DenseEye> designEyes(const DisplayModel& display) {
 
 Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayModel& display,
                 const SimulatedDisplay& seen, const Vec3d& eye, int width, int height, int spp,
-                int threads, int bounces) {
+                int threads, int bounces, uint64_t seed) {
   const WindowCamera camera(eye, display, scene.display, width, height,
                             display.horizontalParallaxOnly());
   RenderSettings settings;
   settings.samplesPerPixel = spp;
   settings.threads = threads;
   settings.bounces = bounces;
+  settings.seed = seed;
   return seen.atDisplayResolution(render(scene, accelerator, camera, settings));
 }
 
 Image idealView(const Scene& scene, const Accelerator& accelerator, const DisplayDesign& d,
-                const Vec3d& eye, int width, int height, int spp, int threads, int bounces) {
+                const Vec3d& eye, int width, int height, int spp, int threads, int bounces,
+                uint64_t seed) {
   const std::unique_ptr<DisplayModel> display = makeBarrierDisplay(d);
   const WindowCamera camera(eye, *display, scene.display, width, height,
                             display->horizontalParallaxOnly());
@@ -82,6 +84,7 @@ Image idealView(const Scene& scene, const Accelerator& accelerator, const Displa
   settings.samplesPerPixel = spp;
   settings.threads = threads;
   settings.bounces = bounces;
+  settings.seed = seed;
   return atDisplayResolution(d, render(scene, accelerator, camera, settings));
 }
 

@@ -127,8 +127,10 @@ TEST(ViewerQuality, TheDefaultIdealViewsAreAsGoodAsSixtyFourSamples) {
     usualMiss = std::max(usualMiss, std::abs(usual[i].psnr - truth[i].psnr));
     centresMiss = std::max(centresMiss, std::abs(centres[i].psnr - truth[i].psnr));
   }
-  EXPECT_LT(usualMiss, 0.05);             // 0.026 dB here
-  EXPECT_GT(centresMiss, 3 * usualMiss);  // 0.116 dB here
+  // 0.034 dB and 0.102 dB here, the truths' jitter their own (kTruthJitterSeed); 0.026 and
+  // 0.116 dB when they drew the render's own jitter (seed 0), which the render then matched.
+  EXPECT_LT(usualMiss, 0.05);
+  EXPECT_GT(centresMiss, 2.5 * usualMiss);
 }
 
 // A white image layer behind the real mask (9.045-pixel slit period, openings split over two
