@@ -41,6 +41,28 @@ whole = json.load(open(sys.argv[3]))["layers"]
 assert r["training_distances"] == [0.85, 1.2], r
 assert 3 * r["training_eyes"] == 2 * whole["training_eyes"] == 3 * b["eyes"], (r, whole, b)
 ' "$tmp/out" "$tmp/oi2/render.json" "$tmp/oi/render.json"
+# The training eyes' samples: --train-spp recorded (2 by default), each eye's jitter drawn from
+# --seed, so another seed or sample count solves other layers, and the same ones the same.
+check "render two iterations" run 0 render --display "$tmp/small.json" --spp 4 \
+  --layers optimized-image --iterations 2 -o "$tmp/plain"
+check "render --train-spp 4" run 0 render --display "$tmp/small.json" --spp 4 \
+  --layers optimized-image --iterations 2 --train-spp 4 -o "$tmp/spp4"
+check "render --seed 3" run 0 render --display "$tmp/small.json" --spp 4 \
+  --layers optimized-image --iterations 2 --seed 3 -o "$tmp/seed3"
+check "render --seed 3 again" run 0 render --display "$tmp/small.json" --spp 4 \
+  --layers optimized-image --iterations 2 --seed 3 -o "$tmp/seed3b"
+check "the training samples are recorded" python3 -c '
+import json, sys
+assert json.load(open(sys.argv[1]))["layers"]["train_spp"] == 4
+assert json.load(open(sys.argv[2]))["layers"]["train_spp"] == 2
+' "$tmp/spp4/render.json" "$tmp/plain/render.json"
+check "another sample count solves another image layer" bash -c "! cmp -s '$tmp/spp4/image.png' \
+  '$tmp/plain/image.png'"
+check "another seed too" bash -c "! cmp -s '$tmp/seed3/image.png' '$tmp/plain/image.png'"
+check "the same seed the same layers" cmp "$tmp/seed3/image.png" "$tmp/seed3b/image.png"
+check "--train-spp 0 is refused naming it" run 2 render --display "$tmp/small.json" \
+  --layers nmf --train-spp 0 -o "$tmp/bad"
+check "the refusal names --train-spp" one_line_naming "--train-spp"
 check "a bad --train-distances is refused naming it" run 2 render --display "$tmp/small.json" \
   --layers nmf --train-distances 0.85,far -o "$tmp/bad"
 check "the refusal is one line naming the option" one_line_naming "--train-distances"

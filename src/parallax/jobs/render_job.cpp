@@ -177,8 +177,8 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
     plan.outputNames = pictureSetNames(size_t(r.layers.solved() ? r.layers.rank : 1), layered,
                                        r.linear, display.file.name);
   }
-  plan.training = trainingOptions(r.layers, plan.settings.threads, plan.settings.bounces,
-                                  plan.settings.seed);
+  plan.training =
+      trainingOptions(r.layers, plan.settings.threads, plan.settings.bounces, plan.settings.seed);
   if (r.layers.solved()) {
     // The training targets and, per frame, two layers and their gradients.
     const DisplayDesign& design = *display->barrierDesign();

@@ -218,10 +218,9 @@ std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& a
   views.reserve(eyes.size());
   for (size_t i = 0; i < eyes.size(); ++i) {
     SeenLayers seen(design, eyes[i].position, seenOptics(options));
-    Image target =
-        idealView(scene, accelerator, design, eyes[i].position, seen.width(), seen.height(),
-                  options.referenceSamplesPerPixel, options.threads, options.bounces,
-                  trainingEyeSeed(options.seed, i));
+    Image target = idealView(scene, accelerator, design, eyes[i].position, seen.width(),
+                             seen.height(), options.referenceSamplesPerPixel, options.threads,
+                             options.bounces, trainingEyeSeed(options.seed, i));
     for (Vec3f& p : target.pixels()) p = p * float(options.targetScale);
     views.push_back({std::move(seen), std::move(target),
                      options.srgbWeights ? float(options.targetScale) : 0.0f});

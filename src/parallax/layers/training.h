@@ -35,7 +35,7 @@ struct TrainingOptions {
   // content-adaptive.md, "The targets' samples").
   int referenceSamplesPerPixel = kDefaultTrainingSpp;
   uint64_t seed = 0;  // the render's --seed, from which each eye's jitter seed is drawn
-  int bounces = 0;  // of the ideal views: the render's --bounces
+  int bounces = 0;    // of the ideal views: the render's --bounces
   // Targets are the ideal views times targetScale: the slit mask's mean transmittance for the
   // slits' own brightness, times a gain for brighter layers.
   double targetScale = 1.0;

@@ -340,6 +340,19 @@ def test_layers_for_the_panels_optics_are_the_clis(scene, small, tmp_path):
         parallax.render(scene, small, layers="optimized-image", pupil=4, pupil_samples=0)
 
 
+def test_training_samples_are_the_clis(scene, small, tmp_path):
+    # render(train_spp=, seed=) is render --train-spp --seed: the same image layer, recorded;
+    # the training eyes' jitter follows the seed.
+    made = solved_as_the_cli(scene, small, tmp_path / "spp", {"train_spp": 3, "seed": 7},
+                             ["--train-spp", 3, "--seed", 7])
+    assert made.record["layers"]["train_spp"] == 3
+    other = parallax.render(scene, small, spp=1, layers="optimized-image", iterations=2,
+                            train_eyes=1, train_spp=3, seed=8)
+    assert not np.array_equal(made.image, other.image)
+    with pytest.raises(parallax.Error, match=r"^train_spp: must be a whole number from 1 to 64"):
+        parallax.render(scene, small, layers="nmf", train_spp=65)
+
+
 def test_estimate_memory_is_the_clis_estimate(scene, small, tmp_path):
     # The same figure as `parallax --estimate`, within what the two processes hold besides
     # (the interpreter and numpy, about 10-60 MiB); a bigger picture needs more, by its pixels.
