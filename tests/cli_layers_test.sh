@@ -63,6 +63,9 @@ check "the same seed the same layers" cmp "$tmp/seed3/image.png" "$tmp/seed3b/im
 check "--train-spp 0 is refused naming it" run 2 render --display "$tmp/small.json" \
   --layers nmf --train-spp 0 -o "$tmp/bad"
 check "the refusal names --train-spp" one_line_naming "--train-spp"
+check "--train-spp with the slits is refused" run 2 render --display "$tmp/small.json" \
+  --train-spp 4 -o "$tmp/bad"
+check "naming it and why" one_line_naming "--train-spp: applies to --layers optimized-image or nmf"
 check "a bad --train-distances is refused naming it" run 2 render --display "$tmp/small.json" \
   --layers nmf --train-distances 0.85,far -o "$tmp/bad"
 check "the refusal is one line naming the option" one_line_naming "--train-distances"

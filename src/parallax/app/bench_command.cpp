@@ -509,8 +509,8 @@ void registerBenchCommand(CLI::App& cli) {
       ->capture_default_str();
   cmd->add_option("--train-spp", options->layers.trainSpp,
                   "With --layers: samples per pixel of the training eyes' ideal views (as "
-                  "render's)")
-      ->capture_default_str();
+                  "render's: default 2)")
+      ->type_name("N");
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });
 }

@@ -121,9 +121,10 @@ void registerRenderCommand(CLI::App& cli) {
                   "within 0.01 dB mean; docs/content-adaptive.md, \"Training eyes\")")
       ->capture_default_str();
   cmd->add_option("--train-spp", request.layers.trainSpp,
-                  "Samples per pixel of the training eyes' ideal views, 1 to 64 (each eye "
-                  "jittered on its own; docs/content-adaptive.md, \"The targets' samples\")")
-      ->capture_default_str();
+                  "Samples per pixel of the training eyes' ideal views for optimised layers, 1 "
+                  "to 64 (default 2; each eye jittered on its own; docs/content-adaptive.md, "
+                  "\"The targets' samples\")")
+      ->type_name("N");
   cmd->add_option("--size", options->size,
                   "With --quilt: the size of one view (default: the device quilt's tile, or the "
                   "image layer's resolution)")

@@ -43,7 +43,7 @@ TrainingOptions trainingOptions(const LayersRequest& request, int threads, int b
                                 uint64_t seed) {
   TrainingOptions training;
   training.eyesPerView = request.trainEyes;
-  training.referenceSamplesPerPixel = request.trainSpp;
+  training.referenceSamplesPerPixel = request.trainSpp.value_or(kDefaultTrainingSpp);
   training.seed = seed;
   training.distances = parseDistances(request.trainDistances, "train_distances");
   training.srgbWeights = request.errorMeasure() == "srgb";

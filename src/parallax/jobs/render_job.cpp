@@ -54,7 +54,10 @@ void LayersRequest::check() const {
                        "srgb is for {layers} optimized-image (nmf's updates fit in linear light)");
   if (trainEyes < 1 || trainEyes > 16)
     throw RequestError("train_eyes", "must be between 1 and 16 eyes per view");
-  if (trainSpp < 1 || trainSpp > 64)
+  if (trainSpp && !solved())
+    throw RequestError("train_spp",
+                       "applies to {layers} optimized-image or nmf (slits solve nothing)");
+  if (trainSpp && (*trainSpp < 1 || *trainSpp > 64))
     throw RequestError("train_spp", "must be a whole number from 1 to 64 samples per pixel");
   if (parseDistances(trainDistances, "train_distances").size() > 8)
     throw RequestError("train_distances", "at most 8 distances, got '" + trainDistances + "'");
@@ -233,7 +236,7 @@ MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
        {"{brightness}", madeFromNumber(r.layers.brightness)},
        {"{train_eyes}", std::to_string(r.layers.trainEyes)},
        {"{train_distances}", r.layers.trainDistances},
-       {"{train_spp}", std::to_string(r.layers.trainSpp)},
+       {"{train_spp}", std::to_string(r.layers.trainSpp.value_or(kDefaultTrainingSpp))},
        {"{layer_error}", r.layers.error},
        {"{diffuser}", r.layers.diffuser ? madeFromNumber(*r.layers.diffuser) : "display"},
        {"{color_filters}", r.layers.colorFilters ? "on" : "off"},

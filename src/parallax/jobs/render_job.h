@@ -38,8 +38,9 @@ struct LayersRequest {
   // The training eyes' distances in units of D (parseDistances); the dense measure's own
   // eyes sit at 0.8, 1 and 1.25 D between them (docs/content-adaptive.md, "Training eyes").
   std::string trainDistances = "0.8,1,1.25";
-  // Samples per pixel of the training eyes' ideal views (1 to 64; TrainingOptions).
-  int trainSpp = kDefaultTrainingSpp;
+  // Samples per pixel of the training eyes' ideal views (1 to 64; none: kDefaultTrainingSpp;
+  // TrainingOptions).
+  std::optional<int> trainSpp;
   std::string error;  // srgb or linear; "": the method's default
   // The panel's diffuser foil (Gaussian sigma, mm) the layers are solved for; none: the display
   // file's diffuser_sigma_mm.

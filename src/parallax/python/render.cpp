@@ -73,7 +73,8 @@ jobs::RenderRequest renderRequest(const DisplayDescription& display, const py::k
     r.layers.iterations = kw["iterations"].cast<int>();
   if (kw.contains("brightness")) r.layers.brightness = kw["brightness"].cast<double>();
   if (kw.contains("train_eyes")) r.layers.trainEyes = kw["train_eyes"].cast<int>();
-  if (kw.contains("train_spp")) r.layers.trainSpp = kw["train_spp"].cast<int>();
+  if (kw.contains("train_spp") && !kw["train_spp"].is_none())
+    r.layers.trainSpp = kw["train_spp"].cast<int>();
   text("train_distances", r.layers.trainDistances);
   if (kw.contains("diffuser")) r.layers.diffuser = kw["diffuser"].cast<double>();
   if (kw.contains("color_filters")) r.layers.colorFilters = kw["color_filters"].cast<bool>();

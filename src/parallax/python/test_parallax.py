@@ -351,6 +351,8 @@ def test_training_samples_are_the_clis(scene, small, tmp_path):
     assert not np.array_equal(made.image, other.image)
     with pytest.raises(parallax.Error, match=r"^train_spp: must be a whole number from 1 to 64"):
         parallax.render(scene, small, layers="nmf", train_spp=65)
+    with pytest.raises(parallax.Error, match=r"^train_spp: applies to layers optimized-image"):
+        parallax.render(scene, small, train_spp=2)
 
 
 def test_estimate_memory_is_the_clis_estimate(scene, small, tmp_path):
