@@ -5,6 +5,7 @@
 
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/parallel.h"
+#include "parallax/core/random.h"
 #include "parallax/quality/viewer_quality.h"
 #include "parallax/render/render.h"
 #include "parallax/sim/simulated_display.h"
@@ -41,11 +42,8 @@ double pupilSightBytes(const DisplayDesign& design, const TrainingOptions& optio
 }  // namespace
 
 uint64_t trainingEyeSeed(uint64_t renderSeed, size_t eye) {
-  // SplitMix64 (Steele, Lea and Flood 2014) of the render's seed offset by the eye.
-  uint64_t z = renderSeed + 0x9e3779b97f4a7c15ull * (uint64_t(eye) + 1);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
+  // Draw eye + 1 of SplitMix64's sequence from the render's seed (core/random.h).
+  return mix64(renderSeed + 0x9e3779b97f4a7c15ull * (uint64_t(eye) + 1));
 }
 
 double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options) {
