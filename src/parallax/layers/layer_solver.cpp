@@ -494,12 +494,6 @@ bool rowsSeparable(const std::vector<TrainingView>& views) {
                      [](const TrainingView& v) { return v.seen.imageInFront(); });
 }
 
-// The passes of optimizeImageLayer over every training eye. When the image layer is in front
-// (the barrier behind it, the default order) output row j of every eye's view depends on the
-// image's row j only, so each row is a problem of its own (rowsSeparable), solved by rowPass: one
-// task walks every eye's view, residual and adjoint for that row in turn, with buffers of one
-// row (solveRowsSeparately). Otherwise (the barrier in front) the whole-image operators, eye by
-// eye (addGradientAndStep).
 // Each eye's view of a fixed mask over the rows a solve works on (ImageLayerPasses): one float
 // a pixel for a grey mask seen grey, else three; kept by the caller across bands of rows so that
 // their blocks are not handed back and touched anew for every band.
@@ -508,6 +502,12 @@ struct SeenMasks {
   std::vector<UninitializedLargeVector<Vec3f>> colour;
 };
 
+// The passes of optimizeImageLayer over every training eye. When the image layer is in front
+// (the barrier behind it, the default order) output row j of every eye's view depends on the
+// image's row j only, so each row is a problem of its own (rowsSeparable), solved by rowPass: one
+// task walks every eye's view, residual and adjoint for that row in turn, with buffers of one
+// row (solveRowsSeparately). Otherwise (the barrier in front) the whole-image operators, eye by
+// eye (addGradientAndStep).
 class ImageLayerPasses {
  public:
   int passes() const { return passes_; }
