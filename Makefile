@@ -9,7 +9,7 @@ OUT ?= out
 # The Debian release this machine does not run, for test-other-debian (docs/install.md).
 OTHER_DEBIAN ?= $(shell . /etc/os-release 2>/dev/null; [ "$$VERSION_CODENAME" = trixie ] && echo bookworm || echo trixie)
 
-.PHONY: all deps deps-run data configure configure-run build build-cli run test test-release test-asan test-fuzz test-other-debian bench format clean
+.PHONY: all deps deps-run data configure configure-run build build-cli run test test-release test-asan test-fuzz test-other-debian other-debian-root bench format clean
 
 all: build
 
@@ -68,10 +68,18 @@ test-fuzz: data deps
 
 # The other Debian release in a debootstrap root (tools/in-debian; Debian 13 on a Debian 12
 # machine): `make run` and the Release suite there, then the built-in layers of both releases'
-# builds compared (tests/releases_agree.sh). Its builds go to build-RELEASE, beside ours.
+# builds compared (tests/releases_agree.sh). Its builds go to build-RELEASE, beside ours. The
+# isa-sse4.2 copies of the tests run in this machine's suite only (docs/install.md, "Where each
+# test runs").
 test-other-debian: build
-	tools/in-debian $(OTHER_DEBIAN) -- make run test-release
+	tools/in-debian $(OTHER_DEBIAN) -- make run test-release \
+	  CMAKE_FLAGS="-DPARALLAX_NARROW_ISA_TESTS=OFF $(CMAKE_FLAGS)"
 	tests/releases_agree.sh $(OTHER_DEBIAN)
+
+# Only the other release's root and the packages of both README commands in it: downloading and
+# unpacking, which CI does while this machine compiles (.ci/run).
+other-debian-root:
+	tools/in-debian $(OTHER_DEBIAN) -- tools/install-deps test
 
 bench: build
 	./$(BUILD)/parallax bench

@@ -5,9 +5,44 @@
 # NAME/*_test.cpp into one GoogleTest executable parallax_NAME_test registered with CTest.
 # NARROW_ISA registers the tests a second time (prefix "isa-sse4.2/") with Embree forced to its
 # SSE4.2 kernels, as a CPU without AVX-512 runs them: without native 16-wide kernels Embree
-# traces packets differently, and an AVX-512 machine would hide bugs there. Not under the
+# traces packets differently, and an AVX-512 machine would hide bugs there. Only with
+# PARALLAX_NARROW_ISA_TESTS (CMakeLists.txt: this machine's Release suite) and not under the
 # sanitizers: the copies exercise Embree's kernels (not instrumented) through the same calls of
-# ours, and the Release suites of both Debian releases run them (CI time, .ci/run).
+# ours.
+# Compile settings (docs/install.md, "Compile time"; measured with tools/compile-times). A test's
+# own code is glue around the library it checks, which keeps the build's optimisation; at -O3 most
+# of a test file's time went to optimising GoogleTest's macros, so the tests are compiled at -Og
+# (optimised as far as debugging allows; -O1 makes GCC 12 warn falsely about std::string). The
+# front ends' own code (options, bindings) runs once per command and is compiled the same way.
+# The tests share one precompiled GoogleTest and standard library (parallax_test_pch below),
+# parsed once instead of in each of 100 files.
+set(PARALLAX_GLUE_OPTIMIZATION -Og)
+
+# Everything a module's test executable is compiled with: the same for all of them and for the
+# precompiled header they share.
+function(parallax_test_compile_settings target)
+  target_compile_definitions(${target} PRIVATE
+    PARALLAX_DATA_DIR="${PARALLAX_DATA_DIR}" PARALLAX_SOURCE_DIR="${PARALLAX_SOURCE_DIR}")
+  target_compile_options(${target} PRIVATE ${PARALLAX_GLUE_OPTIMIZATION})
+  if(NOT target STREQUAL "parallax_test_pch")
+    target_precompile_headers(${target} REUSE_FROM parallax_test_pch)
+  endif()
+endfunction()
+
+if(BUILD_TESTING)
+  # The precompiled header every test reuses. Its flags must be the tests' own (GCC refuses a
+  # header compiled with others, and CMake's -Winvalid-pch with -Werror makes that an error, not
+  # a silently slower build): an executable as the tests are (-fPIE, not a library's -fPIC),
+  # built and never run.
+  file(CONFIGURE OUTPUT "${CMAKE_BINARY_DIR}/parallax_test_pch.cpp" CONTENT "")
+  add_executable(parallax_test_pch "${CMAKE_BINARY_DIR}/parallax_test_pch.cpp")
+  target_link_libraries(parallax_test_pch PRIVATE GTest::gtest GTest::gtest_main)
+  parallax_test_compile_settings(parallax_test_pch)
+  target_precompile_headers(parallax_test_pch PRIVATE
+    <gtest/gtest.h> <algorithm> <cmath> <cstdint> <cstdio> <cstring> <filesystem> <fstream>
+    <functional> <map> <memory> <set> <sstream> <stdexcept> <string> <vector>)
+endif()
+
 function(parallax_module name)
   cmake_parse_arguments(PM "NARROW_ISA" "" "PRIVATE_LIBS;TEST_LIBS" ${ARGN})
   if(NOT DEFINED PARALLAX_USES_${name})
@@ -36,11 +71,10 @@ function(parallax_module name)
     add_executable(parallax_${name}_test ${tests})
     target_link_libraries(parallax_${name}_test PRIVATE parallax_${name} ${PM_PRIVATE_LIBS}
       ${PM_TEST_LIBS} GTest::gtest GTest::gtest_main)
-    target_compile_definitions(parallax_${name}_test PRIVATE
-      PARALLAX_DATA_DIR="${PARALLAX_DATA_DIR}" PARALLAX_SOURCE_DIR="${PARALLAX_SOURCE_DIR}")
+    parallax_test_compile_settings(parallax_${name}_test)
     gtest_discover_tests(parallax_${name}_test DISCOVERY_TIMEOUT 60
       PROPERTIES ENVIRONMENT "PARALLAX_DATA_DIR=${PARALLAX_DATA_DIR}")
-    if(PM_NARROW_ISA AND NOT PARALLAX_SANITIZE)
+    if(PM_NARROW_ISA AND PARALLAX_NARROW_ISA_TESTS AND NOT PARALLAX_SANITIZE)
       gtest_discover_tests(parallax_${name}_test DISCOVERY_TIMEOUT 60 TEST_PREFIX "isa-sse4.2/"
         PROPERTIES ENVIRONMENT
           "PARALLAX_DATA_DIR=${PARALLAX_DATA_DIR};PARALLAX_EMBREE_CONFIG=isa=sse4.2")
