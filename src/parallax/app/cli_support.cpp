@@ -13,7 +13,6 @@
 #include <thread>
 
 #include "parallax/accel/accelerator.h"
-#include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/display/lenticular.h"

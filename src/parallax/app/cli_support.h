@@ -7,13 +7,10 @@
 #include <optional>
 #include <string>
 
-#include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
-#include "parallax/display/view_filter.h"
 #include "parallax/io/display_file.h"
-#include "parallax/io/json_writer.h"
 #include "parallax/io/mesh_file.h"
 #include "parallax/io/scene_file.h"
 #include "parallax/jobs/limits.h"
@@ -22,7 +19,6 @@
 #include "parallax/jobs/sequence.h"
 #include "parallax/jobs/terminal_reporter.h"
 #include "parallax/jobs/video_output.h"
-#include "parallax/render/render.h"
 #include "parallax/scene/scene.h"
 
 namespace CLI {

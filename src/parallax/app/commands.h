@@ -5,7 +5,6 @@
 #include <string>
 
 #include "parallax/app/cli_support.h"
-#include "parallax/display/lenticular.h"
 
 namespace CLI {
 class App;

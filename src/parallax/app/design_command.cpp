@@ -8,10 +8,7 @@
 
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
-#include "parallax/io/display_file.h"
-#include "parallax/io/lenticular_file.h"
 #include "parallax/jobs/design_job.h"
 
 namespace parallax::app {

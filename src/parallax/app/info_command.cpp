@@ -6,7 +6,6 @@
 
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/camera/display_camera.h"
 #include "parallax/camera/framing.h"
 #include "parallax/io/json_writer.h"
 

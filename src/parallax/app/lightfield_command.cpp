@@ -10,7 +10,6 @@
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/core/error.h"
-#include "parallax/core/memory.h"
 #include "parallax/core/output_path.h"
 #include "parallax/io/image_file.h"
 #include "parallax/sim/lightfield.h"

@@ -2,4 +2,6 @@
 // command line itself is app/command_line.h, compiled once into the app library.
 #include "parallax/app/command_line.h"
 
-int main(int argc, char** argv) { return parallax::app::runCommandLine(argc, argv); }
+int main(int argc, char** argv) {
+  return parallax::app::runCommandLine(argc, argv);
+}

@@ -1,23 +1,13 @@
 // `parallax view`: an ordinary pinhole-camera picture of a scene.
 #include <CLI/CLI.hpp>
 
-#include <cstdio>
-#include <filesystem>
 #include <memory>
-#include <optional>
 
-#include "parallax/accel/accelerator.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
-#include "parallax/camera/display_camera.h"
-#include "parallax/camera/framing.h"
-#include "parallax/core/error.h"
-#include "parallax/core/memory.h"
-#include "parallax/io/image_file.h"
 #include "parallax/jobs/distributed.h"
 #include "parallax/jobs/sequence.h"
 #include "parallax/jobs/view_job.h"
-#include "parallax/render/render.h"
 
 namespace parallax::app {
 

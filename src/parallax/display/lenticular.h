@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "parallax/display/barrier_rays.h"  // Vec3d
+#include "parallax/core/math.h"
 
 namespace parallax {
 

@@ -6,6 +6,8 @@
 #include <array>
 #include <stdexcept>
 
+#include "parallax/io/image_file.h"
+
 namespace parallax {
 namespace {
 

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "parallax/image/image.h"
-#include "parallax/io/image_file.h"  // pngBytes
 
 namespace parallax {
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "parallax/core/random.h"
+#include "parallax/io/image_file.h"
 
 namespace parallax {
 namespace {

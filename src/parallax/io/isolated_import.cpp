@@ -34,6 +34,7 @@
 #include <new>
 #include <type_traits>
 
+#include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 
 #if defined(__SANITIZE_ADDRESS__)

@@ -14,7 +14,6 @@
 #include <cstring>
 #include <vector>
 
-#include "parallax/core/memory.h"
 #include "parallax/io/isolated_import.h"
 #include "parallax/io/mesh_test_support.h"
 

@@ -9,7 +9,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "parallax/core/error.h"
 #include "parallax/io/input_file.h"
 
 namespace parallax {

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "parallax/core/error.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/isolated_import.h"
 #include "parallax/io/mesh_formats.h"

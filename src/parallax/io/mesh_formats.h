@@ -9,7 +9,6 @@
 #include <string_view>
 #include <vector>
 
-#include "parallax/core/error.h"
 #include "parallax/core/transform.h"
 #include "parallax/image/image.h"
 #include "parallax/io/mesh_file.h"

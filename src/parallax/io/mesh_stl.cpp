@@ -7,6 +7,7 @@
 #include <bit>
 #include <cstring>
 
+#include "parallax/core/error.h"
 #include "parallax/io/mesh_formats.h"
 
 namespace parallax::meshio {

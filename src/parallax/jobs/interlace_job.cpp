@@ -10,7 +10,6 @@
 #include "parallax/core/output_path.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
-#include "parallax/io/lenticular_file.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/layer_output.h"
 #include "parallax/jobs/limits.h"

@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "parallax/accel/accelerator.h"
-#include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
 #include "parallax/core/output_path.h"
 #include "parallax/jobs/display_factory.h"

@@ -15,7 +15,6 @@
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/sequence.h"
 #include "parallax/layers/layer_solver.h"
-#include "parallax/layers/training.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax::jobs {

@@ -7,10 +7,6 @@
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
-#include "parallax/camera/camera.h"
-#include "parallax/camera/display_camera.h"
-#include "parallax/core/error.h"
-#include "parallax/display/lenticular_presets.h"
 #include "parallax/io/display_file.h"
 #include "parallax/jobs/design_job.h"
 #include "parallax/jobs/display_factory.h"
@@ -21,7 +17,6 @@
 #include "parallax/jobs/view_job.h"
 #include "parallax/render/display_render.h"
 #include "parallax/render/display_test_support.h"
-#include "parallax/render/quilt.h"
 
 namespace parallax::jobs {
 namespace {

@@ -13,7 +13,6 @@
 #include "parallax/core/parallel.h"
 #include "parallax/display/lenticular_presets.h"
 #include "parallax/io/image_file.h"
-#include "parallax/io/png_encoder.h"
 #include "parallax/jobs/distributed.h"
 #include "parallax/jobs/layer_output.h"
 #include "parallax/jobs/limits.h"

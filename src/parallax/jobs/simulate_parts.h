@@ -9,7 +9,6 @@
 #include "parallax/display/display_model.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/simulate_job.h"
-#include "parallax/scene/scene.h"
 #include "parallax/sim/simulator.h"
 
 namespace parallax::jobs {

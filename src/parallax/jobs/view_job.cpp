@@ -7,7 +7,6 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/camera/camera.h"
 #include "parallax/camera/display_camera.h"
-#include "parallax/camera/framing.h"
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/core/output_path.h"

@@ -11,6 +11,7 @@
 #include "parallax/core/lane_kernel.h"
 #include "parallax/core/parallel.h"
 #include "parallax/image/srgb_arithmetic.h"
+#include "parallax/sim/diffuser.h"
 
 namespace parallax {
 

@@ -27,7 +27,6 @@
 
 #include "parallax/core/memory.h"
 #include "parallax/image/image.h"
-#include "parallax/sim/diffuser.h"
 #include "parallax/sim/seen_layers.h"
 
 namespace parallax {

@@ -7,12 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "parallax/camera/framing.h"
-#include "parallax/core/error.h"
-#include "parallax/display/lenticular.h"
 #include "parallax/io/display_file.h"
-#include "parallax/io/json_writer.h"
-#include "parallax/io/lenticular_file.h"
 #include "parallax/jobs/design_job.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/requests.h"

@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "parallax/core/error.h"
 #include "parallax/display/display_model.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/jobs/display_factory.h"

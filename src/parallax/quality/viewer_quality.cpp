@@ -7,7 +7,6 @@
 #include "parallax/camera/display_camera.h"
 #include "parallax/core/parallel.h"
 #include "parallax/display/display_model.h"
-#include "parallax/display/mask.h"
 #include "parallax/image/metrics.h"
 #include "parallax/render/render.h"
 

@@ -8,13 +8,11 @@
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
-#include "parallax/display/barrier_rays.h"
 #include "parallax/display/display.h"
 #include "parallax/display/display_model.h"
 #include "parallax/image/image.h"
 #include "parallax/scene/scene.h"
 #include "parallax/sim/simulated_display.h"
-#include "parallax/sim/simulator.h"
 
 namespace parallax {
 

@@ -4,7 +4,6 @@
 
 #include <cstdint>
 
-#include "parallax/core/lane_kernel.h"
 #include "parallax/core/math.h"
 
 namespace parallax {

@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
-#include "parallax/display/barrier_rays.h"
 #include "parallax/display/display.h"
 #include "parallax/display/display_model.h"
 #include "parallax/image/image.h"

@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "parallax/camera/display_camera.h"
-#include "parallax/image/metrics.h"
 #include "parallax/render/display_test_support.h"
 #include "parallax/render/render.h"
 

@@ -15,7 +15,6 @@
 #include <string>
 #include <vector>
 
-#include "parallax/display/barrier_rays.h"
 #include "parallax/display/display.h"
 #include "parallax/image/image.h"
 

@@ -1,7 +1,6 @@
 #include "parallax/sim/simulated_display.h"
 
 #include "parallax/core/error.h"
-#include "parallax/display/mask.h"
 #include "parallax/image/metrics.h"
 #include "parallax/sim/lenticular_sim.h"
 

@@ -8,7 +8,6 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/parallel.h"
-#include "parallax/display/mask.h"
 #include "parallax/sim/seen_layers.h"
 #include "parallax/sim/simulated_display.h"
 #include "parallax/sim/view_pieces.h"

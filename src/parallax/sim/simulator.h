@@ -12,9 +12,7 @@
 #include <optional>
 #include <vector>
 
-#include "parallax/display/barrier_rays.h"
 #include "parallax/display/display.h"
-#include "parallax/display/display_model.h"  // maskLayerImage
 #include "parallax/display/lenticular.h"
 #include "parallax/image/image.h"
 

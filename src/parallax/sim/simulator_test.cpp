@@ -11,6 +11,8 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/random.h"
+#include "parallax/display/barrier_rays.h"
+#include "parallax/display/display_model.h"
 #include "parallax/display/mask.h"
 #include "parallax/image/metrics.h"
 #include "parallax/sim/crosstalk.h"
