@@ -74,31 +74,6 @@ void benchSimulator(const std::string& displayPath, const std::string& scenePath
   (void)checksum;
 }
 
-// Seconds of the fastest of three reads of `bytes` bytes (on `threads` workers, each reading
-// blocks of 1 MiB from memory, not cache): what one pass over that many bytes of training targets
-// costs at this machine's memory bandwidth.
-double streamingPassSeconds(double bytes, int threads) {
-  constexpr int64_t kBlockWords = (1 << 20) / sizeof(uint64_t);
-  const int64_t blocks = std::max<int64_t>(1, int64_t(bytes / (kBlockWords * sizeof(uint64_t))));
-  std::vector<uint64_t> words(size_t(blocks * kBlockWords));
-  for (size_t i = 0; i < words.size(); ++i) words[i] = i;  // resident before the clock
-  double fastest = 0, checksum = 0;
-  for (int repeat = 0; repeat < 3; ++repeat) {
-    const auto start = std::chrono::steady_clock::now();
-    checksum += parallelSum(blocks, threads, 1, [&](int64_t block) {
-      uint64_t sum = 0;
-      const uint64_t* first = words.data() + block * kBlockWords;
-      for (int64_t i = 0; i < kBlockWords; ++i) sum += first[i];
-      return double(sum);
-    });
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    fastest = repeat == 0 ? seconds : std::min(fastest, seconds);
-  }
-  if (checksum < 0) std::printf("%g\n", checksum);  // keeps the reads
-  return fastest * bytes / (double(words.size()) * sizeof(uint64_t));
-}
-
 // The layer solvers' benchmark (docs/speed.md, "Layer solvers"): what `render --layers METHOD`
 // spends on its training views and on its solve, with the solve's passes over the training
 // targets, against the physical limit of a solver that reads every target once per iteration

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
 
 namespace parallax {
 
@@ -180,6 +182,28 @@ void checkMemory(double bytes, double limitBytes, const std::string& subject,
   throw InputError(subject, "",
                    "needs about " + formatGiB(bytes) + " for " + what + " (limit " +
                        formatGiB(limitBytes) + "); " + advice);
+}
+
+double streamingPassSeconds(double bytes, int threads) {
+  constexpr int64_t kBlockWords = (1 << 20) / sizeof(uint64_t);
+  const int64_t blocks = std::max<int64_t>(1, int64_t(bytes / (kBlockWords * sizeof(uint64_t))));
+  std::vector<uint64_t> words(size_t(blocks * kBlockWords));
+  for (size_t i = 0; i < words.size(); ++i) words[i] = i;  // resident before the clock
+  double fastest = 0, checksum = 0;
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    const auto start = std::chrono::steady_clock::now();
+    checksum += parallelSum(blocks, threads, 1, [&](int64_t block) {
+      uint64_t sum = 0;
+      const uint64_t* first = words.data() + block * kBlockWords;
+      for (int64_t i = 0; i < kBlockWords; ++i) sum += first[i];
+      return double(sum);
+    });
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fastest = repeat == 0 ? seconds : std::min(fastest, seconds);
+  }
+  if (checksum < 0) std::printf("%g\n", checksum);  // keeps the reads
+  return fastest * bytes / (double(words.size()) * sizeof(uint64_t));
 }
 
 }  // namespace parallax

@@ -40,6 +40,13 @@ inline constexpr double kRgb8PixelBytes = 3.0;
 // container sets one; 0 when unknown.
 uint64_t physicalMemoryBytes();
 
+// Seconds of the fastest of three reads of `bytes` bytes (on `threads` workers, 0: all cores, each
+// reading blocks of 1 MiB from memory, not cache): what one pass over that many bytes costs at
+// this machine's memory bandwidth (the layer solvers' limit in `parallax bench --layers`). Here,
+// in a library compiled with the build's optimisation, so that the reads are as fast as the
+// solvers' own.
+double streamingPassSeconds(double bytes, int threads);
+
 // 3/4 of `physicalBytes` (the rest is left to the system and other programs); 4 GiB when the
 // physical memory is unknown (0).
 double defaultMemoryLimitBytes(uint64_t physicalBytes);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -125,6 +126,17 @@ TEST(Memory, AnUninitializedLargeVectorStillConstructsWhatItIsGiven) {
   sized.resize(sized.size() + 1, 2.0f);
   EXPECT_EQ(sized.back(), 2.0f);
   EXPECT_EQ(sized.front(), 1.0f);
+}
+
+// The bandwidth figure is a physical one: 64 MiB read at a rate no machine is outside of (0.1 GB/s
+// to 10 TB/s).
+TEST(Memory, AStreamingPassTakesWhatMemoryBandwidthAllows) {
+  const double bytes = 64.0 * (1 << 20);
+  const double seconds = streamingPassSeconds(bytes, 0);
+  ASSERT_TRUE(std::isfinite(seconds));
+  EXPECT_GT(seconds, 0.0);
+  EXPECT_GT(bytes / seconds, 1e8);
+  EXPECT_LT(bytes / seconds, 1e13);
 }
 
 }  // namespace
