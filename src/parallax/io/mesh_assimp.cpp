@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -224,9 +225,12 @@ class AssimpConverter {
     } else if (axis == 2 && sign > 0) {
       contents_.declaredUp = UpAxis::Z;
     } else {
-      contents_.warnings.push_back("declares up axis " + std::string(sign < 0 ? "-" : "+") +
-                                   "XYZ"[std::clamp(axis, 0, 2)] +
-                                   ", which is not supported; taking +Y as up");
+      // Formatted, not concatenated: GCC 12 warns falsely (-Warray-bounds) on the appends.
+      char declared[80];
+      std::snprintf(declared, sizeof declared,
+                    "declares up axis %c%c, which is not supported; taking +Y as up",
+                    sign < 0 ? '-' : '+', "XYZ"[std::clamp(axis, 0, 2)]);
+      contents_.warnings.emplace_back(declared);
       contents_.declaredUp = UpAxis::Y;
     }
   }

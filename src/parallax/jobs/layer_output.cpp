@@ -82,8 +82,8 @@ void (*commitHook)(size_t) = nullptr;
 
 // A name an output set may have: one file name in DIR, not one of the set's own.
 bool plainName(const std::string& name) {
-  return !name.empty() && name != "." && name != ".." && name.find('/') == std::string::npos &&
-         name.rfind(".parallax-", 0) != 0;
+  return !name.empty() && name != "." && name != ".." &&
+         std::find(name.begin(), name.end(), '/') == name.end() && !name.starts_with(".parallax-");
 }
 
 // The strings of `value` (an array of strings, or an object of them) that are plain names.
