@@ -1,6 +1,4 @@
 // `parallax bench`: our rays per second against raw Embree on the same rays, in one run.
-#include <CLI/CLI.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -433,60 +431,60 @@ void runBench(const BenchOptions& o) {
 
 }  // namespace
 
-void registerBenchCommand(CLI::App& cli) {
+void registerBenchCommand(Command& cli) {
   auto options = std::make_shared<BenchOptions>();
-  CLI::App* cmd =
-      cli.add_subcommand("bench", "Measure rays per second against raw Embree on the same rays");
-  cmd->add_option("--camera", options->camera,
-                  "Camera to measure: pinhole, or display (the image layer through the barrier)")
-      ->capture_default_str();
-  cmd->add_option("--display", options->display,
-                  "Display for --camera display: a file of any kind, or lkg:NAME (a lenticular "
-                  "panel's direct render is also timed against its own device quilt and "
-                  "interlace, in the same run)");
+  Command* cmd =
+      cli.addSubcommand("bench", "Measure rays per second against raw Embree on the same rays");
+  cmd->addOption("--camera", options->camera,
+                 "Camera to measure: pinhole, or display (the image layer through the barrier)")
+      ->captureDefault();
+  cmd->addOption("--display", options->display,
+                 "Display for --camera display: a file of any kind, or lkg:NAME (a lenticular "
+                 "panel's direct render is also timed against its own device quilt and "
+                 "interlace, in the same run)");
   addFilterOptions(*cmd, options->filter, "With --camera display: ", "as render --filter-width");
-  cmd->add_option("--scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
-  cmd->add_option("--size", options->size,
-                  "Image size WIDTHxHEIGHT (pinhole; the display camera uses the panel's)")
-      ->capture_default_str();
+  cmd->addOption("--scene", options->scene, "Scene or mesh file (built-in scene if omitted)");
+  cmd->addOption("--size", options->size,
+                 "Image size WIDTHxHEIGHT (pinhole; the display camera uses the panel's)")
+      ->captureDefault();
   addSamplingOptions(*cmd, options->sampling, "Rays per pixel");
-  cmd->add_option("--repeats", options->repeats, "Alternating runs; the fastest of each counts")
-      ->capture_default_str()
+  cmd->addOption("--repeats", options->repeats, "Alternating runs; the fastest of each counts")
+      ->captureDefault()
       ->check(integerIn(1, INT_MAX));
-  cmd->add_option("--simulate", options->simulateViews,
-                  "Instead: time a sweep of N simulated views of the display (9 is the goal)")
+  cmd->addOption("--simulate", options->simulateViews,
+                 "Instead: time a sweep of N simulated views of the display (9 is the goal)")
       ->check(integerIn(0, INT_MAX));
-  cmd->add_option("--packet-width", options->packetWidth,
-                  "Rays per Embree packet query: 4, 8 or 16 (0: 16, the fastest measured with "
-                  "AVX-512, AVX2 and SSE4.2 kernels alike)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({0, 4, 8, 16}));
-  cmd->add_option("--bvh-quality", options->quality,
-                  "BVH build: auto (high when the render traces at least 5000 rays per "
-                  "triangle, else medium), medium or high")
-      ->capture_default_str();
-  cmd->add_option("--layers", options->layers.method,
-                  "Instead: time render --layers METHOD (optimized-image or nmf) on the barrier "
-                  "display: its ideal views, its solve and the solve's passes over the training "
-                  "targets, against one pass per iteration at memory bandwidth")
-      ->check(CLI::IsMember({"optimized-image", "nmf"}));
-  cmd->add_option("--rank", options->layers.rank, "With --layers nmf: frame pairs")
-      ->capture_default_str()
+  cmd->addOption("--packet-width", options->packetWidth,
+                 "Rays per Embree packet query: 4, 8 or 16 (0: 16, the fastest measured with "
+                 "AVX-512, AVX2 and SSE4.2 kernels alike)")
+      ->captureDefault()
+      ->oneOf({"0", "4", "8", "16"});
+  cmd->addOption("--bvh-quality", options->quality,
+                 "BVH build: auto (high when the render traces at least 5000 rays per "
+                 "triangle, else medium), medium or high")
+      ->captureDefault();
+  cmd->addOption("--layers", options->layers.method,
+                 "Instead: time render --layers METHOD (optimized-image or nmf) on the barrier "
+                 "display: its ideal views, its solve and the solve's passes over the training "
+                 "targets, against one pass per iteration at memory bandwidth")
+      ->oneOf({"optimized-image", "nmf"});
+  cmd->addOption("--rank", options->layers.rank, "With --layers nmf: frame pairs")
+      ->captureDefault()
       ->check(integerIn(1, 16));
-  cmd->add_option("--iterations", options->layers.iterations,
-                  "With --layers: solver iterations (default: as render's)")
+  cmd->addOption("--iterations", options->layers.iterations,
+                 "With --layers: solver iterations (default: as render's)")
       ->check(integerIn(1, 1000));
-  cmd->add_option("--train-eyes", options->layers.trainEyes,
-                  "With --layers: training eyes per view (as render's)")
-      ->capture_default_str();
-  cmd->add_option("--train-distances", options->layers.trainDistances,
-                  "With --layers: the training eyes' distances in units of D (as render's)")
-      ->capture_default_str();
-  cmd->add_option("--train-spp", options->layers.trainSpp,
-                  "With --layers: samples per pixel of the training eyes' ideal views (as "
-                  "render's: default 2)")
-      ->type_name("N");
-  cmd->add_flag("--json", options->json, "Print one JSON object");
+  cmd->addOption("--train-eyes", options->layers.trainEyes,
+                 "With --layers: training eyes per view (as render's)")
+      ->captureDefault();
+  cmd->addOption("--train-distances", options->layers.trainDistances,
+                 "With --layers: the training eyes' distances in units of D (as render's)")
+      ->captureDefault();
+  cmd->addOption("--train-spp", options->layers.trainSpp,
+                 "With --layers: samples per pixel of the training eyes' ideal views (as "
+                 "render's: default 2)")
+      ->typeName("N");
+  cmd->addFlag("--json", options->json, "Print one JSON object");
   cmd->callback([options] { runBench(*options); });
 }
 

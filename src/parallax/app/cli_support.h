@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "parallax/app/cli_parser.h"
 #include "parallax/core/error.h"
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
@@ -20,12 +21,6 @@
 #include "parallax/jobs/terminal_reporter.h"
 #include "parallax/jobs/video_output.h"
 #include "parallax/scene/scene.h"
-
-namespace CLI {
-class App;
-class Option;
-class Validator;
-}  // namespace CLI
 
 namespace parallax::app {
 
@@ -42,24 +37,23 @@ inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // sweeps) are checked later against the memory and time estimates below.
 enum class Bound { Closed, Open };
 // A finite real number in [lo, hi] (Open: the end itself is excluded); either may be infinite.
-CLI::Validator realIn(double lo, double hi, Bound lower = Bound::Closed,
-                      Bound upper = Bound::Closed);
+TextCheck realIn(double lo, double hi, Bound lower = Bound::Closed, Bound upper = Bound::Closed);
 // A whole number in [lo, hi] written in decimal digits (an optional leading minus).
-CLI::Validator integerIn(int64_t lo, int64_t hi);
+TextCheck integerIn(int64_t lo, int64_t hi);
 // A whole number n*n in [1, INT_MAX] (samples per pixel of an n x n grid), or 0 as well.
-CLI::Validator squareCount(bool zeroAllowed = false);
+TextCheck squareCount(bool zeroAllowed = false);
 // 0 (all cores) up to the machine's hardware threads.
-CLI::Validator threadCount();
+TextCheck threadCount();
 // --seed: any unsigned 64-bit number.
-CLI::Validator seedValue();
+TextCheck seedValue();
 
 // ---- Memory and time limits (jobs/limits.h) ------------------------------------------------
 // Adds --max-memory GiB (jobs::limits().maxMemoryGiB) to `cmd`; the last one given wins.
-void addMemoryLimitOption(CLI::App& cmd);
+void addMemoryLimitOption(Command& cmd);
 // Adds --max-time SECONDS (jobs::limits().maxSeconds).
-void addTimeLimitOption(CLI::App& cmd);
+void addTimeLimitOption(Command& cmd);
 // Both limit options at once.
-void addLimitOptions(CLI::App& cmd);
+void addLimitOptions(Command& cmd);
 using jobs::checkMemoryEstimate;
 using jobs::checkPixelCount;
 using jobs::checkTimeEstimate;
@@ -86,26 +80,26 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
 
 // --spp, --threads, --seed, --jitter, --adaptive, --bounces: how every rendering command samples.
 // Adds the four options to `cmd`; what one sample is differs between commands: `sppHelp`.
-void addSamplingOptions(CLI::App& cmd, SamplingRequest& options, const std::string& sppHelp);
+void addSamplingOptions(Command& cmd, SamplingRequest& options, const std::string& sppHelp);
 
 using jobs::setFramingFigures;
 
 // --fit, --focus and --depth-budget (render, and design --scene, view --display-eye): how the
 // content is framed for the display (camera/framing.h). Empty: the scene's own choice.
 // Adds the three options to `cmd`; `scope` begins their help ("" or "With --scene: ").
-void addFramingOptions(CLI::App& cmd, FramingRequest& options, const std::string& scope);
+void addFramingOptions(Command& cmd, FramingRequest& options, const std::string& scope);
 
 // --filter and --filter-width (render, bench, lenticular render): how a display pixel's rays
 // spread in angle (display/view_filter.h).
 // Adds the two options to `cmd`; `scope` begins their help ("" or "With --camera display: "),
 // `viewUnit` says what one view is for this display.
-void addFilterOptions(CLI::App& cmd, FilterRequest& options, const std::string& scope,
+void addFilterOptions(Command& cmd, FilterRequest& options, const std::string& scope,
                       const std::string& viewUnit);
 
 // --lens-spot W and --bundles parallel|converging: the lenticular optics a simulator reads a panel
 // under (jobs::SimulatorRequest::lensSpot, bundles), or a render renders for (`forRender`,
 // jobs::RenderRequest); unset when not given.
-void addLensReadingOptions(CLI::App& cmd, std::optional<double>& lensSpot, std::string& bundles,
+void addLensReadingOptions(Command& cmd, std::optional<double>& lensSpot, std::string& bundles,
                            bool forRender = false);
 
 // --up auto|y|z (also --mesh-up; only that on view, whose --up is the camera's) and --crease
@@ -113,7 +107,7 @@ void addLensReadingOptions(CLI::App& cmd, std::optional<double>& lensSpot, std::
 // objects may say otherwise). addSamplingOptions and addFramingOptions add them, so every
 // command that loads a scene has them (render, view, bench, lenticular render, design; info
 // adds them itself); a second call on the same command does nothing.
-void addImportOptions(CLI::App& cmd);
+void addImportOptions(Command& cmd);
 // What the command line chose (the defaults if the command has no such options).
 ImportOptions importOptions();
 
@@ -121,7 +115,7 @@ ImportOptions importOptions();
 Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& options = {});
 // --camera NAME|INDEX (render, view): which camera of the scene's glTF files to use
 // (io/scene_file.h, SceneLoadOptions::camera).
-void addSceneLoadOptions(CLI::App& cmd, SceneLoadOptions& options);
+void addSceneLoadOptions(Command& cmd, SceneLoadOptions& options);
 
 // The built-in display when `path` is empty, otherwise the display file; checked (G1-G4).
 // A lenticular calibration is refused.
@@ -131,13 +125,12 @@ DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset);
 
 // --frames, --chunk, --turntable, --duration, --fps, and --video with its codec and quality;
 // `frames` says what a video's frames are.
-void addSequenceOptions(CLI::App& cmd, SequenceRequest& options, const std::string& frames);
+void addSequenceOptions(Command& cmd, SequenceRequest& options, const std::string& frames);
 // --video, --video-codec, --video-quality and (unless `withFps` is false: the sequence options
 // have it) --fps.
-void addVideoOptions(CLI::App& cmd, VideoRequest& o, const std::string& frames,
-                     bool withFps = true);
+void addVideoOptions(Command& cmd, VideoRequest& o, const std::string& frames, bool withFps = true);
 // --rgbd COLOUR DEPTH, --depth-convention, --depth-range, --rgbd-edges, --rgbd-fov. Returns the
 // --rgbd option, so that the caller can make it exclude its scene argument.
-CLI::Option* addRgbdOptions(CLI::App& cmd, RgbdRequest& options);
+Option* addRgbdOptions(Command& cmd, RgbdRequest& options);
 
 }  // namespace parallax::app

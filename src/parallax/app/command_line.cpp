@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "parallax/app/cli_parser.h"
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/cluster/process_group.h"
@@ -55,18 +56,20 @@ int runCommandLine(int argc, char** argv) {
   // The ray tracing library too: Embree 3 or 4, whichever this build runs on.
   cli.set_version_flag("--version", [] { return parallax::app::versionText(); });
   cli.require_subcommand(1);
-  parallax::app::addLimitOptions(cli);
-  parallax::app::registerDesignCommand(cli);
-  parallax::app::registerRenderCommand(cli);
-  parallax::app::registerViewCommand(cli);
-  parallax::app::registerSimulateCommand(cli);
-  parallax::app::registerLightfieldCommand(cli);
-  parallax::app::registerCalibrateCommand(cli);
-  parallax::app::registerInterlaceCommand(cli);
-  parallax::app::registerLenticularCommand(cli);
-  parallax::app::registerShowCommand(cli);
-  parallax::app::registerInfoCommand(cli);
-  parallax::app::registerBenchCommand(cli);
+  // The commands add themselves through cli_parser.h: CLI11 is compiled here and there only.
+  Command program(cli);
+  addLimitOptions(program);
+  registerDesignCommand(program);
+  registerRenderCommand(program);
+  registerViewCommand(program);
+  registerSimulateCommand(program);
+  registerLightfieldCommand(program);
+  registerCalibrateCommand(program);
+  registerInterlaceCommand(program);
+  registerLenticularCommand(program);
+  registerShowCommand(program);
+  registerInfoCommand(program);
+  registerBenchCommand(program);
   // A dry run: the commands that estimate their whole peak stop at the estimate and print it.
   cli.add_flag("--estimate", parallax::jobs::limits().estimateOnly,
                "Print the command's estimated peak memory (resident set size) and exit before "

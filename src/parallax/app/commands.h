@@ -6,22 +6,18 @@
 
 #include "parallax/app/cli_support.h"
 
-namespace CLI {
-class App;
-}
-
 namespace parallax::app {
 
-void registerViewCommand(CLI::App& cli);
-void registerInfoCommand(CLI::App& cli);
-void registerBenchCommand(CLI::App& cli);
-void registerDesignCommand(CLI::App& cli);
-void registerRenderCommand(CLI::App& cli);
-void registerLightfieldCommand(CLI::App& cli);
-void registerSimulateCommand(CLI::App& cli);
-void registerCalibrateCommand(CLI::App& cli);
-void registerInterlaceCommand(CLI::App& cli);
-void registerLenticularCommand(CLI::App& cli);
-void registerShowCommand(CLI::App& cli);
+void registerViewCommand(Command& cli);
+void registerInfoCommand(Command& cli);
+void registerBenchCommand(Command& cli);
+void registerDesignCommand(Command& cli);
+void registerRenderCommand(Command& cli);
+void registerLightfieldCommand(Command& cli);
+void registerSimulateCommand(Command& cli);
+void registerCalibrateCommand(Command& cli);
+void registerInterlaceCommand(Command& cli);
+void registerLenticularCommand(Command& cli);
+void registerShowCommand(Command& cli);
 
 }  // namespace parallax::app

@@ -1,6 +1,4 @@
 // `parallax design`: the derived design of a display (jobs/design_job.h), as text or JSON.
-#include <CLI/CLI.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -13,7 +11,7 @@
 
 namespace parallax::app {
 
-void registerDesignCommand(CLI::App& cli) {
+void registerDesignCommand(Command& cli) {
   struct Options {
     std::string display, scene;
     FramingRequest framing;
@@ -21,18 +19,18 @@ void registerDesignCommand(CLI::App& cli) {
     double depth = 0.0;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* cmd =
-      cli.add_subcommand("design", "Print the derived design of a display (barrier or lenticular)");
-  cmd->add_option("display", options->display,
-                  "Display file of any kind, or lkg:NAME (built-in display if omitted)");
-  cmd->add_option("--depth", options->depth,
-                  "Depth (mm, + toward the viewer) for the disparity figure; default: the depth "
-                  "of field")
+  Command* cmd =
+      cli.addSubcommand("design", "Print the derived design of a display (barrier or lenticular)");
+  cmd->addOption("display", options->display,
+                 "Display file of any kind, or lkg:NAME (built-in display if omitted)");
+  cmd->addOption("--depth", options->depth,
+                 "Depth (mm, + toward the viewer) for the disparity figure; default: the depth "
+                 "of field")
       ->check(realIn(-kInfinity, kInfinity));
-  cmd->add_flag("--json", options->json, "Print one JSON object");
-  cmd->add_option("--scene", options->scene,
-                  "Also frame this scene for the display as render does: its depth range "
-                  "against the depth of field");
+  cmd->addFlag("--json", options->json, "Print one JSON object");
+  cmd->addOption("--scene", options->scene,
+                 "Also frame this scene for the display as render does: its depth range "
+                 "against the depth of field");
   addFramingOptions(*cmd, options->framing, "With --scene: ");
   cmd->callback([options] {
     DesignRequest request;

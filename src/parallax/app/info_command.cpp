@@ -1,6 +1,4 @@
 // `parallax info`: what a scene file holds, for people (text) and scripts (--json).
-#include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <memory>
 
@@ -152,23 +150,23 @@ void printText(const Scene& scene) {
 
 }  // namespace
 
-void registerInfoCommand(CLI::App& cli) {
+void registerInfoCommand(Command& cli) {
   struct Options {
     std::string scene;
     bool json = false;
     SceneLoadOptions load;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* cmd = cli.add_subcommand("info", "Print what a scene holds");
-  cmd->add_option("scene", options->scene, "Scene or mesh file; the built-in scene if omitted");
-  cmd->add_flag("--json", options->json, "Print one JSON object");
+  Command* cmd = cli.addSubcommand("info", "Print what a scene holds");
+  cmd->addOption("scene", options->scene, "Scene or mesh file; the built-in scene if omitted");
+  cmd->addFlag("--json", options->json, "Print one JSON object");
   addImportOptions(*cmd);
-  cmd->add_option("--camera", options->load.camera,
-                  "Frame the display as this glTF camera (name, node name or index) does")
-      ->type_name("NAME|INDEX");
-  cmd->add_option("--focus-on", options->load.focusOn,
-                  "Put the zero-parallax plane through this object (a node's or mesh's name)")
-      ->type_name("NAME");
+  cmd->addOption("--camera", options->load.camera,
+                 "Frame the display as this glTF camera (name, node name or index) does")
+      ->typeName("NAME|INDEX");
+  cmd->addOption("--focus-on", options->load.focusOn,
+                 "Put the zero-parallax plane through this object (a node's or mesh's name)")
+      ->typeName("NAME");
   cmd->callback([options] {
     const Scene scene = loadSceneOrDefault(options->scene, options->load);
     options->json ? printJson(scene) : printText(scene);

@@ -1,8 +1,6 @@
 // `parallax interlace`: N ordinary camera views, or one quilt of them, mapped onto the display
 // as the usual practice does (the paper's Fig. 2 direct mapping), written as `render` writes
 // its layers. Conventions: docs/quilts.md; the work: jobs/interlace_job.h.
-#include <CLI/CLI.hpp>
-
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,31 +41,31 @@ void runInterlace(InterlaceOptions o) {
 
 }  // namespace
 
-void registerInterlaceCommand(CLI::App& cli) {
+void registerInterlaceCommand(Command& cli) {
   auto options = std::make_shared<InterlaceOptions>();
   InterlaceRequest& request = options->request;
-  CLI::App* cmd = cli.add_subcommand(
+  Command* cmd = cli.addSubcommand(
       "interlace", "Map N camera views (leftmost first) or one quilt onto the display (Fig. 2)");
-  cmd->add_option("inputs", options->inputs,
-                  "The views as image files, leftmost camera first, or one quilt "
-                  "(NAME_qs{C}x{R}a{aspect}.png, tiles from the bottom-left)")
+  cmd->addOption("inputs", options->inputs,
+                 "The views as image files, leftmost camera first, or one quilt "
+                 "(NAME_qs{C}x{R}a{aspect}.png, tiles from the bottom-left)")
       ->required()
-      ->type_name("VIEW... | QUILT");
-  cmd->add_option("--display", request.display,
-                  "Display file of any kind, or lkg:NAME (built-in display if omitted)");
-  cmd->add_option("--view-resampling", request.viewResampling,
-                  "Views between the given ones: nearest or linear (blend the two around "
-                  "each needed one); for a barrier when the views are not its count, for a "
-                  "lenticular panel at every subpixel")
-      ->capture_default_str();
-  cmd->add_option("--quilt-layout", options->quiltLayout,
-                  "The quilt's tiles, when its name does not say")
-      ->type_name("CxR");
+      ->typeName("VIEW... | QUILT");
+  cmd->addOption("--display", request.display,
+                 "Display file of any kind, or lkg:NAME (built-in display if omitted)");
+  cmd->addOption("--view-resampling", request.viewResampling,
+                 "Views between the given ones: nearest or linear (blend the two around "
+                 "each needed one); for a barrier when the views are not its count, for a "
+                 "lenticular panel at every subpixel")
+      ->captureDefault();
+  cmd->addOption("--quilt-layout", options->quiltLayout,
+                 "The quilt's tiles, when its name does not say")
+      ->typeName("CxR");
   addLensReadingOptions(*cmd, request.lensSpot, request.bundles, true);
-  cmd->add_option("-o,--output", request.output, "Output folder")->required();
-  cmd->add_flag("--subpixels", request.subpixels,
-                "Views per R, G, B subpixel column (three times the views)");
-  cmd->add_flag("--linear", request.linear, "Also write image.pfm, linear float");
+  cmd->addOption("-o,--output", request.output, "Output folder")->required();
+  cmd->addFlag("--subpixels", request.subpixels,
+               "Views per R, G, B subpixel column (three times the views)");
+  cmd->addFlag("--linear", request.linear, "Also write image.pfm, linear float");
   cmd->callback([options] { runInterlace(*options); });
 }
 

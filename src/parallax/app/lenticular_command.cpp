@@ -1,7 +1,5 @@
 // `parallax lenticular`: slanted lenticular displays (the Looking Glass family) from their
 // calibration file: render the panel's framebuffer, and see it from an eye (docs/lenticular.md).
-#include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -81,16 +79,16 @@ void runSimulate(const LenticularSimulateOptions& o) {
 
 }  // namespace
 
-void registerLenticularCommand(CLI::App& cli) {
-  CLI::App* cmd = cli.add_subcommand(
+void registerLenticularCommand(Command& cli) {
+  Command* cmd = cli.addSubcommand(
       "lenticular", "Slanted lenticular displays (Looking Glass family) from their visual.json");
-  cmd->require_subcommand(1);
+  cmd->requireSubcommand(1);
 
   auto r = std::make_shared<LenticularRenderOptions>();
-  CLI::App* render = cmd->add_subcommand(
+  Command* render = cmd->addSubcommand(
       "render", "The panel image: one ray per subpixel along its calibrated view");
-  render->add_option("calibration", r->calibration, "Calibration file (visual.json)")->required();
-  render->add_option("scene", r->scene, "Scene or mesh file (built-in scene if omitted)");
+  render->addOption("calibration", r->calibration, "Calibration file (visual.json)")->required();
+  render->addOption("scene", r->scene, "Scene or mesh file (built-in scene if omitted)");
   addSceneLoadOptions(*render, r->load);
   addSamplingOptions(
       *render, r->sampling,
@@ -99,29 +97,28 @@ void registerLenticularCommand(CLI::App& cli) {
                    "one view: the lens's focal spot (docs/lenticular.md, \"Prefilter\"); each "
                    "subpixel's own span of views is always integrated");
   render
-      ->add_option("--distance", r->distance,
-                   "Design viewer distance in mm, above 0 (default: the cone spans 1 m)")
+      ->addOption("--distance", r->distance,
+                  "Design viewer distance in mm, above 0 (default: the cone spans 1 m)")
       ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open));
   addLensReadingOptions(*render, r->lensSpot, r->bundles, true);
-  render->add_option("-o,--output", r->output, "Output folder")->capture_default_str();
+  render->addOption("-o,--output", r->output, "Output folder")->captureDefault();
   render->callback([r] { runRender(*r); });
 
   auto s = std::make_shared<LenticularSimulateOptions>();
-  CLI::App* simulate =
-      cmd->add_subcommand("simulate", "What an eye sees on the panel through the lenses");
-  simulate->add_option("inputs", s->inputs,
-                       "DIR of `lenticular render` [CALIBRATION], or CALIBRATION with --image");
-  simulate->add_option("--image", s->image, "Panel image (instead of DIR/image.png)");
-  simulate->add_option("--eye", s->eye,
-                       "Eye X,Y,Z in mm (origin: panel centre, z toward the viewer; default: "
-                       "the centre of the view cone at the design distance)");
+  Command* simulate =
+      cmd->addSubcommand("simulate", "What an eye sees on the panel through the lenses");
+  simulate->addOption("inputs", s->inputs,
+                      "DIR of `lenticular render` [CALIBRATION], or CALIBRATION with --image");
+  simulate->addOption("--image", s->image, "Panel image (instead of DIR/image.png)");
+  simulate->addOption("--eye", s->eye,
+                      "Eye X,Y,Z in mm (origin: panel centre, z toward the viewer; default: "
+                      "the centre of the view cone at the design distance)");
   simulate
-      ->add_option("--distance", s->distance, "Design viewer distance in mm, above 0 (default eye)")
+      ->addOption("--distance", s->distance, "Design viewer distance in mm, above 0 (default eye)")
       ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open));
   addLensReadingOptions(*simulate, s->lensSpot, s->bundles);
   addLimitOptions(*simulate);
-  simulate->add_option("-o,--output", s->output, "Output image (.png or .pfm)")
-      ->capture_default_str();
+  simulate->addOption("-o,--output", s->output, "Output image (.png or .pfm)")->captureDefault();
   simulate->callback([s] { runSimulate(*s); });
 }
 

@@ -1,7 +1,5 @@
 // `parallax lightfield`: the two-plane ray space of a stretch of the display (the paper's
 // Figs. 7 and 8) as an SVG.
-#include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <climits>
 #include <cstdio>
@@ -16,30 +14,30 @@
 
 namespace parallax::app {
 
-void registerLightfieldCommand(CLI::App& cli) {
+void registerLightfieldCommand(Command& cli) {
   struct Options {
     std::string display;
     LightFieldOptions plot;
     std::string output = "out/lightfield.svg";
   };
   auto options = std::make_shared<Options>();
-  CLI::App* cmd = cli.add_subcommand(
+  Command* cmd = cli.addSubcommand(
       "lightfield", "Plot the display's rays in two-plane (x, v) space as an SVG (Figs. 7, 8)");
-  cmd->add_option("display", options->display, "Display file (built-in display if omitted)");
-  cmd->add_option("--from", options->plot.fromMm, "Left end of the stretch on the image layer (mm)")
-      ->capture_default_str()
+  cmd->addOption("display", options->display, "Display file (built-in display if omitted)");
+  cmd->addOption("--from", options->plot.fromMm, "Left end of the stretch on the image layer (mm)")
+      ->captureDefault()
       ->check(realIn(-kInfinity, kInfinity));
-  cmd->add_option("--to", options->plot.toMm, "Right end of the stretch (mm), above --from")
-      ->capture_default_str()
+  cmd->addOption("--to", options->plot.toMm, "Right end of the stretch (mm), above --from")
+      ->captureDefault()
       ->check(realIn(-kInfinity, kInfinity));
-  cmd->add_option("--row", options->plot.row,
-                  "Image row, 0 to the panel's height - 1 (default: the middle row)")
+  cmd->addOption("--row", options->plot.row,
+                 "Image row, 0 to the panel's height - 1 (default: the middle row)")
       ->check(integerIn(0, INT_MAX));
-  cmd->add_option("--spp", options->plot.samplesPerPixel,
-                  "Also draw the n x n sub-ray samples of each cell (spp = n*n; 0: none)")
+  cmd->addOption("--spp", options->plot.samplesPerPixel,
+                 "Also draw the n x n sub-ray samples of each cell (spp = n*n; 0: none)")
       ->check(squareCount(true));
   addLimitOptions(*cmd);
-  cmd->add_option("-o,--output", options->output, "Output SVG")->capture_default_str();
+  cmd->addOption("-o,--output", options->output, "Output SVG")->captureDefault();
   cmd->callback([options] {
     const DisplayDesign design = loadDesignOrDefault(options->display);
     const LightFieldOptions& plot = options->plot;

@@ -32,8 +32,9 @@ std::string keyOfError(F f) {
 
 TEST(RgbdOptions, ParseThroughCli11) {
   CLI::App app;
+  Command command(app);
   RgbdRequest o;
-  addRgbdOptions(app, o);
+  addRgbdOptions(command, o);
   app.parse(
       "--rgbd photo.png depth.png --depth-convention inverse --depth-range 2:5.5 "
       "--rgbd-edges layered --rgbd-fov 65",
@@ -47,8 +48,9 @@ TEST(RgbdOptions, ParseThroughCli11) {
   EXPECT_FLOAT_EQ(parsed.fovDegrees, 65.0f);
   // One file is not enough.
   CLI::App other;
+  Command otherCommand(other);
   RgbdRequest one;
-  addRgbdOptions(other, one);
+  addRgbdOptions(otherCommand, one);
   EXPECT_THROW(other.parse("--rgbd photo.png", false), CLI::ParseError);
 }
 

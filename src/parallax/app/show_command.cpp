@@ -1,8 +1,6 @@
 // `parallax show DIR`: the layers on the real panels, full screen with 1:1 pixels, and the
 // calibration pattern sets stepped through with the keyboard (docs/calibration.md, "On the
 // panels").
-#include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -395,45 +393,45 @@ void runShow(const ShowOptions& o) {
 
 }  // namespace
 
-void registerShowCommand(CLI::App& cli) {
+void registerShowCommand(Command& cli) {
   auto o = std::make_shared<ShowOptions>();
-  CLI::App* cmd =
-      cli.add_subcommand("show",
-                         "Show layers on the real panels (full screen, 1:1 pixels); step through "
-                         "calibration patterns with the keyboard");
-  cmd->add_option("dir", o->dir,
-                  "Output folder of `render` (image.png, mask.png; nmf's image-K.png and "
-                  "mask-K.png pairs and a sequence's frame-NNNN folders are played) or of "
-                  "`calibrate patterns` (index.json); or a quilt picture or video "
-                  "(NAME_qs{C}x{R}a{aspect}.png/.mp4/.webm, or a folder holding one) with "
-                  "--display, interlaced for that lenticular panel as it is shown")
+  Command* cmd =
+      cli.addSubcommand("show",
+                        "Show layers on the real panels (full screen, 1:1 pixels); step through "
+                        "calibration patterns with the keyboard");
+  cmd->addOption("dir", o->dir,
+                 "Output folder of `render` (image.png, mask.png; nmf's image-K.png and "
+                 "mask-K.png pairs and a sequence's frame-NNNN folders are played) or of "
+                 "`calibrate patterns` (index.json); or a quilt picture or video "
+                 "(NAME_qs{C}x{R}a{aspect}.png/.mp4/.webm, or a folder holding one) with "
+                 "--display, interlaced for that lenticular panel as it is shown")
       ->required();
-  cmd->add_option("--display", o->display,
-                  "With a quilt: the lenticular panel it is shown on (lkg:NAME or its "
-                  "visual.json)")
-      ->type_name("FILE|lkg:NAME");
-  cmd->add_option("--image-monitor", o->imageMonitor,
-                  "Monitor for the image layer (or a lenticular panel), from 0")
-      ->capture_default_str()
+  cmd->addOption("--display", o->display,
+                 "With a quilt: the lenticular panel it is shown on (lkg:NAME or its "
+                 "visual.json)")
+      ->typeName("FILE|lkg:NAME");
+  cmd->addOption("--image-monitor", o->imageMonitor,
+                 "Monitor for the image layer (or a lenticular panel), from 0")
+      ->captureDefault()
       ->check(integerIn(0, 63));
-  cmd->add_option("--mask-monitor", o->maskMonitor,
-                  "Monitor for the mask layer, from 0 (default: 1 if there are two, else 0)")
+  cmd->addOption("--mask-monitor", o->maskMonitor,
+                 "Monitor for the mask layer, from 0 (default: 1 if there are two, else 0)")
       ->check(integerIn(0, 63));
-  cmd->add_flag("--windowed", o->windowed,
-                "Plain windows side by side instead of full screen (a look without the panels)");
-  cmd->add_option("--pattern", o->pattern, "The calibration mask pattern to start at, from 0")
-      ->capture_default_str()
+  cmd->addFlag("--windowed", o->windowed,
+               "Plain windows side by side instead of full screen (a look without the panels)");
+  cmd->addOption("--pattern", o->pattern, "The calibration mask pattern to start at, from 0")
+      ->captureDefault()
       ->check(integerIn(0, 100000));
-  cmd->add_option("--exit-after", o->exitAfter, "Close after this many seconds (0: on q or Esc)")
+  cmd->addOption("--exit-after", o->exitAfter, "Close after this many seconds (0: on q or Esc)")
       ->check(realIn(0, 1e6));
-  cmd->add_option("--fps", o->fps,
-                  "Frames per second for a folder of frames: nmf's time-multiplexed pairs "
-                  "(default: the monitor's refresh rate) or a sequence's frame-NNNN folders "
-                  "(default: the sequence's fps); for a quilt video (default: the video's)")
+  cmd->addOption("--fps", o->fps,
+                 "Frames per second for a folder of frames: nmf's time-multiplexed pairs "
+                 "(default: the monitor's refresh rate) or a sequence's frame-NNNN folders "
+                 "(default: the sequence's fps); for a quilt video (default: the video's)")
       ->check(realIn(0.001, 1000));
-  cmd->add_option("--keys", o->keys,
-                  "Keys to act on first, as if pressed: next, previous, info, quit (comma "
-                  "separated)");
+  cmd->addOption("--keys", o->keys,
+                 "Keys to act on first, as if pressed: next, previous, info, quit (comma "
+                 "separated)");
   cmd->callback([o] { runShow(*o); });
 }
 

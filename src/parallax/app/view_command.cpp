@@ -1,6 +1,4 @@
 // `parallax view`: an ordinary pinhole-camera picture of a scene.
-#include <CLI/CLI.hpp>
-
 #include <memory>
 
 #include "parallax/app/cli_support.h"
@@ -36,32 +34,32 @@ void runView(ViewOptions o) {
 
 }  // namespace
 
-void registerViewCommand(CLI::App& cli) {
+void registerViewCommand(Command& cli) {
   auto options = std::make_shared<ViewOptions>();
   ViewRequest& request = options->request;
-  CLI::App* cmd = cli.add_subcommand("view", "Render an ordinary pinhole-camera picture");
-  CLI::Option* sceneOption = cmd->add_option(
+  Command* cmd = cli.addSubcommand("view", "Render an ordinary pinhole-camera picture");
+  Option* sceneOption = cmd->addOption(
       "scene", request.scene.path,
       "Scene file (.json) or mesh (.obj .ply .stl .gltf .glb, and through assimp .fbx .dae .3ds "
       ".blend and the rest of docs/import.md); built-in scene if omitted");
   addRgbdOptions(*cmd, request.scene.rgbd)->excludes(sceneOption);
   addSceneLoadOptions(*cmd, request.scene.load);
-  cmd->add_option("--eye", options->eye, "Camera position X,Y,Z (scene units)");
-  cmd->add_option("--look-at", options->lookAt, "Point the camera looks at, X,Y,Z");
-  cmd->add_option("--up", options->up, "Up direction X,Y,Z");
-  cmd->add_option("--fov", request.fov, "Vertical field of view in degrees, above 0 and below 180")
+  cmd->addOption("--eye", options->eye, "Camera position X,Y,Z (scene units)");
+  cmd->addOption("--look-at", options->lookAt, "Point the camera looks at, X,Y,Z");
+  cmd->addOption("--up", options->up, "Up direction X,Y,Z");
+  cmd->addOption("--fov", request.fov, "Vertical field of view in degrees, above 0 and below 180")
       ->check(realIn(0, 180, Bound::Open, Bound::Open));
-  cmd->add_option("--size", options->size,
-                  "Image size WIDTHxHEIGHT (960x540; the front layer's with --display-eye)");
-  cmd->add_option("--display-eye", options->displayEye,
-                  "Ideal view through the display window from this eye X,Y,Z (display mm, "
-                  "origin at the front layer's centre, z toward the viewer)");
-  cmd->add_option("--display", request.display,
-                  "Display for --display-eye: a file of any kind, or lkg:NAME");
+  cmd->addOption("--size", options->size,
+                 "Image size WIDTHxHEIGHT (960x540; the front layer's with --display-eye)");
+  cmd->addOption("--display-eye", options->displayEye,
+                 "Ideal view through the display window from this eye X,Y,Z (display mm, "
+                 "origin at the front layer's centre, z toward the viewer)");
+  cmd->addOption("--display", request.display,
+                 "Display for --display-eye: a file of any kind, or lkg:NAME");
   addFramingOptions(*cmd, request.framing, "With --display-eye: ");
   addSamplingOptions(*cmd, request.sampling, "Samples per pixel (n*n is stratified)");
-  cmd->add_option("-o,--output", request.output, "Output image (.png, or .pfm linear float)")
-      ->capture_default_str();
+  cmd->addOption("-o,--output", request.output, "Output image (.png, or .pfm linear float)")
+      ->captureDefault();
   addSequenceOptions(*cmd, request.sequence, "the numbered pictures");
   cmd->callback([options] { runView(*options); });
 }
