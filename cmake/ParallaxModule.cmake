@@ -1,10 +1,8 @@
-# parallax_module(NAME PRIVATE_LIBS <third-party targets> [NARROW_ISA] [OWN_PCH])
+# parallax_module(NAME PRIVATE_LIBS <third-party targets> [NARROW_ISA])
 # Builds src/parallax/NAME/*.cpp (except *_test.cpp) into parallax_NAME, linked to the modules
 # NAME may use (PARALLAX_USES_NAME in cmake/ModuleGraph.cmake, the one place the graph is
 # written), and every
 # NAME/*_test.cpp into one GoogleTest executable parallax_NAME_test registered with CTest.
-# OWN_PCH: the module precompiles headers of its own (app: CLI11) instead of the libraries' shared
-# standard library.
 # NARROW_ISA registers the tests a second time (prefix "isa-sse4.2/") with Embree forced to its
 # SSE4.2 kernels, as a CPU without AVX-512 runs them: without native 16-wide kernels Embree
 # traces packets differently, and an AVX-512 machine would hide bugs there. Only with
@@ -45,23 +43,8 @@ if(BUILD_TESTING)
     <functional> <map> <memory> <set> <sstream> <stdexcept> <string> <vector>)
 endif()
 
-# The libraries share one precompiled standard library (the headers most of their files include),
-# compiled as they are (a static library: -fPIC, the build's optimisation, the lane loops'
-# -fopenmp-simd). Not for the fuzzers' build, whose instrumented modules clang compiles with other
-# language options than a shared header could have.
-set(PARALLAX_LIBRARY_PCH OFF)
-if(NOT PARALLAX_FUZZ)
-  set(PARALLAX_LIBRARY_PCH ON)
-  file(CONFIGURE OUTPUT "${CMAKE_BINARY_DIR}/parallax_library_pch.cpp" CONTENT "")
-  add_library(parallax_library_pch STATIC "${CMAKE_BINARY_DIR}/parallax_library_pch.cpp")
-  target_compile_definitions(parallax_library_pch PRIVATE PARALLAX_VERSION="${PROJECT_VERSION}")
-  target_precompile_headers(parallax_library_pch PRIVATE
-    <algorithm> <array> <cmath> <cstdint> <cstdio> <cstring> <functional> <limits> <memory>
-    <optional> <stdexcept> <string> <utility> <vector>)
-endif()
-
 function(parallax_module name)
-  cmake_parse_arguments(PM "NARROW_ISA;OWN_PCH" "" "PRIVATE_LIBS;TEST_LIBS" ${ARGN})
+  cmake_parse_arguments(PM "NARROW_ISA" "" "PRIVATE_LIBS;TEST_LIBS" ${ARGN})
   if(NOT DEFINED PARALLAX_USES_${name})
     message(FATAL_ERROR "module ${name} is not in cmake/ModuleGraph.cmake")
   endif()
@@ -84,9 +67,6 @@ function(parallax_module name)
   target_link_libraries(parallax_${name} PUBLIC ${dep_targets} PRIVATE ${PM_PRIVATE_LIBS})
   target_compile_definitions(parallax_${name} PRIVATE
     PARALLAX_VERSION="${PROJECT_VERSION}")
-  if(PARALLAX_LIBRARY_PCH AND NOT PM_OWN_PCH)
-    target_precompile_headers(parallax_${name} REUSE_FROM parallax_library_pch)
-  endif()
   if(tests AND BUILD_TESTING)
     add_executable(parallax_${name}_test ${tests})
     target_link_libraries(parallax_${name}_test PRIVATE parallax_${name} ${PM_PRIVATE_LIBS}

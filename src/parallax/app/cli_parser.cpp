@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -84,6 +85,62 @@ void Command::requireSubcommand(int count) {
 
 bool Command::hasOption(const std::string& name) const {
   return app_->get_option_no_throw(name) != nullptr;
+}
+
+namespace {
+
+CommandLine::Outcome refusedOrPrinted(CLI::App& app, const CLI::ParseError& e, bool print) {
+  // --help and --version are "errors" with exit code 0: CLI11 prints them.
+  if (e.get_exit_code() == 0) {
+    if (print) app.exit(e);
+    return {CommandLine::Outcome::Kind::Printed, {}};
+  }
+  std::string message = e.what();
+  // "parallax frobnicate": CLI11 only says a subcommand is required; name the word.
+  const std::vector<std::string> rest = app.remaining();
+  if (e.get_name() == "RequiredError" && !rest.empty())
+    message = rest.front() + ": not a command (" + message + ")";
+  return {CommandLine::Outcome::Kind::Refused, message};
+}
+
+}  // namespace
+
+CommandLine::CommandLine(const std::string& description)
+    : app_(std::make_unique<CLI::App>(description)), root_(std::make_unique<Command>(*app_)) {}
+
+CommandLine::~CommandLine() = default;
+
+void CommandLine::versionFlag(const std::string& name, std::function<std::string()> text) {
+  app_->set_version_flag(name, std::move(text));
+}
+
+void CommandLine::afterParsing(std::function<void(const std::string& chosen)> check) {
+  CLI::App* app = app_.get();
+  app_->parse_complete_callback([app, check = std::move(check)] {
+    std::string chosen;
+    for (const CLI::App* c = app->get_subcommands().empty() ? nullptr : app->get_subcommands()[0];
+         c; c = c->get_subcommands().empty() ? nullptr : c->get_subcommands()[0])
+      chosen += (chosen.empty() ? "" : " ") + c->get_name();
+    check(chosen);
+  });
+}
+
+CommandLine::Outcome CommandLine::parse(int argc, const char* const* argv, bool print) {
+  try {
+    app_->parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return refusedOrPrinted(*app_, e, print);
+  }
+  return {};
+}
+
+CommandLine::Outcome CommandLine::parse(const std::string& arguments, bool print) {
+  try {
+    app_->parse(arguments, false);
+  } catch (const CLI::ParseError& e) {
+    return refusedOrPrinted(*app_, e, print);
+  }
+  return {};
 }
 
 // The targets the commands parse into: one instantiation each, here, where CLI11 is.

@@ -1,7 +1,7 @@
-// The command-line parser as the commands see it: commands, their options and the checks of an
-// option's text. CLI11 is behind it, included by cli_parser.cpp (and command_line.cpp, which
-// parses) alone: Debian 12's CLI11 (2.1) is header-only, and its header cost every file that
-// included it about 4 s of compiling (docs/install.md, "Compile time").
+// The command-line parser as the commands see it: commands, their options, the checks of an
+// option's text, and the program's command line that parses them. CLI11 is behind it, included
+// by cli_parser.cpp alone: Debian 12's CLI11 (2.1) is header-only, and its header cost every
+// file that included it about 4 s of compiling (docs/install.md, "Compile time").
 //
 // The names follow CLI11's meaning one for one (addOption is add_option, captureDefault is
 // capture_default_str, ...), so its documentation describes what each does.
@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,37 @@ class Command {
   CLI::App* app_;
   std::deque<Option> options_;
   std::deque<Command> subcommands_;
+};
+
+// A whole command line: the root command (the program), parsed from the arguments, which runs the
+// chosen command's action. Exceptions the actions throw pass through parse().
+class CommandLine {
+ public:
+  explicit CommandLine(const std::string& description = "");
+  ~CommandLine();
+  CommandLine(const CommandLine&) = delete;
+  CommandLine& operator=(const CommandLine&) = delete;
+
+  Command& root() { return *root_; }
+  // `name` prints `text()` and stops, as --help does.
+  void versionFlag(const std::string& name, std::function<std::string()> text);
+  // Run after the whole line parsed and before any action, with the chosen command's words
+  // ("lenticular render").
+  void afterParsing(std::function<void(const std::string& chosen)> check);
+
+  // What parse() did: ran the chosen command's action, printed --help or --version (printed
+  // only when parse was told to print), or refused the line (`message`: one line's text).
+  struct Outcome {
+    enum class Kind { Ran, Printed, Refused } kind = Kind::Ran;
+    std::string message;
+  };
+  Outcome parse(int argc, const char* const* argv, bool print = true);
+  // The arguments as one string, split at spaces (tests).
+  Outcome parse(const std::string& arguments, bool print = true);
+
+ private:
+  std::unique_ptr<CLI::App> app_;
+  std::unique_ptr<Command> root_;
 };
 
 }  // namespace parallax::app

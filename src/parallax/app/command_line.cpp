@@ -5,8 +5,6 @@
 // with 2, anything else with 1. --help and --version print to stdout and exit 0.
 #include "parallax/app/command_line.h"
 
-#include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -50,14 +48,13 @@ int runCommandLine(int argc, char** argv) {
   // Under mpirun, the job's ranks (docs/distributed.md); otherwise this process alone.
   parallax::cluster::Session session(argc, argv);
   parallax::cluster::ProcessGroup& group = session.group();
-  CLI::App cli{
+  CommandLine cli{
       "parallax: ray tracing for glasses-free 3-D displays: two-layer parallax barriers and "
       "slanted lenticular (Looking Glass) panels"};
   // The ray tracing library too: Embree 3 or 4, whichever this build runs on.
-  cli.set_version_flag("--version", [] { return parallax::app::versionText(); });
-  cli.require_subcommand(1);
-  // The commands add themselves through cli_parser.h: CLI11 is compiled here and there only.
-  Command program(cli);
+  cli.versionFlag("--version", [] { return versionText(); });
+  Command& program = cli.root();
+  program.requireSubcommand(1);
   addLimitOptions(program);
   registerDesignCommand(program);
   registerRenderCommand(program);
@@ -71,40 +68,25 @@ int runCommandLine(int argc, char** argv) {
   registerInfoCommand(program);
   registerBenchCommand(program);
   // A dry run: the commands that estimate their whole peak stop at the estimate and print it.
-  cli.add_flag("--estimate", parallax::jobs::limits().estimateOnly,
-               "Print the command's estimated peak memory (resident set size) and exit before "
-               "any work; nothing is written (render, view, simulate, lenticular render, show)");
-  cli.parse_complete_callback([&cli] {
-    if (!parallax::jobs::limits().estimateOnly) return;
-    std::string name;
-    for (const CLI::App* c = cli.get_subcommands().empty() ? nullptr : cli.get_subcommands()[0]; c;
-         c = c->get_subcommands().empty() ? nullptr : c->get_subcommands()[0])
-      name += (name.empty() ? "" : " ") + c->get_name();
+  program.addFlag("--estimate", jobs::limits().estimateOnly,
+                  "Print the command's estimated peak memory (resident set size) and exit before "
+                  "any work; nothing is written (render, view, simulate, lenticular render, show)");
+  cli.afterParsing([](const std::string& name) {
+    if (!jobs::limits().estimateOnly) return;
     if (name != "render" && name != "view" && name != "simulate" && name != "lenticular render" &&
         name != "show")
-      throw parallax::InputError("command line", "--estimate",
-                                 "not available for " + name +
-                                     "; it is for render, view, simulate, lenticular render and "
-                                     "show");
+      throw InputError("command line", "--estimate",
+                       "not available for " + name +
+                           "; it is for render, view, simulate, lenticular render and show");
   });
   std::optional<parallax::cluster::Failure> failure;
   const auto fail = [&](int exitCode, const std::string& message) {
     failure = parallax::cluster::Failure{group.rank(), exitCode, message};
   };
   try {
-    cli.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // --help and --version are "errors" with exit code 0: CLI11 prints them (rank 0 only).
-    if (e.get_exit_code() == 0) {
-      if (group.isRoot()) cli.exit(e);
-    } else {
-      std::string message = e.what();
-      // "parallax frobnicate": CLI11 only says a subcommand is required; name the word.
-      const std::vector<std::string> rest = cli.remaining();
-      if (e.get_name() == "RequiredError" && !rest.empty())
-        message = rest.front() + ": not a command (" + message + ")";
-      fail(parallax::app::kExitInputError, message);
-    }
+    // --help and --version are printed by rank 0 only.
+    const CommandLine::Outcome outcome = cli.parse(argc, argv, group.isRoot());
+    if (outcome.kind == CommandLine::Outcome::Kind::Refused) fail(kExitInputError, outcome.message);
   } catch (const parallax::jobs::EstimateOnly& e) {
     // --estimate: rank 0 says what the command would need; nothing was allocated or written.
     if (group.isRoot())

@@ -1,15 +1,16 @@
-// The RGB-D command-line glue: the options parse through CLI11, bad values are InputErrors
-// naming their option, the loader's errors name --rgbd and the file, and the record holds the
-// choices under /rgbd.
+// The RGB-D command-line glue: the options parse (cli_parser.h, CLI11 behind it), bad values are
+// InputErrors naming their option, the loader's errors name --rgbd and the file, and the record
+// holds the choices under /rgbd.
+#include "parallax/app/cli_parser.h"
 #include "parallax/app/cli_support.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <vector>
 
+#include "parallax/app/cli_parser.h"
 #include "parallax/core/error.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/png_encoder.h"
@@ -30,15 +31,14 @@ std::string keyOfError(F f) {
   return "(none)";
 }
 
-TEST(RgbdOptions, ParseThroughCli11) {
-  CLI::App app;
-  Command command(app);
+TEST(RgbdOptions, ParseThroughTheCommandLine) {
+  CommandLine line;
   RgbdRequest o;
-  addRgbdOptions(command, o);
-  app.parse(
+  addRgbdOptions(line.root(), o);
+  const CommandLine::Outcome outcome = line.parse(
       "--rgbd photo.png depth.png --depth-convention inverse --depth-range 2:5.5 "
-      "--rgbd-edges layered --rgbd-fov 65",
-      false);
+      "--rgbd-edges layered --rgbd-fov 65");
+  ASSERT_EQ(outcome.kind, CommandLine::Outcome::Kind::Ran) << outcome.message;
   ASSERT_EQ(o.files, (std::vector<std::string>{"photo.png", "depth.png"}));
   const RgbdOptions parsed = o.options();
   EXPECT_EQ(parsed.convention, DepthConvention::Inverse);
@@ -47,11 +47,12 @@ TEST(RgbdOptions, ParseThroughCli11) {
   EXPECT_EQ(parsed.edges, RgbdEdges::Layered);
   EXPECT_FLOAT_EQ(parsed.fovDegrees, 65.0f);
   // One file is not enough.
-  CLI::App other;
-  Command otherCommand(other);
+  CommandLine other;
   RgbdRequest one;
-  addRgbdOptions(otherCommand, one);
-  EXPECT_THROW(other.parse("--rgbd photo.png", false), CLI::ParseError);
+  addRgbdOptions(other.root(), one);
+  const CommandLine::Outcome refused = other.parse("--rgbd photo.png");
+  EXPECT_EQ(refused.kind, CommandLine::Outcome::Kind::Refused);
+  EXPECT_NE(refused.message.find("--rgbd"), std::string::npos) << refused.message;
 }
 
 TEST(RgbdOptions, DefaultsAreTheLibrarys) {
