@@ -24,6 +24,7 @@ function(parallax_test_compile_settings target)
   target_compile_definitions(${target} PRIVATE
     PARALLAX_DATA_DIR="${PARALLAX_DATA_DIR}" PARALLAX_SOURCE_DIR="${PARALLAX_SOURCE_DIR}")
   target_compile_options(${target} PRIVATE ${PARALLAX_GLUE_OPTIMIZATION})
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 4)
   if(NOT target STREQUAL "parallax_test_pch")
     target_precompile_headers(${target} REUSE_FROM parallax_test_pch)
   endif()

@@ -13,7 +13,7 @@ LenticularDesign smallDesign() {
   return smallLenticularDesign();
 }
 
-DisplayPlacement tiltedPlacement() {
+DisplayPlacement obliquePlacement() {
   DisplayPlacement p;
   p.center = {1, 2, -3};
   p.normal = normalize(Vec3f{0.3f, 0.1f, 1.0f});
@@ -32,7 +32,7 @@ TEST(LenticularDisplayCamera, OneColumnPerSubpixel) {
 
 TEST(LenticularDisplayCamera, RayPassesThroughItsSubpixelInItsViewDirection) {
   const LenticularDesign d = smallDesign();
-  const DisplayPlacement placement = tiltedPlacement();
+  const DisplayPlacement placement = obliquePlacement();
   // The central ray (filter none): from the subpixel itself.
   const DisplayCamera camera(makeLenticularDisplay(d, {ViewFilterKind::None, 1.0}), placement);
   const Transform world = worldFromDisplay(placement, displayWindow(d));
@@ -140,7 +140,7 @@ TEST(LenticularDisplayCamera, FilterFootprintMatchesItsFormula) {
 // same ray through that subpixel's point.
 TEST(LenticularDisplayCamera, AgreesWithTheWindowCameraAtTheRaysEye) {
   const LenticularDesign d = smallDesign();
-  const DisplayPlacement placement = tiltedPlacement();
+  const DisplayPlacement placement = obliquePlacement();
   const DisplayCamera camera(makeLenticularDisplay(d), placement);
   const std::unique_ptr<DisplayModel> window = makeLenticularDisplay(d);
   EXPECT_NEAR(window->window().widthMm, d.widthMm, 1e-9);

@@ -6,15 +6,14 @@
 
 #include "parallax/core/error.h"
 #include "parallax/io/display_file.h"
+#include "parallax/jobs/jobs_test_support.h"
 
 namespace parallax::jobs {
 namespace {
 
-const std::string kSmall = PARALLAX_SOURCE_DIR "/displays/small.json";  // 320x180, 9 views
-
 CalibrationPatternsRequest smallPatterns() {
   CalibrationPatternsRequest r;
-  r.display = kSmall;
+  r.display = kSmallDisplayFile;
   return r;
 }
 
@@ -80,7 +79,7 @@ TEST(CalibrationPatterns, RefusalsNameTheSettingsFields) {
 
 TEST(CalibrationPredict, RefusesAnEyeBehindTheDisplay) {
   CalibrationPredictRequest r;
-  r.display = kSmall;
+  r.display = kSmallDisplayFile;
   r.eye = Vec3d{0, 0, -5};
   EXPECT_EQ(refusal([&] { runCalibrationPredict(r, silentReporter()); }).field(), "eye");
 }
@@ -89,7 +88,7 @@ TEST(CalibrationPredict, RefusesAnEyeBehindTheDisplay) {
 // the mask panel's offset; periods that break G1 are refused under their display-file key.
 TEST(CalibrationApply, TheMeasuredPeriodsMakeTheDisplay) {
   CalibrationApplyRequest r;
-  r.display = kSmall;
+  r.display = kSmallDisplayFile;
   r.screenPeriodPx = 9;
   r.slitPeriodPx = 9.0347;
   r.phasePx = 0.25;

@@ -11,12 +11,11 @@
 #include "parallax/display/lenticular.h"
 #include "parallax/display/lenticular_presets.h"
 #include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/jobs_test_support.h"
 #include "parallax/jobs/requests.h"
 
 namespace parallax::jobs {
 namespace {
-
-const std::string kSmall = PARALLAX_SOURCE_DIR "/displays/small.json";  // 320x180, 9 views
 
 // Camera k's colour: its own on every pixel.
 Vec3f cameraColour(int k, int count) {
@@ -32,7 +31,7 @@ std::vector<Image> constantViews(int count, int width, int height) {
 
 InterlaceRequest smallRequest() {
   InterlaceRequest r;
-  r.display = kSmall;
+  r.display = kSmallDisplayFile;
   return r;
 }
 
@@ -51,7 +50,7 @@ void expectRefusal(Call call, const std::string& field) {
 // whose design view the display shows there (camera k feeds the k-th eye from the left).
 TEST(InterlaceInMemory, EachPixelTakesItsOwnViewsColour) {
   const InterlaceRequest r = smallRequest();
-  const BuiltDisplay display = makeDisplay(loadDisplay(kSmall, silentReporter()));
+  const BuiltDisplay display = makeDisplay(loadDisplay(kSmallDisplayFile, silentReporter()));
   const DisplayDesign& design = *display->barrierDesign();
   const int count = interlacedViewCount(design);
   ASSERT_EQ(count, 9);
@@ -194,7 +193,7 @@ TEST(LenticularSimulateRequest, RefusesAnEyeBehindThePanelAndABarrier) {
   const LenticularCalibration portrait = *lenticularPreset("portrait");
   const Image panel(portrait.screenW, portrait.screenH);
   expectRefusal([&] { lenticularViewInMemory(r, panel, silentReporter()); }, "eye");
-  r.calibration = kSmall;
+  r.calibration = kSmallDisplayFile;
   r.eye.reset();
   EXPECT_THROW(lenticularViewInMemory(r, panel, silentReporter()), InputError);
 }

@@ -11,6 +11,9 @@
 
 namespace parallax::jobs {
 
+// A barrier display file of 320x180 pixels and 9 views.
+inline const std::string kSmallDisplayFile = PARALLAX_SOURCE_DIR "/displays/small.json";
+
 // The field a request's check names, or "" when it passes.
 inline std::string fieldOf(const std::function<void()>& check) {
   try {

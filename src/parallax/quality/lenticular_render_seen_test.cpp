@@ -23,7 +23,7 @@ LenticularDesign smallDesign() {
   return smallLenticularDesign();
 }
 
-Scene smallScene() {
+Scene smallPanelScene() {
   Scene scene = defaultScene();
   scene.display.width = 1.5f;  // the 114 mm panel spans the box and some floor
   return scene;
@@ -31,7 +31,7 @@ Scene smallScene() {
 
 TEST(LenticularRender, EachSubpixelKeepsItsOwnRaysChannel) {
   const LenticularDesign d = smallDesign();
-  const Scene scene = smallScene();
+  const Scene scene = smallPanelScene();
   const Accelerator accel(scene);
   const DisplayLayers out = renderDisplay(scene, accel, *makeLenticularDisplay(d), {});
   ASSERT_EQ(out.image.width(), 180);
@@ -49,7 +49,7 @@ TEST(LenticularRender, EachSubpixelKeepsItsOwnRaysChannel) {
 // bundles), a panel rendered for that reading and seen under it shows an eye what the window
 // shows it, at what an eye resolves (a lens, a colour cycle of rows).
 TEST(LenticularRender, SeenFromInsideTheConeItIsTheWindowView) {
-  const Scene scene = smallScene();
+  const Scene scene = smallPanelScene();
   const Accelerator accel(scene);
   RenderSettings reference;
   reference.samplesPerPixel = 4;
@@ -94,7 +94,7 @@ TEST(LenticularRender, SeenFromInsideTheConeItIsTheWindowView) {
 // the whole lens period.
 TEST(LenticularRender, TheViewFilterShowsEyesAcrossTheConeMoreThanTheCentralRay) {
   const LenticularDesign d = smallDesign();
-  const Scene scene = smallScene();
+  const Scene scene = smallPanelScene();
   const Accelerator accel(scene);
   RenderSettings sixteen;
   sixteen.samplesPerPixel = 16;

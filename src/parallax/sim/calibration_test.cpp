@@ -14,12 +14,11 @@
 #include "parallax/image/contact_sheet.h"
 #include "parallax/image/metrics.h"
 #include "parallax/sim/crosstalk.h"
+#include "parallax/sim/sim_test_support.h"
 #include "parallax/sim/simulator.h"
 
 namespace parallax {
 namespace {
-
-const LayerOrder kOrders[] = {LayerOrder::BarrierBack, LayerOrder::BarrierFront};
 
 DisplaySpec panels(LayerOrder order, int width, int height) {
   DisplaySpec s = defaultDisplaySpec();
@@ -114,7 +113,7 @@ double circularDistance(double a, double b, double period) {
 }
 
 TEST(CalibrationPatterns, MaskPeriodsAndPhasesAreWhatTheirLabelsSay) {
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplaySpec display = panels(order, 480, 60);
     const std::vector<PatternDescription> set = calibrationPatternSet(display, {});
     const LabelLayout layout = labelLayout(480, 60, set.front().labelScale);
@@ -149,7 +148,7 @@ TEST(CalibrationPatterns, MaskPeriodsAndPhasesAreWhatTheirLabelsSay) {
 }
 
 TEST(CalibrationPatterns, PeriodSweepBracketsTheDesignAndImageSlitsSitAtTheScreenPeriod) {
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplaySpec display = panels(order, 480, 60);
     const DisplayDesign design = designDisplay(display);
     const std::vector<PatternDescription> set = calibrationPatternSet(display, {});
@@ -181,7 +180,7 @@ TEST(CalibrationPatterns, RefusesPeriodsThatBreakG1) {
 // Both labels are seen on the panel: the simulated view from the design eye reads back as the
 // labels of the image layer's and the mask layer's patterns.
 TEST(CalibrationPatterns, LabelsAreReadableThroughTheOtherPanel) {
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplaySpec display = panels(order, 720, 180);
     PatternSettings settings;
     settings.labelScale = 3;
@@ -200,7 +199,7 @@ TEST(CalibrationPatterns, LabelsAreReadableThroughTheOtherPanel) {
 }
 
 TEST(CalibrationPatterns, EachViewShowsItsNumberInItsColour) {
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplaySpec display = panels(order, 240, 60);
     const DisplayDesign design = designDisplay(display);
     const Image views = numberedViewImage(display, 9, design.slitPeriodPx, 0.0);

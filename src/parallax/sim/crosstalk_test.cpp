@@ -10,6 +10,7 @@
 
 #include "parallax/display/display_model.h"
 #include "parallax/display/mask.h"
+#include "parallax/sim/sim_test_support.h"
 
 namespace parallax {
 namespace {
@@ -30,10 +31,8 @@ SimulationOptions fineInX(const DisplayDesign& d) {
   return o;
 }
 
-const LayerOrder kOrders[] = {LayerOrder::BarrierBack, LayerOrder::BarrierFront};
-
 TEST(Crosstalk, DesignEyeIsWhereTheRaysOfAViewMeet) {
-  for (LayerOrder order : kOrders)
+  for (LayerOrder order : kLayerOrders)
     for (double centre : {0.0, 40.0}) {
       const DisplayDesign d = wideDisplay(order, centre);
       const std::unique_ptr<DisplayModel> rays = makeBarrierDisplay(d);
@@ -184,7 +183,7 @@ TEST(Crosstalk, ModelMatchesItsClosedForms) {
 }
 
 TEST(Crosstalk, EachDesignEyeSeesItsOwnViewWithTheDerivedCrosstalk) {
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplayDesign d = wideDisplay(order);
     const Model model = modelOf(d);
     const double expected = model.predicted(d, 0.0, {0.0});
@@ -227,7 +226,7 @@ TEST(Crosstalk, GrowsWithTheDiffuserWithinTheDerivedBound) {
 }
 
 TEST(Crosstalk, TheViewZoneWrapsOutsideItself) {
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplayDesign d = wideDisplay(order);
     const int n = pixelViewCount(d);
     const auto ownView = [&](const Vec3d& eye) {

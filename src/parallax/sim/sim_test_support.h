@@ -5,6 +5,9 @@
 
 namespace parallax {
 
+// Both layer orders, for the tests that check each.
+inline constexpr LayerOrder kLayerOrders[] = {LayerOrder::BarrierBack, LayerOrder::BarrierFront};
+
 // The built-in display at a small resolution, in either layer order.
 inline DisplayDesign smallDisplay(LayerOrder order, int width = 180, int height = 24) {
   DisplaySpec s = defaultDisplaySpec();

@@ -38,12 +38,10 @@ double standardDeviation(const std::vector<double>& v) {
   return std::sqrt(s / double(v.size()));
 }
 
-const LayerOrder kOrders[] = {LayerOrder::BarrierBack, LayerOrder::BarrierFront};
-
 TEST(Simulator, OneOpenRearPixelAppearsWhereTheEyesLineThroughItCrossesTheFront) {
   // Independent truth: project the rear pixel's centre from the eye onto z = 0,
   // F = E + (R - E) E.z / (E.z + g), and compare with the centroid of the lit output.
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplayDesign d = smallDisplay(order, 60, 40);
     const bool imageInFront = order == LayerOrder::BarrierBack;
     const Panel& rearPanel = imageInFront ? d.spec.maskPanel : d.spec.imagePanel;
@@ -82,7 +80,7 @@ TEST(Simulator, WhiteImageBehindSlitsLooksUniformAtTheApertureRatio) {
   // light, so mean = duty up to the apertures the interval's two ends cut or that fall off
   // the rear panel: at most one aperture's light per end, so |mean / duty - 1| <= 2 / N for N
   // groups across the screen.
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplayDesign d = smallDisplay(order);
     const double duty = d.spec.mask.dutyCycle, groups = d.aperturesAcross;
     SimulationOptions o;
@@ -128,7 +126,7 @@ TEST(Simulator, WhiteImageBehindSlitsLooksUniformAtTheApertureRatio) {
 // 64 x 64 point samples per output pixel agree with the exact pieces to within what 64 samples
 // across can resolve.
 TEST(Simulator, ExactIntegralIsTheLimitOfPointSampling) {
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplayDesign d = smallDisplay(order, 60, 20);
     Image image(60, 20), mask(60, 20);
     Rng rng(11, 3);
@@ -191,7 +189,7 @@ TEST(Simulator, ContentInTheAperturePlaneLooksTheSameFromEveryEye) {
   // the view divided by the view of a white image, integrated over the span, is the texture
   // sampled at the group. The eyes stay within S/4 of the zone's centre so that no aperture's
   // anti-aliased light (about 2 mask pixels of 9) crosses into the neighbouring group.
-  for (LayerOrder order : kOrders) {
+  for (LayerOrder order : kLayerOrders) {
     const DisplayDesign d = smallDisplay(order);
     const auto rays = physicalBarrierRays(d);  // the design has no virtual gap
     const Panel& panel = d.spec.imagePanel;
