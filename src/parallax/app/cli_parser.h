@@ -7,7 +7,6 @@
 // capture_default_str, ...), so its documentation describes what each does.
 #pragma once
 
-#include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -53,7 +52,7 @@ class Option {
 // parsing. Owns the Option and Command objects it hands out; CLI11 owns what they stand for.
 class Command {
  public:
-  // The command `app` is (command_line.cpp's root, a test's own parser).
+  // The command `app` is (CommandLine's root, a subcommand).
   explicit Command(CLI::App& app) : app_(&app) {}
   Command(const Command&) = delete;
   Command& operator=(const Command&) = delete;
