@@ -44,8 +44,13 @@ run: build-cli
 	./$(BUILD)/parallax render -o $(OUT)
 	./$(BUILD)/parallax view -o $(OUT)/view.png
 
-test: test-release test-asan
-	$(MAKE) test-fuzz
+# The three suites one after the other, each saying how long it took (docs/install.md, "How long
+# each make target takes").
+test:
+	@for suite in test-release test-asan test-fuzz; do \
+	  start=$$(date +%s); $(MAKE) --no-print-directory $$suite || exit $$?; \
+	  echo "=== make $$suite took $$(( $$(date +%s) - start )) s" >&2; \
+	done
 
 test-release: data build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
