@@ -15,8 +15,9 @@
 # (optimised as far as debugging allows; -O1 makes GCC 12 warn falsely about std::string). The
 # front ends' own code (options, bindings) runs once per command and is compiled the same way.
 # The tests share one precompiled GoogleTest and standard library (parallax_test_pch below),
-# parsed once instead of in each of 100 files.
-set(PARALLAX_GLUE_OPTIMIZATION -Og)
+# parsed once instead of in each of 100 files. A Debug build keeps its -O0 everywhere.
+set(PARALLAX_GLUE_OPTIMIZATION $<$<NOT:$<CONFIG:Debug>>:-Og>)
+set(PARALLAX_SMALL_DOCUMENT_OPTIMIZATION $<$<NOT:$<CONFIG:Debug>>:-O1>)
 
 # Everything a module's test executable is compiled with: the same for all of them and for the
 # precompiled header they share.
