@@ -10,10 +10,26 @@
 #include "parallax/app/cli_support.h"
 #include "parallax/app/commands.h"
 #include "parallax/jobs/calibrate_job.h"
+#include "parallax/jobs/calibrate_photo_job.h"
+#include "parallax/jobs/calibrate_study.h"
 
 namespace parallax::app {
 
 namespace {
+
+// patterns' request, or with --photo the shots' (the same display and output folder).
+struct PatternsOptions {
+  CalibrationPatternsRequest request;
+  bool photo = false;
+};
+
+void runPatterns(const PatternsOptions& o) {
+  if (o.photo) {
+    runCalibrationShots({o.request.display, std::nullopt, o.request.output}, cliReporter());
+    return;
+  }
+  runCalibrationPatterns(o.request, cliReporter());
+}
 
 // predict's request, and its eye as the command line spells it (X,Y,Z).
 struct PredictOptions {
@@ -36,9 +52,13 @@ void registerCalibrateCommand(Command& cli) {
       "calibrate", "Calibrate a real display: slit patterns, predicted periods, display file");
   cmd->requireSubcommand(1);
 
-  auto patterns = std::make_shared<CalibrationPatternsRequest>();
+  auto patternOptions = std::make_shared<PatternsOptions>();
+  CalibrationPatternsRequest* patterns = &patternOptions->request;
   Command* p = cmd->addSubcommand("patterns", "Write calibration patterns for both layers");
   PatternSettings& s = patterns->settings;
+  p->addFlag("--photo", patternOptions->photo,
+             "Write the shots to photograph with a phone instead (any display kind; then "
+             "`calibrate photo`)");
   p->addOption("--display", patterns->display, "Display file (built-in display if omitted)");
   p->addOption("-o,--output", patterns->output, "Output folder")->captureDefault();
   p->addOption("--screen-period", s.screenPeriodPx,
@@ -65,7 +85,7 @@ void registerCalibrateCommand(Command& cli) {
                "least 1)")
       ->check(integerIn(1, INT_MAX));
   addLimitOptions(*p);
-  p->callback([patterns] { runCalibrationPatterns(*patterns, cliReporter()); });
+  p->callback([patternOptions] { runPatterns(*patternOptions); });
 
   auto predict = std::make_shared<PredictOptions>();
   Command* q = cmd->addSubcommand(
@@ -110,6 +130,55 @@ void registerCalibrateCommand(Command& cli) {
   a->addOption("--display", apply->display, "Base display file (built-in display if omitted)");
   a->addOption("-o,--output", apply->output, "Display file to write")->required();
   a->callback([apply] { runCalibrationApply(*apply, cliReporter()); });
+
+  auto photo = std::make_shared<CalibratePhotoRequest>();
+  Command* f = cmd->addSubcommand(
+      "photo", "Measure the display from phone photos of the shots (calibrate patterns --photo)");
+  f->addOption("--shots", photo->shots, "The shots' folder (calibrate patterns --photo)")
+      ->required();
+  f->addOption("photos", photo->photos,
+               "Photos (JPEG or PNG), each named after its shot: grid-1.jpg, grid.far.png")
+      ->required();
+  f->addOption("--display", photo->display,
+               "The nominal display (default: the one the shots were made for)");
+  f->addOption("-o,--output", photo->output, "The measured display file to write")->required();
+  f->addFlag("--json", photo->json, "Print one JSON object");
+  addLimitOptions(*f);
+  f->callback([photo] { runCalibratePhoto(*photo, cliReporter()); });
+
+  auto study = std::make_shared<CalibrationStudyRequest>();
+  Command* t = cmd->addSubcommand(
+      "study", "How precise calibrate photo is: random true displays, photographed by the photo "
+               "maker, measured and compared with the truth");
+  t->addOption("--display", study->display, "The nominal display (built-in display if omitted)");
+  t->addOption("--sets", study->sets, "Photo sets (trials)")->captureDefault()->check(integerIn(1, 100000));
+  t->addOption("--photos-per-set", study->photosPerSet, "Photos of the shot in each set")
+      ->captureDefault()
+      ->check(integerIn(1, 6));
+  t->addOption("--snr", study->snrDb, "The pattern's amplitude over the sensor's noise, dB")
+      ->captureDefault()
+      ->check(realIn(-20, 120));
+  t->addOption("--photo-width", study->photoWidth, "The phone's photos, pixels across")
+      ->captureDefault()
+      ->check(integerIn(320, 12000));
+  t->addOption("--photo-height", study->photoHeight, "The phone's photos, pixels down")
+      ->captureDefault()
+      ->check(integerIn(240, 12000));
+  t->addOption("--samples", study->samplesPerPixel, "The photo maker's samples per photo pixel")
+      ->captureDefault()
+      ->check(integerIn(1, 256));
+  t->addOption("--max-off-axis", study->maxOffAxisDegrees,
+               "The photos' largest angle from the panel's normal, degrees")
+      ->captureDefault()
+      ->check(realIn(0, 60));
+  t->addOption("--aperture", study->blurMm,
+               "The phone lens's aperture, mm (default: random, 1.5 to 3)")
+      ->check(realIn(0, 50));
+  t->addOption("--seed", study->seed, "The study's random seed")->captureDefault();
+  t->addOption("--keep-photos", study->photos, "Keep the photos (JPEG) in this folder");
+  t->addFlag("--json", study->json, "Print one JSON object");
+  addLimitOptions(*t);
+  t->callback([study] { runCalibrationStudy(*study, cliReporter()); });
 }
 
 }  // namespace parallax::app

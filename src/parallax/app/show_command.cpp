@@ -110,6 +110,20 @@ ShowSet readShowSet(const ShowOptions& o) {
   const fs::path index = dir / "index.json";
   if (fs::exists(index)) {  // calibrate patterns: one image pattern, mask patterns to step
     const JsonDocument doc = JsonDocument::parseFile(index.string());
+    if (doc.root().has("shots")) {
+      // calibrate patterns --photo: one shot, on both layers (barrier) or the panel.
+      const JsonReader shots = doc.root()["shots"];
+      if (shots.size() != 1)
+        throw InputError(index.string(), "/shots", "expected one shot");
+      const JsonReader shot = shots.elements().front();
+      if (shot.has("panel")) {
+        set.imagePath = (dir / shot["panel"].string()).string();
+      } else {
+        set.imagePath = (dir / shot["image"].string()).string();
+        set.maskPath = (dir / shot["mask"].string()).string();
+      }
+      return set;
+    }
     const JsonReader patterns = doc.root()["patterns"];
     for (const JsonReader& p : patterns.elements()) {
       const std::string file = (dir / p["file"].string()).string();

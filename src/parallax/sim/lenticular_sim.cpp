@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "parallax/core/error.h"
@@ -25,6 +26,19 @@ struct Row {
   double pixelStepMm = 0;    // from one pixel to the next along the row: +-pitch (flipImageX)
 };
 
+// The lens that covers panel point `pointMm` (x, mm) on the row of pixel x: the point's own view
+// (from the pixel's green subpixel, views running along the row), and the lens's edges, from
+// where its view is 0 to where it is 1, in mm from the point (lowest <= 0 < highest).
+void lensAround(const LenticularDesign& d, const Row& row, int x, double pointMm, double& own,
+                double& lowest, double& highest) {
+  const size_t green = size_t(3 * x + 1);
+  own = row.fraction[green] +
+        row.viewsPerWidth * (pointMm - row.positionMm[green]) / (d.pixelPitchMm / 3);
+  own -= std::floor(own);
+  lowest = (row.viewsPerWidth > 0 ? -own : own - 1) * d.horizontalLensPitchMm;
+  highest = lowest + d.horizontalLensPitchMm;
+}
+
 // What an eye looking at panel point `centreMm` (x, mm) sees through the lens there, toward view
 // `eyeView`: the subpixels of row `y` under the lens that covers the point, from view 0 to view 1
 // (cut at its edges: a lens period holds a fractional number of subpixels, and every view once),
@@ -38,12 +52,8 @@ Vec3f seenThroughLens(const LenticularDesign& d, const Row& row, const Image& pa
   const int w = panel.width();
   const double lens = d.horizontalLensPitchMm, width = d.pixelPitchMm / 3;
   const double delta = subpixelViewWidth(d), support = lensSpotHalfSupport(d);
-  // The point's own view (from its pixel's green subpixel, views running along the row), and
-  // so the lens around it: from where the view is 0 to where it is 1.
-  const size_t green = size_t(3 * x + 1);
-  double own = row.fraction[green] + row.viewsPerWidth * (centreMm - row.positionMm[green]) / width;
-  own -= std::floor(own);
-  const double lowest = (row.viewsPerWidth > 0 ? -own : own - 1) * lens, highest = lowest + lens;
+  double own, lowest, highest;
+  lensAround(d, row, x, centreMm, own, lowest, highest);
   // Only the subpixels whose views the spot reaches: around where under this lens the view is
   // the eye's (and one lens over, should the spot reach across the lens's edge).
   const double target = eyeView - std::floor(eyeView);
@@ -137,8 +147,25 @@ Image simulateLenticularView(const LenticularDesign& d, const Image& panel, cons
             (double(row.positionMm[size_t(3 * x)]) + row.positionMm[size_t(3 * x + 1)] +
              row.positionMm[size_t(3 * x + 2)]) /
             3.0;
-        const double eyeView = lensFractionSeen(d, centreMm, eyeMm);
-        const Vec3f seen = seenThroughLens(d, row, panel, y, x, centreMm, eyeView);
+        // What the eye sees over the pixel's width: a lens shows one colour across it, so where a
+        // lens's edge crosses the pixel, each lens's colour weighted by the part it covers. A
+        // sample at the centre alone counts each lens by the pixel centres it holds (6 or 7 of a
+        // Portrait's 6.29), and which it is goes with which subpixel the lens shows
+        // (docs/lenticular.md, "Which view the centre eye sees").
+        const double half = 0.5 * std::fabs(row.pixelStepMm);
+        double view0, lowest, highest;
+        lensAround(d, row, x, centreMm, view0, lowest, highest);
+        // The pixel's parts, [-half, edge] and [edge, half] mm from its centre: one, the whole
+        // pixel, when no lens edge crosses it (a lens is wider than a pixel: at most one does).
+        const double edge = lowest > -half ? lowest : highest < half ? highest : half;
+        Vec3f seen;
+        for (const auto& [from, to] : {std::pair{-half, edge}, std::pair{edge, half}}) {
+          if (!(to - from > 1e-9 * half)) continue;
+          const double point = centreMm + 0.5 * (from + to);
+          const Vec3f part =
+              seenThroughLens(d, row, panel, y, x, point, lensFractionSeen(d, point, eyeMm));
+          seen = seen + part * float((to - from) / (2 * half));
+        }
         // Into the viewer's frame: mirrored panels show column 0 on the right or row 0 at the
         // bottom.
         view.at(c.flipImageX ? w - 1 - x : x, c.flipImageY ? h - 1 - y : y) = seen;

@@ -15,10 +15,13 @@ namespace parallax {
 
 // The view of `panel` (the panel's framebuffer, linear RGB, screenW x screenH) from an eye at
 // eyeMm (display mm, z > 0), at the panel's resolution and as the viewer sees it (row 0 at the
-// top, x to the viewer's right; flipped panels are mirrored back). Output pixel p: the eye's view
-// f_e at p's centre; the subpixels of p's row within half a lens of p, each weighted by the spot
-// for its view's wrapped distance from f_e, summed per channel and scaled by 3 over the total
-// weight (a subpixel lights a third of a pixel). Horizontal parallax only: the eye's height
+// top, x to the viewer's right; flipped panels are mirrored back). Output pixel p: through the
+// lens at p, the eye's view f_e; the subpixels of p's row under that lens, each weighted by the
+// spot for its view's wrapped distance from f_e, summed per channel and scaled by 3 over the total
+// weight (a subpixel lights a third of a pixel); where a lens's edge crosses p, the two lenses'
+// colours weighted by the part of p's width each covers, so that every lens counts by its width
+// (at p's centre alone a lens would count by the pixel centres it holds, and on a Portrait those
+// go with the colour it shows the centre eye). Horizontal parallax only: the eye's height
 // does not change what it sees. To read the panel under other optics, pass
 // withOptics(design, optics).
 // Throws InputError naming the calibration and "/screenW" when the panel's size differs, and

@@ -1,0 +1,55 @@
+// A lenticular display's pitch, slope and center (as the renderer reads them: bundles converging
+// at D, docs/lenticular.md) from photos of its "lens" shot (lenticular_shot.h; the derivation is
+// docs/calibration.md, "From photos"). The model, stated once: an ideal cylindrical lens focused
+// on the pixels shows a camera at C, through the lens whose axis crosses the sheet at across-
+// coordinate c_k, the line of pixels at c_k (1 + g/C_z) - (g/C_z) C . n (g the sheet's
+// air-equivalent focal gap); so the raw phase seen there is the nominal field at that line, and
+// the fringes' phase psi over the sheet is linear with
+//
+//   grad psi = G (1 + g / C_z) - m,   psi(0) = phi - (g / C_z) G . C + r0   (mod 1)
+//
+// (G, r0 the nominal field, lenticular_model.h; m = s n / pitch and phi = s phase / pitch the
+// sheet's). Two photos from distances apart separate g from m; one more unknown, phi, from the
+// fringes' phase.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "parallax/display/lenticular.h"
+#include "parallax/photocal/lenticular_model.h"
+#include "parallax/photocal/marker_camera.h"
+
+namespace parallax::photocal {
+
+struct LenticularPhotoReport {
+  std::string name;
+  std::array<double, 3> cameraMm{};  // the camera's centre over the lens sheet, display frame
+  double offAxisDegrees = 0;
+  int markers = 0;
+  double markerRmsPx = 0;
+  int samples = 0;
+  double coherence = 0;                    // |mean phasor| after the fit: 1 clean fringes, 0 none
+  std::array<double, 2> fringeGradient{};  // grad psi, cycles per mm
+  double fringePhase = 0;                  // psi at the panel's centre
+};
+
+struct LenticularMeasurement {
+  LenticularCalibration measured;  // the nominal with pitch, slope and center measured
+  double pitchSigma = 0, slopeSigma = 0, centerSigma = 0;
+  double slantDegrees = 0, slantSigmaDegrees = 0;  // the lenses' axes from vertical
+  double gapMm = 0, gapSigmaMm = 0;                // the sheet's air-equivalent focal gap
+  double focalPx = 0, focalSigmaPx = 0, k1 = 0, k2 = 0;
+  std::vector<LenticularPhotoReport> photos;
+};
+
+// Measures from the photos (any order; at least two, from distances at least a fifth apart).
+// Throws InputError(photo, "", what is missing) for a photo that does not show the shot well
+// enough, and InputError(the photos, ...) when the set leaves the gap open.
+LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
+                                        const std::vector<NamedPhoto>& photos,
+                                        const std::function<void(int, int)>& progress = {});
+
+}  // namespace parallax::photocal
