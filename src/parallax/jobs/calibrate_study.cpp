@@ -208,6 +208,10 @@ CalibrationTrial barrierTrial(Draw& draw, const CalibrationStudyRequest& r,
                     designDisplay(measured).slitPeriodPx - designDisplay(true_).slitPeriodPx};
     trial.sigmas = {m.gapSigmaMm / truth.gapMm, m.maskPanelOffsetSigmaPx, m.rotationSigmaDegrees,
                     0};
+    if (std::getenv("PARALLAX_DEBUG_PHOTOCAL"))
+      std::fprintf(stderr, "gap %.4f (true %.4f), offset %.3f (true %.3f), rotation %.4f (%.4f)\n",
+                   m.gapMm, truth.gapMm, m.maskPanelOffsetPx, offsetPx, m.maskRotationDegrees,
+                   rotation);
   } catch (const InputError& e) {
     trial.refused = true;
     trial.refusal = e.what();

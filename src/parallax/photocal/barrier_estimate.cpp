@@ -25,7 +25,8 @@ constexpr int kBlockPx = BarrierShot::kBlockPx;
 constexpr int kFrontBlockPx = kBlockPx / 2;  // the front needs no vernier: twice the points
 constexpr double kMinContrast = 0.03;  // a grating's amplitude over the mean light
 constexpr int kMinMarkers = 2;         // a first camera; the front's gratings fit it again
-constexpr int kCameraRounds = 3;
+constexpr int kCameraRounds = 5;
+constexpr double kTrustedShiftPx = 4;  // well inside half the periods (6 across, 16 down)
 
 double wrap(double v, double period) {
   return v - period * std::round(v / period);
@@ -100,9 +101,10 @@ double envelopeAt(const std::vector<double>& above, const std::vector<double>& b
   return above[k] + t * (below[k] - above[k]);
 }
 
-// A band's white guard rows: 36 to 44 (below the front's gratings) and 84 to 92 (below the
-// rear's), each well inside its guard whatever the parallax.
-constexpr double kGuardBelowFront[2] = {36, 44}, kGuardBelowRear[2] = {84, 92};
+// A band's white guard rows: the middle four of each 16-row guard (38 to 42 below the front's
+// gratings, 86 to 90 below the rear's), so that the rear's gratings seen across the gap at a
+// slant (up to 6 rows off) and a camera a few pixels off do not reach them.
+constexpr double kGuardBelowFront[2] = {38, 42}, kGuardBelowRear[2] = {86, 90};
 
 // The vernier: the shift that is shift0 modulo P0 and shift1 modulo P1, within half P0 P1.
 double vernier(double shift0, double shift1) {
@@ -141,8 +143,8 @@ FrontBlocks measureFront(const BarrierShot& shot, const PhotoSampler& photo) {
   for (int b = 0; b < shot.bands; ++b) {
     const double top = shot.y0 + b * BarrierShot::kBandPx;
     // The white rows above: the previous band's last guard, or the margin inside the ring.
-    const double aboveFrom = b > 0 ? top - BarrierShot::kBandPx + kGuardBelowRear[0] : top - 12;
-    const double aboveTo = b > 0 ? top - BarrierShot::kBandPx + kGuardBelowRear[1] : top - 4;
+    const double aboveFrom = b > 0 ? top - BarrierShot::kBandPx + kGuardBelowRear[0] : top - 10;
+    const double aboveTo = b > 0 ? top - BarrierShot::kBandPx + kGuardBelowRear[1] : top - 6;
     for (int j = 0; j < out.across; ++j) {
       const int x0 = shot.x0 + 4 + j * kFrontBlockPx;
       std::vector<double> xs;
@@ -205,7 +207,9 @@ std::vector<vision::PlaneCorrespondence> frontPoints(const BarrierShot& shot,
   for (int b = 0; b < blocks.bands; ++b)
     for (int j = 0; j < blocks.across; ++j) {
       const double sx = blocks.at(blocks.shiftX, b, j), sy = blocks.at(blocks.shiftY, b, j);
-      if (!std::isfinite(sx)) continue;
+      // Only blocks the camera already puts near where they are: farther ones may have slipped
+      // a period; the next round, with a better camera, takes them.
+      if (!(std::abs(sx) < kTrustedShiftPx && std::abs(sy) < kTrustedShiftPx)) continue;
       const double x = shot.x0 + 4 + (j + 0.5) * kFrontBlockPx;
       const double y = shot.y0 + b * BarrierShot::kBandPx + rows;
       const vision::PhotoPoint p = vision::projectPoint(camera.intrinsics, camera.poses[photo],

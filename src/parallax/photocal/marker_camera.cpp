@@ -46,12 +46,43 @@ MarkerCamera markerCamera(const MarkerRing& ring, const PanelGrid& front,
                            : "the panel was not found: " + markerCount(ours, ring.markers.size()) +
                                  " of shot " + shotName +
                                  " seen (the whole panel must be in the photo, in focus)");
-    views.push_back(view);
-    camera.markerPoints.push_back(std::move(view));
+    views.push_back(std::move(view));
     names.push_back(p.name);
     camera.markersFound.push_back(ours);
   }
-  camera.fit = vision::fitCamera(views, names, photos[0].photo.width, photos[0].photo.height);
+  // A marker misread (a moire band or noise through its cells can turn one into another id)
+  // pulls the whole fit: the worst marker, when it is far off the others' camera, is dropped
+  // and the camera fitted again.
+  for (int round = 0; round < 64; ++round) {
+    camera.fit = vision::fitCamera(views, names, photos[0].photo.width, photos[0].photo.height);
+    double worst = 0;
+    size_t worstPhoto = 0, worstMarker = 0;
+    for (size_t i = 0; i < views.size(); ++i) {
+      if (views[i].size() / 4 <= size_t(minMarkers)) continue;
+      std::vector<double> errors;
+      for (size_t m = 0; m < views[i].size() / 4; ++m) {
+        double sum = 0;
+        for (size_t c = 0; c < 4; ++c) {
+          const vision::PlaneCorrespondence& q = views[i][4 * m + c];
+          const vision::PhotoPoint p =
+              vision::projectPoint(camera.fit.intrinsics, camera.fit.poses[i], {q.xMm, q.yMm, 0});
+          sum += std::hypot(p.x - q.photo.x, p.y - q.photo.y);
+        }
+        errors.push_back(sum / 4);
+      }
+      std::vector<double> sorted = errors;
+      std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+      const double median = sorted[sorted.size() / 2];
+      for (size_t m = 0; m < errors.size(); ++m)
+        if (errors[m] > std::max(4.0, 4 * median) && errors[m] > worst)
+          worst = errors[m], worstPhoto = i, worstMarker = m;
+    }
+    if (worst == 0) break;
+    auto& view = views[worstPhoto];
+    view.erase(view.begin() + long(4 * worstMarker), view.begin() + long(4 * worstMarker + 4));
+    --camera.markersFound[worstPhoto];
+  }
+  camera.markerPoints = views;
   camera.focalRelativeSigma = camera.fit.focalSigmaPx / camera.fit.intrinsics.focalPx;
   return camera;
 }

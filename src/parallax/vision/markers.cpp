@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/core/version.hpp>
 #if CV_VERSION_MAJOR > 4 || (CV_VERSION_MAJOR == 4 && CV_VERSION_MINOR >= 7)
 #define PARALLAX_ARUCO_IN_OBJDETECT 1
@@ -213,16 +214,30 @@ std::vector<DetectedMarker> detectMarkers(const Photo& photo) {
     for (int x = 0; x < photo.width; ++x, in += 3)
       out[x] = uint8_t((299 * in[0] + 587 * in[1] + 114 * in[2] + 500) / 1000);
   }
-  std::vector<std::vector<cv::Point2f>> corners;
-  std::vector<int> ids;
-  detect(grey, corners, ids);
-  for (std::vector<cv::Point2f>& c : corners) refineBySides(grey, c);
-  std::vector<DetectedMarker> markers(ids.size());
-  for (size_t i = 0; i < ids.size(); ++i) {
-    markers[i].id = ids[i];
-    // OpenCV's pixel (i, j) is centred at (i, j); ours at (i + 0.5, j + 0.5).
-    for (size_t k = 0; k < 4; ++k)
-      markers[i].corners[k] = {corners[i][k].x + 0.5, corners[i][k].y + 0.5};
+  // At the photo's own size and at a half and a quarter of it (area-averaged): a photo of a
+  // screen close up resolves the panel's pixels, their black matrix and colour stripes, and the
+  // detector's thresholds see stripes in every white cell; averaged down, the cells are flat
+  // again. A marker found at several sizes is taken from the finest.
+  std::vector<DetectedMarker> markers;
+  std::vector<char> found(size_t(markerDictionarySize()), 0);
+  cv::Mat level = grey;
+  for (double scale = 1.0; scale >= 0.25 && std::min(level.cols, level.rows) >= 64; scale /= 2) {
+    if (scale < 1.0) cv::resize(grey, level, cv::Size(), scale, scale, cv::INTER_AREA);
+    std::vector<std::vector<cv::Point2f>> corners;
+    std::vector<int> ids;
+    detect(level, corners, ids);
+    for (size_t i = 0; i < ids.size(); ++i) {
+      if (ids[i] < 0 || ids[i] >= markerDictionarySize() || found[size_t(ids[i])]) continue;
+      found[size_t(ids[i])] = 1;
+      refineBySides(level, corners[i]);
+      DetectedMarker marker;
+      marker.id = ids[i];
+      // OpenCV's pixel (i, j) is centred at (i, j); ours at (i + 0.5, j + 0.5); a pixel of the
+      // level spans 1 / scale of the photo's.
+      for (size_t k = 0; k < 4; ++k)
+        marker.corners[k] = {(corners[i][k].x + 0.5) / scale, (corners[i][k].y + 0.5) / scale};
+      markers.push_back(marker);
+    }
   }
   std::stable_sort(markers.begin(), markers.end(),
                    [](const DetectedMarker& a, const DetectedMarker& b) { return a.id < b.id; });
