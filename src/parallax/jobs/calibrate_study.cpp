@@ -45,11 +45,12 @@ class Draw {
 
 double wrapHalf(double v) { return v - std::round(v); }
 
-// The panel's corners (front, z = 0) inside the frame of a pinhole at `position` looking at
-// `target` with focal f, with a margin of 4 % of the frame.
-bool panelInFrame(const std::array<double, 3>& position, const std::array<double, 3>& target,
-                  double roll, double focalPx, int width, int height, double halfW,
-                  double halfH) {
+// The largest focal length (pixels) that keeps the panel's corners (front, z = 0) inside the
+// frame of a pinhole at `position` looking at `target`, rolled by `roll`, with a margin of 4 % of
+// the frame; 0 when a corner is behind the camera.
+double largestFocalInFrame(const std::array<double, 3>& position,
+                           const std::array<double, 3>& target, double roll, int width, int height,
+                           double halfW, double halfH) {
   double forward[3] = {target[0] - position[0], target[1] - position[1], target[2] - position[2]};
   const double length = std::hypot(forward[0], forward[1], forward[2]);
   for (double& v : forward) v /= length;
@@ -60,6 +61,7 @@ bool panelInFrame(const std::array<double, 3>& position, const std::array<double
   double down[3] = {forward[1] * right[2] - forward[2] * right[1],
                     forward[2] * right[0] - forward[0] * right[2],
                     forward[0] * right[1] - forward[1] * right[0]};
+  double focal = 1e300;
   for (double sx : {-1.0, 1.0})
     for (double sy : {-1.0, 1.0}) {
       const double p[3] = {sx * halfW - position[0], sy * halfH - position[1], -position[2]};
@@ -68,30 +70,37 @@ bool panelInFrame(const std::array<double, 3>& position, const std::array<double
       const double yr = p[0] * down[0] + p[1] * down[1] + p[2] * down[2];
       const double x = xr * std::cos(roll) - yr * std::sin(roll);
       const double y = xr * std::sin(roll) + yr * std::cos(roll);
-      if (!(z > 0)) return false;
-      const double u = focalPx * x / z, v = focalPx * y / z;
-      if (std::abs(u) > 0.46 * width || std::abs(v) > 0.46 * height) return false;
+      if (!(z > 0)) return 0;
+      if (x != 0) focal = std::min(focal, 0.46 * width * z / std::abs(x));
+      if (y != 0) focal = std::min(focal, 0.46 * height * z / std::abs(y));
     }
-  return true;
+  return focal;
 }
 
 // A set's phone (one focal length and distortion) and each photo's pose: distances from the
 // panel's centre between 0.5 D and 2 D (at least 25 % apart within the set), directions up to
 // maxOffAxis from the panel's normal (uniform over the solid angle), rolled up to 10 degrees,
-// aimed at the panel's centre give or take 5 % of its size; the whole panel in the frame.
+// aimed at the panel's centre give or take 5 % of its size. The phone is held the panel's way
+// (upright for a portrait panel) and zoomed (24 to 70 mm equivalent) so that the panel fills
+// 75 to 100 % of what the tightest photo allows with the whole panel in the frame: a small
+// panel with a large design distance (a Portrait: D = 1.37 m) is photographed as a user would,
+// zoomed in, not as a speck in a wide frame.
 std::vector<photomaker::PhoneCamera> randomPhones(Draw& draw, const CalibrationStudyRequest& r,
                                                   double D, double halfW, double halfH,
                                                   double whiteLevel) {
   photomaker::PhoneCamera base;
-  base.width = r.photoWidth;
-  base.height = r.photoHeight;
+  const bool upright = halfH > halfW;
+  base.width = upright ? std::min(r.photoWidth, r.photoHeight)
+                       : std::max(r.photoWidth, r.photoHeight);
+  base.height = upright ? std::max(r.photoWidth, r.photoHeight)
+                        : std::min(r.photoWidth, r.photoHeight);
   base.samplesPerPixel = r.samplesPerPixel;
   base.k1 = draw.uniform(-0.1, 0.03);
   base.k2 = draw.uniform(-0.01, 0.04);
-  const double equivalentMm = draw.uniform(24, 40);
-  base.focalPx = equivalentMm / 36.0 * std::max(r.photoWidth, r.photoHeight);
+  const double pxPerEquivalentMm = std::max(r.photoWidth, r.photoHeight) / 36.0;
+  const double widest = 24 * pxPerEquivalentMm, longest = 70 * pxPerEquivalentMm;
   std::vector<photomaker::PhoneCamera> phones;
-  double firstDistance = 0;
+  double firstDistance = 0, focalLimit = 1e300;
   for (int i = 0; i < r.photosPerSet; ++i) {
     photomaker::PhoneCamera c = base;
     for (int attempt = 0;; ++attempt) {
@@ -112,24 +121,35 @@ std::vector<photomaker::PhoneCamera> randomPhones(Draw& draw, const CalibrationS
       c.lookAtMm = {draw.uniform(-0.05, 0.05) * 2 * halfW, draw.uniform(-0.05, 0.05) * 2 * halfH,
                     0};
       c.rollDegrees = draw.uniform(-10, 10);
-      if (panelInFrame(c.positionMm, c.lookAtMm, c.rollDegrees * kPi / 180, c.focalPx, c.width,
-                       c.height, halfW, halfH) ||
-          attempt > 200)
+      const double limit = largestFocalInFrame(c.positionMm, c.lookAtMm, c.rollDegrees * kPi / 180,
+                                               c.width, c.height, halfW, halfH);
+      if (limit >= widest || attempt > 200) {
+        focalLimit = std::min(focalLimit, limit);
         break;
+      }
     }
     if (i == 0) firstDistance = std::hypot(c.positionMm[0], c.positionMm[1], c.positionMm[2]);
     const double toCentre = std::hypot(c.positionMm[0], c.positionMm[1], c.positionMm[2]);
     c.focusDistanceMm = toCentre * draw.uniform(0.93, 1.07);
     c.apertureMm = r.blurMm >= 0 ? r.blurMm : draw.uniform(1.5, 3.0);
+    if (std::getenv("PARALLAX_STUDY_PSF")) c.blurSigmaPx = std::atof(std::getenv("PARALLAX_STUDY_PSF"));
+    // A phone's lens, diffraction and demosaicing blur about a sensor pixel.
+    c.blurSigmaPx = r.blurMm >= 0 ? 0.0 : draw.uniform(0.6, 1.2);
     // White on the panel, as the camera sees it, at 55 to 90 % of the sensor's range; the SNR is
     // the pattern's amplitude (half its swing from black to white) over the noise.
     c.exposure = draw.uniform(0.55, 0.9) / whiteLevel;
     c.noiseSigma = 0.5 * whiteLevel * c.exposure * std::pow(10.0, -r.snrDb / 20);
     c.seed = uint64_t(draw.uniform(0, 1) * 9e15);
-    if (std::getenv("PARALLAX_DEBUG_PHOTOCAL"))
-      std::fprintf(stderr, "truth photo %d: C %.1f %.1f %.1f f %.1f k1 %.3f k2 %.3f\n", i,
-                   c.positionMm[0], c.positionMm[1], c.positionMm[2], c.focalPx, c.k1, c.k2);
     phones.push_back(c);
+  }
+  const double focal = std::clamp(focalLimit * draw.uniform(0.75, 1.0), widest, longest);
+  for (size_t i = 0; i < phones.size(); ++i) {
+    photomaker::PhoneCamera& c = phones[i];
+    c.focalPx = focal;
+    if (std::getenv("PARALLAX_DEBUG_PHOTOCAL"))
+      std::fprintf(stderr, "truth photo %zu: C %.1f %.1f %.1f f %.1f (%.0f mm) k1 %.3f k2 %.3f\n",
+                   i, c.positionMm[0], c.positionMm[1], c.positionMm[2], c.focalPx,
+                   c.focalPx / pxPerEquivalentMm, c.k1, c.k2);
   }
   return phones;
 }
@@ -260,11 +280,59 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
   const double white = truth.panel.fillFactor * truth.panel.fillFactor / 3;
   const auto phones =
       randomPhones(draw, r, D, 0.5 * nominal.widthMm, 0.5 * nominal.heightMm, white);
+  if (std::getenv("PARALLAX_DEBUG_PHOTOCAL")) {
+    // The truth as the estimator's model reads it (lenticular_estimate.h): m = s n / pitch,
+    // phi = s phase / pitch, and per photo the fringes' gradient and phase at the centre.
+    const double mx = s * std::cos(slant) / sheet.pitchMm, my = -s * std::sin(slant) / sheet.pitchMm;
+    const double phi = wrapHalf(s * sheet.phaseMm / sheet.pitchMm);
+    std::fprintf(stderr, "truth sheet: g %.4f m %.6f %.6f phi %.4f; pitch %.5f slope %.5f center %.4f\n",
+                 sheet.gapMm, mx, my, phi, truthCalibration.pitch, truthCalibration.slope,
+                 truthCalibration.center);
+    for (const photomaker::PhoneCamera& phone : phones) {
+      const auto& C = phone.positionMm;
+      const double k = 1 + sheet.gapMm / C[2];
+      const double psi = phi - sheet.gapMm * (f0.gx * C[0] + f0.gy * C[1]) / C[2] + f0.r0;
+      std::fprintf(stderr, "truth photo at %.1f %.1f %.1f: grad %.6f %.6f psi %.4f\n", C[0], C[1],
+                   C[2], f0.gx * k - mx, f0.gy * k - my, psi - std::floor(psi));
+    }
+  }
   std::vector<photocal::NamedPhoto> photos;
   for (size_t i = 0; i < phones.size(); ++i)
     photos.push_back(storedPhoto(draw, photomaker::photographLenticular(truth, picture, phones[i]),
                                  "lens-" + std::to_string(index) + "-" + std::to_string(i + 1),
                                  r.photos));
+  if (std::getenv("PARALLAX_DEBUG_PHOTOCAL_TRUECAM"))
+    for (size_t i = 0; i < phones.size(); ++i) {
+      const photomaker::PhoneCamera& ph = phones[i];
+      vision::CameraIntrinsics in{ph.focalPx, 0.5 * ph.width, 0.5 * ph.height, ph.k1, ph.k2};
+      vision::CameraPose pose;
+      const std::array<double, 3> centre{ph.positionMm[0], ph.positionMm[1],
+                                         ph.positionMm[2] + sheet.gapMm};
+      double f[3] = {ph.lookAtMm[0] - ph.positionMm[0], ph.lookAtMm[1] - ph.positionMm[1],
+                     ph.lookAtMm[2] - ph.positionMm[2]};
+      const double fl = std::hypot(f[0], f[1], f[2]);
+      for (double& v : f) v /= fl;
+      double rr[3] = {-f[2], 0, f[0]};
+      const double rl = std::hypot(rr[0], rr[2]);
+      rr[0] /= rl, rr[2] /= rl;
+      double d[3] = {f[1] * rr[2] - f[2] * rr[1], f[2] * rr[0] - f[0] * rr[2],
+                     f[0] * rr[1] - f[1] * rr[0]};
+      const double roll = ph.rollDegrees * kPi / 180;
+      double r2[3], d2[3];
+      for (int k = 0; k < 3; ++k) {
+        r2[k] = rr[k] * std::cos(roll) - d[k] * std::sin(roll);
+        d2[k] = rr[k] * std::sin(roll) + d[k] * std::cos(roll);
+      }
+      pose.rotation = {r2[0], r2[1], r2[2], d2[0], d2[1], d2[2], f[0], f[1], f[2]};
+      for (int k = 0; k < 3; ++k)
+        pose.translation[size_t(k)] = -(pose.rotation[size_t(3 * k)] * centre[0] +
+                                        pose.rotation[size_t(3 * k + 1)] * centre[1] +
+                                        pose.rotation[size_t(3 * k + 2)] * centre[2]);
+      const photocal::LenticularFringes fr =
+          photocal::readLenticularFringes(nominal, photos[i].photo, in, pose, sheet.gapMm);
+      std::fprintf(stderr, "true camera %zu: grad %.6f %.6f psi %.4f A %.3f\n", i, fr.gradient[0],
+                   fr.gradient[1], fr.phase, fr.amplitude);
+    }
   CalibrationTrial trial;
   const auto start = std::chrono::steady_clock::now();
   try {

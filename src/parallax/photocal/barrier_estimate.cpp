@@ -120,11 +120,14 @@ double vernier(double shift0, double shift1) {
 
 struct RearBlock {
   int photo = 0;
-  double xMm = 0, yMm = 0;   // the block's centre on the front (corrected), mm
-  double u0 = 0;             // rear pixel (from the centre) the nominal display puts there
-  double shift[2] = {0, 0};  // observed u - u0, modulo each period
-  double amplitude[2] = {0, 0};
-  double du = 0;  // resolved u - u0
+  double xMm = 0, yMm = 0;  // the block's centre on the front (corrected), mm
+  double u0 = 0, v0 = 0;    // the rear pixel (from its centre, x right, y down) the nominal
+                            // display puts there
+  // Observed u - u0 modulo each grating period across, v - v0 modulo 32, and (index 3) u - u0
+  // modulo one rear pixel from the moire of the two panels' colour stripes.
+  double shift[4] = {0, 0, 0, 0};
+  double amplitude[4] = {0, 0, 0, 0};
+  double du = 0;  // u - u0 from the vernier
 };
 
 struct CameraAt {
@@ -303,75 +306,82 @@ BarrierMeasurement measureBarrier(const DisplaySpec& nominal, const std::vector<
       const double top = shot.y0 + b * BarrierShot::kBandPx;
       const double yAbove = top + 0.5 * (kGuardBelowFront[0] + kGuardBelowFront[1]);
       const double yBelow = top + 0.5 * (kGuardBelowRear[0] + kGuardBelowRear[1]);
-      // The rows whose lines land on the rear gratings: between the guards, found by their
-      // contrast (the rear may sit a few pixels up or down).
-      const int firstRow = BarrierShot::kRearRows[0] - 8, lastRow = BarrierShot::kRearRows[1] + 4;
-      std::vector<double> allXs;
-      for (double x = shot.x0 + 4.25; x < shot.x1 - 4; x += 0.5) allXs.push_back(x);
-      const std::vector<double> allAbove =
-          whiteLight(shot, photo, allXs, top + kGuardBelowFront[0], top + kGuardBelowFront[1]);
-      const std::vector<double> allBelow =
-          whiteLight(shot, photo, allXs, top + kGuardBelowRear[0], top + kGuardBelowRear[1]);
-      const int rows = lastRow - firstRow;
-      std::vector<double> rowAmplitude(size_t(rows), 0.0);
-      for (int r = 0; r < rows; ++r) {
-        PhaseFit fit({{0, BarrierShot::kPeriodsPx[0]}, {0, BarrierShot::kPeriodsPx[1]}});
-        const double y = top + firstRow + r + 0.5;
-        for (size_t k = 0; k < allXs.size(); k += 2) {
-          const double xm = front.xMm(allXs[k]), ym = front.yMm(y);
-          const float light = photo.atPoint(xm, ym, 0);
-          const double envelope = envelopeAt(allAbove, allBelow, k, yAbove, yBelow, y);
-          if (std::isfinite(light) && std::isfinite(envelope))
-            fit.add(landing(xm, ym, gap0)[0] / rear.pitchMm, 0, light, envelope);
-        }
-        double shift[2], amplitude[2], mean;
-        if (fit.solve(shift, amplitude, &mean)) rowAmplitude[size_t(r)] = amplitude[0] + amplitude[1];
+      // The front rows whose lines land in the middle of the rear's gratings (rows 52 to 76 of
+      // its band; the rear may sit a few pixels up or down, and the camera's slant moves them).
+      std::vector<double> rows;
+      for (double y = top + BarrierShot::kRearRows[0] - 10 + 0.5;
+           y < top + BarrierShot::kRearRows[1] + 10; y += 1.0) {
+        const double landed =
+            front.yPx(landing(front.xMm(0.5 * front.width), front.yMm(y), gap0)[1]) - top;
+        if (landed >= BarrierShot::kRearRows[0] + 4 && landed < BarrierShot::kRearRows[1] - 4)
+          rows.push_back(y);
       }
-      const double best = *std::max_element(rowAmplitude.begin(), rowAmplitude.end());
       for (int j = 0; j < frontBlocks.across / 2; ++j) {
         // The front's mapping error next to this block: the front blocks above and below.
-        double e = 0;
+        double ex = 0, ey = 0;
         int n = 0;
         for (int nb : {b, b + 1})
           for (int half : {2 * j, 2 * j + 1})
             if (nb < shot.bands && std::isfinite(frontBlocks.at(frontBlocks.shiftX, nb, half))) {
-              e += frontBlocks.at(frontBlocks.shiftX, nb, half);
+              ex += frontBlocks.at(frontBlocks.shiftX, nb, half);
+              ey += frontBlocks.at(frontBlocks.shiftY, nb, half);
               ++n;
             }
-        if (n == 0) continue;
-        e /= n;
+        if (n == 0 || rows.empty()) continue;
+        ex /= n, ey /= n;
+        if (std::getenv("PARALLAX_NO_FRONT_CORRECTION")) ex = ey = 0;
         std::vector<double> xs;
         for (double x = blockX(j) + 0.25; x < blockX(j) + kBlockPx; x += 0.5) xs.push_back(x);
         const std::vector<double> above =
             whiteLight(shot, photo, xs, top + kGuardBelowFront[0], top + kGuardBelowFront[1]);
         const std::vector<double> below =
             whiteLight(shot, photo, xs, top + kGuardBelowRear[0], top + kGuardBelowRear[1]);
-        PhaseFit fit({{0, BarrierShot::kPeriodsPx[0]}, {0, BarrierShot::kPeriodsPx[1]}});
-        double rowSum = 0;
-        int rowCount = 0;
-        for (int r = 0; r < rows; ++r) {
-          if (!(rowAmplitude[size_t(r)] > 0.6 * best)) continue;
-          const double y = top + firstRow + r + 0.5;
-          rowSum += y;
-          ++rowCount;
+        PhaseFit fit({{0, BarrierShot::kPeriodsPx[0]},
+                      {0, BarrierShot::kPeriodsPx[1]},
+                      {1, BarrierShot::kFrontRowPeriodPx}});
+        for (const double y : rows)
           for (size_t k = 0; k < xs.size(); ++k) {
             const float light = photo.atPoint(front.xMm(xs[k]), front.yMm(y), 0);
             const double envelope = envelopeAt(above, below, k, yAbove, yBelow, y);
             if (!std::isfinite(light) || !std::isfinite(envelope)) continue;
-            // The front point really seen there is e pixels further along.
-            const double xm = front.xMm(xs[k] + e), ym = front.yMm(y);
-            fit.add(landing(xm, ym, gap0)[0] / rear.pitchMm, 0, light, envelope);
+            // The front point really seen there is (ex, ey) pixels further on; the rear pixel
+            // its line reaches, from the rear's centre (x right, y down), for the nominal gap.
+            const auto r = landing(front.xMm(xs[k] + ex), front.yMm(y + ey), gap0);
+            fit.add(r[0] / rear.pitchMm, -r[1] / rear.pitchMm, light, envelope);
           }
-        }
         RearBlock block;
         double mean;
-        if (rowCount == 0 || !fit.solve(block.shift, block.amplitude, &mean)) continue;
+        if (!fit.solve(block.shift, block.amplitude, &mean)) continue;
+        // The white rows' moire: light passes where a front stripe's aperture lies over the
+        // rear's of its colour, so the white light peaks where the two stripe gratings are in
+        // phase, m = (rear pixel reached, from its left edge) - (front pixel) an integer. Its
+        // phase measures u - u0 modulo a rear pixel, and unlike the gratings (whose rear pixels
+        // are seen only where the stripes line up, a whole number of pixels from the front's)
+        // it follows the line exactly; an error of the camera moves both ends of the line alike
+        // and leaves it.
+        {
+          PhaseFit moire({{0, 1.0}});
+          for (const auto& [light, y] : {std::pair{&above, yAbove}, std::pair{&below, yBelow}})
+            for (size_t k = 0; k < xs.size(); ++k) {
+              if (!std::isfinite((*light)[k])) continue;
+              const double xf = xs[k] + ex;
+              const double m =
+                  rear.xPx(landing(front.xMm(xf), front.yMm(y + ey), gap0)[0]) - xf;
+              moire.add(m, 0, (*light)[k], 1.0);
+            }
+          double moireMean;
+          if (!moire.solve(&block.shift[3], &block.amplitude[3], &moireMean)) continue;
+        }
         contrasts.push_back(block.amplitude[0] + block.amplitude[1]);
-        if (!(std::min(block.amplitude[0], block.amplitude[1]) > kMinContrast)) continue;
+        if (!(std::min({block.amplitude[0], block.amplitude[1], block.amplitude[2]}) >
+              kMinContrast))
+          continue;
         block.photo = int(pi);
-        block.xMm = front.xMm(blockX(j) + 0.5 * kBlockPx + e);
-        block.yMm = front.yMm(rowSum / rowCount);
-        block.u0 = landing(block.xMm, block.yMm, gap0)[0] / rear.pitchMm;
+        block.xMm = front.xMm(blockX(j) + 0.5 * kBlockPx + ex);
+        block.yMm = front.yMm(0.5 * (rows.front() + rows.back()) + ey);
+        const auto r = landing(block.xMm, block.yMm, gap0);
+        block.u0 = r[0] / rear.pitchMm;
+        block.v0 = -r[1] / rear.pitchMm;
         block.du = vernier(block.shift[0], block.shift[1]);
         blocks.push_back(block);
         ++report.rearBlocks;
@@ -389,84 +399,117 @@ BarrierMeasurement measureBarrier(const DisplaySpec& nominal, const std::vector<
   }
 
   // ---- one fit over all blocks --------------------------------------------------------------
-  // Unknowns g, s_x, theta: u = [X + (X - C_x) g / C_z - s_x + theta (Y + (Y - C_y) g / C_z)] / p
-  // (rear pixels from the rear's centre), linearised in theta g.
-  const double p0 = BarrierShot::kPeriodsPx[0], p1 = BarrierShot::kPeriodsPx[1];
-  double g = gap0, sx = 0, theta = 0, sigma2 = 0;
+  // Unknowns g, s_x, s_y, theta. With the line's rear point X_r = X + (X - C_x) g / C_z (and
+  // Y_r), the rear pixel seen (from its centre, x right, y down) is
+  //   u = [X_r - s_x + theta Y_r] / p,   v = -[Y_r - s_y - theta X_r] / p,
+  // linear in the unknowns once theta g is taken at the last pass's values.
+  const double periods[4] = {BarrierShot::kPeriodsPx[0], BarrierShot::kPeriodsPx[1],
+                             BarrierShot::kFrontRowPeriodPx, 1.0};
+  double g = gap0, sx = 0, sy = 0, theta = 0, sigma2 = 0;
   std::vector<double> x, covariance;
-  for (int pass = 0; pass < 4; ++pass) {
-    LeastSquares ls(3);
-    const auto rowFor = [&](const RearBlock& b, double* row) {
-      const CameraAt& c = cameras[size_t(b.photo)];
-      const double p = rear.pitchMm;
+  struct Observation {
+    size_t block;
+    int component;  // 0, 1 across (u), 2 down (v), 3 across (u) from the moire
+    double value, weight;
+  };
+  // An observation's row (the unknowns' coefficients) and constant part.
+  const auto rowFor = [&](const RearBlock& b, int component, double* row) {
+    const CameraAt& c = cameras[size_t(b.photo)];
+    const double p = rear.pitchMm;
+    const double xr = b.xMm + (b.xMm - c.x) * g / c.z, yr = b.yMm + (b.yMm - c.y) * g / c.z;
+    if (component != 2) {
       row[0] = (b.xMm - c.x + theta * (b.yMm - c.y)) / (c.z * p);
-      row[1] = -1 / p;
-      row[2] = (b.yMm + (b.yMm - c.y) * g / c.z) / p;
-      return b.xMm / p;  // the constant part
-    };
-    const auto predicted = [&](const RearBlock& b) {
-      double row[3];
-      const double constant = rowFor(b, row);
-      return constant + row[0] * g + row[1] * sx + row[2] * theta - b.u0;
-    };
-    // The first pass takes each block's vernier; later ones unwrap each period's shift against
-    // the model and use it alone, leaving out blocks four sigmas off.
-    struct Observation {
-      size_t block;
-      double value, weight;
-    };
-    std::vector<Observation> obs;
-    for (size_t i = 0; i < blocks.size(); ++i) {
-      const RearBlock& b = blocks[i];
-      if (pass == 0) {
-        obs.push_back({i, b.du, 1.0});
-        continue;
-      }
-      const double model = predicted(b);
-      for (int j = 0; j < 2; ++j) {
-        const double value = model + wrap(b.shift[j] - model, j == 0 ? p0 : p1);
-        const double r = value - model;
-        if (pass >= 2 && r * r > 16 * sigma2) continue;
-        obs.push_back({i, value, b.amplitude[j] * b.amplitude[j]});
-      }
+      row[1] = -1 / p, row[2] = 0, row[3] = yr / p;
+      return b.xMm / p - b.u0;
     }
+    row[0] = -(b.yMm - c.y - theta * (b.xMm - c.x)) / (c.z * p);
+    row[1] = 0, row[2] = 1 / p, row[3] = xr / p;
+    return -b.yMm / p - b.v0;
+  };
+  const auto predicted = [&](const RearBlock& b, int component) {
+    double row[4];
+    const double constant = rowFor(b, component, row);
+    return constant + row[0] * g + row[1] * sx + row[2] * sy + row[3] * theta;
+  };
+  for (int pass = 0; pass < 4; ++pass) {
+    LeastSquares ls(4);
+    // The first pass takes each block's vernier across (those near the median: a vernier that
+    // slipped is a period off) and its shift down; later ones unwrap each component against the
+    // model and use it alone, leaving out what is four sigmas off.
+    std::vector<Observation> obs;
     if (pass == 0) {
-      // The verniers' median offset first: a block whose vernier slipped by a period is far
-      // from it.
       std::vector<double> dus;
       for (const RearBlock& b : blocks) dus.push_back(b.du);
       std::nth_element(dus.begin(), dus.begin() + long(dus.size() / 2), dus.end());
       const double median = dus[dus.size() / 2];
-      std::erase_if(obs, [&](const Observation& o) { return std::abs(o.value - median) > 6; });
+      for (size_t i = 0; i < blocks.size(); ++i) {
+        if (std::abs(blocks[i].du - median) <= 6) obs.push_back({i, 0, blocks[i].du, 1.0});
+        obs.push_back({i, 2, blocks[i].shift[2], 1.0});
+      }
+    } else {
+      // The moire alone once the gratings' verniers have placed it within half a pixel: the
+      // gratings' shifts carry the stripes' whole-pixel steps (a quarter of a pixel either way
+      // across; down, the rows' black matrix does the same more weakly). The rear's height,
+      // which no key of the display file holds, stays where the first pass put it.
+      for (size_t i = 0; i < blocks.size(); ++i)
+        for (int j : {3}) {
+          const double model = predicted(blocks[i], j);
+          const double r = wrap(blocks[i].shift[j] - model, periods[j]);
+          if (pass >= 2 && r * r > 16 * sigma2) continue;
+          obs.push_back({i, j, model + r, blocks[i].amplitude[j] * blocks[i].amplitude[j]});
+        }
     }
+    double weightSum = 0;
     for (const Observation& o : obs) {
-      const RearBlock& b = blocks[o.block];
-      double row[3];
-      const double constant = rowFor(b, row);
-      ls.add(row, o.value + b.u0 - constant, o.weight);
+      double row[4];
+      const double constant = rowFor(blocks[o.block], o.component, row);
+      ls.add(row, o.value - constant, o.weight);
+      weightSum += o.weight;
     }
-    if (ls.rows() < 6 || !ls.solve(x, &covariance))
+    if (pass > 0) {
+      const double pin[4] = {0, 0, 1, 0};
+      ls.add(pin, sy, weightSum);
+    }
+    if (ls.rows() < 8 || !ls.solve(x, &covariance))
       throw InputError("photos", "", "too few grating blocks were seen to measure the gap");
-    g = x[0], sx = x[1], theta = x[2];
+    g = x[0], sx = x[1], sy = x[2], theta = x[3];
     double sum = 0, weights = 0;
     for (const Observation& o : obs) {
-      const double r = o.value - predicted(blocks[o.block]);
+      const double r = o.value - predicted(blocks[o.block], o.component);
       sum += o.weight * r * r;
       weights += o.weight;
     }
     sigma2 = sum / std::max(1e-300, weights);
     // The covariance per unit weight scaled by the residuals'.
-    const double perUnit = sum / std::max(1.0, double(obs.size()) - 3);
+    const double perUnit = sum / std::max(1.0, double(obs.size()) - 4);
     for (double& v : covariance) v *= perUnit;
+  }
+  if (std::getenv("PARALLAX_DEBUG_PHOTOCAL")) {
+    // Per photo: the residuals' mean and their slope against the lever (X - C_x) / C_z.
+    for (size_t pi = 0; pi < photos.size(); ++pi)
+      for (int j = 2; j < 4; ++j) {
+        double n = 0, sl = 0, sr = 0, sll = 0, slr = 0;
+        for (const RearBlock& b : blocks) {
+          if (b.photo != int(pi)) continue;
+          const CameraAt& c = cameras[pi];
+          const double lever = j == 3 ? (b.xMm - c.x) / c.z : (b.yMm - c.y) / c.z;
+          const double r = wrap(b.shift[j] - predicted(b, j), periods[j]);
+          n += 1, sl += lever, sr += r, sll += lever * lever, slr += lever * r;
+        }
+        const double slope = (n * slr - sl * sr) / (n * sll - sl * sl);
+        std::fprintf(stderr, "photo %zu component %d: mean residual %.4f px, slope %.4f px per lever (= %.2f %% of g)\n",
+                     pi, j, sr / n, slope, 100 * slope * rear.pitchMm / g * (j == 3 ? 1 : -1));
+      }
   }
   step();
   out.residualPx = std::sqrt(sigma2);
   out.gapMm = g;
   out.gapSigmaMm = std::hypot(std::sqrt(covariance[0]), g * focalRelative);
   out.rearOffsetXMm = sx;
-  out.rearOffsetSigmaMm = std::sqrt(covariance[4]);
+  out.rearOffsetSigmaMm = std::sqrt(covariance[5]);
+  out.rearOffsetYMm = sy;
   out.rotationDegrees = theta * 180 / std::numbers::pi;
-  out.rotationSigmaDegrees = std::sqrt(covariance[8]) * 180 / std::numbers::pi;
+  out.rotationSigmaDegrees = std::sqrt(covariance[15]) * 180 / std::numbers::pi;
   // The display file's offset: the mask panel against the image panel, in mask pixels, as the
   // amount the drawn mask moves to make up for it (a mask sitting o pixels to the left: +o).
   const double maskPitch = nominal.maskPanel.pitchMm;

@@ -15,7 +15,7 @@ PanelGrid grid(const Panel& panel) {
 
 }  // namespace
 
-double frontGrating(double x, double y) {
+double shotGratings(double x, double y) {
   constexpr double kTwoPi = 2 * std::numbers::pi;
   return 0.5 + (std::cos(kTwoPi * x / BarrierShot::kPeriodsPx[0]) +
                 std::cos(kTwoPi * x / BarrierShot::kPeriodsPx[1]) +
@@ -23,10 +23,6 @@ double frontGrating(double x, double y) {
                    6;
 }
 
-double rearGratings(double x) {
-  return 0.5 + 0.25 * std::cos(2 * std::numbers::pi * x / BarrierShot::kPeriodsPx[0]) +
-         0.25 * std::cos(2 * std::numbers::pi * x / BarrierShot::kPeriodsPx[1]);
-}
 
 BarrierShot barrierShot(const DisplaySpec& display) {
   BarrierShot shot;
@@ -62,7 +58,7 @@ BarrierShotPictures drawBarrierShot(const BarrierShot& shot) {
     if (row >= BarrierShot::kFrontRows[0] && row < BarrierShot::kFrontRows[1])
       for (int x = shot.x0; x < shot.x1; ++x)
         p.front.at(x, y) = Vec3f(float(
-            frontGrating(x + 0.5 - 0.5 * shot.front.width, y + 0.5 - 0.5 * shot.front.height)));
+            shotGratings(x + 0.5 - 0.5 * shot.front.width, y + 0.5 - 0.5 * shot.front.height)));
   }
   // The rear's bands sit behind the front's (the same heights in mm; the panels may differ in
   // pitch), across the rear's whole width inside the ring's margin (a rear panel offset
@@ -75,7 +71,8 @@ BarrierShotPictures drawBarrierShot(const BarrierShot& shot) {
     for (int x = 0; x < shot.rear.width; ++x) {
       const double frontX = shot.front.xPx(shot.rear.xMm(x + 0.5));
       if (frontX >= shot.x0 - 16 && frontX < shot.x1 + 16)
-        p.rear.at(x, y) = Vec3f(float(rearGratings(x + 0.5 - 0.5 * shot.rear.width)));
+        p.rear.at(x, y) = Vec3f(float(shotGratings(x + 0.5 - 0.5 * shot.rear.width,
+                                                   y + 0.5 - 0.5 * shot.rear.height)));
     }
   }
   return p;

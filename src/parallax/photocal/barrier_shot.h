@@ -9,13 +9,14 @@
 //   band row  0..31  front: cos gratings across (periods P, P + 1) and down (32 rows); rear white
 //            32..47  both white (a guard: rays cross the gap at a slant, and the panels may sit
 //                    a few pixels apart vertically)
-//            48..79  front: white; rear: cos gratings across, periods P and P + 1
+//            48..79  front: white; rear: the same gratings, in its own pixels
 //            80..95  both white
 //
-// Seen through the white front, the rear gratings' phase at each front position says which rear
-// point the straight line from the camera through that front point reaches: with the camera's
-// centre C known from the markers, that is the gap (the rear looks magnified by (C_z + g)/C_z
-// about C) and the rear panel's offset and rotation. The front gratings say where the front
+// Seen through the white front, the rear gratings' phases at each front position say which rear
+// point the straight line from the camera through that front point reaches, across and down:
+// with the camera's centre C known, that is the gap (the rear looks magnified by (C_z + g)/C_z
+// about C, and shifted by g tan of the camera's angle, whichever way the camera leans) and the
+// rear panel's offset and rotation. The front gratings say where the front
 // really is in the photo: thousands of points that fit the camera far better than the markers
 // alone (which the moire of two colour panels' stripes hides in dark bands), and next to each
 // rear band, so that what error is left of the mapping cancels in the difference. The two
@@ -54,9 +55,9 @@ struct BarrierShotPictures {
 };
 BarrierShotPictures drawBarrierShot(const BarrierShot& shot);
 
-// The gratings' values at a panel pixel's centre (pixel coordinate relative to the panel's
-// centre, in pixels): what drawBarrierShot draws and what the estimator fits.
-double frontGrating(double xFromCentrePx, double yFromCentrePx);
-double rearGratings(double xFromCentrePx);
+// The gratings' value at a panel pixel's centre (pixel coordinates relative to the panel's
+// centre, x right and y down, in pixels), on either layer: what drawBarrierShot draws and what
+// the estimator fits.
+double shotGratings(double xFromCentrePx, double yFromCentrePx);
 
 }  // namespace parallax::photocal
