@@ -90,10 +90,10 @@ std::vector<photomaker::PhoneCamera> randomPhones(Draw& draw, const CalibrationS
                                                   double whiteLevel) {
   photomaker::PhoneCamera base;
   const bool upright = halfH > halfW;
-  base.width = upright ? std::min(r.photoWidth, r.photoHeight)
-                       : std::max(r.photoWidth, r.photoHeight);
-  base.height = upright ? std::max(r.photoWidth, r.photoHeight)
-                        : std::min(r.photoWidth, r.photoHeight);
+  base.width =
+      upright ? std::min(r.photoWidth, r.photoHeight) : std::max(r.photoWidth, r.photoHeight);
+  base.height =
+      upright ? std::max(r.photoWidth, r.photoHeight) : std::min(r.photoWidth, r.photoHeight);
   base.samplesPerPixel = r.samplesPerPixel;
   base.k1 = draw.uniform(-0.1, 0.03);
   base.k2 = draw.uniform(-0.01, 0.04);
@@ -132,7 +132,6 @@ std::vector<photomaker::PhoneCamera> randomPhones(Draw& draw, const CalibrationS
     const double toCentre = std::hypot(c.positionMm[0], c.positionMm[1], c.positionMm[2]);
     c.focusDistanceMm = toCentre * draw.uniform(0.93, 1.07);
     c.apertureMm = r.blurMm >= 0 ? r.blurMm : draw.uniform(1.5, 3.0);
-    if (std::getenv("PARALLAX_STUDY_PSF")) c.blurSigmaPx = std::atof(std::getenv("PARALLAX_STUDY_PSF"));
     // A phone's lens, diffraction and demosaicing blur about a sensor pixel.
     c.blurSigmaPx = r.blurMm >= 0 ? 0.0 : draw.uniform(0.6, 1.2);
     // White on the panel, as the camera sees it, at 55 to 90 % of the sensor's range; the SNR is
@@ -147,9 +146,10 @@ std::vector<photomaker::PhoneCamera> randomPhones(Draw& draw, const CalibrationS
     photomaker::PhoneCamera& c = phones[i];
     c.focalPx = focal;
     if (std::getenv("PARALLAX_DEBUG_PHOTOCAL"))
-      std::fprintf(stderr, "truth photo %zu: C %.1f %.1f %.1f f %.1f (%.0f mm) k1 %.3f k2 %.3f\n",
+      std::fprintf(stderr,
+                   "truth photo %zu: C %.1f %.1f %.1f f %.1f (%.0f mm) k1 %.3f k2 %.3f psf %.2f\n",
                    i, c.positionMm[0], c.positionMm[1], c.positionMm[2], c.focalPx,
-                   c.focalPx / pxPerEquivalentMm, c.k1, c.k2);
+                   c.focalPx / pxPerEquivalentMm, c.k1, c.k2, c.blurSigmaPx);
   }
   return phones;
 }
@@ -228,6 +228,8 @@ CalibrationTrial barrierTrial(Draw& draw, const CalibrationStudyRequest& r,
                     designDisplay(measured).slitPeriodPx - designDisplay(true_).slitPeriodPx};
     trial.sigmas = {m.gapSigmaMm / truth.gapMm, m.maskPanelOffsetSigmaPx, m.rotationSigmaDegrees,
                     0};
+    trial.truths = {truth.gapMm, offsetPx, rotation};
+    trial.estimates = {m.gapMm, m.maskPanelOffsetPx, m.maskRotationDegrees};
     if (std::getenv("PARALLAX_DEBUG_PHOTOCAL"))
       std::fprintf(stderr, "gap %.4f (true %.4f), offset %.3f (true %.3f), rotation %.4f (%.4f)\n",
                    m.gapMm, truth.gapMm, m.maskPanelOffsetPx, offsetPx, m.maskRotationDegrees,
@@ -243,8 +245,7 @@ CalibrationTrial barrierTrial(Draw& draw, const CalibrationStudyRequest& r,
 }
 
 CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
-                                 const LenticularDesign& nominal, const Image& picture,
-                                 int index) {
+                                 const LenticularDesign& nominal, const Image& picture, int index) {
   const LenticularCalibration& c = nominal.calibration;
   const double D = nominal.viewDistanceMm;
   const photocal::PhaseField f0 = photocal::phaseFieldOf(nominal);
@@ -260,7 +261,8 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
   sheet.gapMm = 1.0;
   for (int i = 0; i < 8; ++i) {
     sheet.pitchMm = pitchAtD * D / (D + sheet.gapMm);
-    sheet.gapMm = sheet.pitchMm * D / (2 * D * std::tan(cone / 2) * std::cos(slant) - sheet.pitchMm);
+    sheet.gapMm =
+        sheet.pitchMm * D / (2 * D * std::tan(cone / 2) * std::cos(slant) - sheet.pitchMm);
   }
   sheet.phaseMm = draw.uniform(0, sheet.pitchMm);
   const LenticularCalibration truthCalibration =
@@ -283,9 +285,11 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
   if (std::getenv("PARALLAX_DEBUG_PHOTOCAL")) {
     // The truth as the estimator's model reads it (lenticular_estimate.h): m = s n / pitch,
     // phi = s phase / pitch, and per photo the fringes' gradient and phase at the centre.
-    const double mx = s * std::cos(slant) / sheet.pitchMm, my = -s * std::sin(slant) / sheet.pitchMm;
+    const double mx = s * std::cos(slant) / sheet.pitchMm,
+                 my = -s * std::sin(slant) / sheet.pitchMm;
     const double phi = wrapHalf(s * sheet.phaseMm / sheet.pitchMm);
-    std::fprintf(stderr, "truth sheet: g %.4f m %.6f %.6f phi %.4f; pitch %.5f slope %.5f center %.4f\n",
+    std::fprintf(stderr,
+                 "truth sheet: g %.4f m %.6f %.6f phi %.4f; pitch %.5f slope %.5f center %.4f\n",
                  sheet.gapMm, mx, my, phi, truthCalibration.pitch, truthCalibration.slope,
                  truthCalibration.center);
     for (const photomaker::PhoneCamera& phone : phones) {
@@ -301,38 +305,6 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
     photos.push_back(storedPhoto(draw, photomaker::photographLenticular(truth, picture, phones[i]),
                                  "lens-" + std::to_string(index) + "-" + std::to_string(i + 1),
                                  r.photos));
-  if (std::getenv("PARALLAX_DEBUG_PHOTOCAL_TRUECAM"))
-    for (size_t i = 0; i < phones.size(); ++i) {
-      const photomaker::PhoneCamera& ph = phones[i];
-      vision::CameraIntrinsics in{ph.focalPx, 0.5 * ph.width, 0.5 * ph.height, ph.k1, ph.k2};
-      vision::CameraPose pose;
-      const std::array<double, 3> centre{ph.positionMm[0], ph.positionMm[1],
-                                         ph.positionMm[2] + sheet.gapMm};
-      double f[3] = {ph.lookAtMm[0] - ph.positionMm[0], ph.lookAtMm[1] - ph.positionMm[1],
-                     ph.lookAtMm[2] - ph.positionMm[2]};
-      const double fl = std::hypot(f[0], f[1], f[2]);
-      for (double& v : f) v /= fl;
-      double rr[3] = {-f[2], 0, f[0]};
-      const double rl = std::hypot(rr[0], rr[2]);
-      rr[0] /= rl, rr[2] /= rl;
-      double d[3] = {f[1] * rr[2] - f[2] * rr[1], f[2] * rr[0] - f[0] * rr[2],
-                     f[0] * rr[1] - f[1] * rr[0]};
-      const double roll = ph.rollDegrees * kPi / 180;
-      double r2[3], d2[3];
-      for (int k = 0; k < 3; ++k) {
-        r2[k] = rr[k] * std::cos(roll) - d[k] * std::sin(roll);
-        d2[k] = rr[k] * std::sin(roll) + d[k] * std::cos(roll);
-      }
-      pose.rotation = {r2[0], r2[1], r2[2], d2[0], d2[1], d2[2], f[0], f[1], f[2]};
-      for (int k = 0; k < 3; ++k)
-        pose.translation[size_t(k)] = -(pose.rotation[size_t(3 * k)] * centre[0] +
-                                        pose.rotation[size_t(3 * k + 1)] * centre[1] +
-                                        pose.rotation[size_t(3 * k + 2)] * centre[2]);
-      const photocal::LenticularFringes fr =
-          photocal::readLenticularFringes(nominal, photos[i].photo, in, pose, sheet.gapMm);
-      std::fprintf(stderr, "true camera %zu: grad %.6f %.6f psi %.4f A %.3f\n", i, fr.gradient[0],
-                   fr.gradient[1], fr.phase, fr.amplitude);
-    }
   CalibrationTrial trial;
   const auto start = std::chrono::steady_clock::now();
   try {
@@ -341,15 +313,14 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
     trial.errors = {(m.measured.pitch - truthCalibration.pitch) / truthCalibration.pitch,
                     slantOf(m.measured.slope) - slantOf(truthCalibration.slope),
                     wrapHalf(m.measured.center - truthCalibration.center)};
-    const double dSlant = std::abs(slantOf(m.measured.slope + m.slopeSigma) -
-                                   slantOf(m.measured.slope));
+    const double dSlant =
+        std::abs(slantOf(m.measured.slope + m.slopeSigma) - slantOf(m.measured.slope));
     trial.sigmas = {m.pitchSigma / truthCalibration.pitch, dSlant, m.centerSigma};
   } catch (const InputError& e) {
     trial.refused = true;
     trial.refusal = e.what();
   }
-  trial.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  trial.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return trial;
 }
 
@@ -445,6 +416,17 @@ void runCalibrationStudy(const CalibrationStudyRequest& r, Reporter& reporter) {
     lines.push_back(printed("%-29s %14.3g   %15.3g   %s", study.quantities[q].c_str(), median,
                             p95, counted ? printed("%.0f %%", 100.0 * within / counted).c_str()
                                          : "-"));
+  }
+  for (size_t i = 0; i < study.trials.size(); ++i) {
+    const CalibrationTrial& t = study.trials[i];
+    const std::string at = "/trials/" + std::to_string(i);
+    json.set(at + "/refused", t.refused);
+    for (size_t q = 0; q < t.errors.size(); ++q)
+      json.set(at + "/errors/" + std::to_string(q), t.errors[q]);
+    for (size_t q = 0; q < t.truths.size(); ++q)
+      json.set(at + "/truths/" + std::to_string(q), t.truths[q]);
+    for (size_t q = 0; q < t.estimates.size(); ++q)
+      json.set(at + "/estimates/" + std::to_string(q), t.estimates[q]);
   }
   int refusal = 0;
   for (size_t i = 0; i < study.trials.size(); ++i)

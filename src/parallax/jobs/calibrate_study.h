@@ -35,6 +35,8 @@ struct CalibrationTrial {
   // barrier: gap (relative), offset (mask px), rotation (degrees), slit period at D (mask px)
   // lenticular: pitch (relative), slant (degrees), center (lens periods)
   std::vector<double> errors, sigmas;
+  // The truth and the estimate of each quantity (empty where not recorded).
+  std::vector<double> truths, estimates;
   double seconds = 0;
 };
 

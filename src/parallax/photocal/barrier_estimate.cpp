@@ -26,7 +26,9 @@ constexpr int kFrontBlockPx = kBlockPx / 2;  // the front needs no vernier: twic
 constexpr double kMinContrast = 0.03;  // a grating's amplitude over the mean light
 constexpr int kMinMarkers = 2;         // a first camera; the front's gratings fit it again
 constexpr int kCameraRounds = 5;
-constexpr double kTrustedShiftPx = 4;  // well inside half the periods (6 across, 16 down)
+// The blocks trusted in each round: well inside half the periods (6 across, 16 down) at first,
+// then ever nearer to where the better camera puts them.
+constexpr double kTrustedShiftPx[kCameraRounds] = {4, 3, 2, 1.5, 1.5};
 
 double wrap(double v, double period) {
   return v - period * std::round(v / period);
@@ -203,8 +205,8 @@ FrontBlocks measureFront(const BarrierShot& shot, const PhotoSampler& photo) {
 
 std::vector<vision::PlaneCorrespondence> frontPoints(const BarrierShot& shot,
                                                      const FrontBlocks& blocks,
-                                                     const vision::CameraFit& camera,
-                                                     size_t photo) {
+                                                     const vision::CameraFit& camera, size_t photo,
+                                                     double trustedShiftPx) {
   std::vector<vision::PlaneCorrespondence> points;
   const double rows = 0.5 * (BarrierShot::kFrontRows[0] + BarrierShot::kFrontRows[1]);
   for (int b = 0; b < blocks.bands; ++b)
@@ -212,7 +214,7 @@ std::vector<vision::PlaneCorrespondence> frontPoints(const BarrierShot& shot,
       const double sx = blocks.at(blocks.shiftX, b, j), sy = blocks.at(blocks.shiftY, b, j);
       // Only blocks the camera already puts near where they are: farther ones may have slipped
       // a period; the next round, with a better camera, takes them.
-      if (!(std::abs(sx) < kTrustedShiftPx && std::abs(sy) < kTrustedShiftPx)) continue;
+      if (!(std::abs(sx) < trustedShiftPx && std::abs(sy) < trustedShiftPx)) continue;
       const double x = shot.x0 + 4 + (j + 0.5) * kFrontBlockPx;
       const double y = shot.y0 + b * BarrierShot::kBandPx + rows;
       const vision::PhotoPoint p = vision::projectPoint(camera.intrinsics, camera.poses[photo],
@@ -243,7 +245,7 @@ BarrierMeasurement measureBarrier(const DisplaySpec& nominal, const std::vector<
     for (size_t i = 0; i < photos.size(); ++i) {
       const PhotoSampler photo(photos[i].photo, markers.fit.intrinsics, markers.fit.poses[i]);
       fronts[i] = measureFront(shot, photo);
-      more[i] = frontPoints(shot, fronts[i], markers.fit, i);
+      more[i] = frontPoints(shot, fronts[i], markers.fit, i, kTrustedShiftPx[round]);
       if (std::getenv("PARALLAX_DEBUG_PHOTOCAL")) {
         std::fprintf(stderr, "round %d photo %zu before: marker rms %.3f; shifts:", round, i, markers.fit.rmsErrorPx[i]);
         for (size_t k = 0; k < fronts[i].shiftX.size(); k += 7)
@@ -431,7 +433,46 @@ BarrierMeasurement measureBarrier(const DisplaySpec& nominal, const std::vector<
     const double constant = rowFor(b, component, row);
     return constant + row[0] * g + row[1] * sx + row[2] * sy + row[3] * theta;
   };
+  // The moire's phases say where each block's line lands only modulo a rear pixel; the gratings'
+  // first fit (pass 0) is good to a quarter of a pixel or so, which a wrong gap's slope across
+  // the panel can exceed. So between the passes, the gap is searched over its whole range for
+  // the one whose moire phases agree best (the phasors' sum is longest; s_x, which moves every
+  // block alike, drops out of its length), before the moire is unwrapped against it.
+  const auto coherentGap = [&](double thetaNow) {
+    double bestGap = g, bestLength = -1;
+    for (double trial = 0.6 * gap0; trial <= 1.4 * gap0; trial += 0.0005 * gap0) {
+      double re = 0, im = 0;
+      for (const RearBlock& b : blocks) {
+        const CameraAt& c = cameras[size_t(b.photo)];
+        const double xr = b.xMm + (b.xMm - c.x) * trial / c.z;
+        const double yr = b.yMm + (b.yMm - c.y) * trial / c.z;
+        const double model = (xr + thetaNow * yr) / rear.pitchMm - b.u0;
+        const double w = b.amplitude[3];
+        re += w * std::cos(kTwoPi * (b.shift[3] - model));
+        im += w * std::sin(kTwoPi * (b.shift[3] - model));
+      }
+      const double length = std::hypot(re, im);
+      if (length > bestLength) bestLength = length, bestGap = trial;
+    }
+    return bestGap;
+  };
   for (int pass = 0; pass < 4; ++pass) {
+    if (pass == 1) {
+      // s_x: the moire's common phase at the searched gap, its whole pixels from pass 0.
+      g = coherentGap(theta);
+      double re = 0, im = 0;
+      for (const RearBlock& b : blocks) {
+        const CameraAt& c = cameras[size_t(b.photo)];
+        const double xr = b.xMm + (b.xMm - c.x) * g / c.z;
+        const double yr = b.yMm + (b.yMm - c.y) * g / c.z;
+        const double model = (xr + theta * yr) / rear.pitchMm - b.u0;  // with s_x = 0
+        re += b.amplitude[3] * std::cos(kTwoPi * (b.shift[3] - model));
+        im += b.amplitude[3] * std::sin(kTwoPi * (b.shift[3] - model));
+      }
+      // shift = model - s_x / p: the common phase is -s_x / p modulo a pixel.
+      const double fraction = -std::atan2(im, re) / kTwoPi * rear.pitchMm;
+      sx = fraction + rear.pitchMm * std::round((sx - fraction) / rear.pitchMm);
+    }
     LeastSquares ls(4);
     // The first pass takes each block's vernier across (those near the median: a vernier that
     // slipped is a period off) and its shift down; later ones unwrap each component against the

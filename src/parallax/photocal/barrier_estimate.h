@@ -71,9 +71,11 @@ struct FrontBlocks {
 FrontBlocks measureFront(const BarrierShot& shot, const PhotoSampler& photo);
 // The blocks as points of the panel plane for a camera fit: the photo shows, where the camera
 // put each block's centre, the front point its phases say.
+// Only blocks within trustedShiftPx of where the camera puts them (a farther one may have
+// slipped a period).
 std::vector<vision::PlaneCorrespondence> frontPoints(const BarrierShot& shot,
                                                      const FrontBlocks& blocks,
-                                                     const vision::CameraFit& camera,
-                                                     size_t photo);
+                                                     const vision::CameraFit& camera, size_t photo,
+                                                     double trustedShiftPx);
 
 }  // namespace parallax::photocal

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
+#include <cstdlib>
 #include <numbers>
 
 #include "parallax/core/error.h"
@@ -18,108 +20,216 @@ namespace parallax::photocal {
 namespace {
 
 constexpr double kTwoPi = 2 * std::numbers::pi;
-constexpr double kMinCoherence = 0.3;
+constexpr double kMaxPhaseSigma = 0.05;  // cycles: a photo whose fringes say less is refused
 
 double wrapHalf(double v) {
   return v - std::round(v);
 }
 
 struct FringePlane {
-  double gx = 0, gy = 0, phase = 0;  // Psi / 2 pi = gx x + gy y + phase (cycles, mm)
-  double sigmaGradient = 0, sigmaPhase = 0;
-  double coherence = 0;
+  double gx = 0, gy = 0, phase = 0;  // arg z / 2 pi = gx x + gy y + phase (cycles, mm)
+  double amplitude = 0;              // |z| of the fit: 1 full contrast
+  double sigmaGx = 0, sigmaGy = 0, sigmaPhase = 0;
+  double coherence = 0;  // the fit's amplitude over the blocks' rms |z|: 1 clean, 0 none
   int samples = 0;
 };
 
-// The fringes' phase plane from the photo at lens-sheet points (x, y) on a grid of `step` mm.
-FringePlane fitFringes(const PhotoSampler& photo, double x0, double x1, double y0, double y1,
-                       double sheetZ, double step) {
-  const int nx = int((x1 - x0) / step), ny = int((y1 - y0) / step);
-  std::vector<std::array<float, 3>> rgb(size_t(nx) * size_t(ny));
-  std::vector<char> valid(rgb.size(), 0);
-  double mean[3] = {0, 0, 0}, square[3] = {0, 0, 0};
-  int count = 0;
+// The mean R, G, B of the photo over a rectangle of the sheet (mm, at depth sheetZ in the
+// marker camera's frame), sampled on a grid of `step`; false when less than half of it is in the
+// photo.
+bool meanRgb(const PhotoSampler& photo, double x0, double x1, double y0, double y1, double sheetZ,
+             double step, double rgb[3], int* count = nullptr) {
+  const int nx = std::max(1, int(std::lround((x1 - x0) / step)));
+  const int ny = std::max(1, int(std::lround((y1 - y0) / step)));
+  double sum[3] = {0, 0, 0};
+  int n = 0;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       float c[3];
-      const size_t k = size_t(j) * size_t(nx) + size_t(i);
-      if (!photo.rgbAt(photo.project(x0 + (i + 0.5) * step, y0 + (j + 0.5) * step, sheetZ), c))
-        continue;
-      valid[k] = 1;
-      for (int ch = 0; ch < 3; ++ch) {
-        rgb[k][size_t(ch)] = c[ch];
-        mean[ch] += c[ch];
-        square[ch] += double(c[ch]) * c[ch];
-      }
-      ++count;
+      const double x = x0 + (i + 0.5) * (x1 - x0) / nx, y = y0 + (j + 0.5) * (y1 - y0) / ny;
+      if (!photo.rgbAt(photo.project(x, y, sheetZ), c)) continue;
+      for (int ch = 0; ch < 3; ++ch) sum[ch] += c[ch];
+      ++n;
     }
+  if (count) *count += n;
+  if (2 * n < nx * ny) return false;
+  for (int ch = 0; ch < 3; ++ch) rgb[ch] = sum[ch] / n;
+  return true;
+}
+
+// The fringes' phasor plane. The photo is read in blocks of the sheet (a few mm: the fringes
+// move by far less than a cycle across one), each block's mean colour turned into the phasor
+// z = (R / (kR G) - 1) + i (B / (kB G) - 1): the shot's green is the mid level everywhere (1/2)
+// and R, B swing about it, so without any mean taken out a fringe flatter than a cycle keeps its
+// phase; kR, kB are the camera's colour balance, from the white band around the interior; G is
+// smoothed (a quadratic over the sheet: the exposure's fall-off) so that its noise does not
+// divide. A common black level only scales z. Then z = A exp(2 pi i (gx x + gy y + phase)):
+// the gradient from the periodogram's peak, refined by Gauss-Newton on the demodulated blocks.
+FringePlane fitFringes(const PhotoSampler& photo, const LenticularShot& shot, double sheetZ,
+                       double x0, double x1, double y0, double y1, double searchRange) {
   FringePlane plane;
-  plane.samples = count;
-  if (count < 100) return plane;
-  double amplitude[3];
-  for (int ch = 0; ch < 3; ++ch) {
-    mean[ch] /= count;
-    amplitude[ch] = std::sqrt(std::max(1e-12, 2 * (square[ch] / count - mean[ch] * mean[ch])));
+  const double pxPerMm = photo.pixelsPerMm(0, 0);
+  const double area = (x1 - x0) * (y1 - y0);
+  if (!(pxPerMm > 0) || !(area > 0)) return plane;
+  // Two samples a photo pixel, at most about a million over the interior.
+  const double step = std::max(0.5 / pxPerMm, std::sqrt(area / 1e6));
+  // The colour balance from the white quiet zone between the markers and the interior.
+  const PanelGrid& g = shot.panel;
+  const MarkerRing& ring = shot.ring;
+  const double inner = (ring.quietPx + ring.markerPx + 0.25 * ring.quietPx) * g.pitchMm;
+  const double outer = (ring.quietPx + ring.markerPx + 0.75 * ring.quietPx) * g.pitchMm;
+  const double hw = 0.5 * g.width * g.pitchMm, hh = 0.5 * g.height * g.pitchMm;
+  double white[3] = {0, 0, 0};
+  int whiteCount = 0;
+  const double strips[4][4] = {{-hw + inner, hw - inner, hh - outer, hh - inner},
+                               {-hw + inner, hw - inner, -hh + inner, -hh + outer},
+                               {-hw + inner, -hw + outer, -hh + outer, hh - outer},
+                               {hw - outer, hw - inner, -hh + outer, hh - outer}};
+  for (const auto& strip : strips) {
+    double rgb[3];
+    int n = 0;
+    if (!meanRgb(photo, strip[0], strip[1], strip[2], strip[3], sheetZ, step, rgb, &n)) continue;
+    for (int ch = 0; ch < 3; ++ch) white[ch] += rgb[ch] * n;
+    whiteCount += n;
   }
-  // The phasor red + i blue, each channel's mean and amplitude taken out.
-  std::vector<std::complex<double>> z(rgb.size());
-  for (size_t k = 0; k < z.size(); ++k)
-    if (valid[k])
-      z[k] = {(rgb[k][0] - mean[0]) / amplitude[0], (rgb[k][2] - mean[2]) / amplitude[2]};
-  // The gradient from neighbours' phase differences (the fringes change by far less than half a
-  // cycle from one grid point to the next), then the phase from the demodulated sum.
-  std::complex<double> sx = 0, sy = 0;
+  if (whiteCount < 100 || !(white[1] > 0)) return plane;
+  const double kR = white[0] / white[1], kB = white[2] / white[1];
+  // The blocks.
+  const double block = std::clamp(std::sqrt(area / 400), 0.25, 2.0);
+  const int nx = std::max(2, int((x1 - x0) / block)), ny = std::max(2, int((y1 - y0) / block));
+  const double bx = (x1 - x0) / nx, by = (y1 - y0) / ny;
+  struct Block {
+    double x, y, rgb[3];
+    int i, j;
+  };
+  std::vector<Block> blocks;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const size_t k = size_t(j) * size_t(nx) + size_t(i);
-      if (!valid[k]) continue;
-      if (i + 1 < nx && valid[k + 1]) sx += z[k + 1] * std::conj(z[k]);
-      if (j + 1 < ny && valid[k + size_t(nx)]) sy += z[k + size_t(nx)] * std::conj(z[k]);
+      Block b{x0 + (i + 0.5) * bx, y0 + (j + 0.5) * by, {0, 0, 0}, i, j};
+      if (meanRgb(photo, b.x - 0.5 * bx, b.x + 0.5 * bx, b.y - 0.5 * by, b.y + 0.5 * by, sheetZ,
+                  step, b.rgb, &plane.samples))
+        blocks.push_back(b);
     }
-  plane.gx = std::arg(sx) / (kTwoPi * step);
-  plane.gy = std::arg(sy) / (kTwoPi * step);
-  // Gauss-Newton on the phase residuals, weighted by each phasor's length.
-  for (int iteration = 0; iteration < 4; ++iteration) {
+  if (blocks.size() < 16) return plane;
+  // The green level, smoothed.
+  const double sx = 2 / (x1 - x0), sy = 2 / (y1 - y0), cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+  const auto basis = [&](double x, double y, double row[6]) {
+    const double u = (x - cx) * sx, v = (y - cy) * sy;
+    row[0] = 1, row[1] = u, row[2] = v, row[3] = u * u, row[4] = u * v, row[5] = v * v;
+  };
+  LeastSquares greenFit(6);
+  for (const Block& b : blocks) {
+    double row[6];
+    basis(b.x, b.y, row);
+    greenFit.add(row, b.rgb[1]);
+  }
+  std::vector<double> green;
+  if (!greenFit.solve(green)) return plane;
+  std::vector<std::complex<double>> z(blocks.size());
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    double row[6], level = 0;
+    basis(blocks[k].x, blocks[k].y, row);
+    for (int i = 0; i < 6; ++i) level += green[size_t(i)] * row[i];
+    if (!(level > 1e-6)) return plane;
+    z[k] = {blocks[k].rgb[0] / (kR * level) - 1, blocks[k].rgb[2] / (kB * level) - 1};
+  }
+  // The periodogram's peak over gradients within searchRange (cycles per mm), a quarter cycle
+  // over the interior apart: separable over the block grid (rows first).
+  const double stepX = 0.25 / (x1 - x0), stepY = 0.25 / (y1 - y0);
+  const int mx = int(std::ceil(searchRange / stepX)), my = int(std::ceil(searchRange / stepY));
+  std::vector<std::complex<double>> grid(size_t(nx) * size_t(ny), 0.0);
+  std::vector<std::complex<double>> rows(size_t(ny), 0.0);
+  for (size_t k = 0; k < blocks.size(); ++k) grid[size_t(blocks[k].j * nx + blocks[k].i)] = z[k];
+  double best = -1;
+  for (int a = -mx; a <= mx; ++a) {
+    const double gx = a * stepX;
+    const std::complex<double> turn = std::polar(1.0, -kTwoPi * gx * bx);
+    for (int j = 0; j < ny; ++j) {
+      std::complex<double> sum = 0, w = std::polar(1.0, -kTwoPi * gx * (x0 + 0.5 * bx));
+      for (int i = 0; i < nx; ++i, w *= turn) sum += grid[size_t(j * nx + i)] * w;
+      rows[size_t(j)] = sum;
+    }
+    for (int c = -my; c <= my; ++c) {
+      const double gy = c * stepY;
+      const std::complex<double> turnY = std::polar(1.0, -kTwoPi * gy * by);
+      std::complex<double> sum = 0, w = std::polar(1.0, -kTwoPi * gy * (y0 + 0.5 * by));
+      for (int j = 0; j < ny; ++j, w *= turnY) sum += rows[size_t(j)] * w;
+      if (std::norm(sum) > best) best = std::norm(sum), plane.gx = gx, plane.gy = gy;
+    }
+  }
+  // Gauss-Newton: each block demodulated by the model, w = z exp(-2 pi i theta) = A + noise;
+  // its imaginary part is A 2 pi (the model's phase error) to first order.
+  double rms = 0;
+  for (const auto& v : z) rms += std::norm(v);
+  rms = std::sqrt(rms / double(z.size()));
+  for (int iteration = 0; iteration < 6; ++iteration) {
     std::complex<double> sum = 0;
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const size_t k = size_t(j) * size_t(nx) + size_t(i);
-        if (!valid[k]) continue;
-        const double x = x0 + (i + 0.5) * step, y = y0 + (j + 0.5) * step;
-        sum += z[k] * std::polar(1.0, -kTwoPi * (plane.gx * x + plane.gy * y));
-      }
+    for (size_t k = 0; k < blocks.size(); ++k)
+      sum += z[k] * std::polar(1.0, -kTwoPi * (plane.gx * blocks[k].x + plane.gy * blocks[k].y));
     plane.phase = std::arg(sum) / kTwoPi;
+    plane.amplitude = std::abs(sum) / double(blocks.size());
     LeastSquares ls(3);
-    double weights = 0, squares = 0, length = 0;
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const size_t k = size_t(j) * size_t(nx) + size_t(i);
-        if (!valid[k]) continue;
-        const double x = x0 + (i + 0.5) * step, y = y0 + (j + 0.5) * step;
-        const double w = std::abs(z[k]);
-        const double r =
-            wrapHalf(std::arg(z[k]) / kTwoPi - (plane.gx * x + plane.gy * y + plane.phase));
-        const double row[3] = {x, y, 1};
-        ls.add(row, r, w * w);
-        weights += w * w;
-        squares += w * w * r * r;
-        length += w;
-      }
+    double noise = 0;
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      const Block& b = blocks[k];
+      const std::complex<double> w =
+          z[k] * std::polar(1.0, -kTwoPi * (plane.gx * b.x + plane.gy * b.y + plane.phase));
+      const double row[3] = {b.x, b.y, 1};
+      ls.add(row, w.imag() / (kTwoPi * plane.amplitude));
+      noise += std::norm(w - plane.amplitude);
+    }
     std::vector<double> d, covariance;
     if (!ls.solve(d, &covariance)) return plane;
     plane.gx += d[0], plane.gy += d[1], plane.phase += d[2];
-    const double variance = squares / std::max(1.0, weights);
-    // The samples are not independent (the photo's blur and the lenses' steps join
-    // neighbours): count one per lens-sized cell, about a square millimetre.
-    const double correlation = std::max(1.0, 1.0 / (step * step));
-    plane.sigmaGradient = std::sqrt(variance * covariance[0] * weights * correlation);
-    plane.sigmaPhase = std::sqrt(variance * covariance[8] * weights * correlation);
-    plane.coherence = std::abs(sum) / std::max(1e-12, length);
+    // The noise of one component of one block, over (2 pi A)^2 per unit of phase.
+    const double variance = noise / (2.0 * std::max(1.0, double(blocks.size()) - 4)) /
+                            std::pow(kTwoPi * std::max(plane.amplitude, 1e-9), 2);
+    plane.sigmaGx = std::sqrt(variance * covariance[0]);
+    plane.sigmaGy = std::sqrt(variance * covariance[4]);
+    plane.sigmaPhase = std::sqrt(variance * covariance[8]);
+    plane.coherence = plane.amplitude / std::max(1e-12, rms);
   }
+  plane.phase -= std::floor(plane.phase);
   return plane;
 }
 
+// The interior the fringes are read over (sheet mm): the shot's, 2 mm in.
+struct Interior {
+  double x0, x1, y0, y1;
+};
+Interior interiorOf(const LenticularShot& shot) {
+  const double margin = 2.0;
+  return {shot.panel.xMm(shot.x0) + margin, shot.panel.xMm(shot.x1) - margin,
+          shot.panel.yMm(shot.y1) + margin, shot.panel.yMm(shot.y0) - margin};
+}
+
+double searchRangeOf(const PhaseField& field) {
+  // The fringes' gradient: within a few percent of the field's (the nominal within about 1 %
+  // of the truth, and the gap's term g / C_z small).
+  return 0.03 * std::hypot(field.gx, field.gy) + 0.01;
+}
+
 }  // namespace
+
+LenticularFringes readLenticularFringes(const LenticularDesign& nominal, const vision::Photo& photo,
+                                        const vision::CameraIntrinsics& intrinsics,
+                                        const vision::CameraPose& pixelPlanePose, double gapMm) {
+  const LenticularShot shot = lenticularShot(nominal);
+  const Interior in = interiorOf(shot);
+  const PhotoSampler sampler(photo, intrinsics, pixelPlanePose, true);
+  const FringePlane plane = fitFringes(sampler, shot, gapMm, in.x0, in.x1, in.y0, in.y1,
+                                       searchRangeOf(phaseFieldOf(nominal)));
+  const double s = nominal.calibration.invView ? -1.0 : 1.0;
+  LenticularFringes f;
+  f.gradient = {s * plane.gx, s * plane.gy};
+  f.gradientSigma = {plane.sigmaGx, plane.sigmaGy};
+  f.phase = s * plane.phase - std::floor(s * plane.phase);
+  f.phaseSigma = plane.sigmaPhase;
+  f.amplitude = plane.amplitude;
+  f.coherence = plane.coherence;
+  f.samples = plane.samples;
+  return f;
+}
 
 LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
                                         const std::vector<NamedPhoto>& photos,
@@ -149,14 +259,15 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
   out.k2 = camera.intrinsics.k2;
   std::vector<FringePlane> planes;
   std::vector<std::array<double, 3>> centres;  // over the lens sheet
-  const double margin = 2.0;                   // mm inside the shot's interior
-  const double x0 = shot.panel.xMm(shot.x0) + margin, x1 = shot.panel.xMm(shot.x1) - margin;
-  const double y0 = shot.panel.yMm(shot.y1) + margin, y1 = shot.panel.yMm(shot.y0) - margin;
+  const Interior in = interiorOf(shot);
+  const double searchRange = searchRangeOf(field);
+  const bool debug = std::getenv("PARALLAX_DEBUG_PHOTOCAL") != nullptr;
   for (size_t i = 0; i < photos.size(); ++i) {
     std::array<double, 3> c = cameraCentre(markers, i, photos[i].name);
     c[2] -= gapGuess;
     const PhotoSampler photo(photos[i].photo, camera.intrinsics, camera.poses[i], true);
-    const FringePlane plane = fitFringes(photo, x0, x1, y0, y1, gapGuess, 0.25);
+    const FringePlane plane =
+        fitFringes(photo, shot, gapGuess, in.x0, in.x1, in.y0, in.y1, searchRange);
     LenticularPhotoReport report;
     report.name = photos[i].name;
     report.cameraMm = c;
@@ -169,11 +280,19 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
     const double s = invView ? -1.0 : 1.0;
     report.fringeGradient = {s * plane.gx, s * plane.gy};
     report.fringePhase = s * plane.phase;
-    if (!(plane.coherence > kMinCoherence))
+    if (debug)
+      std::fprintf(stderr,
+                   "photo %s: C %.1f %.1f %.1f, %d markers rms %.2f px, fringes A %.3f coherence "
+                   "%.2f grad %.6f %.6f (+- %.1e %.1e) psi %.4f (+- %.4f)\n",
+                   report.name.c_str(), c[0], c[1], c[2], report.markers, report.markerRmsPx,
+                   plane.amplitude, plane.coherence, report.fringeGradient[0],
+                   report.fringeGradient[1], plane.sigmaGx, plane.sigmaGy, report.fringePhase,
+                   plane.sigmaPhase);
+    if (!(plane.sigmaPhase < kMaxPhaseSigma))
       throw InputError(photos[i].name, "",
-                       "the fringes are not resolved (coherence " +
-                           std::to_string(plane.coherence).substr(0, 4) +
-                           "): too blurred, shaken, or not the lens shot's panel");
+                       "the fringes are not resolved (their phase within " +
+                           std::to_string(plane.sigmaPhase).substr(0, 4) +
+                           " of a cycle only): too blurred, shaken, or not the lens shot's panel");
     out.photos.push_back(report);
     planes.push_back(plane);
     centres.push_back(c);
@@ -181,42 +300,74 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
   }
 
   // ---- the sheet: g, m (2), phi from every photo's plane --------------------------------------
-  std::vector<double> x{gapGuess, field.gx, field.gy, 0}, covariance;
+  // psi_i = phi - g L_i + r0 (mod 1) with the lever L_i = G . C_i / C_z: the phases pin g far
+  // better than the gradients do, but only modulo 1 / (L_i - L_j). The branch is the one that
+  // best agrees with the gradients and the nominal gap together: a search over g, each g with
+  // its best m (the gradients' mean) and phi (the phases' circular mean), then least squares.
+  const size_t n = planes.size();
+  std::vector<double> lever(n), wg(n), wp(n);
+  // Each photo's fringes are off the model by more than their noise: the colour moire of the
+  // lenses against the subpixels and the sensor, and the camera's pose from the markers. The
+  // floors are what photos through a known camera show (the photo maker, 60 dB).
+  constexpr double kGradientFloor = 1.5e-4, kPhaseFloor = 0.004;
+  for (size_t i = 0; i < n; ++i) {
+    FringePlane& p = planes[i];
+    p.sigmaGx = std::hypot(p.sigmaGx, kGradientFloor);
+    p.sigmaGy = std::hypot(p.sigmaGy, kGradientFloor);
+    p.sigmaPhase = std::hypot(p.sigmaPhase, kPhaseFloor);
+    const std::array<double, 3>& c = centres[i];
+    lever[i] = (field.gx * c[0] + field.gy * c[1]) / c[2];
+    wg[i] = 1 / (p.sigmaGx * p.sigmaGx + p.sigmaGy * p.sigmaGy);
+    wp[i] = 1 / (p.sigmaPhase * p.sigmaPhase);
+  }
+  const double priorSigma = 0.3 * gapGuess;
+  double bestCost = 1e300, bestG = gapGuess, bestPhi = 0;
+  for (double g = 0.3 * gapGuess; g <= 2.0 * gapGuess; g += 0.0005 * gapGuess) {
+    double mx = 0, my = 0, wsum = 0;
+    std::complex<double> mean = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const double k = 1 + g / centres[i][2];
+      mx += wg[i] * (field.gx * k - out.photos[i].fringeGradient[0]);
+      my += wg[i] * (field.gy * k - out.photos[i].fringeGradient[1]);
+      wsum += wg[i];
+      mean += wp[i] * std::polar(1.0, kTwoPi * (out.photos[i].fringePhase + g * lever[i]));
+    }
+    mx /= wsum, my /= wsum;
+    const double phi = std::arg(mean) / kTwoPi - field.r0;
+    double cost = std::pow((g - gapGuess) / priorSigma, 2);
+    for (size_t i = 0; i < n; ++i) {
+      const double k = 1 + g / centres[i][2];
+      cost += wg[i] * (std::pow(field.gx * k - mx - out.photos[i].fringeGradient[0], 2) +
+                       std::pow(field.gy * k - my - out.photos[i].fringeGradient[1], 2));
+      cost += wp[i] *
+              std::pow(wrapHalf(out.photos[i].fringePhase - (phi - g * lever[i] + field.r0)), 2);
+    }
+    if (cost < bestCost) bestCost = cost, bestG = g, bestPhi = phi;
+  }
+  std::vector<double> x{bestG, field.gx * (1 + bestG / D), field.gy * (1 + bestG / D), bestPhi},
+      covariance;
   for (int pass = 0; pass < 3; ++pass) {
     LeastSquares ls(4);
-    for (size_t i = 0; i < planes.size(); ++i) {
+    for (size_t i = 0; i < n; ++i) {
       const LenticularPhotoReport& p = out.photos[i];
       const std::array<double, 3>& c = centres[i];
-      const double wg = 1 / std::pow(std::max(planes[i].sigmaGradient, 1e-9), 2);
-      const double wp = 1 / std::pow(std::max(planes[i].sigmaPhase, 1e-6), 2);
       const double rowX[4] = {field.gx / c[2], -1, 0, 0};
-      ls.add(rowX, p.fringeGradient[0] - field.gx, wg);
+      ls.add(rowX, p.fringeGradient[0] - field.gx, 1 / std::pow(planes[i].sigmaGx, 2));
       const double rowY[4] = {field.gy / c[2], 0, -1, 0};
-      ls.add(rowY, p.fringeGradient[1] - field.gy, wg);
-      if (pass == 0) continue;  // the phases are unwrapped against the first pass's sheet
-      const double lever = (field.gx * c[0] + field.gy * c[1]) / c[2];
-      const double model = x[3] - x[0] * lever + field.r0;
+      ls.add(rowY, p.fringeGradient[1] - field.gy, 1 / std::pow(planes[i].sigmaGy, 2));
+      const double model = x[3] - x[0] * lever[i] + field.r0;
       const double seen = model + wrapHalf(p.fringePhase - model);
-      const double rowPhase[4] = {-lever, 0, 0, 1};
-      ls.add(rowPhase, seen - field.r0, wp);
-    }
-    if (pass == 0) {
-      // Without the phases yet, phi is free: pin it (it does not enter the gradients).
-      const double pin[4] = {0, 0, 0, 1};
-      ls.add(pin, 0, 1);
+      const double rowPhase[4] = {-lever[i], 0, 0, 1};
+      ls.add(rowPhase, seen - field.r0, wp[i]);
     }
     if (!ls.solve(x, &covariance))
       throw InputError("photos", "", "the photos do not constrain the lens sheet");
   }
+  if (debug)
+    std::fprintf(stderr, "sheet: g %.4f (+- %.4f, guess %.4f) m %.6f %.6f phi %.4f\n", x[0],
+                 std::sqrt(covariance[0]), gapGuess, x[1], x[2], x[3]);
   out.gapMm = x[0];
   out.gapSigmaMm = std::sqrt(std::max(0.0, covariance[0]));
-  if (!(out.gapSigmaMm < 0.1 * gapGuess)) {
-    std::string all;
-    for (const NamedPhoto& p : photos) all += (all.empty() ? "" : ", ") + p.name;
-    throw InputError(all, "",
-                     "the photos are all from about one distance: the lens sheet's gap is left "
-                     "open; take two, one at least a quarter nearer than the other");
-  }
   const auto fieldOf = [&](const std::vector<double>& v) {
     PhaseField f{v[1] / (1 + v[0] / D), v[2] / (1 + v[0] / D), 0.5 - v[3]};
     f.r0 -= std::floor(f.r0);
@@ -243,6 +394,17 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
   out.pitchSigma = std::sqrt(std::max(0.0, variance[0]));
   out.slopeSigma = std::sqrt(std::max(0.0, variance[1]));
   out.centerSigma = std::sqrt(std::max(0.0, variance[2]));
+  // The centre needs the gap (the phases seen from off the axis carry g times the lever): photos
+  // whose levers and distances are too alike leave it open.
+  if (!(out.gapSigmaMm < 0.25 * gapGuess) || !(out.centerSigma < 0.05)) {
+    std::string all;
+    for (const NamedPhoto& p : photos) all += (all.empty() ? "" : ", ") + p.name;
+    throw InputError(all, "",
+                     "the photos leave the lens sheet's gap open (the centre only within " +
+                         std::to_string(out.centerSigma).substr(0, 5) +
+                         " of a lens): take two, one at least a quarter nearer than the other "
+                         "and from another side");
+  }
   out.slantDegrees = std::atan2(-x[2], x[1]) * 180 / std::numbers::pi * (invView ? 1 : -1);
   const double m2 = x[1] * x[1] + x[2] * x[2];
   out.slantSigmaDegrees =

@@ -9,8 +9,13 @@
 //   grad psi = G (1 + g / C_z) - m,   psi(0) = phi - (g / C_z) G . C + r0   (mod 1)
 //
 // (G, r0 the nominal field, lenticular_model.h; m = s n / pitch and phi = s phase / pitch the
-// sheet's). Two photos from distances apart separate g from m; one more unknown, phi, from the
-// fringes' phase.
+// sheet's). Checked against the photo maker (calibrate_photo_job_test.cpp): the truth's own
+// calibration seen from (0, 0, D) shows no fringes and the phase 1/2. The fringes are read as the
+// phasor (R / (kR G) - 1) + i (B / (kB G) - 1) (no mean taken out: a fringe flatter than a cycle
+// keeps its phase; kR, kB the colour balance from the white band). The phases pin g (through the
+// lever G . C / C_z, which differs between photos from different sides) far better than the
+// gradients do, but modulo 1 / (L_1 - L_2): the branch is the one the gradients and the nominal
+// gap agree with best. Two photos from distances and sides apart separate g, m and phi.
 #pragma once
 
 #include <array>
@@ -44,6 +49,20 @@ struct LenticularMeasurement {
   double focalPx = 0, focalSigmaPx = 0, k1 = 0, k2 = 0;
   std::vector<LenticularPhotoReport> photos;
 };
+
+// One photo's fringes read through a known camera (its pose of the pixel plane, as the markers
+// give it: the lens sheet at z = gapMm): psi's gradient (cycles per mm of the sheet, display
+// frame) and its phase at the panel's centre, the raw phase less the lens count as the model
+// above means it, with their standard deviations; amplitude 1 for full contrast.
+struct LenticularFringes {
+  std::array<double, 2> gradient{}, gradientSigma{};
+  double phase = 0, phaseSigma = 0;  // phase in [0, 1)
+  double amplitude = 0, coherence = 0;
+  int samples = 0;
+};
+LenticularFringes readLenticularFringes(const LenticularDesign& nominal, const vision::Photo& photo,
+                                        const vision::CameraIntrinsics& intrinsics,
+                                        const vision::CameraPose& pixelPlanePose, double gapMm);
 
 // Measures from the photos (any order; at least two, from distances at least a fifth apart).
 // Throws InputError(photo, "", what is missing) for a photo that does not show the shot well

@@ -10,9 +10,10 @@ namespace parallax::photocal {
 LenticularShot lenticularShot(const LenticularDesign& d) {
   LenticularShot shot;
   shot.panel = {d.calibration.screenW, d.calibration.screenH, d.pixelPitchMm};
-  // Cells a 72nd of the shorter side (21 pixels, 1.6 mm, on a Portrait: three lenses), big
-  // enough to read through the lenses.
-  shot.ring = markerRing(shot.panel, LenticularShot::kFirstMarkerId, 72);
+  // Cells a 40th of the shorter side (38 pixels, 3 mm, on a Portrait: six lenses): read
+  // through the lenses from twice the design distance, where a small panel with a large D (a
+  // Portrait: 120 mm wide, D = 1.37 m) is a few hundred photo pixels across even at 70 mm.
+  shot.ring = markerRing(shot.panel, LenticularShot::kFirstMarkerId, 40);
   const int inset = shot.ring.bandPx() + shot.ring.quietPx;
   shot.x0 = shot.y0 = inset;
   shot.x1 = shot.panel.width - inset;

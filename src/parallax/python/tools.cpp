@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "parallax/jobs/calibrate_job.h"
+#include "parallax/jobs/calibrate_photo_job.h"
 #include "parallax/jobs/interlace_job.h"
 #include "parallax/python/bindings_internal.h"
 
@@ -127,6 +128,40 @@ void calibrationPatternsFiles(const std::string& output, const std::string& disp
   jobs::runCalibrationPatterns(r, jobs::silentReporter());
 }
 
+// `parallax calibrate patterns --photo`: the shots' folder; returns its index.json.
+std::string calibrationPhotoPatterns(const std::string& output, const std::string& display) {
+  jobs::CalibrationShotsRequest r;
+  r.display = display;
+  r.output = output;
+  {
+    py::gil_scoped_release released;
+    jobs::runCalibrationShots(r, jobs::silentReporter());
+  }
+  return jobs::calibrationShots(r, jobs::silentReporter()).index;
+}
+
+// `parallax calibrate photo`: the report (the --json object) and the measured display's text,
+// written to `output` too when it is given.
+std::pair<std::string, std::string> calibratePhoto(const std::string& shots,
+                                                   const std::vector<std::string>& photos,
+                                                   const std::string& output,
+                                                   const std::string& display) {
+  jobs::CalibratePhotoRequest r;
+  r.shots = shots;
+  r.photos = photos;
+  r.output = output;
+  r.display = display;
+  r.json = true;
+  py::gil_scoped_release released;
+  jobs::RecordingReporter reporter;
+  if (!output.empty()) {
+    jobs::runCalibratePhoto(r, reporter);
+    return {reporter.results.back(), ""};
+  }
+  const jobs::PhotoCalibration result = jobs::calibrateFromPhotos(r, reporter);
+  return {result.json, result.measuredText};
+}
+
 // `lenticular simulate` in memory: the panel picture seen from the eye through the lenses.
 py::array_t<float> lenticularSimulate(const py::array& image, const DisplayDescription& display,
                                       const std::optional<std::array<double, 3>>& eye,
@@ -162,6 +197,10 @@ void bindTools(py::module_& module) {
   module.def("_calibration_patterns", &calibrationPatterns, py::arg("display"));
   module.def("_calibration_patterns_files", &calibrationPatternsFiles, py::arg("output"),
              py::arg("display"));
+  module.def("_calibration_photo_patterns", &calibrationPhotoPatterns, py::arg("output"),
+             py::arg("display"));
+  module.def("_calibrate_photo", &calibratePhoto, py::arg("shots"), py::arg("photos"),
+             py::arg("output"), py::arg("display"));
   module.def("_lenticular_simulate", &lenticularSimulate, py::arg("image"), py::arg("display"),
              py::kw_only(), py::arg("eye") = py::none(), py::arg("distance") = 0.0,
              py::arg("lens_spot") = py::none(), py::arg("bundles") = "");

@@ -22,7 +22,7 @@ from ._parallax import (Display, Error, Scene, __version__, load_display, load_s
 __all__ = [
     "Display", "Error", "Scene", "RenderResult", "QuiltResult", "load_scene", "load_display",
     "design", "render", "render_files", "view", "ideal_view", "quilt", "simulate", "sweep_eyes", "sweep",
-    "quality", "to_srgb8", "version", "__version__", "set_limits", "estimate_memory", "interlace", "interlace_files", "CalibrationPatterns", "calibration_patterns", "calibration_patterns_files", "lenticular_simulate",
+    "quality", "to_srgb8", "version", "__version__", "set_limits", "estimate_memory", "interlace", "interlace_files", "CalibrationPatterns", "calibration_patterns", "calibration_patterns_files", "calibration_photo_patterns", "calibrate_photo", "lenticular_simulate",
 ]
 
 Eye = Tuple[float, float, float]
@@ -302,6 +302,29 @@ def calibration_patterns_files(output: str = "calibration", display: Optional[st
     _parallax._calibration_patterns_files(str(output), "" if display is None else str(display),
                                           **settings)
     return json.load(open(os.path.join(str(output), "index.json")))
+
+
+def calibration_photo_patterns(output: str = "shots", display: Optional[str] = None) -> dict:
+    """`parallax calibrate patterns --photo [--display DISPLAY] -o OUTPUT`: the shots to show on
+    the panels and photograph with a phone (any display kind: a barrier file, a lenticular
+    calibration or lkg:NAME; docs/calibration.md, "From photos"). Returns index.json."""
+    return json.loads(_parallax._calibration_photo_patterns(
+        str(output), "" if display is None else str(display)))
+
+
+def calibrate_photo(shots: str, photos: Sequence[str], output: Optional[str] = None,
+                    display: Optional[str] = None) -> dict:
+    """`parallax calibrate photo [--display NOMINAL] --shots SHOTS PHOTO... -o OUTPUT --json`: the
+    display measured from the photos (each named after its shot: grid-1.jpg). Returns the
+    report (`--json`'s object: each estimate with its sigma); with `output`, the measured display
+    file is written there, else the report's "measured" key holds its text."""
+    report, measured = _parallax._calibrate_photo(
+        str(shots), [str(p) for p in photos], "" if output is None else str(output),
+        "" if display is None else str(display))
+    result = json.loads(report)
+    if output is None:
+        result["measured"] = measured
+    return result
 
 
 def lenticular_simulate(image: np.ndarray, display: Display, *,

@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# `parallax calibrate patterns --photo`, `calibrate photo` and `calibrate study` as a user meets
+# them: the shots for each display kind, photos made by the photo maker (the study keeps them)
+# measured through the command line as a user's are, and the refusals of bad photos.
+# Usage: cli_calibrate_photo_test.sh PARALLAX_BINARY SOURCE_DIR
+set -u
+source "$(dirname "$0")/cli_lib.sh" "$1" "$2"
+# near A B TOLERANCE: |A - B| <= TOLERANCE
+near() {
+  [ -n "$1" ] && [ -n "$2" ] &&
+    awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'
+}
+
+# The shots: the barrier's two layers at their resolution, and the index naming them.
+check "barrier shots" run 0 calibrate patterns --photo -o "$tmp/shots"
+check "shots: index kind" test "$(json_at "$tmp/shots/index.json" /kind)" = barrier
+check "shots: the grid shot" test "$(json_at "$tmp/shots/index.json" /shots/0/name)" = grid
+for f in grid-image grid-mask; do
+  check "shots: $f.png is 1920x1080" test "$(png_size "$tmp/shots/$f.png")" = 1920x1080
+done
+check "shots: the nominal display kept" run 0 design "$tmp/shots/display.json"
+# Any display kind, Looking Glass presets by name too.
+check "lenticular shots" run 0 calibrate patterns --photo --display lkg:portrait -o "$tmp/lshots"
+check "lenticular shot: the panel" test "$(png_size "$tmp/lshots/lens-panel.png")" = 1536x2048
+check "lenticular shot: index" test "$(json_at "$tmp/lshots/index.json" /shots/0/panel)" = \
+  lens-panel.png
+
+# Photos from the photo maker: one set of the built-in display as a 12-megapixel phone takes
+# them, the true display's gap up to 20 % off and its mask panel sitting pixels off, kept as
+# JPEG files.
+check "study keeps its photos" run 0 calibrate study --sets 1 --samples 16 --seed 3 \
+  --keep-photos "$tmp/photos" --json
+cp "$tmp/out" "$tmp/study.json"
+check "study: nothing refused" test "$(json_at "$tmp/study.json" /refused)" = 0
+gap_true=$(json_at "$tmp/study.json" /trials/0/truths/0)
+offset_true=$(json_at "$tmp/study.json" /trials/0/truths/1)
+check "study: gap within 1 %" near "$(json_at "$tmp/study.json" /trials/0/errors/0)" 0 0.01
+check "study: offset within 0.1 px" near "$(json_at "$tmp/study.json" /trials/0/errors/1)" 0 0.1
+
+# The same photos through calibrate photo, in either order: the display file it writes.
+photos=("$tmp/photos/grid-1-2.jpg" "$tmp/photos/grid-1-1.jpg")
+check "calibrate photo" run 0 calibrate photo --shots "$tmp/shots" "${photos[@]}" \
+  -o "$tmp/measured.json" --json
+cp "$tmp/out" "$tmp/report.json"
+check "measured gap near the truth" near "$(json_at "$tmp/measured.json" /gap_mm)" "$gap_true" \
+  "$(awk -v g="$gap_true" 'BEGIN { print 0.01 * g }')"
+check "measured offset near the truth" \
+  near "$(json_at "$tmp/measured.json" /mask/panel_offset_px)" "$offset_true" 0.1
+check "measured: the same as the study's" near "$(json_at "$tmp/measured.json" /gap_mm)" \
+  "$(json_at "$tmp/study.json" /trials/0/estimates/0)" 1e-6
+check "measured: the nominal's views kept" near "$(json_at "$tmp/measured.json" /views)" 9 0
+check "report: every estimate has a sigma" \
+  python3 -c 'import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["gap_mm"]["sigma"] > 0 and r["mask"]["panel_offset_px"]["sigma"] > 0' "$tmp/report.json"
+check "the measured display renders" run 0 design "$tmp/measured.json"
+check "text report" run 0 calibrate photo --shots "$tmp/shots" "${photos[@]}" -o "$tmp/m2.json"
+check "text report: gap with its sigma" grep -q "^gap .* ± " "$tmp/out"
+
+# Refusals: one line naming the photo or the option, exit 2, nothing written.
+refused() {  # refused NAME TEXT ARGS...
+  local name=$1 text=$2
+  shift 2
+  rm -f "$tmp/refused.json"
+  check "$name: exit 2" run 2 calibrate photo --shots "$tmp/shots" "$@" -o "$tmp/refused.json"
+  check "$name: one line" one_line_naming "$text"
+  check "$name: nothing written" test ! -e "$tmp/refused.json"
+}
+cp "${photos[0]}" "$tmp/photo.jpg"
+refused "a photo named after no shot" "photo.jpg: matches no shot" "$tmp/photo.jpg"
+refused "a missing photo" "grid-9.jpg: file not found" "$tmp/grid-9.jpg"
+mkfifo "$tmp/grid-fifo.jpg"
+refused "a FIFO" "grid-fifo.jpg: not a regular file" "$tmp/grid-fifo.jpg"
+echo "not a photo" >"$tmp/grid-text.jpg"
+refused "not a photo" "grid-text.jpg: not a JPEG or PNG" "$tmp/grid-text.jpg"
+head -c 300 "${photos[0]}" >"$tmp/grid-cut.jpg"
+refused "a truncated JPEG" "grid-cut.jpg" "$tmp/grid-cut.jpg"
+write_png "$tmp/grid-blank.png" 640 480 colour
+refused "a photo of no panel" "grid-blank.png: the panel was not found" "$tmp/grid-blank.png"
+check "shots not a folder: exit 2" run 2 calibrate photo --shots "$tmp/shots/index.json" \
+  "${photos[@]}" -o "$tmp/refused.json"
+check "shots not a folder: one line" one_line_naming "not a folder"
+check "barrier photos against lenticular shots: exit 2" run 2 calibrate photo --shots \
+  "$tmp/lshots" "${photos[@]}" -o "$tmp/refused.json"
+check "barrier photos against lenticular shots: one line" one_line_naming "matches no shot"
+
+cli_summary
