@@ -69,10 +69,10 @@ CalibrationShotSet calibrationShots(const CalibrationShotsRequest& r, Reporter& 
     index.set("/shots/0/name", "lens");
     index.set("/shots/0/panel", "lens-panel.png");
     take =
-        "Show lens-panel.png full screen on the panel (`parallax show " + r.output +
-        "`), take two photos of the whole\npanel with a phone, one at least a quarter nearer "
-        "than the other (lens-near.jpg, lens-far.jpg), then\n  parallax calibrate photo --shots " +
-        r.output + " lens-near.jpg lens-far.jpg -o measured-visual.json\n";
+        "Show lens-panel.png full screen on the panel (`parallax show SHOTS`, SHOTS this "
+        "folder), take two photos\nof the whole panel with a phone, one at least a quarter "
+        "nearer than the other (lens-near.jpg,\nlens-far.jpg), then\n  parallax calibrate photo "
+        "--shots SHOTS lens-near.jpg lens-far.jpg -o measured-visual.json\n";
   } else {
     const DisplayDesign design = barrierDesignOf(set.display);
     const DisplaySpec& spec = design.spec;
@@ -92,12 +92,11 @@ CalibrationShotSet calibrationShots(const CalibrationShotsRequest& r, Reporter& 
     index.set("/shots/0/name", "grid");
     index.set("/shots/0/image", "grid-image.png");
     index.set("/shots/0/mask", "grid-mask.png");
-    take = "Show them 1:1 with `parallax show " + r.output +
-           "` (grid-image.png on the image layer, grid-mask.png on the\nmask layer), take two "
-           "photos of the whole panel with a phone, from 10 to 30 degrees to the side\nand from "
-           "distances at least a quarter apart (grid-1.jpg, grid-2.jpg), then\n  parallax "
-           "calibrate photo --shots " +
-           r.output + " grid-1.jpg grid-2.jpg -o measured.json\n";
+    take =
+        "Show them 1:1 with `parallax show SHOTS`, SHOTS this folder (grid-image.png on the "
+        "image layer,\ngrid-mask.png on the mask layer), take two photos of the whole panel "
+        "with a phone, from 10\nto 30 degrees to either side (grid-1.jpg, grid-2.jpg), then\n"
+        "  parallax calibrate photo --shots SHOTS grid-1.jpg grid-2.jpg -o measured.json\n";
   }
   set.index = index.dump() + "\n";
   set.readme = "Calibration shots (parallax calibrate patterns --photo) for " +

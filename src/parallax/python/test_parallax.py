@@ -810,6 +810,28 @@ def test_calibration_patterns_are_the_cli_patterns(small, tmp_path):
     same_tool_files(tmp_path / "py", tmp_path / "cli")
 
 
+def test_photo_shots_are_the_cli_shots_and_photos_are_refused_as_the_cli_refuses(tmp_path):
+    for display, name in [(None, "barrier"), ("lkg:portrait", "lenticular")]:
+        extra = [] if display is None else ["--display", display]
+        result = cli("calibrate", "patterns", "--photo", *extra, "-o", tmp_path / f"cli-{name}")
+        assert result.returncode == 0, result.stderr
+        index = parallax.calibration_photo_patterns(tmp_path / f"py-{name}", display)
+        assert index["kind"] == name
+        assert index == json.loads((tmp_path / f"cli-{name}" / "index.json").read_text())
+        same_tool_files(tmp_path / f"py-{name}", tmp_path / f"cli-{name}")
+    # A photo that is not a photo: the same one line as the command line's, nothing written.
+    bad = tmp_path / "grid-1.jpg"
+    bad.write_text("not a photo")
+    result = cli("calibrate", "photo", "--shots", tmp_path / "cli-barrier", bad,
+                 "-o", tmp_path / "cli.json")
+    assert result.returncode == 2
+    with pytest.raises(parallax.Error) as raised:
+        parallax.calibrate_photo(tmp_path / "py-barrier", [bad], output=tmp_path / "py.json")
+    assert str(raised.value) in result.stderr
+    assert "not a JPEG or PNG" in str(raised.value)
+    assert not (tmp_path / "py.json").exists() and not (tmp_path / "cli.json").exists()
+
+
 def test_lenticular_simulate_is_the_cli_simulate(cli_quilt, tmp_path):
     path, display = quarter_portrait(tmp_path)
     assert cli("interlace", cli_quilt, "--display", path, "-o", tmp_path / "set").returncode == 0

@@ -128,16 +128,13 @@ void calibrationPatternsFiles(const std::string& output, const std::string& disp
   jobs::runCalibrationPatterns(r, jobs::silentReporter());
 }
 
-// `parallax calibrate patterns --photo`: the shots' folder; returns its index.json.
-std::string calibrationPhotoPatterns(const std::string& output, const std::string& display) {
+// `parallax calibrate patterns --photo`: the shots' folder.
+void calibrationPhotoPatterns(const std::string& output, const std::string& display) {
   jobs::CalibrationShotsRequest r;
   r.display = display;
   r.output = output;
-  {
-    py::gil_scoped_release released;
-    jobs::runCalibrationShots(r, jobs::silentReporter());
-  }
-  return jobs::calibrationShots(r, jobs::silentReporter()).index;
+  py::gil_scoped_release released;
+  jobs::runCalibrationShots(r, jobs::silentReporter());
 }
 
 // `parallax calibrate photo`: the report (the --json object) and the measured display's text,

@@ -308,8 +308,8 @@ def calibration_photo_patterns(output: str = "shots", display: Optional[str] = N
     """`parallax calibrate patterns --photo [--display DISPLAY] -o OUTPUT`: the shots to show on
     the panels and photograph with a phone (any display kind: a barrier file, a lenticular
     calibration or lkg:NAME; docs/calibration.md, "From photos"). Returns index.json."""
-    return json.loads(_parallax._calibration_photo_patterns(
-        str(output), "" if display is None else str(display)))
+    _parallax._calibration_photo_patterns(str(output), "" if display is None else str(display))
+    return json.load(open(os.path.join(str(output), "index.json")))
 
 
 def calibrate_photo(shots: str, photos: Sequence[str], output: Optional[str] = None,
