@@ -148,10 +148,13 @@ void registerCalibrateCommand(Command& cli) {
 
   auto study = std::make_shared<CalibrationStudyRequest>();
   Command* t = cmd->addSubcommand(
-      "study", "How precise calibrate photo is: random true displays, photographed by the photo "
-               "maker, measured and compared with the truth");
+      "study",
+      "How precise calibrate photo is: random true displays, photographed by the photo "
+      "maker, measured and compared with the truth");
   t->addOption("--display", study->display, "The nominal display (built-in display if omitted)");
-  t->addOption("--sets", study->sets, "Photo sets (trials)")->captureDefault()->check(integerIn(1, 100000));
+  t->addOption("--sets", study->sets, "Photo sets (trials)")
+      ->captureDefault()
+      ->check(integerIn(1, 100000));
   t->addOption("--photos-per-set", study->photosPerSet, "Photos of the shot in each set")
       ->captureDefault()
       ->check(integerIn(1, 6));

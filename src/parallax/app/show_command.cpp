@@ -113,8 +113,7 @@ ShowSet readShowSet(const ShowOptions& o) {
     if (doc.root().has("shots")) {
       // calibrate patterns --photo: one shot, on both layers (barrier) or the panel.
       const JsonReader shots = doc.root()["shots"];
-      if (shots.size() != 1)
-        throw InputError(index.string(), "/shots", "expected one shot");
+      if (shots.size() != 1) throw InputError(index.string(), "/shots", "expected one shot");
       const JsonReader shot = shots.elements().front();
       if (shot.has("panel")) {
         set.imagePath = (dir / shot["panel"].string()).string();

@@ -63,8 +63,8 @@ CalibrationShotSet calibrationShots(const CalibrationShotsRequest& r, Reporter& 
     checkMemoryEstimate(double(c.screenW) * c.screenH * (kFloatRgbPixelBytes + kRgba8PixelBytes),
                         c.source, "the shot's picture", "use a smaller panel");
     const photocal::LenticularShot shot = photocal::lenticularShot(design);
-    set.pictures.push_back({"lens", "panel", "lens-panel.png",
-                            photocal::drawLenticularShot(shot, design)});
+    set.pictures.push_back(
+        {"lens", "panel", "lens-panel.png", photocal::drawLenticularShot(shot, design)});
     set.displayText = lenticularCalibrationText(c);
     index.set("/shots/0/name", "lens");
     index.set("/shots/0/panel", "lens-panel.png");
@@ -133,7 +133,8 @@ struct ShotsFolder {
 };
 
 ShotsFolder readShotsFolder(const std::string& dir) {
-  if (dir.empty()) throw RequestError("shots", "needs the folder `calibrate patterns --photo` wrote");
+  if (dir.empty())
+    throw RequestError("shots", "needs the folder `calibrate patterns --photo` wrote");
   if (!fs::is_directory(dir))
     throw InputError(dir, "", "not a folder: give the folder `calibrate patterns --photo` wrote");
   const std::string indexPath = (fs::path(dir) / kIndex).string();
@@ -178,9 +179,30 @@ std::string formatted(double value, int decimals) {
   return printed("%.*f", decimals, value);
 }
 
+// What either kind's measurement says of the camera and of each photo, under /camera and
+// /photos.
+template <class Measurement>
+void recordCameraAndPhotos(JsonWriter& json, const Measurement& m) {
+  json.set("/camera/focal_px/value", m.focalPx);
+  json.set("/camera/focal_px/sigma", m.focalSigmaPx);
+  json.set("/camera/k1", m.k1);
+  json.set("/camera/k2", m.k2);
+  for (size_t i = 0; i < m.photos.size(); ++i) {
+    const auto& p = m.photos[i];
+    const std::string at = "/photos/" + std::to_string(i);
+    json.set(at + "/file", p.name);
+    json.set(at + "/camera_mm",
+             Vec3f{float(p.cameraMm[0]), float(p.cameraMm[1]), float(p.cameraMm[2])});
+    json.set(at + "/off_axis_degrees", p.offAxisDegrees);
+    json.set(at + "/markers", p.markers);
+    json.set(at + "/marker_rms_px", p.markerRmsPx);
+  }
+}
+
 // The barrier's measurement, its display file and its report.
-void barrierReport(const DisplayDescription& nominal, const std::vector<photocal::NamedPhoto>& photos,
-                   Reporter& reporter, const std::string& output, PhotoCalibration& result) {
+void barrierReport(const DisplayDescription& nominal,
+                   const std::vector<photocal::NamedPhoto>& photos, Reporter& reporter,
+                   const std::string& output, PhotoCalibration& result) {
   const DisplayDesign design = barrierDesignOf(nominal);
   photocal::BarrierMeasurement m;
   {
@@ -207,22 +229,12 @@ void barrierReport(const DisplayDescription& nominal, const std::vector<photocal
   json.set("/mask/rotation_degrees/sigma", m.rotationSigmaDegrees);
   json.set("/mask/rotation_edge_error_px", m.rotationEdgeErrorPx);
   json.set("/slit_period_px", after.slitPeriodPx);
-  json.set("/camera/focal_px/value", m.focalPx);
-  json.set("/camera/focal_px/sigma", m.focalSigmaPx);
-  json.set("/camera/k1", m.k1);
-  json.set("/camera/k2", m.k2);
   json.set("/residual_px", m.residualPx);
+  recordCameraAndPhotos(json, m);
   for (size_t i = 0; i < m.photos.size(); ++i) {
-    const photocal::BarrierPhotoReport& p = m.photos[i];
     const std::string at = "/photos/" + std::to_string(i);
-    json.set(at + "/file", p.name);
-    json.set(at + "/camera_mm", Vec3f{float(p.cameraMm[0]), float(p.cameraMm[1]),
-                                      float(p.cameraMm[2])});
-    json.set(at + "/off_axis_degrees", p.offAxisDegrees);
-    json.set(at + "/markers", p.markers);
-    json.set(at + "/marker_rms_px", p.markerRmsPx);
-    json.set(at + "/blocks", p.rearBlocks);
-    json.set(at + "/contrast", p.contrast);
+    json.set(at + "/blocks", m.photos[i].rearBlocks);
+    json.set(at + "/contrast", m.photos[i].contrast);
   }
   if (!output.empty()) json.set("/output", output);
   result.json = json.dump();
@@ -233,8 +245,8 @@ void barrierReport(const DisplayDescription& nominal, const std::vector<photocal
           " photos)",
       "gap              " + formatted(m.gapMm, 3) + " ± " + formatted(m.gapSigmaMm, 3) +
           " mm (nominal " + printed("%g", design.spec.gapMm) + " mm): slit period " +
-          formatted(after.slitPeriodPx, 5) + " mask px at D = " +
-          printed("%.1f", after.viewDistanceMm) + " mm",
+          formatted(after.slitPeriodPx, 5) +
+          " mask px at D = " + printed("%.1f", after.viewDistanceMm) + " mm",
       "mask offset      " + formatted(m.maskPanelOffsetPx, 3) + " ± " +
           formatted(m.maskPanelOffsetSigmaPx, 3) + " mask px (mask.panel_offset_px)",
       "mask rotation    " + formatted(m.maskRotationDegrees, 4) + " ± " +
@@ -246,10 +258,11 @@ void barrierReport(const DisplayDescription& nominal, const std::vector<photocal
       "camera           focal " + formatted(m.focalPx, 1) + " ± " + formatted(m.focalSigmaPx, 1) +
           " px, k1 " + formatted(m.k1, 4) + ", k2 " + formatted(m.k2, 4)};
   for (const photocal::BarrierPhotoReport& p : m.photos)
-    result.lines.push_back(printed("photo            %s: camera at (%.0f, %.0f, %.0f) mm, %.1f "
-                                   "degrees off axis, %d markers, %d blocks, contrast %.2f",
-                                   p.name.c_str(), p.cameraMm[0], p.cameraMm[1], p.cameraMm[2],
-                                   p.offAxisDegrees, p.markers, p.rearBlocks, p.contrast));
+    result.lines.push_back(
+        printed("photo            %s: camera at (%.0f, %.0f, %.0f) mm, %.1f "
+                "degrees off axis, %d markers, %d blocks, contrast %.2f",
+                p.name.c_str(), p.cameraMm[0], p.cameraMm[1], p.cameraMm[2], p.offAxisDegrees,
+                p.markers, p.rearBlocks, p.contrast));
 }
 
 // The lenticular panel's measurement, its visual.json and its report.
@@ -283,43 +296,32 @@ void lenticularReport(const DisplayDescription& nominal,
   json.set("/gap_mm/value", m.gapMm);
   json.set("/gap_mm/sigma", m.gapSigmaMm);
   json.set("/view_distance_mm", design.viewDistanceMm);
-  json.set("/camera/focal_px/value", m.focalPx);
-  json.set("/camera/focal_px/sigma", m.focalSigmaPx);
-  json.set("/camera/k1", m.k1);
-  json.set("/camera/k2", m.k2);
-  for (size_t i = 0; i < m.photos.size(); ++i) {
-    const photocal::LenticularPhotoReport& p = m.photos[i];
-    const std::string at = "/photos/" + std::to_string(i);
-    json.set(at + "/file", p.name);
-    json.set(at + "/camera_mm",
-             Vec3f{float(p.cameraMm[0]), float(p.cameraMm[1]), float(p.cameraMm[2])});
-    json.set(at + "/off_axis_degrees", p.offAxisDegrees);
-    json.set(at + "/markers", p.markers);
-    json.set(at + "/marker_rms_px", p.markerRmsPx);
-    json.set(at + "/coherence", p.coherence);
-  }
+  recordCameraAndPhotos(json, m);
+  for (size_t i = 0; i < m.photos.size(); ++i)
+    json.set("/photos/" + std::to_string(i) + "/coherence", m.photos[i].coherence);
   if (!output.empty()) json.set("/output", output);
   result.json = json.dump();
   result.lines = {
       "display          " + nominal.source() + " (lenticular, " + std::to_string(photos.size()) +
           " photos)",
       "pitch            " + formatted(m.measured.pitch, 5) + " ± " + formatted(m.pitchSigma, 5) +
-          " lenses an inch (nominal " + printed("%g", n.pitch) + "), converging at D = " +
-          printed("%.0f", design.viewDistanceMm) + " mm",
+          " lenses an inch (nominal " + printed("%g", n.pitch) +
+          "), converging at D = " + printed("%.0f", design.viewDistanceMm) + " mm",
       "slope            " + formatted(m.measured.slope, 5) + " ± " + formatted(m.slopeSigma, 5) +
           " (nominal " + printed("%g", n.slope) + "): lenses " + formatted(m.slantDegrees, 4) +
           " ± " + formatted(m.slantSigmaDegrees, 4) + " degrees from vertical",
-      "center           " + formatted(m.measured.center, 4) + " ± " +
-          formatted(m.centerSigma, 4) + " lens periods (nominal " + printed("%g", n.center) + ")",
+      "center           " + formatted(m.measured.center, 4) + " ± " + formatted(m.centerSigma, 4) +
+          " lens periods (nominal " + printed("%g", n.center) + ")",
       "lens gap         " + formatted(m.gapMm, 3) + " ± " + formatted(m.gapSigmaMm, 3) +
           " mm (air-equivalent)",
       "camera           focal " + formatted(m.focalPx, 1) + " ± " + formatted(m.focalSigmaPx, 1) +
           " px, k1 " + formatted(m.k1, 4) + ", k2 " + formatted(m.k2, 4)};
   for (const photocal::LenticularPhotoReport& p : m.photos)
-    result.lines.push_back(printed("photo            %s: camera at (%.0f, %.0f, %.0f) mm, %.1f "
-                                   "degrees off axis, %d markers, fringe coherence %.2f",
-                                   p.name.c_str(), p.cameraMm[0], p.cameraMm[1], p.cameraMm[2],
-                                   p.offAxisDegrees, p.markers, p.coherence));
+    result.lines.push_back(
+        printed("photo            %s: camera at (%.0f, %.0f, %.0f) mm, %.1f "
+                "degrees off axis, %d markers, fringe coherence %.2f",
+                p.name.c_str(), p.cameraMm[0], p.cameraMm[1], p.cameraMm[2], p.offAxisDegrees,
+                p.markers, p.coherence));
 }
 
 }  // namespace
@@ -342,8 +344,9 @@ PhotoCalibration calibrateFromPhotos(const CalibratePhotoRequest& r, Reporter& r
     shotOf.push_back(shotOfPhoto(path, folder, r.shots));
     requireRegularFile(path);
     if (fs::file_size(path) > kMaxPhotoFileBytes)
-      throw InputError(path, "", "is larger than a photo (" +
-                                     std::to_string(fs::file_size(path) >> 20) + " MiB)");
+      throw InputError(
+          path, "",
+          "is larger than a photo (" + std::to_string(fs::file_size(path) >> 20) + " MiB)");
     std::ifstream in(path, std::ios::binary);
     std::vector<uint8_t> head(size_t(std::min<uintmax_t>(fs::file_size(path), 1u << 20)));
     in.read(reinterpret_cast<char*>(head.data()), std::streamsize(head.size()));

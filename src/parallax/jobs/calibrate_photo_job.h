@@ -62,10 +62,10 @@ struct PhotoCalibration {
   std::string kind;
   photocal::BarrierMeasurement barrier;        // kind barrier
   photocal::LenticularMeasurement lenticular;  // kind lenticular
-  DisplayDescription measured;           // the nominal display with the measured keys
-  std::string measuredText;              // as MEASURED.json holds it
-  std::string json;                      // the report as one JSON object
-  std::vector<std::string> lines;        // the report as text
+  DisplayDescription measured;                 // the nominal display with the measured keys
+  std::string measuredText;                    // as MEASURED.json holds it
+  std::string json;                            // the report as one JSON object
+  std::vector<std::string> lines;              // the report as text
 };
 
 // Reads the shots and the photos and measures. Refusals name the photo and what it lacks, the

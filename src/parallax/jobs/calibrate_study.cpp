@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 
@@ -43,7 +41,9 @@ class Draw {
   uint64_t state_;
 };
 
-double wrapHalf(double v) { return v - std::round(v); }
+double wrapHalf(double v) {
+  return v - std::round(v);
+}
 
 // The largest focal length (pixels) that keeps the panel's corners (front, z = 0) inside the
 // frame of a pinhole at `position` looking at `target`, rolled by `roll`, with a margin of 4 % of
@@ -145,11 +145,6 @@ std::vector<photomaker::PhoneCamera> randomPhones(Draw& draw, const CalibrationS
   for (size_t i = 0; i < phones.size(); ++i) {
     photomaker::PhoneCamera& c = phones[i];
     c.focalPx = focal;
-    if (std::getenv("PARALLAX_DEBUG_PHOTOCAL"))
-      std::fprintf(stderr,
-                   "truth photo %zu: C %.1f %.1f %.1f f %.1f (%.0f mm) k1 %.3f k2 %.3f psf %.2f\n",
-                   i, c.positionMm[0], c.positionMm[1], c.positionMm[2], c.focalPx,
-                   c.focalPx / pxPerEquivalentMm, c.k1, c.k2, c.blurSigmaPx);
   }
   return phones;
 }
@@ -230,17 +225,12 @@ CalibrationTrial barrierTrial(Draw& draw, const CalibrationStudyRequest& r,
                     0};
     trial.truths = {truth.gapMm, offsetPx, rotation};
     trial.estimates = {m.gapMm, m.maskPanelOffsetPx, m.maskRotationDegrees};
-    if (std::getenv("PARALLAX_DEBUG_PHOTOCAL"))
-      std::fprintf(stderr, "gap %.4f (true %.4f), offset %.3f (true %.3f), rotation %.4f (%.4f)\n",
-                   m.gapMm, truth.gapMm, m.maskPanelOffsetPx, offsetPx, m.maskRotationDegrees,
-                   rotation);
   } catch (const InputError& e) {
     trial.refused = true;
     trial.refusal = e.what();
   }
   (void)shot;
-  trial.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  trial.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return trial;
 }
 
@@ -282,24 +272,6 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
   const double white = truth.panel.fillFactor * truth.panel.fillFactor / 3;
   const auto phones =
       randomPhones(draw, r, D, 0.5 * nominal.widthMm, 0.5 * nominal.heightMm, white);
-  if (std::getenv("PARALLAX_DEBUG_PHOTOCAL")) {
-    // The truth as the estimator's model reads it (lenticular_estimate.h): m = s n / pitch,
-    // phi = s phase / pitch, and per photo the fringes' gradient and phase at the centre.
-    const double mx = s * std::cos(slant) / sheet.pitchMm,
-                 my = -s * std::sin(slant) / sheet.pitchMm;
-    const double phi = wrapHalf(s * sheet.phaseMm / sheet.pitchMm);
-    std::fprintf(stderr,
-                 "truth sheet: g %.4f m %.6f %.6f phi %.4f; pitch %.5f slope %.5f center %.4f\n",
-                 sheet.gapMm, mx, my, phi, truthCalibration.pitch, truthCalibration.slope,
-                 truthCalibration.center);
-    for (const photomaker::PhoneCamera& phone : phones) {
-      const auto& C = phone.positionMm;
-      const double k = 1 + sheet.gapMm / C[2];
-      const double psi = phi - sheet.gapMm * (f0.gx * C[0] + f0.gy * C[1]) / C[2] + f0.r0;
-      std::fprintf(stderr, "truth photo at %.1f %.1f %.1f: grad %.6f %.6f psi %.4f\n", C[0], C[1],
-                   C[2], f0.gx * k - mx, f0.gy * k - my, psi - std::floor(psi));
-    }
-  }
   std::vector<photocal::NamedPhoto> photos;
   for (size_t i = 0; i < phones.size(); ++i)
     photos.push_back(storedPhoto(draw, photomaker::photographLenticular(truth, picture, phones[i]),
@@ -330,7 +302,7 @@ double percentile(std::vector<double> values, double q) {
   const double at = q * double(values.size() - 1);
   const size_t i = size_t(at);
   return i + 1 < values.size() ? values[i] + (at - double(i)) * (values[i + 1] - values[i])
-                                : values.back();
+                               : values.back();
 }
 
 }  // namespace
@@ -366,8 +338,7 @@ CalibrationStudy calibrationStudy(const CalibrationStudyRequest& r, Reporter& re
     study.kind = "lenticular";
     study.quantities = {"pitch (relative)", "slant (degrees)", "center (lens periods)"};
     const LenticularDesign nominal = designLenticular(display.lenticular);
-    const Image picture =
-        photocal::drawLenticularShot(photocal::lenticularShot(nominal), nominal);
+    const Image picture = photocal::drawLenticularShot(photocal::lenticularShot(nominal), nominal);
     for (int i = 0; i < r.sets; ++i) {
       study.trials.push_back(lenticularTrial(draw, r, nominal, picture, i + 1));
       progress->update(i + 1, r.sets);
@@ -413,9 +384,8 @@ void runCalibrationStudy(const CalibrationStudyRequest& r, Reporter& reporter) {
     json.set(at + "/median", median);
     json.set(at + "/p95", p95);
     json.set(at + "/within_two_sigma", counted ? double(within) / counted : -1.0);
-    lines.push_back(printed("%-29s %14.3g   %15.3g   %s", study.quantities[q].c_str(), median,
-                            p95, counted ? printed("%.0f %%", 100.0 * within / counted).c_str()
-                                         : "-"));
+    lines.push_back(printed("%-29s %14.3g   %15.3g   %s", study.quantities[q].c_str(), median, p95,
+                            counted ? printed("%.0f %%", 100.0 * within / counted).c_str() : "-"));
   }
   for (size_t i = 0; i < study.trials.size(); ++i) {
     const CalibrationTrial& t = study.trials[i];

@@ -16,15 +16,15 @@ namespace parallax::jobs {
 struct CalibrationStudyRequest {
   std::string display;  // the nominal display ("" the built-in barrier, a file, lkg:NAME)
   std::optional<DisplayDescription> loaded;
-  int sets = 100;              // photo sets (trials), each with its own true display and photos
-  int photosPerSet = 2;        // photos of the one shot per set, from distances 25 % apart
-  double snrDb = 20;           // the pattern's contrast over the read noise
+  int sets = 100;        // photo sets (trials), each with its own true display and photos
+  int photosPerSet = 2;  // photos of the one shot per set, from distances 25 % apart
+  double snrDb = 20;     // the pattern's contrast over the read noise
   int photoWidth = 4032, photoHeight = 3024;  // the phone's sensor (landscape)
-  int samplesPerPixel = 8;     // the photo maker's samples per photo pixel
+  int samplesPerPixel = 8;                    // the photo maker's samples per photo pixel
   double maxOffAxisDegrees = 30;
-  double blurMm = -1;          // the aperture's diameter; < 0: random, 1.5 to 3 mm
+  double blurMm = -1;  // the aperture's diameter; < 0: random, 1.5 to 3 mm
   uint64_t seed = 1;
-  std::string photos;          // a folder to keep the photos in ("" none)
+  std::string photos;  // a folder to keep the photos in ("" none)
   bool json = false;
 };
 

@@ -19,7 +19,8 @@ Image testPicture(int width, int height, int seed) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const double t = std::sin(0.37 * x * (seed + 1) + 0.71 * y) * 0.5 + 0.5;
-      picture.at(x, y) = Vec3f(float(t), float(1 - t), float(0.5 + 0.4 * std::cos(0.23 * x + seed)));
+      picture.at(x, y) =
+          Vec3f(float(t), float(1 - t), float(0.5 + 0.4 * std::cos(0.23 * x + seed)));
     }
   return picture;
 }
@@ -41,9 +42,8 @@ TEST(PhotoTruth, EyeThroughTwoColourPanelsSeesWhatTheSimulatorSees) {
     truth.gapMm = 2.5;
     const Vec3d eye{23, 11, 480};
     // Three output pixels per panel pixel across: each colour stripe its own.
-    const Image physics =
-        photomaker::eyeViewBarrier(truth, back ? image : mask, back ? mask : image,
-                                   {eye.x, eye.y, eye.z}, 540, 60, 256);
+    const Image physics = photomaker::eyeViewBarrier(
+        truth, back ? image : mask, back ? mask : image, {eye.x, eye.y, eye.z}, 540, 60, 256);
 
     SimulationOptions options;
     options.width = 540, options.height = 60;

@@ -8,8 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <numbers>
 
 #include "parallax/core/error.h"
@@ -23,8 +21,8 @@ namespace {
 constexpr double kTwoPi = 2 * std::numbers::pi;
 constexpr int kBlockPx = BarrierShot::kBlockPx;
 constexpr int kFrontBlockPx = kBlockPx / 2;  // the front needs no vernier: twice the points
-constexpr double kMinContrast = 0.03;  // a grating's amplitude over the mean light
-constexpr int kMinMarkers = 2;         // a first camera; the front's gratings fit it again
+constexpr double kMinContrast = 0.03;        // a grating's amplitude over the mean light
+constexpr int kMinMarkers = 2;               // a first camera; the front's gratings fit it again
 constexpr int kCameraRounds = 5;
 // The blocks trusted in each round: well inside half the periods (6 across, 16 down) at first,
 // then ever nearer to where the better camera puts them.
@@ -246,22 +244,9 @@ BarrierMeasurement measureBarrier(const DisplaySpec& nominal, const std::vector<
       const PhotoSampler photo(photos[i].photo, markers.fit.intrinsics, markers.fit.poses[i]);
       fronts[i] = measureFront(shot, photo);
       more[i] = frontPoints(shot, fronts[i], markers.fit, i, kTrustedShiftPx[round]);
-      if (std::getenv("PARALLAX_DEBUG_PHOTOCAL")) {
-        std::fprintf(stderr, "round %d photo %zu before: marker rms %.3f; shifts:", round, i, markers.fit.rmsErrorPx[i]);
-        for (size_t k = 0; k < fronts[i].shiftX.size(); k += 7)
-          std::fprintf(stderr, " (%.1f,%.1f)", fronts[i].shiftX[k], fronts[i].shiftY[k]);
-        std::fprintf(stderr, "\n");
-      }
       step();
     }
     refitCamera(markers, photos, more);
-    if (std::getenv("PARALLAX_DEBUG_PHOTOCAL"))
-      for (size_t i = 0; i < photos.size(); ++i) {
-        const auto c = markers.fit.poses[i].cameraCentre();
-        std::fprintf(stderr, "round %d photo %zu: %d front blocks, f %.1f +- %.1f, k1 %.3f, rms %.3f, C %.1f %.1f %.1f\n", round, i, fronts[i].seen,
-                     markers.fit.intrinsics.focalPx, markers.fit.focalSigmaPx, markers.fit.intrinsics.k1,
-                     markers.fit.rmsErrorPx[i], c[0], c[1], c[2]);
-      }
   }
   const vision::CameraFit& camera = markers.fit;
   BarrierMeasurement out;
@@ -331,7 +316,6 @@ BarrierMeasurement measureBarrier(const DisplaySpec& nominal, const std::vector<
             }
         if (n == 0 || rows.empty()) continue;
         ex /= n, ey /= n;
-        if (std::getenv("PARALLAX_NO_FRONT_CORRECTION")) ex = ey = 0;
         std::vector<double> xs;
         for (double x = blockX(j) + 0.25; x < blockX(j) + kBlockPx; x += 0.5) xs.push_back(x);
         const std::vector<double> above =
@@ -367,8 +351,7 @@ BarrierMeasurement measureBarrier(const DisplaySpec& nominal, const std::vector<
             for (size_t k = 0; k < xs.size(); ++k) {
               if (!std::isfinite((*light)[k])) continue;
               const double xf = xs[k] + ex;
-              const double m =
-                  rear.xPx(landing(front.xMm(xf), front.yMm(y + ey), gap0)[0]) - xf;
+              const double m = rear.xPx(landing(front.xMm(xf), front.yMm(y + ey), gap0)[0]) - xf;
               moire.add(m, 0, (*light)[k], 1.0);
             }
           double moireMean;
@@ -524,23 +507,6 @@ BarrierMeasurement measureBarrier(const DisplaySpec& nominal, const std::vector<
     // The covariance per unit weight scaled by the residuals'.
     const double perUnit = sum / std::max(1.0, double(obs.size()) - 4);
     for (double& v : covariance) v *= perUnit;
-  }
-  if (std::getenv("PARALLAX_DEBUG_PHOTOCAL")) {
-    // Per photo: the residuals' mean and their slope against the lever (X - C_x) / C_z.
-    for (size_t pi = 0; pi < photos.size(); ++pi)
-      for (int j = 2; j < 4; ++j) {
-        double n = 0, sl = 0, sr = 0, sll = 0, slr = 0;
-        for (const RearBlock& b : blocks) {
-          if (b.photo != int(pi)) continue;
-          const CameraAt& c = cameras[pi];
-          const double lever = j == 3 ? (b.xMm - c.x) / c.z : (b.yMm - c.y) / c.z;
-          const double r = wrap(b.shift[j] - predicted(b, j), periods[j]);
-          n += 1, sl += lever, sr += r, sll += lever * lever, slr += lever * r;
-        }
-        const double slope = (n * slr - sl * sr) / (n * sll - sl * sl);
-        std::fprintf(stderr, "photo %zu component %d: mean residual %.4f px, slope %.4f px per lever (= %.2f %% of g)\n",
-                     pi, j, sr / n, slope, 100 * slope * rear.pitchMm / g * (j == 3 ? 1 : -1));
-      }
   }
   step();
   out.residualPx = std::sqrt(sigma2);

@@ -31,7 +31,7 @@ struct BarrierPhotoReport {
 struct BarrierMeasurement {
   double gapMm = 0, gapSigmaMm = 0;                      // effective (air-equivalent) gap
   double rearOffsetXMm = 0, rearOffsetSigmaMm = 0;       // rear panel's centre against the front's
-  double rearOffsetYMm = 0;  // and upward
+  double rearOffsetYMm = 0;                              // and upward
   double rotationDegrees = 0, rotationSigmaDegrees = 0;  // rear against front, counter-clockwise
   // The same as the display file means them: the mask panel against the image panel.
   double maskPanelOffsetPx = 0, maskPanelOffsetSigmaPx = 0;

@@ -23,7 +23,6 @@ double shotGratings(double x, double y) {
                    6;
 }
 
-
 BarrierShot barrierShot(const DisplaySpec& display) {
   BarrierShot shot;
   shot.frontIsImage = display.order == LayerOrder::BarrierBack;
@@ -71,8 +70,8 @@ BarrierShotPictures drawBarrierShot(const BarrierShot& shot) {
     for (int x = 0; x < shot.rear.width; ++x) {
       const double frontX = shot.front.xPx(shot.rear.xMm(x + 0.5));
       if (frontX >= shot.x0 - 16 && frontX < shot.x1 + 16)
-        p.rear.at(x, y) = Vec3f(float(shotGratings(x + 0.5 - 0.5 * shot.rear.width,
-                                                   y + 0.5 - 0.5 * shot.rear.height)));
+        p.rear.at(x, y) = Vec3f(
+            float(shotGratings(x + 0.5 - 0.5 * shot.rear.width, y + 0.5 - 0.5 * shot.rear.height)));
     }
   }
   return p;

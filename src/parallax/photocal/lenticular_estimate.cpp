@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <cstdio>
-#include <cstdlib>
 #include <numbers>
 
 #include "parallax/core/error.h"
@@ -261,7 +259,6 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
   std::vector<std::array<double, 3>> centres;  // over the lens sheet
   const Interior in = interiorOf(shot);
   const double searchRange = searchRangeOf(field);
-  const bool debug = std::getenv("PARALLAX_DEBUG_PHOTOCAL") != nullptr;
   for (size_t i = 0; i < photos.size(); ++i) {
     std::array<double, 3> c = cameraCentre(markers, i, photos[i].name);
     c[2] -= gapGuess;
@@ -280,14 +277,6 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
     const double s = invView ? -1.0 : 1.0;
     report.fringeGradient = {s * plane.gx, s * plane.gy};
     report.fringePhase = s * plane.phase;
-    if (debug)
-      std::fprintf(stderr,
-                   "photo %s: C %.1f %.1f %.1f, %d markers rms %.2f px, fringes A %.3f coherence "
-                   "%.2f grad %.6f %.6f (+- %.1e %.1e) psi %.4f (+- %.4f)\n",
-                   report.name.c_str(), c[0], c[1], c[2], report.markers, report.markerRmsPx,
-                   plane.amplitude, plane.coherence, report.fringeGradient[0],
-                   report.fringeGradient[1], plane.sigmaGx, plane.sigmaGy, report.fringePhase,
-                   plane.sigmaPhase);
     if (!(plane.sigmaPhase < kMaxPhaseSigma))
       throw InputError(photos[i].name, "",
                        "the fringes are not resolved (their phase within " +
@@ -363,9 +352,6 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
     if (!ls.solve(x, &covariance))
       throw InputError("photos", "", "the photos do not constrain the lens sheet");
   }
-  if (debug)
-    std::fprintf(stderr, "sheet: g %.4f (+- %.4f, guess %.4f) m %.6f %.6f phi %.4f\n", x[0],
-                 std::sqrt(covariance[0]), gapGuess, x[1], x[2], x[3]);
   out.gapMm = x[0];
   out.gapSigmaMm = std::sqrt(std::max(0.0, covariance[0]));
   const auto fieldOf = [&](const std::vector<double>& v) {

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
 #include <opencv2/core/version.hpp>
+#include <opencv2/imgproc.hpp>
 #if CV_VERSION_MAJOR > 4 || (CV_VERSION_MAJOR == 4 && CV_VERSION_MINOR >= 7)
 #define PARALLAX_ARUCO_IN_OBJDETECT 1
 #include <opencv2/objdetect/aruco_detector.hpp>
