@@ -77,6 +77,12 @@ head -c 300 "${photos[0]}" >"$tmp/grid-cut.jpg"
 refused "a truncated JPEG" "grid-cut.jpg" "$tmp/grid-cut.jpg"
 write_png "$tmp/grid-blank.png" 640 480 colour
 refused "a photo of no panel" "grid-blank.png: the panel was not found" "$tmp/grid-blank.png"
+# The memory is estimated from the photos' headers before any is decoded.
+rm -f "$tmp/refused.json"
+check "over the memory limit: exit 2" run 2 calibrate photo --max-memory 0.3 --shots "$tmp/shots" \
+  "${photos[@]}" -o "$tmp/refused.json"
+check "over the memory limit: one line" one_line_naming "for the photos and finding their markers"
+check "over the memory limit: nothing written" test ! -e "$tmp/refused.json"
 check "shots not a folder: exit 2" run 2 calibrate photo --shots "$tmp/shots/index.json" \
   "${photos[@]}" -o "$tmp/refused.json"
 check "shots not a folder: one line" one_line_naming "not a folder"
