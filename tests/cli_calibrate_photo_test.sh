@@ -21,6 +21,10 @@ done
 check "shots: the nominal display kept" run 0 design "$tmp/shots/display.json"
 # Any display kind, Looking Glass presets by name too.
 check "lenticular shots" run 0 calibrate patterns --photo --display lkg:portrait -o "$tmp/lshots"
+# The paper's slit patterns are a barrier's: a lenticular panel is told to use the photo shots.
+check "slit patterns for a lenticular panel: exit 2" run 2 calibrate patterns --display \
+  lkg:portrait -o "$tmp/slits"
+check "slit patterns for a lenticular panel: one line" one_line_naming "calibrate patterns --photo"
 check "lenticular shot: the panel" test "$(png_size "$tmp/lshots/lens-panel.png")" = 1536x2048
 check "lenticular shot: index" test "$(json_at "$tmp/lshots/index.json" /shots/0/panel)" = \
   lens-panel.png

@@ -57,15 +57,15 @@ auto withFieldNames(Call call) {
 // must be possible. A display already loaded must be a barrier.
 DisplayDesign barrierDisplay(const std::string& path,
                              const std::optional<DisplayDescription>& loaded) {
-  if (loaded) {
-    const BuiltDisplay display = makeDisplay(*loaded);
-    if (const DisplayDesign* design = display->barrierDesign()) return *design;
-    throw InputError(loaded->source(), "",
-                     "is a lenticular calibration; this command takes a barrier display");
-  }
-  const BarrierDisplayFile file =
-      path.empty() ? BarrierDisplayFile{defaultDisplaySpec(), {}} : loadDisplayFile(path);
-  return designDisplay(file.spec, file.camera);
+  // Any kind is read (lkg:NAME too), so that a lenticular panel is told what it can use.
+  const DisplayDescription display =
+      loaded ? *loaded : (path.empty() ? DisplayDescription{} : loadDisplayDescription(path));
+  if (display.kind != DisplayKind::Barrier)
+    throw InputError(display.source(), "",
+                     "is a lenticular display: the paper's slit patterns are for barrier "
+                     "displays; `calibrate patterns --photo` makes its photo shots");
+  if (path.empty() && !loaded) return designDisplay(defaultDisplaySpec());
+  return designDisplay(display.barrier, display.camera);
 }
 
 const char* orderName(LayerOrder order) {
