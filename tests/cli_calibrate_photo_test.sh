@@ -94,4 +94,25 @@ check "barrier photos against lenticular shots: exit 2" run 2 calibrate photo --
   "$tmp/lshots" "${photos[@]}" -o "$tmp/refused.json"
 check "barrier photos against lenticular shots: one line" one_line_naming "matches no shot"
 
+# The seat check: photos of a lenticular panel's lens shot (the photo maker's, through a true
+# sheet up to 1 % off the nominal Portrait's), read against the calibration the shot was drawn
+# with: the view each seat sees, how it fans across the panel, the crosstalk.
+check "lenticular study keeps its photos" run 0 calibrate study --display lkg:portrait --sets 1 \
+  --samples 4 --seed 2 --photo-width 1512 --photo-height 1134 --keep-photos "$tmp/lphotos" --json
+lphotos=("$tmp/lphotos/lens-1-1.jpg" "$tmp/lphotos/lens-1-2.jpg")
+check "calibrate check" run 0 calibrate check --shots "$tmp/lshots" "${lphotos[@]}" --json
+cp "$tmp/out" "$tmp/check.json"
+check "check: a seat per photo, each view a fraction with its sigma" python3 -c 'import json, sys
+r = json.load(open(sys.argv[1]))
+assert len(r["seats"]) == 2 and r["views"] == 48
+for s in r["seats"]:
+    assert 0 <= s["view_seen"]["value"] < 1 and 0 < s["view_seen"]["sigma"] < 0.05
+    assert 0 <= s["view_aimed"] < 1 and 0 < s["amplitude"] <= 1.2
+    assert 0 <= s["other_views_share"] <= 1 and s["markers"] >= 6' "$tmp/check.json"
+check "check: text" run 0 calibrate check --shots "$tmp/lshots" "${lphotos[0]}"
+check "check: the view seen and the crosstalk" grep -q "^  sees .* at the panel's centre" "$tmp/out"
+check "check: crosstalk line" grep -q "^  crosstalk .*of the light from other views" "$tmp/out"
+check "check of barrier shots: exit 2" run 2 calibrate check --shots "$tmp/shots" "${photos[@]}"
+check "check of barrier shots: one line" one_line_naming "holds barrier shots"
+
 cli_summary

@@ -146,6 +146,22 @@ void registerCalibrateCommand(Command& cli) {
   addLimitOptions(*f);
   f->callback([photo] { runCalibratePhoto(*photo, cliReporter()); });
 
+  auto check = std::make_shared<CalibrationCheckRequest>();
+  Command* k = cmd->addSubcommand(
+      "check",
+      "What each seat sees of a lenticular panel, from a photo taken there of the lens shot drawn "
+      "with the calibration to check (calibrate patterns --photo --display FILE)");
+  k->addOption("--shots", check->shots, "The shots' folder (calibrate patterns --photo)")
+      ->required();
+  k->addOption("photos", check->photos,
+               "Photos (JPEG or PNG), one from each seat, named after the shot: lens-left.jpg")
+      ->required();
+  k->addOption("--display", check->display,
+               "The display the shots show (default: the one they were made for)");
+  k->addFlag("--json", check->json, "Print one JSON object");
+  addLimitOptions(*k);
+  k->callback([check] { runCalibrationCheck(*check, cliReporter()); });
+
   auto study = std::make_shared<CalibrationStudyRequest>();
   Command* t = cmd->addSubcommand(
       "study",

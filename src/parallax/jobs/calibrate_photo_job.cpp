@@ -4,6 +4,7 @@
 #include "parallax/jobs/calibrate_photo_job.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -180,6 +181,15 @@ std::string formatted(double value, int decimals) {
   return printed("%.*f", decimals, value);
 }
 
+// Where a photo was taken, under `at`.
+void recordPhotoPlace(JsonWriter& json, const std::string& at, const std::string& file,
+                      const std::array<double, 3>& cameraMm, double offAxisDegrees, int markers) {
+  json.set(at + "/file", file);
+  json.set(at + "/camera_mm", Vec3f{float(cameraMm[0]), float(cameraMm[1]), float(cameraMm[2])});
+  json.set(at + "/off_axis_degrees", offAxisDegrees);
+  json.set(at + "/markers", markers);
+}
+
 // What either kind's measurement says of the camera and of each photo, under /camera and
 // /photos.
 template <class Measurement>
@@ -191,11 +201,7 @@ void recordCameraAndPhotos(JsonWriter& json, const Measurement& m) {
   for (size_t i = 0; i < m.photos.size(); ++i) {
     const auto& p = m.photos[i];
     const std::string at = "/photos/" + std::to_string(i);
-    json.set(at + "/file", p.name);
-    json.set(at + "/camera_mm",
-             Vec3f{float(p.cameraMm[0]), float(p.cameraMm[1]), float(p.cameraMm[2])});
-    json.set(at + "/off_axis_degrees", p.offAxisDegrees);
-    json.set(at + "/markers", p.markers);
+    recordPhotoPlace(json, at, p.name, p.cameraMm, p.offAxisDegrees, p.markers);
     json.set(at + "/marker_rms_px", p.markerRmsPx);
   }
 }
@@ -327,27 +333,36 @@ void lenticularReport(const DisplayDescription& nominal,
 
 }  // namespace
 
-PhotoCalibration calibrateFromPhotos(const CalibratePhotoRequest& r, Reporter& reporter) {
-  const ShotsFolder folder = readShotsFolder(r.shots);
-  const DisplayDescription nominal =
-      r.loaded ? *r.loaded
-               : loadDisplay(r.display.empty() ? folder.displayPath : r.display, reporter);
-  if (kindName(nominal) != folder.kind)
-    throw InputError(nominal.source(), "",
-                     std::string("is a ") + kindName(nominal) + " display, and " + r.shots +
-                         " holds " + folder.kind + " shots");
-  if (r.photos.empty()) throw RequestError("photos", "needs at least one photo of the shots");
+namespace {
 
-  // Every photo's header first: its shot, its size and the memory its decoding takes. The
-  // photos are all kept (3 bytes a pixel); one at a time is decoded and its markers looked for,
-  // which is the peak: OpenCV's marker detector holds the contours of a noisy 12-megapixel photo
-  // in about 55 bytes a pixel (measured: one photo 721 MB, two 756 MB, four 827 MB, the process
-  // itself 80 MB).
+// The shots folder, the display it was made for (or the request's), and the photos decoded:
+// every photo's header first (its shot, its size and the memory its decoding takes), then the
+// photos, all kept (3 bytes a pixel); one at a time has its markers looked for, which is the
+// peak: OpenCV's marker detector holds the contours of a noisy 12-megapixel photo in about 55
+// bytes a pixel (measured: one photo 721 MB, two 756 MB, four 827 MB, the process itself
+// 80 MB).
+struct PhotosOfShots {
+  ShotsFolder folder;
+  DisplayDescription display;
+  std::vector<photocal::NamedPhoto> photos;
+};
+
+PhotosOfShots readPhotosOfShots(const std::string& shots, const std::string& display,
+                                const std::optional<DisplayDescription>& loaded,
+                                const std::vector<std::string>& paths, Reporter& reporter) {
+  PhotosOfShots out;
+  out.folder = readShotsFolder(shots);
+  out.display =
+      loaded ? *loaded : loadDisplay(display.empty() ? out.folder.displayPath : display, reporter);
+  if (kindName(out.display) != out.folder.kind)
+    throw InputError(out.display.source(), "",
+                     std::string("is a ") + kindName(out.display) + " display, and " + shots +
+                         " holds " + out.folder.kind + " shots");
+  if (paths.empty()) throw RequestError("photos", "needs at least one photo of the shots");
   constexpr double kDetectionBytesPerPixel = 56;
   double kept = 0, largest = 0;
-  std::vector<std::string> shotOf;
-  for (const std::string& path : r.photos) {
-    shotOf.push_back(shotOfPhoto(path, folder, r.shots));
+  for (const std::string& path : paths) {
+    shotOfPhoto(path, out.folder, shots);
     requireRegularFile(path);
     if (fs::file_size(path) > kMaxPhotoFileBytes)
       throw InputError(
@@ -361,27 +376,29 @@ PhotoCalibration calibrateFromPhotos(const CalibratePhotoRequest& r, Reporter& r
     kept += 3 * pixels;
     largest = std::max(largest, double(header.decodeBytes) + kDetectionBytesPerPixel * pixels);
   }
-  checkMemoryEstimate(kept + largest, r.photos.front(), "the photos and finding their markers",
+  checkMemoryEstimate(kept + largest, paths.front(), "the photos and finding their markers",
                       "give fewer or smaller photos");
-
-  PhotoCalibration result;
-  result.kind = folder.kind;
-  result.measured = nominal;
-  std::vector<photocal::NamedPhoto> photos;
-  {
-    const auto progress = reporter.progress("reading photos");
-    for (size_t i = 0; i < r.photos.size(); ++i) {
-      const std::string text = readInputFile(r.photos[i]);
-      const std::span<const uint8_t> data(reinterpret_cast<const uint8_t*>(text.data()),
-                                          text.size());
-      photos.push_back({r.photos[i], vision::decodePhoto(data, r.photos[i], kMaxPhotoPixels)});
-      progress->update(int(i + 1), int(r.photos.size()));
-    }
+  const auto progress = reporter.progress("reading photos");
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const std::string text = readInputFile(paths[i]);
+    const std::span<const uint8_t> data(reinterpret_cast<const uint8_t*>(text.data()), text.size());
+    out.photos.push_back({paths[i], vision::decodePhoto(data, paths[i], kMaxPhotoPixels)});
+    progress->update(int(i + 1), int(paths.size()));
   }
-  if (nominal.kind == DisplayKind::Lenticular)
-    lenticularReport(nominal, photos, reporter, r.output, result);
+  return out;
+}
+
+}  // namespace
+
+PhotoCalibration calibrateFromPhotos(const CalibratePhotoRequest& r, Reporter& reporter) {
+  const PhotosOfShots in = readPhotosOfShots(r.shots, r.display, r.loaded, r.photos, reporter);
+  PhotoCalibration result;
+  result.kind = in.folder.kind;
+  result.measured = in.display;
+  if (in.display.kind == DisplayKind::Lenticular)
+    lenticularReport(in.display, in.photos, reporter, r.output, result);
   else
-    barrierReport(nominal, photos, reporter, r.output, result);
+    barrierReport(in.display, in.photos, reporter, r.output, result);
   return result;
 }
 
@@ -395,6 +412,85 @@ void runCalibratePhoto(const CalibratePhotoRequest& r, Reporter& reporter) {
   }
   for (const std::string& line : result.lines) reporter.result(line);
   if (!r.output.empty()) reporter.result("wrote " + r.output);
+}
+
+// ---- the check ---------------------------------------------------------------------------------
+
+SeatCheckReport checkSeats(const CalibrationCheckRequest& r, Reporter& reporter) {
+  if (readShotsFolder(r.shots).kind != "lenticular")
+    throw InputError(r.shots, "",
+                     "holds barrier shots: the seat check reads a lenticular panel's lens shot "
+                     "(a barrier's is not written yet)");
+  const PhotosOfShots in = readPhotosOfShots(r.shots, r.display, r.loaded, r.photos, reporter);
+  const LenticularDesign shown = designLenticular(in.display.lenticular);
+  SeatCheckReport report;
+  {
+    const auto progress = reporter.progress("checking");
+    report.seats = photocal::checkLenticularSeats(shown, in.photos, progress->callback());
+  }
+  const int views = std::max(1, shown.quiltViews);
+  const double ideal = photocal::seenAmplitudeOfSpot(shown, 0);
+  JsonWriter json;
+  json.set("/display", in.display.source());
+  json.set("/views", views);
+  json.set("/ideal_lens_amplitude", ideal);
+  report.lines.push_back(
+      printed("display          %s (lenticular, the shot drawn with it; "
+              "views as fractions of the cone, view k of %d at (k + 1/2) / %d)",
+              in.display.source().c_str(), views, views));
+  for (size_t i = 0; i < report.seats.size(); ++i) {
+    const photocal::SeatCheck& seat = report.seats[i];
+    const std::string at = "/seats/" + std::to_string(i);
+    recordPhotoPlace(json, at, seat.name, seat.cameraMm, seat.offAxisDegrees, seat.markers);
+    json.set(at + "/distance_sigma_mm", seat.distanceSigmaMm);
+    json.set(at + "/view_seen/value", seat.viewSeen);
+    json.set(at + "/view_seen/sigma", seat.viewSeenSigma);
+    json.set(at + "/view_aimed", seat.viewAimed);
+    json.set(at + "/edges_seen/0", seat.edgesSeen[0]);
+    json.set(at + "/edges_seen/1", seat.edgesSeen[1]);
+    json.set(at + "/edges_aimed/0", seat.edgesAimed[0]);
+    json.set(at + "/edges_aimed/1", seat.edgesAimed[1]);
+    json.set(at + "/top_bottom_seen/0", seat.topBottomSeen[0]);
+    json.set(at + "/top_bottom_seen/1", seat.topBottomSeen[1]);
+    json.set(at + "/amplitude", seat.amplitude);
+    json.set(at + "/lens_spot_subpixels", seat.spotSubpixels);
+    json.set(at + "/other_views_share", seat.otherViews);
+    json.set(at + "/coherence", seat.coherence);
+    const auto view = [&](double f) { return printed("%.3f (view %.1f)", f, f * views - 0.5); };
+    const double off = seat.viewSeen - seat.viewAimed - std::round(seat.viewSeen - seat.viewAimed);
+    report.lines.push_back(printed(
+        "photo            %s: camera at (%.0f, %.0f, %.0f) mm (its distance ± %.0f mm), %.1f "
+        "degrees off axis, %d markers",
+        seat.name.c_str(), seat.cameraMm[0], seat.cameraMm[1], seat.cameraMm[2],
+        seat.distanceSigmaMm, seat.offAxisDegrees, seat.markers));
+    report.lines.push_back(
+        "  sees           " + view(seat.viewSeen) + " ± " + printed("%.3f", seat.viewSeenSigma) +
+        " at the panel's centre; the "
+        "file aims " +
+        view(seat.viewAimed) + " there (" + printed("%+.1f", off * views) + " views)");
+    report.lines.push_back(printed(
+        "  across         left edge %.3f, right edge %.3f (the file: %.3f, %.3f); top %.3f, "
+        "bottom %.3f (the file: %.3f at both)",
+        seat.edgesSeen[0], seat.edgesSeen[1], seat.edgesAimed[0], seat.edgesAimed[1],
+        seat.topBottomSeen[0], seat.topBottomSeen[1], seat.viewAimed));
+    report.lines.push_back(printed(
+        "  crosstalk      amplitude %.2f (an ideal lens %.2f, fringes' coherence %.2f): a focal "
+        "spot of %.1f subpixels (simulate --lens-spot), %.0f %% of the light from other views "
+        "(an ideal lens %.0f %%)",
+        seat.amplitude, ideal, seat.coherence, seat.spotSubpixels, 100 * seat.otherViews,
+        100 * photocal::otherViewsShare(shown, 0)));
+  }
+  report.json = json.dump();
+  return report;
+}
+
+void runCalibrationCheck(const CalibrationCheckRequest& r, Reporter& reporter) {
+  const SeatCheckReport report = checkSeats(r, reporter);
+  if (r.json) {
+    reporter.result(report.json);
+    return;
+  }
+  for (const std::string& line : report.lines) reporter.result(line);
 }
 
 }  // namespace parallax::jobs

@@ -12,6 +12,7 @@
 #include "parallax/io/display_file.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/photocal/barrier_estimate.h"
+#include "parallax/photocal/lenticular_check.h"
 #include "parallax/photocal/lenticular_estimate.h"
 
 namespace parallax::jobs {
@@ -73,5 +74,27 @@ struct PhotoCalibration {
 PhotoCalibration calibrateFromPhotos(const CalibratePhotoRequest& request, Reporter& reporter);
 // The same, then writes request.output and reports.
 void runCalibratePhoto(const CalibratePhotoRequest& request, Reporter& reporter);
+
+// ---- the check -------------------------------------------------------------------------------
+
+// What each seat sees (photocal/lenticular_check.h): photos of a lenticular display's lens shot
+// drawn with the calibration to check (`calibrate patterns --photo --display FILE`), one from
+// each place a viewer sits. `parallax calibrate check`, Python's calibration_check.
+struct CalibrationCheckRequest {
+  std::string display;  // the display the shots show; "" the one they were made for
+  std::optional<DisplayDescription> loaded;
+  std::string shots;
+  std::vector<std::string> photos;
+  bool json = false;
+};
+
+struct SeatCheckReport {
+  std::vector<photocal::SeatCheck> seats;
+  std::string json;                // one JSON object
+  std::vector<std::string> lines;  // the report as text
+};
+
+SeatCheckReport checkSeats(const CalibrationCheckRequest& request, Reporter& reporter);
+void runCalibrationCheck(const CalibrationCheckRequest& request, Reporter& reporter);
 
 }  // namespace parallax::jobs

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "parallax/photocal/lenticular_check.h"
 #include "parallax/photocal/lenticular_estimate.h"
 #include "parallax/photocal/lenticular_model.h"
 #include "parallax/photocal/lenticular_shot.h"
@@ -211,6 +212,73 @@ TEST(LenticularFromPhotos, TwoPhotosMeasureTheSheet) {
   EXPECT_LT(std::abs(centerError), 4 * m.centerSigma + 1e-3);
   EXPECT_NEAR(m.gapMm, sheet.gapMm, 0.1 * sheet.gapMm);
   ASSERT_EQ(m.photos.size(), 2u);
+}
+
+// The seat check (photocal/lenticular_check.h) against the photo maker: the panel shows the
+// truth's own calibration (a calibration that took), photographed from two seats. The view seen
+// is the fringe model's (lenticular_estimate.h, from the true camera) and the design's
+// lensFractionSeen (the renderer's optics, from the camera the markers give); the amplitude is
+// the analytic one for the photo maker's lens: its Gaussian spot of sigma s across (view
+// fraction sigma s |G|: exp(-2 pi^2 (s |G|)^2)) times the seen point's spread over the lit
+// aperture of its subpixel (fill p / 3 across, fill p down: sinc(G_x fill p / 3)
+// sinc(G_y fill p)).
+TEST(LenticularFromPhotos, TheSeatCheckReadsTheViewAndTheSpread) {
+  const LenticularDesign nominal = designLenticular(smallLenticular(), kSmallD);
+  const photocal::LensSheet sheet = sheetNear(nominal, 1.004, 1.003, 0.31);
+  const LenticularDesign truth = designLenticular(
+      photocal::calibrationWithField(nominal.calibration,
+                                     photocal::fieldOfSheet(sheet, true, kSmallD), kSmallD),
+      kSmallD);
+  const Image shot = photocal::drawLenticularShot(photocal::lenticularShot(truth), truth);
+  const photocal::PhaseField field = photocal::phaseFieldOf(truth);
+  const auto sinc = [](double u) { return u == 0 ? 1.0 : std::sin(kPi * u) / (kPi * u); };
+  for (const double spotPitches : {0.08, 0.16}) {
+    photomaker::PhysicalLenticular panel = physical(truth, sheet);
+    panel.spotSigmaMm = spotPitches * sheet.pitchMm;
+    const double fill = panel.panel.fillFactor, p = truth.pixelPitchMm;
+    const double expectedAmplitude =
+        std::exp(-2 * kPi * kPi * std::pow(panel.spotSigmaMm * std::hypot(field.gx, field.gy), 2)) *
+        sinc(field.gx * fill * p / 3) * sinc(field.gy * fill * p);
+    std::vector<photocal::NamedPhoto> photos;
+    std::vector<std::array<double, 3>> eyes{{45, 15, 0.9 * kSmallD}, {-80, -30, 1.2 * kSmallD}};
+    for (size_t i = 0; i < eyes.size(); ++i) {
+      // One phone at one zoom (the one that frames the nearer seat), 1280 x 960.
+      photomaker::PhoneCamera camera = pinhole(eyes[i], truth.widthMm);
+      camera.width *= 2, camera.height *= 2, camera.samplesPerPixel = 4;
+      camera.focalPx = 2 * pinhole(eyes[0], truth.widthMm).focalPx;
+      photos.push_back({"lens-" + std::to_string(i + 1),
+                        photoOf(photomaker::photographLenticular(panel, shot, camera))});
+    }
+    const std::vector<photocal::SeatCheck> seats = photocal::checkLenticularSeats(truth, photos);
+    ASSERT_EQ(seats.size(), 2u);
+    for (size_t i = 0; i < seats.size(); ++i) {
+      const photocal::SeatCheck& seat = seats[i];
+      // The fringe model from the true camera: the raw phase r; the view seen is 1 - r.
+      const PredictedFringes model = predicted(field, sheet, true, eyes[i]);
+      EXPECT_NEAR(wrapHalf(seat.viewSeen - (1 - model.phase)), 0, 0.005) << i;
+      // A calibration that took: across the panel the views fan as the renderer's optics
+      // (lensFractionSeen) aim them at the true eye (not at D). Where the markers put the
+      // camera (two near-frontal photos of a small panel: its direction within a few degrees,
+      // g |G| / 57 of a period a degree, its distance within the sigma reported), the view
+      // aimed is the one seen.
+      const Vec3d eye{eyes[i][0], eyes[i][1], eyes[i][2]};
+      EXPECT_NEAR(wrapHalf(seat.viewSeen - seat.viewAimed), 0, 0.08) << i;
+      EXPECT_NEAR(std::hypot(seat.cameraMm[0], seat.cameraMm[1], seat.cameraMm[2]),
+                  std::hypot(eye.x, eye.y, eye.z), 3 * seat.distanceSigmaMm)
+          << i;
+      EXPECT_NEAR(seat.edgesSeen[1] - seat.edgesSeen[0],
+                  lensFractionSeen(truth, 0.5 * truth.widthMm, eye) -
+                      lensFractionSeen(truth, -0.5 * truth.widthMm, eye),
+                  0.01)
+          << i;
+      EXPECT_NEAR(seat.topBottomSeen[0] - seat.topBottomSeen[1], 0, 0.01) << i;
+      // Within 10 % (the lines the lenses show sample the subpixels' apertures unevenly, a
+      // moire of the lenses and the pixels; the colour balance from the white band): the two
+      // spots' amplitudes are 0.87 and 0.60.
+      EXPECT_NEAR(seat.amplitude / expectedAmplitude, 1, 0.1) << i << " spot " << spotPitches;
+      EXPECT_GT(seat.coherence, 0.95) << i;
+    }
+  }
 }
 
 }  // namespace

@@ -212,6 +212,7 @@ CalibrationTrial barrierTrial(Draw& draw, const CalibrationStudyRequest& r,
         draw, photomaker::photographBarrier(truth, pictures.front, pictures.rear, phones[i]),
         "grid-" + std::to_string(index) + "-" + std::to_string(i + 1), r.photos));
   CalibrationTrial trial;
+  for (const photomaker::PhoneCamera& phone : phones) trial.truePhones.push_back(phone.positionMm);
   const auto start = std::chrono::steady_clock::now();
   try {
     const photocal::BarrierMeasurement m = photocal::measureBarrier(spec, photos);
@@ -224,6 +225,10 @@ CalibrationTrial barrierTrial(Draw& draw, const CalibrationStudyRequest& r,
     trial.sigmas = {m.gapSigmaMm / truth.gapMm, m.maskPanelOffsetSigmaPx, m.rotationSigmaDegrees,
                     0};
     trial.truths = {truth.gapMm, offsetPx, rotation};
+    trial.trueGapMm = truth.gapMm;
+    trial.measuredGapMm = m.gapMm;
+    for (const photocal::BarrierPhotoReport& p : m.photos)
+      trial.measuredPhones.push_back(p.cameraMm);
     trial.estimates = {m.gapMm, m.maskPanelOffsetPx, m.maskRotationDegrees};
   } catch (const InputError& e) {
     trial.refused = true;
@@ -278,6 +283,7 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
                                  "lens-" + std::to_string(index) + "-" + std::to_string(i + 1),
                                  r.photos));
   CalibrationTrial trial;
+  for (const photomaker::PhoneCamera& phone : phones) trial.truePhones.push_back(phone.positionMm);
   const auto start = std::chrono::steady_clock::now();
   try {
     const photocal::LenticularMeasurement m = photocal::measureLenticular(nominal, photos);
@@ -287,7 +293,28 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
                     wrapHalf(m.measured.center - truthCalibration.center)};
     const double dSlant =
         std::abs(slantOf(m.measured.slope + m.slopeSigma) - slantOf(m.measured.slope));
-    trial.sigmas = {m.pitchSigma / truthCalibration.pitch, dSlant, m.centerSigma};
+    // The raw phase's error where the viewer sees it: at the panel's centre, and the worst of
+    // the four corners (center itself is the phase at the shader's origin, a corner).
+    const photocal::PhaseField fm = photocal::phaseFieldOf(designLenticular(m.measured, D));
+    const photocal::PhaseField ft = photocal::phaseFieldOf(designLenticular(truthCalibration, D));
+    double cornerError = 0;
+    for (int corner = 0; corner < 4; ++corner) {
+      const double x = (corner % 2 ? 0.5 : -0.5) * nominal.widthMm;
+      const double y = (corner / 2 ? 0.5 : -0.5) * nominal.heightMm;
+      cornerError =
+          std::max(cornerError,
+                   std::abs(wrapHalf((fm.gx - ft.gx) * x + (fm.gy - ft.gy) * y + fm.r0 - ft.r0)));
+    }
+    trial.errors.push_back(wrapHalf(fm.r0 - ft.r0));
+    trial.errors.push_back(cornerError);
+    trial.sigmas = {m.pitchSigma / truthCalibration.pitch, dSlant, m.centerSigma, 0, 0};
+    trial.truths = {truthCalibration.pitch, slantOf(truthCalibration.slope),
+                    truthCalibration.center};
+    trial.estimates = {m.measured.pitch, slantOf(m.measured.slope), m.measured.center};
+    trial.trueGapMm = sheet.gapMm;
+    trial.measuredGapMm = m.gapMm;
+    for (const photocal::LenticularPhotoReport& p : m.photos)
+      trial.measuredPhones.push_back({p.cameraMm[0], p.cameraMm[1], p.cameraMm[2] + m.gapMm});
   } catch (const InputError& e) {
     trial.refused = true;
     trial.refusal = e.what();
@@ -336,7 +363,8 @@ CalibrationStudy calibrationStudy(const CalibrationStudyRequest& r, Reporter& re
     }
   } else {
     study.kind = "lenticular";
-    study.quantities = {"pitch (relative)", "slant (degrees)", "center (lens periods)"};
+    study.quantities = {"pitch (relative)", "slant (degrees)", "center (lens periods)",
+                        "phase at the panel's centre (periods)", "phase, worst corner (periods)"};
     const LenticularDesign nominal = designLenticular(display.lenticular);
     const Image picture = photocal::drawLenticularShot(photocal::lenticularShot(nominal), nominal);
     for (int i = 0; i < r.sets; ++i) {
@@ -393,10 +421,23 @@ void runCalibrationStudy(const CalibrationStudyRequest& r, Reporter& reporter) {
     json.set(at + "/refused", t.refused);
     for (size_t q = 0; q < t.errors.size(); ++q)
       json.set(at + "/errors/" + std::to_string(q), t.errors[q]);
+    for (size_t q = 0; q < t.sigmas.size(); ++q)
+      json.set(at + "/sigmas/" + std::to_string(q), t.sigmas[q]);
     for (size_t q = 0; q < t.truths.size(); ++q)
       json.set(at + "/truths/" + std::to_string(q), t.truths[q]);
     for (size_t q = 0; q < t.estimates.size(); ++q)
       json.set(at + "/estimates/" + std::to_string(q), t.estimates[q]);
+    if (t.trueGapMm > 0) json.set(at + "/gap_mm/truth", t.trueGapMm);
+    if (t.measuredGapMm > 0) json.set(at + "/gap_mm/estimate", t.measuredGapMm);
+    const auto setPhones = [&](const std::string& key,
+                               const std::vector<std::array<double, 3>>& phones) {
+      for (size_t p = 0; p < phones.size(); ++p)
+        for (size_t k = 0; k < 3; ++k)
+          json.set(at + "/" + key + "/" + std::to_string(p) + "/" + std::to_string(k),
+                   phones[p][k]);
+    };
+    setPhones("phones_mm/truth", t.truePhones);
+    setPhones("phones_mm/estimate", t.measuredPhones);
   }
   int refusal = 0;
   for (size_t i = 0; i < study.trials.size(); ++i)

@@ -4,6 +4,7 @@
 // truth. `parallax calibrate study` prints the table the docs hold; the tests run a few trials.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,10 @@ struct CalibrationTrial {
   std::vector<double> errors, sigmas;
   // The truth and the estimate of each quantity (empty where not recorded).
   std::vector<double> truths, estimates;
+  // Per photo, where the phone stood and where the estimate put it (display frame, mm, over
+  // the pixels), and the sheet's or barrier's gap, true and measured: what an error comes from.
+  std::vector<std::array<double, 3>> truePhones, measuredPhones;
+  double trueGapMm = 0, measuredGapMm = 0;
   double seconds = 0;
 };
 

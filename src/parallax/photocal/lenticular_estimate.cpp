@@ -237,11 +237,7 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
   const PhaseField field = phaseFieldOf(nominal);
   const bool invView = nominal.calibration.invView;
   const double D = nominal.viewDistanceMm;
-  // The nominal sheet's gap, from the view cone: a lens of horizontal width p_h sends a view
-  // cone of 2 atan(p_h / 2 g).
-  const double gapGuess =
-      nominal.horizontalLensPitchMm /
-      (2 * std::tan(nominal.calibration.viewConeDegrees * std::numbers::pi / 360));
+  const double gapGuess = sheetGapOfViewCone(nominal);
   int done = 0;
   const int total = int(photos.size()) + 1;
 

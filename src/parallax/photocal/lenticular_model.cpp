@@ -59,6 +59,11 @@ PhaseField phaseFieldOf(const LenticularDesign& d) {
   return best;
 }
 
+double sheetGapOfViewCone(const LenticularDesign& d) {
+  return d.horizontalLensPitchMm /
+         (2 * std::tan(d.calibration.viewConeDegrees * std::numbers::pi / 360));
+}
+
 PhaseField fieldOfSheet(const LensSheet& sheet, bool invView, double D) {
   const double s = invView ? 1.0 : -1.0;
   const double slant = sheet.slantDegrees * std::numbers::pi / 180;

@@ -33,6 +33,10 @@ PhaseField phaseFieldOf(const LenticularDesign& design);
 LenticularCalibration calibrationWithField(const LenticularCalibration& nominal,
                                            const PhaseField& target, double viewDistanceMm);
 
+// The sheet's air-equivalent focal gap the calibration's view cone implies: a lens of
+// horizontal width p_h sends a view cone of 2 atan(p_h / 2 g).
+double sheetGapOfViewCone(const LenticularDesign& design);
+
 // A physical lens sheet (the photo maker's own description of one).
 struct LensSheet {
   double pitchMm = 0, slantDegrees = 0, phaseMm = 0, gapMm = 0;

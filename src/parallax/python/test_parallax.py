@@ -830,6 +830,16 @@ def test_photo_shots_are_the_cli_shots_and_photos_are_refused_as_the_cli_refuses
     assert str(raised.value) in result.stderr
     assert "not a JPEG or PNG" in str(raised.value)
     assert not (tmp_path / "py.json").exists() and not (tmp_path / "cli.json").exists()
+    # The seat check refuses as the command line does: barrier shots, a photo that is not one.
+    lens = tmp_path / "lens-1.jpg"
+    lens.write_text("not a photo")
+    for shots, photo, text in [("barrier", bad, "holds barrier shots"),
+                               ("lenticular", lens, "not a JPEG or PNG")]:
+        result = cli("calibrate", "check", "--shots", tmp_path / f"cli-{shots}", photo)
+        assert result.returncode == 2
+        with pytest.raises(parallax.Error) as raised:
+            parallax.calibration_check(tmp_path / f"py-{shots}", [photo])
+        assert text in str(raised.value) and text in result.stderr
 
 
 def test_lenticular_simulate_is_the_cli_simulate(cli_quilt, tmp_path):

@@ -159,6 +159,19 @@ std::pair<std::string, std::string> calibratePhoto(const std::string& shots,
   return {result.json, result.measuredText};
 }
 
+// `parallax calibrate check --json`: what each seat sees.
+std::string calibrationCheck(const std::string& shots, const std::vector<std::string>& photos,
+                             const std::string& display) {
+  jobs::CalibrationCheckRequest r;
+  r.shots = shots;
+  r.photos = photos;
+  r.display = display;
+  r.json = true;
+  py::gil_scoped_release released;
+  jobs::RecordingReporter reporter;
+  return jobs::checkSeats(r, reporter).json;
+}
+
 // `lenticular simulate` in memory: the panel picture seen from the eye through the lenses.
 py::array_t<float> lenticularSimulate(const py::array& image, const DisplayDescription& display,
                                       const std::optional<std::array<double, 3>>& eye,
@@ -198,6 +211,8 @@ void bindTools(py::module_& module) {
              py::arg("display"));
   module.def("_calibrate_photo", &calibratePhoto, py::arg("shots"), py::arg("photos"),
              py::arg("output"), py::arg("display"));
+  module.def("_calibration_check", &calibrationCheck, py::arg("shots"), py::arg("photos"),
+             py::arg("display"));
   module.def("_lenticular_simulate", &lenticularSimulate, py::arg("image"), py::arg("display"),
              py::kw_only(), py::arg("eye") = py::none(), py::arg("distance") = 0.0,
              py::arg("lens_spot") = py::none(), py::arg("bundles") = "");

@@ -22,7 +22,7 @@ from ._parallax import (Display, Error, Scene, __version__, load_display, load_s
 __all__ = [
     "Display", "Error", "Scene", "RenderResult", "QuiltResult", "load_scene", "load_display",
     "design", "render", "render_files", "view", "ideal_view", "quilt", "simulate", "sweep_eyes", "sweep",
-    "quality", "to_srgb8", "version", "__version__", "set_limits", "estimate_memory", "interlace", "interlace_files", "CalibrationPatterns", "calibration_patterns", "calibration_patterns_files", "calibration_photo_patterns", "calibrate_photo", "lenticular_simulate",
+    "quality", "to_srgb8", "version", "__version__", "set_limits", "estimate_memory", "interlace", "interlace_files", "CalibrationPatterns", "calibration_patterns", "calibration_patterns_files", "calibration_photo_patterns", "calibrate_photo", "calibration_check", "lenticular_simulate",
 ]
 
 Eye = Tuple[float, float, float]
@@ -325,6 +325,15 @@ def calibrate_photo(shots: str, photos: Sequence[str], output: Optional[str] = N
     if output is None:
         result["measured"] = measured
     return result
+
+
+def calibration_check(shots: str, photos: Sequence[str], display: Optional[str] = None) -> dict:
+    """`parallax calibrate check [--display FILE] --shots SHOTS PHOTO... --json`: what each seat
+    sees of a lenticular panel showing the lens shot drawn with the calibration to check (the
+    view at the panel's centre and across it, the one a right calibration shows there, the
+    crosstalk; docs/calibration.md, "Checking a calibration"). Returns the report."""
+    return json.loads(_parallax._calibration_check(
+        str(shots), [str(p) for p in photos], "" if display is None else str(display)))
 
 
 def lenticular_simulate(image: np.ndarray, display: Display, *,
