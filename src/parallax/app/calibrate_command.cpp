@@ -190,6 +190,9 @@ void registerCalibrateCommand(Command& cli) {
                "The photos' largest angle from the panel's normal, degrees")
       ->captureDefault()
       ->check(realIn(0, 60));
+  t->addFlag("--true-camera", study->trueCamera,
+             "Lenticular: tell the estimator where each phone stood (the error left without the "
+             "camera's)");
   t->addOption("--aperture", study->blurMm,
                "The phone lens's aperture, mm (default: random, 1.5 to 3)")
       ->check(realIn(0, 50));

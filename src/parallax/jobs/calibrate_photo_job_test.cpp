@@ -212,6 +212,19 @@ TEST(LenticularFromPhotos, TwoPhotosMeasureTheSheet) {
   EXPECT_LT(std::abs(centerError), 4 * m.centerSigma + 1e-3);
   EXPECT_NEAR(m.gapMm, sheet.gapMm, 0.1 * sheet.gapMm);
   ASSERT_EQ(m.photos.size(), 2u);
+
+  // Told where the phones stood (calibrate study --true-camera), the estimate uses those places
+  // (reported over the sheet) and the centre's error is what the fringes leave.
+  const std::vector<std::array<double, 3>> known{{70, 45, 330 + sheet.gapMm},
+                                                 {-60, -35, 520 + sheet.gapMm}};
+  const photocal::LenticularMeasurement told =
+      photocal::measureLenticular(nominal, photos, {}, known);
+  for (size_t i = 0; i < known.size(); ++i)
+    for (size_t k = 0; k < 3; ++k)
+      EXPECT_NEAR(told.photos[i].cameraMm[k], known[i][k] - (k == 2 ? sheet.gapMm : 0.0),
+                  0.05 * sheet.gapMm)
+          << i << " " << k;
+  EXPECT_LT(std::abs(wrapHalf(told.measured.center - truth.center)), 0.02);
 }
 
 // The seat check (photocal/lenticular_check.h) against the photo maker: the panel shows the

@@ -286,7 +286,14 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
   for (const photomaker::PhoneCamera& phone : phones) trial.truePhones.push_back(phone.positionMm);
   const auto start = std::chrono::steady_clock::now();
   try {
-    const photocal::LenticularMeasurement m = photocal::measureLenticular(nominal, photos);
+    // The phones stand over the lens sheet; the estimator's cameras over the pixels behind it.
+    std::vector<std::array<double, 3>> known;
+    if (r.trueCamera)
+      for (const photomaker::PhoneCamera& phone : phones)
+        known.push_back(
+            {phone.positionMm[0], phone.positionMm[1], phone.positionMm[2] + sheet.gapMm});
+    const photocal::LenticularMeasurement m =
+        photocal::measureLenticular(nominal, photos, {}, known);
     const auto slantOf = [](double slope) { return std::atan(1 / slope) * 180 / kPi; };
     trial.errors = {(m.measured.pitch - truthCalibration.pitch) / truthCalibration.pitch,
                     slantOf(m.measured.slope) - slantOf(truthCalibration.slope),
@@ -314,7 +321,7 @@ CalibrationTrial lenticularTrial(Draw& draw, const CalibrationStudyRequest& r,
     trial.trueGapMm = sheet.gapMm;
     trial.measuredGapMm = m.gapMm;
     for (const photocal::LenticularPhotoReport& p : m.photos)
-      trial.measuredPhones.push_back({p.cameraMm[0], p.cameraMm[1], p.cameraMm[2] + m.gapMm});
+      trial.measuredPhones.push_back(p.cameraMm);
   } catch (const InputError& e) {
     trial.refused = true;
     trial.refusal = e.what();

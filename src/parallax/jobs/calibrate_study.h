@@ -24,6 +24,9 @@ struct CalibrationStudyRequest {
   int samplesPerPixel = 8;                    // the photo maker's samples per photo pixel
   double maxOffAxisDegrees = 30;
   double blurMm = -1;  // the aperture's diameter; < 0: random, 1.5 to 3 mm
+  // Lenticular: the estimator is told where each phone stood (the fringes' lever from the truth,
+  // the photo still read through the markers' camera): the error left without the camera's.
+  bool trueCamera = false;
   uint64_t seed = 1;
   std::string photos;  // a folder to keep the photos in ("" none)
   bool json = false;
@@ -39,7 +42,8 @@ struct CalibrationTrial {
   // The truth and the estimate of each quantity (empty where not recorded).
   std::vector<double> truths, estimates;
   // Per photo, where the phone stood and where the estimate put it (display frame, mm, over
-  // the pixels), and the sheet's or barrier's gap, true and measured: what an error comes from.
+  // the front: the lens sheet, the barrier's front panel), and the sheet's or barrier's gap,
+  // true and measured: what an error comes from.
   std::vector<std::array<double, 3>> truePhones, measuredPhones;
   double trueGapMm = 0, measuredGapMm = 0;
   double seconds = 0;

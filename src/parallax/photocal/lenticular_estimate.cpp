@@ -231,7 +231,8 @@ LenticularFringes readLenticularFringes(const LenticularDesign& nominal, const v
 
 LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
                                         const std::vector<NamedPhoto>& photos,
-                                        const std::function<void(int, int)>& progress) {
+                                        const std::function<void(int, int)>& progress,
+                                        const std::vector<std::array<double, 3>>& knownCamerasMm) {
   if (photos.empty()) throw InputError("photos", "", "no photo of shot lens given");
   const LenticularShot shot = lenticularShot(nominal);
   const PhaseField field = phaseFieldOf(nominal);
@@ -257,6 +258,7 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
   const double searchRange = searchRangeOf(field);
   for (size_t i = 0; i < photos.size(); ++i) {
     std::array<double, 3> c = cameraCentre(markers, i, photos[i].name);
+    if (i < knownCamerasMm.size()) c = knownCamerasMm[i];
     c[2] -= gapGuess;
     const PhotoSampler photo(photos[i].photo, camera.intrinsics, camera.poses[i], true);
     const FringePlane plane =

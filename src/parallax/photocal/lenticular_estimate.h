@@ -67,8 +67,12 @@ LenticularFringes readLenticularFringes(const LenticularDesign& nominal, const v
 // Measures from the photos (any order; at least two, from distances at least a fifth apart).
 // Throws InputError(photo, "", what is missing) for a photo that does not show the shot well
 // enough, and InputError(the photos, ...) when the set leaves the gap open.
-LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
-                                        const std::vector<NamedPhoto>& photos,
-                                        const std::function<void(int, int)>& progress = {});
+// knownCamerasMm: where each photo's camera stood when that is known from elsewhere (display
+// frame over the pixels, one per photo; `calibrate study --true-camera` gives the photo maker's,
+// to tell the camera's share of the error from the rest); empty: the markers' camera alone.
+LenticularMeasurement measureLenticular(
+    const LenticularDesign& nominal, const std::vector<NamedPhoto>& photos,
+    const std::function<void(int, int)>& progress = {},
+    const std::vector<std::array<double, 3>>& knownCamerasMm = {});
 
 }  // namespace parallax::photocal
