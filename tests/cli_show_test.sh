@@ -150,4 +150,27 @@ check "a server that never comes is one clear line" bash -c "DISPLAY=$late '$bin
 check "quit closes at once" bash -c "DISPLAY=$display timeout 5 '$bin' show '$tmp/r' --windowed \
   --keys quit"
 
+# The shots to photograph (calibrate patterns --photo) shown 1:1: a barrier's two layers side by
+# side, a lenticular panel's one picture, on a screen wide enough for them.
+cat >"$tmp/mid.json" <<'JSON'
+{"image_layer": {"resolution": [640, 360], "pixel_pitch_mm": 0.5}, "gap_mm": 3,
+ "views": 9, "view_distance_mm": 600}
+JSON
+sed 's/"screenW": {"value": 96}, "screenH": {"value": 128}/"screenW": {"value": 240}, "screenH": {"value": 320}/' \
+  "$tmp/lkg.json" >"$tmp/lkg240.json"
+check "barrier shots" run 0 calibrate patterns --photo --display "$tmp/mid.json" -o "$tmp/shots"
+check "lenticular shots" run 0 calibrate patterns --photo --display "$tmp/lkg240.json" \
+  -o "$tmp/lshots"
+display=":$((500 + RANDOM % 400))"
+Xvfb "$display" -screen 0 1300x400x24 -nolisten tcp >/dev/null 2>&1 &
+wide_xvfb=$!
+trap 'kill $xvfb $wide_xvfb 2>/dev/null; rm -rf "$tmp"' EXIT
+for _ in $(seq 300); do xdpyinfo -display "$display" >/dev/null 2>&1 && break; sleep 0.1; done
+check "the shot's image layer is on the screen 1:1" shot_matches "$tmp/shots/grid-image.png" 0 0 \
+  -- "$tmp/shots"
+check "the shot's mask layer is beside it 1:1" shot_matches "$tmp/shots/grid-mask.png" 640 0 \
+  -- "$tmp/shots"
+check "a lenticular shot is on its panel 1:1" shot_matches "$tmp/lshots/lens-panel.png" 0 0 \
+  -- "$tmp/lshots"
+
 cli_summary
