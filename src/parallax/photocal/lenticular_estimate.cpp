@@ -4,6 +4,7 @@
 #include "parallax/photocal/lenticular_estimate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -187,6 +188,42 @@ FringePlane fitFringes(const PhotoSampler& photo, const LenticularShot& shot, do
     plane.sigmaPhase = std::sqrt(variance * covariance[8]);
     plane.coherence = plane.amplitude / std::max(1e-12, rms);
   }
+  // The blocks' errors are not independent: the moire of the lenses' spots against the
+  // subpixels is slow, so the blocks' scatter understates what the plane is sure of. The plane
+  // is also fitted to 6 x 6 super-blocks' mean phasors, and its uncertainty is the larger of the
+  // two (the super-blocks' scatter with 36 - 3 degrees of freedom).
+  constexpr int kSuper = 6;
+  std::vector<std::complex<double>> superSum(kSuper * kSuper, 0.0);
+  std::vector<double> superX(kSuper * kSuper, 0.0), superY(kSuper * kSuper, 0.0);
+  std::vector<int> superCount(kSuper * kSuper, 0);
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    const Block& b = blocks[k];
+    const size_t cell = size_t(b.j * kSuper / ny * kSuper + b.i * kSuper / nx);
+    superSum[cell] +=
+        z[k] * std::polar(1.0, -kTwoPi * (plane.gx * b.x + plane.gy * b.y + plane.phase));
+    superX[cell] += b.x, superY[cell] += b.y, ++superCount[cell];
+  }
+  LeastSquares superFit(3);
+  std::vector<std::array<double, 3>> superRows;
+  std::vector<double> superPhase;
+  for (size_t c = 0; c < superSum.size(); ++c) {
+    if (superCount[c] == 0 || std::abs(superSum[c]) == 0) continue;
+    superRows.push_back({superX[c] / superCount[c], superY[c] / superCount[c], 1});
+    superPhase.push_back(std::arg(superSum[c]) / kTwoPi);
+    superFit.add(superRows.back().data(), superPhase.back());
+  }
+  std::vector<double> d, covariance;
+  if (superRows.size() > 8 && superFit.solve(d, &covariance)) {
+    double sum = 0;
+    for (size_t c = 0; c < superRows.size(); ++c) {
+      const double r = superPhase[c] - (d[0] * superRows[c][0] + d[1] * superRows[c][1] + d[2]);
+      sum += r * r;
+    }
+    const double variance = sum / double(superRows.size() - 3);
+    plane.sigmaGx = std::max(plane.sigmaGx, std::sqrt(variance * covariance[0]));
+    plane.sigmaGy = std::max(plane.sigmaGy, std::sqrt(variance * covariance[4]));
+    plane.sigmaPhase = std::max(plane.sigmaPhase, std::sqrt(variance * covariance[8]));
+  }
   plane.phase -= std::floor(plane.phase);
   return plane;
 }
@@ -293,16 +330,28 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
   // its best m (the gradients' mean) and phi (the phases' circular mean), then least squares.
   const size_t n = planes.size();
   std::vector<double> lever(n), wg(n), wp(n);
-  // Each photo's fringes are off the model by more than their noise: the colour moire of the
-  // lenses against the subpixels and the sensor, and the camera's pose from the markers. The
-  // floors are what photos through a known camera show (the photo maker, 60 dB).
-  constexpr double kGradientFloor = 1.5e-4, kPhaseFloor = 0.004;
+  // Each photo's fringes are off the model by more than fitFringes' sigmas say: the floors are
+  // what photos through a known camera show (the photo maker, 60 dB); and the phase carries the
+  // camera's direction from the markers (g |G| of a period a radian), which is known to about
+  // a thousandth of a radian times the camera's distance over the panel's width
+  // (calibrate study's phones_mm: a Portrait from 1.5 m, median 0.007 rad, 90 % within 0.03;
+  // a 53 cm monitor from 1.8 m, 0.002 and 0.006).
+  constexpr double kGradientFloor = 1.5e-4, kPhaseFloor = 0.004, kDirectionPerAspect = 1e-3;
+  // And the plane's tilt, measured or not, is off by about a twentieth of a cycle over the
+  // panel (a Portrait's fringes through a known camera at 60 dB: 5e-4 cycles a millimetre
+  // across its 120 mm; a 53 cm monitor's, a fifth of that), more than their super-blocks show.
+  constexpr double kTiltFloorCycles = 0.05;
+  const double phasePerRadian = gapGuess * std::hypot(field.gx, field.gy);
   for (size_t i = 0; i < n; ++i) {
     FringePlane& p = planes[i];
-    p.sigmaGx = std::hypot(p.sigmaGx, kGradientFloor);
-    p.sigmaGy = std::hypot(p.sigmaGy, kGradientFloor);
-    p.sigmaPhase = std::hypot(p.sigmaPhase, kPhaseFloor);
     const std::array<double, 3>& c = centres[i];
+    const double direction =
+        knownCamerasMm.empty()
+            ? kDirectionPerAspect * std::hypot(c[0], c[1], c[2]) / nominal.widthMm * phasePerRadian
+            : 0.0;
+    p.sigmaGx = std::hypot(p.sigmaGx, kGradientFloor, kTiltFloorCycles / nominal.widthMm);
+    p.sigmaGy = std::hypot(p.sigmaGy, kGradientFloor, kTiltFloorCycles / nominal.heightMm);
+    p.sigmaPhase = std::hypot(p.sigmaPhase, kPhaseFloor, direction);
     lever[i] = (field.gx * c[0] + field.gy * c[1]) / c[2];
     wg[i] = 1 / (p.sigmaGx * p.sigmaGx + p.sigmaGy * p.sigmaGy);
     wp[i] = 1 / (p.sigmaPhase * p.sigmaPhase);
@@ -380,7 +429,7 @@ LenticularMeasurement measureLenticular(const LenticularDesign& nominal,
   out.centerSigma = std::sqrt(std::max(0.0, variance[2]));
   // The centre needs the gap (the phases seen from off the axis carry g times the lever): photos
   // whose levers and distances are too alike leave it open.
-  if (!(out.gapSigmaMm < 0.25 * gapGuess) || !(out.centerSigma < 0.05)) {
+  if (!(out.gapSigmaMm < gapGuess) || !(out.centerSigma < 0.1)) {
     std::string all;
     for (const NamedPhoto& p : photos) all += (all.empty() ? "" : ", ") + p.name;
     throw InputError(all, "",

@@ -40,7 +40,7 @@ MarkerCamera markerCamera(const MarkerRing& ring, const PanelGrid& front,
     }
     if (ours < minMarkers)
       throw InputError(p.name, "",
-                       others > ours
+                       others > ours && others >= minMarkers
                            ? "shows another shot's markers, not shot " + shotName + "'s (" +
                                  markerCount(ours, ring.markers.size()) + " found)"
                            : "the panel was not found: " + markerCount(ours, ring.markers.size()) +
