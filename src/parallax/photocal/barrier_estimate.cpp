@@ -519,12 +519,14 @@ BarrierMeasurement measureBarrier(const DisplaySpec& nominal, const std::vector<
   if (!(out.gapSigmaMm < kMaxGapRelativeSigma * g)) {
     std::string all;
     for (const NamedPhoto& p : photos) all += (all.empty() ? "" : ", ") + p.name;
-    const long tenths = std::lround(1000 * out.gapSigmaMm / g);
+    const long hundredths = std::lround(10000 * out.gapSigmaMm / g);
+    const std::string cents = std::to_string(100 + hundredths % 100).substr(1);
     throw InputError(all, "",
-                     "the photos pin the gap only to ± " + std::to_string(tenths / 10) + "." +
-                         std::to_string(tenths % 10) +
-                         " % (one sigma; 0.8 % is needed): take one 10 to 30 degrees to the left "
-                         "of the panel and one to the right, the whole panel sharp in both");
+                     "the photos pin the gap only to ± " + std::to_string(hundredths / 100) + "." +
+                         cents +
+                         " % (one sigma; at most 0.80 % is needed): take one 10 to 30 degrees to "
+                         "the left of the panel and one to the right, the whole panel sharp in "
+                         "both");
   }
   out.rearOffsetXMm = sx;
   out.rearOffsetSigmaMm = std::sqrt(covariance[5]);
