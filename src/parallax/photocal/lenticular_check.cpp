@@ -1,6 +1,6 @@
-// The seat check (lenticular_check.h): per photo, its own camera from the markers, the shot's
-// phasor plane read as the estimator reads its fringes, and the plane's phase, gradient and
-// amplitude turned into the views seen.
+// The seat check (lenticular_check.h): one camera from every photo's markers (a pose each), the
+// shot's phasor plane read per photo as the estimator reads its fringes, and the plane's phase,
+// gradient and amplitude turned into the views seen.
 #include "parallax/photocal/lenticular_check.h"
 
 #include <algorithm>
