@@ -347,11 +347,15 @@ struct PhotosOfShots {
   std::vector<photocal::NamedPhoto> photos;
 };
 
+// `refuseKind`: a kind of shots the caller cannot read ("" none) and why, refused before any
+// display or photo is read.
 PhotosOfShots readPhotosOfShots(const std::string& shots, const std::string& display,
                                 const std::optional<DisplayDescription>& loaded,
-                                const std::vector<std::string>& paths, Reporter& reporter) {
+                                const std::vector<std::string>& paths, Reporter& reporter,
+                                const std::string& refuseKind = "", const std::string& why = "") {
   PhotosOfShots out;
   out.folder = readShotsFolder(shots);
+  if (!refuseKind.empty() && out.folder.kind == refuseKind) throw InputError(shots, "", why);
   out.display =
       loaded ? *loaded : loadDisplay(display.empty() ? out.folder.displayPath : display, reporter);
   if (kindName(out.display) != out.folder.kind)
@@ -417,11 +421,10 @@ void runCalibratePhoto(const CalibratePhotoRequest& r, Reporter& reporter) {
 // ---- the check ---------------------------------------------------------------------------------
 
 SeatCheckReport checkSeats(const CalibrationCheckRequest& r, Reporter& reporter) {
-  if (readShotsFolder(r.shots).kind != "lenticular")
-    throw InputError(r.shots, "",
-                     "holds barrier shots: the seat check reads a lenticular panel's lens shot "
-                     "(a barrier's is not written yet)");
-  const PhotosOfShots in = readPhotosOfShots(r.shots, r.display, r.loaded, r.photos, reporter);
+  const PhotosOfShots in =
+      readPhotosOfShots(r.shots, r.display, r.loaded, r.photos, reporter, "barrier",
+                        "holds barrier shots: the seat check reads a lenticular panel's lens shot "
+                        "(a barrier's is not written yet)");
   const LenticularDesign shown = designLenticular(in.display.lenticular);
   SeatCheckReport report;
   {
