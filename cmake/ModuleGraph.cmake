@@ -4,13 +4,15 @@
 # docs/architecture.md says the same. Every edge is there for a reason, given beside it.
 
 # Modules in dependency order: each may use only modules listed before it.
-set(PARALLAX_MODULES core image display scene io accel camera render sim quality layers window video cluster vision photomaker photocal jobs app python)
+set(PARALLAX_MODULES core image display scene io importer accel camera render sim quality layers window video cluster vision photomaker photocal jobs app python)
 
 set(PARALLAX_USES_core "")
 set(PARALLAX_USES_image core)
 set(PARALLAX_USES_display core image)          # image: the mask layer's raster
 set(PARALLAX_USES_scene core image)            # image: textures
 set(PARALLAX_USES_io core image display scene) # reads and writes all three
+# importer: scene files and the meshes they place (the readers, assimp's child process)
+set(PARALLAX_USES_importer core image scene io)  # io: files, images (textures), JSON
 set(PARALLAX_USES_accel core scene)            # builds Embree's scene from the Scene
 set(PARALLAX_USES_camera core display scene)   # display rays, placed by the scene's placement
 set(PARALLAX_USES_render core image display scene accel camera)  # traces cameras' rays
@@ -27,10 +29,10 @@ set(PARALLAX_USES_photomaker core image)
 set(PARALLAX_USES_photocal core image display vision)  # shots and the estimator from photos
 # jobs: the request layer under both front ends: typed requests, their checks and estimates, and
 # one runner per use case (docs/architecture.md, "Requests")
-set(PARALLAX_USES_jobs core image display scene io accel camera render sim quality layers video cluster vision photomaker photocal)
-set(PARALLAX_USES_app core image display scene io accel camera render sim quality layers window video cluster vision photomaker photocal jobs)
+set(PARALLAX_USES_jobs core image display scene io importer accel camera render sim quality layers video cluster vision photomaker photocal)
+set(PARALLAX_USES_app core image display scene io importer accel camera render sim quality layers window video cluster vision photomaker photocal jobs)
 # python: a peer of app on the request layer (jobs), never on app
-set(PARALLAX_USES_python core image display scene io accel camera render sim quality vision photomaker photocal jobs)
+set(PARALLAX_USES_python core image display scene io importer accel camera render sim quality vision photomaker photocal jobs)
 
 # Third-party include prefixes and the one module that may use each (only in its .cpp files).
 set(PARALLAX_THIRD_PARTY embree3 embree4 tbb nlohmann tiny_obj_loader tiny_gltf stb zlib assimp CLI SDL2
@@ -39,11 +41,11 @@ set(PARALLAX_OWNER_embree3 accel)  # Embree 3 (Debian 12) or
 set(PARALLAX_OWNER_embree4 accel)  # Embree 4 (Debian 13), whichever is installed
 set(PARALLAX_OWNER_tbb core)   # behind core/parallel.h
 set(PARALLAX_OWNER_nlohmann io)
-set(PARALLAX_OWNER_tiny_obj_loader io)
-set(PARALLAX_OWNER_tiny_gltf io)
+set(PARALLAX_OWNER_tiny_obj_loader importer)
+set(PARALLAX_OWNER_tiny_gltf importer)
 set(PARALLAX_OWNER_stb io)
 set(PARALLAX_OWNER_zlib io)    # the PNG encoder's deflate
-set(PARALLAX_OWNER_assimp io)  # the long tail of mesh formats (io/mesh_assimp.cpp)
+set(PARALLAX_OWNER_assimp importer)  # the long tail of mesh formats (importer/mesh_assimp.cpp)
 set(PARALLAX_OWNER_CLI app)
 set(PARALLAX_OWNER_SDL2 window)
 set(PARALLAX_OWNER_libavcodec video)  # FFmpeg: encoders and decoders

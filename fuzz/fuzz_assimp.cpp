@@ -1,5 +1,5 @@
-// The assimp route through its child process (io/isolated_import.cpp): the input is written as
-// a file of the format its first bytes announce (FBX, DirectX .x, Collada, OFF, 3DS, ...; else
+// The assimp route through its child process (importer/isolated_import.cpp): the input is written
+// as a file of the format its first bytes announce (FBX, DirectX .x, Collada, OFF, 3DS, ...; else
 // one of the formats only assimp reads, picked by the first byte; assimp itself then also tries
 // the others by their signatures) and read by loadMeshFile, which runs assimp in a child. A
 // crash, abort, hang or runaway allocation of the child is a clean refusal (InputError), not a
@@ -13,7 +13,8 @@
 #include <string>
 
 #include "fuzz_mesh_support.h"
-#include "parallax/io/isolated_import.h"
+#include "parallax/importer/assimp_importer.h"
+#include "parallax/importer/isolated_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace parallax;

@@ -7,8 +7,8 @@
 
 #include "fuzz_support.h"
 #include "parallax/image/image.h"
+#include "parallax/importer/mesh_file.h"
 #include "parallax/io/image_file.h"
-#include "parallax/io/mesh_file.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax::fuzz {

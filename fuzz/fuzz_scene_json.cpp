@@ -5,8 +5,8 @@
 
 #include "fuzz_support.h"
 #include "parallax/image/image.h"
+#include "parallax/importer/scene_file.h"
 #include "parallax/io/image_file.h"
-#include "parallax/io/scene_file.h"
 
 namespace {
 

@@ -14,8 +14,9 @@
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/display/lenticular.h"
+#include "parallax/importer/scene_file.h"
 #include "parallax/io/display_file.h"
-#include "parallax/io/scene_file.h"
+#include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/layer_output.h"
 
 namespace parallax::app {
@@ -30,20 +31,6 @@ Vec3f parseVec3(const std::string& option, const std::string& text) {
 }
 
 namespace {
-
-// The text as a number, or nothing: decimal digits with an optional leading minus, no spaces.
-bool parseInteger(const std::string& text, int64_t& value) {
-  if (text.empty() || text.size() > 20) return false;
-  for (size_t i = 0; i < text.size(); ++i)
-    if (!(std::isdigit(static_cast<unsigned char>(text[i])) || (i == 0 && text[i] == '-')))
-      return false;
-  errno = 0;
-  char* end = nullptr;
-  const long long v = std::strtoll(text.c_str(), &end, 10);
-  if (errno != 0 || end != text.c_str() + text.size()) return false;
-  value = v;
-  return true;
-}
 
 bool parseReal(const std::string& text, double& value) {
   if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return false;
@@ -62,19 +49,6 @@ std::string number(double v) {
 }
 
 }  // namespace
-
-void parseSize(const std::string& option, const std::string& text, int& width, int& height) {
-  const size_t x = text.find_first_of("xX");
-  int64_t w = 0, h = 0;
-  if (x == std::string::npos || !parseInteger(text.substr(0, x), w) ||
-      !parseInteger(text.substr(x + 1), h) || w <= 0 || h <= 0)
-    throw InputError(option, "",
-                     "expected WIDTHxHEIGHT (positive whole numbers), got '" + text + "'");
-  if (w > INT_MAX || h > INT_MAX)
-    throw InputError(option + " " + text, "", "is more pixels across than an int holds");
-  width = int(w);
-  height = int(h);
-}
 
 TextCheck realIn(double lo, double hi, Bound lower, Bound upper) {
   std::string range;

@@ -11,9 +11,9 @@
 #include "parallax/core/error.h"
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
+#include "parallax/importer/mesh_file.h"
+#include "parallax/importer/scene_file.h"
 #include "parallax/io/display_file.h"
-#include "parallax/io/mesh_file.h"
-#include "parallax/io/scene_file.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
@@ -74,14 +74,13 @@ jobs::Reporter& cliReporter();
 
 // "X,Y,Z" -> Vec3f; throws InputError naming the option.
 Vec3f parseVec3(const std::string& option, const std::string& text);
-// "WxH" -> (W, H) with both positive; throws InputError naming the option. Memory (and the
-// pixel count) are checked separately, with the estimate.
-void parseSize(const std::string& option, const std::string& text, int& width, int& height);
 
 // --spp, --threads, --seed, --jitter, --adaptive, --bounces: how every rendering command samples.
 // Adds the four options to `cmd`; what one sample is differs between commands: `sppHelp`.
 void addSamplingOptions(Command& cmd, SamplingRequest& options, const std::string& sppHelp);
 
+using jobs::parseInteger;
+using jobs::parseSize;
 using jobs::setFramingFigures;
 
 // --fit, --focus and --depth-budget (render, and design --scene, view --display-eye): how the
@@ -114,7 +113,7 @@ ImportOptions importOptions();
 // The built-in scene when `path` is empty, otherwise the scene or mesh file.
 Scene loadSceneOrDefault(const std::string& path, const SceneLoadOptions& options = {});
 // --camera NAME|INDEX (render, view): which camera of the scene's glTF files to use
-// (io/scene_file.h, SceneLoadOptions::camera).
+// (importer/scene_file.h, SceneLoadOptions::camera).
 void addSceneLoadOptions(Command& cmd, SceneLoadOptions& options);
 
 // The built-in display when `path` is empty, otherwise the display file; checked (G1-G4).

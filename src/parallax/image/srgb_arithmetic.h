@@ -1,5 +1,5 @@
 // The sRGB encoding in arithmetic that vectorises, for the loops that encode every value of
-// whole images: the layer solvers' errors (layers/layer_solver.cpp) and the dense measure's
+// whole images: the layer solvers' errors (layers/layer_numerics.cpp) and the dense measure's
 // pictures (srgbEncodeValues, image/metrics.cpp).
 #pragma once
 

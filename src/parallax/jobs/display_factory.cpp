@@ -122,4 +122,14 @@ void BuiltDisplay::recordDesign(JsonWriter& record, const std::string& at) const
     writeLenticularDesignJson(record, at, *lenticular);
 }
 
+DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& reporter) {
+  DisplayDescription description = loadDisplayDescription(pathOrPreset);
+  for (const std::string& warning : description.lenticular.warnings) reporter.warning(warning);
+  return description;
+}
+
+DisplayDesign loadBarrierDesign(const std::string& path, Reporter& reporter) {
+  return barrierDesignOf(loadDisplay(path, reporter));
+}
+
 }  // namespace parallax::jobs

@@ -71,4 +71,10 @@ BuiltDisplay makeFramedDisplay(const DisplayDescription& description,
 // The checks of a framing request before any work (every kind of display takes one).
 void checkFramingApplies(const DisplayDescription& description, const FramingRequest& framing);
 
+// A display of any kind (io/display_file.h: "" the built-in barrier, a file of either kind, or
+// lkg:NAME), the reader's warnings (defaulted or unknown calibration keys) to `reporter`.
+DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& reporter);
+// A barrier display ("" the built-in), designed; a lenticular calibration is refused.
+DisplayDesign loadBarrierDesign(const std::string& path, Reporter& reporter);
+
 }  // namespace parallax::jobs

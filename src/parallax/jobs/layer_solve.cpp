@@ -6,7 +6,9 @@
 
 #include "parallax/core/memory.h"
 #include "parallax/jobs/render_parts.h"
-#include "parallax/layers/layer_solver.h"
+#include "parallax/layers/image_layer_solver.h"
+#include "parallax/layers/layer_factorization.h"
+#include "parallax/layers/layer_method.h"
 #include "parallax/layers/training.h"
 
 namespace parallax::jobs {
@@ -15,8 +17,8 @@ namespace {
 
 // nmf aims 5 % above max(2, rank) times the slits' brightness: a least-squares fit comes out a
 // little darker than its target (measured: 1.97x for a target of 2 on the built-in scene).
-double defaultBrightness(const std::string& method, int rank) {
-  return method == "nmf" ? 1.05 * std::max(2.0, double(rank)) : 1.0;
+double defaultBrightness(LayerMethod method, int rank) {
+  return method == LayerMethod::Nmf ? 1.05 * std::max(2.0, double(rank)) : 1.0;
 }
 
 // nmf's start: T copies of the slit image; masks of T slit phases a period / T apart, their
@@ -65,7 +67,7 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
   // sizes: their blocks are taken again rather than handed back to the kernel.
   const KeepFreedBlocks keepFreedBlocks;
   const double slitMean = meanTransmittance(slits.mask);
-  const double gain = o.brightness > 0 ? o.brightness : defaultBrightness(o.method, o.rank);
+  const double gain = o.brightness > 0 ? o.brightness : defaultBrightness(o.methodKind(), o.rank);
   training.targetScale = slitMean * gain;
   const int iterations = o.iterations.value_or(kDefaultLayerIterations);
   // A diffuser foil blurs the rear layer (sim/diffuser.h); its pixels are the rear panel's.
@@ -85,7 +87,7 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
     progress->detail(printed("objective %.4g", objective));
     progress->update(done, total);
   };
-  if (solvesByBands(design, training, o.method)) {
+  if (solvesByBands(design, training, o.methodKind())) {
     // The ideal views a band of rows at a time, each band solved before the next is rendered:
     // one band's targets held instead of every eye's whole view (layers/training.h).
     views = trainingEyes(design, training);
@@ -98,14 +100,15 @@ std::vector<LayerFrame> solveLayers(const LayersRequest& o, const Scene& scene,
     trainSeconds = bands.seconds();
   } else {
     // nmf with the image in front reads the targets only through B^T (TrainingView::boxedTarget).
-    training.boxedTargets = o.method == "nmf" && design.spec.order == LayerOrder::BarrierBack;
+    training.boxedTargets =
+        o.methodKind() == LayerMethod::Nmf && design.spec.order == LayerOrder::BarrierBack;
     {
       const auto viewsProgress = reporter.progress("ideal views");
       views = trainingViews(scene, accelerator, design, training, viewsProgress->callback());
     }
     trainSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     progress = reporter.progress("layers " + o.method);
-    if (o.method == "optimized-image")
+    if (o.methodKind() == LayerMethod::OptimizedImage)
       frames.push_back({optimizeImageLayer(views, slits.image, slits.mask, iterations,
                                            training.threads, &report, onIteration, diffuser),
                         slits.mask});

@@ -7,7 +7,7 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
-#include "parallax/io/mesh_file.h"
+#include "parallax/importer/assimp_importer.h"
 
 namespace parallax::jobs {
 

@@ -22,9 +22,9 @@ Limits& limits();
 
 // The memory limit in bytes.
 double memoryLimitBytes();
-// Hands the limits to the io module's isolated importers (io/mesh_file.h, setImporterLimits):
-// the memory budget is memoryLimitBytes(), the CPU budget the default importer budget or
-// max_time if that is smaller. Called before every scene load.
+// Hands the limits to the importer's isolated readers (importer/assimp_importer.h,
+// setImporterLimits): the memory budget is memoryLimitBytes(), the CPU budget the default importer
+// budget or max_time if that is smaller. Called before every scene load.
 void applyImporterLimits();
 // Refuses pictures of more than 2^31 pixels (the renderer's pixel index is an int); call it
 // after the memory estimate, which refuses them first where memory is smaller.

@@ -143,7 +143,7 @@ std::pair<double, std::string> framePictureBytes(const RenderRequest& r, const R
   // Solved layers: the slits' layers stay while the solver holds its training views (their
   // ideal images and the eyes' sampling tables) and per frame two layers and their gradients.
   const double solver =
-      trainingHeldBytes(*design, plan.training, r.layers.method) +
+      trainingHeldBytes(*design, plan.training, r.layers.methodKind()) +
       imageBytes(image.width, image.height, kFloatRgbPixelBytes, 4.0 * r.layers.rank + 6.0) +
       imageBytes(image.width, image.height) + imageBytes(mask.width, mask.height);
   return {std::max(layers, solver), "the training views of {layers} " + r.layers.method};

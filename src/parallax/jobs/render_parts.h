@@ -6,7 +6,7 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/jobs/display_factory.h"
-#include "parallax/jobs/render_job.h"
+#include "parallax/jobs/render_request.h"
 #include "parallax/layers/training.h"
 #include "parallax/render/quilt.h"
 

@@ -7,9 +7,8 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/cluster/process_group.h"
 #include "parallax/core/error.h"
-#include "parallax/io/mesh_file.h"
+#include "parallax/importer/assimp_importer.h"
 #include "parallax/io/rgbd_file.h"
-#include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/limits.h"
 
 namespace parallax::jobs {
@@ -56,6 +55,32 @@ std::vector<double> parseDistances(const std::string& text, const std::string& f
     start = end + 1;
   }
   return distances;
+}
+
+bool parseInteger(const std::string& text, int64_t& value) {
+  if (text.empty() || text.size() > 20) return false;
+  for (size_t i = 0; i < text.size(); ++i)
+    if (!(std::isdigit(static_cast<unsigned char>(text[i])) || (i == 0 && text[i] == '-')))
+      return false;
+  errno = 0;
+  char* end = nullptr;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (errno != 0 || end != text.c_str() + text.size()) return false;
+  value = v;
+  return true;
+}
+
+void parseSize(const std::string& option, const std::string& text, int& width, int& height) {
+  const size_t x = text.find_first_of("xX");
+  int64_t w = 0, h = 0;
+  if (x == std::string::npos || !parseInteger(text.substr(0, x), w) ||
+      !parseInteger(text.substr(x + 1), h) || w <= 0 || h <= 0)
+    throw InputError(option, "",
+                     "expected WIDTHxHEIGHT (positive whole numbers), got '" + text + "'");
+  if (w > INT_MAX || h > INT_MAX)
+    throw InputError(option + " " + text, "", "is more pixels across than an int holds");
+  width = int(w);
+  height = int(h);
 }
 
 void checkThreads(int threads) {
@@ -276,16 +301,6 @@ void recordScene(JsonWriter& record, const SceneRequest& request, const Scene& s
   if (request.rgbd.given()) recordRgbd(record, request.rgbd, scene);
   if (!request.load.camera.empty()) record.set("/scene_camera", request.load.camera);
   if (!request.load.focusOn.empty()) record.set("/scene_focus_on", request.load.focusOn);
-}
-
-DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& reporter) {
-  DisplayDescription description = loadDisplayDescription(pathOrPreset);
-  for (const std::string& warning : description.lenticular.warnings) reporter.warning(warning);
-  return description;
-}
-
-DisplayDesign loadBarrierDesign(const std::string& path, Reporter& reporter) {
-  return barrierDesignOf(loadDisplay(path, reporter));
 }
 
 }  // namespace parallax::jobs

@@ -11,9 +11,8 @@
 
 #include "parallax/camera/framing.h"
 #include "parallax/display/view_filter.h"
-#include "parallax/io/display_file.h"
+#include "parallax/importer/scene_file.h"
 #include "parallax/io/json_writer.h"
-#include "parallax/io/scene_file.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/render/render.h"
 #include "parallax/scene/rgbd.h"
@@ -24,6 +23,13 @@ namespace parallax::jobs {
 // "parallax 0.1.0 (Embree 4.3.3, assimp 5.4.3)": this build's version and the libraries it
 // runs on.
 std::string versionText();
+
+// The text as a whole number, or false: decimal digits with an optional leading minus, no
+// spaces, within int64_t.
+bool parseInteger(const std::string& text, int64_t& value);
+// "WxH" -> (W, H) with both positive; throws InputError naming the option. Memory (and the
+// pixel count) are checked separately, with the estimate.
+void parseSize(const std::string& option, const std::string& text, int& width, int& height);
 
 // Refuses a worker-thread count below 0 (0: all cores) or above this machine's hardware
 // threads, as the command line's validator does (Python's threads= reaches only this).
@@ -109,11 +115,5 @@ void recordScene(JsonWriter& record, const SceneRequest& request, const Scene& s
 // edge_jump, background_offset, background_radius_px when layered), width_px, height_px and
 // triangles (of `scene`, the loaded photo).
 void recordRgbd(JsonWriter& record, const RgbdRequest& request, const Scene& scene);
-
-// A display of any kind (io/display_file.h: "" the built-in barrier, a file of either kind, or
-// lkg:NAME), the reader's warnings (defaulted or unknown calibration keys) to `reporter`.
-DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& reporter);
-// A barrier display ("" the built-in), designed; a lenticular calibration is refused.
-DisplayDesign loadBarrierDesign(const std::string& path, Reporter& reporter);
 
 }  // namespace parallax::jobs

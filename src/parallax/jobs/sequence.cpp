@@ -11,7 +11,6 @@
 #include "parallax/core/error.h"
 #include "parallax/io/json_reader.h"
 #include "parallax/io/json_writer.h"
-#include "parallax/io/mesh_file.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"

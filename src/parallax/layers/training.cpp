@@ -75,17 +75,17 @@ bool targetRowsByBands(const DisplayDesign& design) {
 }  // namespace
 
 bool solvesByBands(const DisplayDesign& design, const TrainingOptions& options,
-                   const std::string& method) {
-  return method == "optimized-image" && options.srgbWeights && targetRowsByBands(design);
+                   LayerMethod method) {
+  return method == LayerMethod::OptimizedImage && options.srgbWeights && targetRowsByBands(design);
 }
 
 double trainingHeldBytes(const DisplayDesign& design, const TrainingOptions& options,
-                         const std::string& method) {
+                         LayerMethod method) {
   // The seen masks: a float a pixel for a grey mask; through colour filters three, kept for a
-  // band of rows only (layer_solver.cpp, ImageLayerPasses).
+  // band of rows only (image_layer_solver.cpp, ImageLayerPasses).
   const bool bands = solvesByBands(design, options, method);
   double seenMasks = 0;
-  if (method == "optimized-image")
+  if (method == LayerMethod::OptimizedImage)
     seenMasks = !options.colourFilters ? seenMaskBytes(design, options)
                 : bands                ? 3.0 * seenMaskBytes(design, options)
                                        : 0.0;

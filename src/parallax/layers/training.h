@@ -12,7 +12,8 @@
 
 #include "parallax/accel/accelerator.h"
 #include "parallax/display/display.h"
-#include "parallax/layers/layer_solver.h"
+#include "parallax/layers/layer_method.h"
+#include "parallax/layers/layer_problem.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax {
@@ -60,22 +61,21 @@ struct TrainingOptions {
 // or 16 bits per channel for sRGB errors), for the caller's memory check before building them.
 double trainingBytes(const DisplayDesign& design, const TrainingOptions& options);
 // Bytes optimizeImageLayer holds besides for a grey mask: each training eye's view of the mask,
-// one float per pixel (layer_solver.cpp, ImageLayerPasses; three through colour filters, for a
-// band of rows).
+// one float per pixel (image_layer_solver.cpp, ImageLayerPasses; three through colour filters, for
+// a band of rows).
 double seenMaskBytes(const DisplayDesign& design, const TrainingOptions& options);
 
 // Whether `method`'s solve makes its targets a band of rows at a time as it goes
 // (optimizeImageLayerByBands): optimized-image with sRGB errors, the image in front and a box
 // along rows only (slits; a pinhole mask's box spans rows too). Its targets then hold
 // kTargetBandRows rows of every eye at a time instead of whole views.
-bool solvesByBands(const DisplayDesign& design, const TrainingOptions& options,
-                   const std::string& method);
-// (kTargetBandRows: layer_solver.h.)
+bool solvesByBands(const DisplayDesign& design, const TrainingOptions& options, LayerMethod method);
+// (kTargetBandRows: layer_problem.h.)
 // Bytes `method`'s solve holds for its training eyes: their targets (trainingBytes) and, for
 // optimized-image, the mask as they see it (seenMaskBytes), whole or a band's (solvesByBands);
 // for the caller's memory check before building them.
 double trainingHeldBytes(const DisplayDesign& design, const TrainingOptions& options,
-                         const std::string& method);
+                         LayerMethod method);
 
 std::vector<TrainingView> trainingViews(const Scene& scene, const Accelerator& accelerator,
                                         const DisplayDesign& design, const TrainingOptions& options,

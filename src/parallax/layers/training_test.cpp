@@ -92,8 +92,8 @@ TEST(Training, BandsOfTargetsAreTheWholeTargetsRows) {
   TrainingOptions options;
   options.eyesPerView = 1, options.distances = {0.9, 1.1};
   options.referenceSamplesPerPixel = 4, options.targetScale = 0.3, options.srgbWeights = true;
-  EXPECT_TRUE(solvesByBands(d, options, "optimized-image"));
-  EXPECT_FALSE(solvesByBands(d, options, "nmf"));
+  EXPECT_TRUE(solvesByBands(d, options, LayerMethod::OptimizedImage));
+  EXPECT_FALSE(solvesByBands(d, options, LayerMethod::Nmf));
   const std::vector<TrainingView> whole = trainingViews(scene, accel, d, options);
   std::vector<TrainingView> bands = trainingEyes(d, options);
   ASSERT_EQ(bands.size(), whole.size());
@@ -116,11 +116,11 @@ TEST(Training, BandsOfTargetsAreTheWholeTargetsRows) {
   EXPECT_THROW(make(8, 16, bands), std::invalid_argument);  // not on a tile row
   // Held: one band's share of the whole targets and seen masks, and the bands' float renders.
   const double whole53 = trainingBytes(d, options) + seenMaskBytes(d, options);
-  EXPECT_EQ(trainingHeldBytes(d, options, "nmf"), trainingBytes(d, options));
-  EXPECT_NEAR(trainingHeldBytes(d, options, "optimized-image"),
+  EXPECT_EQ(trainingHeldBytes(d, options, LayerMethod::Nmf), trainingBytes(d, options));
+  EXPECT_NEAR(trainingHeldBytes(d, options, LayerMethod::OptimizedImage),
               whole53 + 2.0 * workerCount(0) * 72 * 53 * 12, 1.0);  // a band is all 53 rows
   const DisplayDesign t = smallDisplay(640);
-  EXPECT_NEAR(trainingHeldBytes(t, options, "optimized-image"),
+  EXPECT_NEAR(trainingHeldBytes(t, options, LayerMethod::OptimizedImage),
               (trainingBytes(t, options) + seenMaskBytes(t, options)) / 10.0 +
                   2.0 * workerCount(0) * 72 * 64 * 12,
               1.0);

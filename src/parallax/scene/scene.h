@@ -227,7 +227,7 @@ struct Scene {
   std::vector<std::string> warnings;
   // What was taken from and ignored in each loaded file (one line per glTF file; docs/gltf.md).
   std::vector<std::string> notes;
-  // What loading each mesh file did (io/mesh_file.h, docs/import.md); written to render.json.
+  // What loading each mesh file did (importer/mesh_file.h, docs/import.md); written to render.json.
   struct ImportRecord {
     std::string file;
     std::string

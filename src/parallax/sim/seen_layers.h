@@ -91,9 +91,9 @@ class SeenLayers {
   Image boxTransposed(const Image& view, int threads = 0) const;
 
   // One row at a time, for solvers that fuse a view, its residual and its adjoint in one pass
-  // over a row (layers/layer_solver.cpp): output row j depends on front row j only, and B acts
-  // along rows, so rows are independent. The same arithmetic as view() and
-  // addFrontGradient(), which are made of these. `scratch` is the caller's, one per worker.
+  // over a row (layers/image_layer_solver.cpp): output row j depends on front row j only, and B
+  // acts along rows, so rows are independent. The same arithmetic as view() and addFrontGradient(),
+  // which are made of these. `scratch` is the caller's, one per worker.
   struct RowScratch {
     std::vector<Vec3f> product, filtered, seenRear;
     std::vector<Vec3f> rearRow;   // seenRearRow: the rear rows under front row j, blended

@@ -1,0 +1,461 @@
+// PLY reader (Greg Turk's format, http://paulbourke.net/dataformats/ply/): a text header
+// declaring elements and their properties, then the data as ASCII or binary (little or big
+// endian). Reads vertex x y z, optional nx ny nz and u v (also named s t, texture_u texture_v,
+// texture_s texture_t), red green blue (vertex colours, also diffuse_red ...; see
+// colorScale) and face lists named vertex_indices or vertex_index, split into triangle fans.
+// Every other element and property is read past and ignored.
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+
+#include "parallax/importer/mesh_readers.h"
+
+namespace parallax::meshio {
+namespace {
+
+enum class Format { Ascii, BinaryLittleEndian, BinaryBigEndian };
+enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+struct Property {
+  std::string name;
+  Type type = Type::Float32;
+  bool isList = false;
+  Type countType = Type::UInt8;  // list properties: type of the length that precedes them
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<Property> properties;
+};
+
+struct Header {
+  Format format = Format::Ascii;
+  std::vector<Element> elements;
+  size_t dataOffset = 0;  // first byte after "end_header\n"
+  size_t dataLine = 0;    // line number of the first data line (ASCII messages)
+};
+
+bool parseType(std::string_view name, Type& type) {
+  static const struct {
+    std::string_view name;
+    Type type;
+  } kTypes[] = {{"char", Type::Int8},      {"int8", Type::Int8},       {"uchar", Type::UInt8},
+                {"uint8", Type::UInt8},    {"short", Type::Int16},     {"int16", Type::Int16},
+                {"ushort", Type::UInt16},  {"uint16", Type::UInt16},   {"int", Type::Int32},
+                {"int32", Type::Int32},    {"uint", Type::UInt32},     {"uint32", Type::UInt32},
+                {"float", Type::Float32},  {"float32", Type::Float32}, {"double", Type::Float64},
+                {"float64", Type::Float64}};
+  for (const auto& entry : kTypes)
+    if (entry.name == name) {
+      type = entry.type;
+      return true;
+    }
+  return false;
+}
+
+size_t sizeOf(Type type) {
+  switch (type) {
+    case Type::Int8:
+    case Type::UInt8:
+      return 1;
+    case Type::Int16:
+    case Type::UInt16:
+      return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32:
+      return 4;
+    case Type::Float64:
+      return 8;
+  }
+  return 0;
+}
+
+bool isInteger(Type type) {
+  return type != Type::Float32 && type != Type::Float64;
+}
+
+Header parseHeader(const std::string& path, const std::string& bytes,
+                   std::vector<std::string>& warnings) {
+  Header header;
+  size_t pos = 0, lineNumber = 0;
+  bool sawFormat = false;
+  auto headerError = [&](const std::string& message) {
+    fail(path, "header line " + std::to_string(lineNumber) + ": " + message);
+  };
+  while (true) {
+    if (pos >= bytes.size()) fail(path, "the header has no end_header line (not a PLY file?)");
+    const size_t end = std::min(bytes.find('\n', pos), bytes.size());
+    const std::string_view line(bytes.data() + pos, end - pos);
+    pos = end + 1;
+    ++lineNumber;
+    TextTokens words(line);
+    const std::string_view keyword = words.next();
+    if (lineNumber == 1) {
+      if (keyword != "ply" || !words.atEnd()) fail(path, "not a PLY file (no 'ply' first line)");
+    } else if (keyword == "format") {
+      const std::string_view name = words.next();
+      if (name == "ascii")
+        header.format = Format::Ascii;
+      else if (name == "binary_little_endian")
+        header.format = Format::BinaryLittleEndian;
+      else if (name == "binary_big_endian")
+        header.format = Format::BinaryBigEndian;
+      else
+        headerError("unknown format '" + std::string(name) + "'");
+      sawFormat = true;
+    } else if (keyword == "element") {
+      Element element;
+      element.name = std::string(words.next());
+      int64_t count = -1;
+      if (!parseInteger(words.next(), count) || count < 0)
+        headerError("element '" + element.name + "' needs a count");
+      element.count = uint64_t(count);
+      header.elements.push_back(std::move(element));
+    } else if (keyword == "property") {
+      if (header.elements.empty()) headerError("property before any element");
+      Property property;
+      std::string_view type = words.next();
+      if (type == "list") {
+        property.isList = true;
+        if (!parseType(words.next(), property.countType) || !isInteger(property.countType))
+          headerError("a list needs an integer count type");
+        type = words.next();
+      }
+      if (!parseType(type, property.type))
+        headerError("unknown property type '" + std::string(type) + "'");
+      property.name = std::string(words.next());
+      if (property.name.empty()) headerError("property without a name");
+      header.elements.back().properties.push_back(std::move(property));
+    } else if (keyword == "end_header") {
+      break;
+    } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
+      // Some exporters write a comment without the keyword; skip such lines, but say so.
+      std::string text(line.substr(0, 40));
+      while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+        text.pop_back();
+      warnings.push_back("header line " + std::to_string(lineNumber) + ": ignored '" + text + "'");
+    }
+  }
+  if (!sawFormat) fail(path, "the header has no format line");
+  // "end_header" may be the file's last bytes, without a newline: no data follows.
+  header.dataOffset = std::min(pos, bytes.size());
+  header.dataLine = lineNumber + 1;
+  return header;
+}
+
+// Reads the values that follow the header, one at a time, in either encoding.
+class ValueReader {
+ public:
+  ValueReader(const std::string& path, const std::string& bytes, const Header& header)
+      : path_(path),
+        bytes_(bytes),
+        format_(header.format),
+        pos_(header.dataOffset),
+        tokens_(std::string_view(bytes).substr(header.dataOffset), header.dataLine) {}
+
+  // `where` describes the item being read, for messages ("vertex 12").
+  double read(Type type, const std::string& where) {
+    if (format_ == Format::Ascii) return readText(type, where);
+    const size_t size = sizeOf(type);
+    if (bytes_.size() - pos_ < size)
+      fail(path_, where + ": the file ends inside the data (truncated)");
+    // Assemble the value's bits from the bytes in file order, independent of the host's.
+    const auto* raw = reinterpret_cast<const unsigned char*>(bytes_.data() + pos_);
+    pos_ += size;
+    uint64_t bits = 0;
+    for (size_t i = 0; i < size; ++i) {
+      const size_t significance = format_ == Format::BinaryLittleEndian ? i : size - 1 - i;
+      bits |= uint64_t(raw[i]) << (8 * significance);
+    }
+    return decode(type, bits);
+  }
+
+  // Bytes not yet read (for ASCII: all data bytes), to reject absurd element counts before
+  // allocating for them.
+  size_t remaining() const { return bytes_.size() - pos_; }
+  bool isText() const { return format_ == Format::Ascii; }
+
+ private:
+  double readText(Type type, const std::string& where) {
+    const std::string_view token = tokens_.next();
+    if (token.empty()) fail(path_, where + ": the file ends inside the data (truncated)");
+    // The message is built only on failure: this runs once per number of the file.
+    auto at = [&] { return "line " + std::to_string(tokens_.line()) + ": " + where + ": "; };
+    if (isInteger(type)) {
+      int64_t value = 0;
+      if (!parseInteger(token, value))
+        fail(path_, at() + "expected an integer, found '" + std::string(token) + "'");
+      return double(value);
+    }
+    double value = 0;
+    if (!parseNumber(token, value))
+      fail(path_, at() + "expected a number, found '" + std::string(token) + "'");
+    return value;
+  }
+
+  static double decode(Type type, uint64_t bits) {
+    switch (type) {
+      case Type::Int8:
+        return double(int8_t(uint8_t(bits)));
+      case Type::UInt8:
+        return double(uint8_t(bits));
+      case Type::Int16:
+        return double(int16_t(uint16_t(bits)));
+      case Type::UInt16:
+        return double(uint16_t(bits));
+      case Type::Int32:
+        return double(int32_t(uint32_t(bits)));
+      case Type::UInt32:
+        return double(uint32_t(bits));
+      case Type::Float32:
+        return double(std::bit_cast<float>(uint32_t(bits)));
+      case Type::Float64:
+        return std::bit_cast<double>(bits);
+    }
+    return 0;
+  }
+
+  const std::string& path_;
+  const std::string& bytes_;
+  Format format_;
+  size_t pos_;
+  TextTokens tokens_;
+};
+
+// Which vertex property feeds which attribute; -1 where the file has none.
+struct VertexLayout {
+  int position[3] = {-1, -1, -1};
+  int normal[3] = {-1, -1, -1};
+  int uv[2] = {-1, -1};
+  int color[3] = {-1, -1, -1};
+
+  explicit VertexLayout(const Element& vertex) {
+    for (size_t i = 0; i < vertex.properties.size(); ++i) {
+      const Property& p = vertex.properties[i];
+      if (p.isList) continue;
+      const std::string& n = p.name;
+      const int index = int(i);
+      if (n == "x") position[0] = index;
+      if (n == "y") position[1] = index;
+      if (n == "z") position[2] = index;
+      if (n == "nx") normal[0] = index;
+      if (n == "ny") normal[1] = index;
+      if (n == "nz") normal[2] = index;
+      if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s") uv[0] = index;
+      if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t") uv[1] = index;
+      if (n == "red" || n == "diffuse_red") color[0] = index;
+      if (n == "green" || n == "diffuse_green") color[1] = index;
+      if (n == "blue" || n == "diffuse_blue") color[2] = index;
+    }
+  }
+  bool hasColor() const { return color[0] >= 0 && color[1] >= 0 && color[2] >= 0; }
+  bool hasPosition() const { return position[0] >= 0 && position[1] >= 0 && position[2] >= 0; }
+  bool hasNormal() const { return normal[0] >= 0 && normal[1] >= 0 && normal[2] >= 0; }
+  bool hasUv() const { return uv[0] >= 0 && uv[1] >= 0; }
+};
+
+class PlyParser {
+ public:
+  PlyParser(const std::string& path, const std::string& bytes)
+      : path_(path),
+        header_(parseHeader(path, bytes, headerWarnings_)),
+        values_(path, bytes, header_) {}
+
+  FileContents parse() {
+    contents_.warnings = std::move(headerWarnings_);
+    const Element* vertex = find("vertex");
+    if (!vertex) fail(path_, "no vertex element");
+    vertexCount_ = vertex->count;
+    if (!VertexLayout(*vertex).hasPosition())
+      fail(path_, "the vertex element lacks one of the properties x, y, z");
+    // Face indices refer to the one vertex element: a second one (or a second face element)
+    // makes the file ambiguous.
+    for (const char* name : {"vertex", "face"})
+      if (std::count_if(header_.elements.begin(), header_.elements.end(),
+                        [name](const Element& e) { return e.name == name; }) > 1)
+        fail(path_, std::string("the header declares more than one '") + name + "' element");
+    for (const Element& element : header_.elements) {
+      if (element.name == "vertex")
+        readVertices(element);
+      else if (element.name == "face")
+        readFaces(element);
+      else
+        skip(element);
+    }
+    std::vector<uint32_t> polygon;
+    size_t next = 0;
+    for (uint32_t size : polygonSizes_) {
+      polygon.assign(polygonCorners_.begin() + std::ptrdiff_t(next),
+                     polygonCorners_.begin() + std::ptrdiff_t(next + size));
+      next += size;
+      triangulatePolygon(part().positions, polygon, part().indices);
+    }
+    return std::move(contents_);
+  }
+
+ private:
+  const Element* find(const std::string& name) const {
+    for (const Element& e : header_.elements)
+      if (e.name == name) return &e;
+    return nullptr;
+  }
+
+  // An item needs, in binary, the bytes of its scalars and list lengths; in ASCII, at least
+  // one character and one separator per value. A count that cannot fit in what is left of
+  // the file is truncation, found before any memory is reserved for it.
+  void checkCountFits(const Element& element) {
+    size_t binaryBytes = 0;
+    for (const Property& p : element.properties)
+      binaryBytes += sizeOf(p.isList ? p.countType : p.type);
+    const size_t perItem = values_.isText() ? 2 * element.properties.size() : binaryBytes;
+    if (perItem > 0 && element.count > (values_.remaining() + 1) / perItem)
+      fail(path_, "element '" + element.name + "' announces " + std::to_string(element.count) +
+                      " items, more than the file can hold (truncated?)");
+  }
+
+  void readVertices(const Element& element) {
+    checkCountFits(element);
+    const VertexLayout layout(element);
+    if (!layout.hasPosition())
+      fail(path_, "the vertex element lacks one of the properties x, y, z");
+    FilePart& part = this->part();
+    part.positions.resize(element.count);
+    if (layout.hasNormal()) part.normals.resize(element.count);
+    if (layout.hasUv()) part.uvs.resize(element.count);
+    if (layout.hasColor()) part.colors.resize(element.count);
+    std::vector<double> scalars(element.properties.size());
+    for (size_t v = 0; v < element.count; ++v) {
+      const std::string where = "vertex " + std::to_string(v);
+      for (size_t i = 0; i < element.properties.size(); ++i) {
+        const Property& p = element.properties[i];
+        if (p.isList)
+          skipList(p, where);
+        else
+          scalars[i] = values_.read(p.type, where);
+      }
+      for (int a = 0; a < 3; ++a) part.positions[v][a] = float(scalars[size_t(layout.position[a])]);
+      if (layout.hasNormal())
+        for (int a = 0; a < 3; ++a) part.normals[v][a] = float(scalars[size_t(layout.normal[a])]);
+      if (layout.hasUv())
+        part.uvs[v] = {float(scalars[size_t(layout.uv[0])]), float(scalars[size_t(layout.uv[1])])};
+      if (layout.hasColor())
+        for (int a = 0; a < 3; ++a) {
+          const Property& p = element.properties[size_t(layout.color[a])];
+          part.colors[v][a] = plyColor(scalars[size_t(layout.color[a])], p.type);
+        }
+    }
+  }
+
+  // PLY colours (MeshLab, Blender, scanners) are display values: 8-bit codes 0..255 (16-bit
+  // 0..65535, floats 0..1) in sRGB, decoded to linear with the sRGB transfer function
+  // (IEC 61966-2-1). Values outside the range are clamped into it.
+  static float plyColor(double value, Type type) {
+    double scale = 1.0;
+    if (type == Type::UInt8 || type == Type::Int8) scale = 255.0;
+    if (type == Type::UInt16 || type == Type::Int16) scale = 65535.0;
+    if (type == Type::UInt32 || type == Type::Int32) scale = 4294967295.0;
+    if (!std::isfinite(value)) return float(value);  // loadMeshFile reports it
+    const double encoded = std::clamp(value / scale, 0.0, 1.0);
+    // A code outside 0..255 (an ASCII file may write one) is clamped like the others.
+    if (type == Type::UInt8 && value >= 0 && value <= 255) return srgb8ToLinear(uint8_t(value));
+    return srgbToLinear(float(encoded));
+  }
+
+  void readFaces(const Element& element) {
+    checkCountFits(element);
+    int indexProperty = -1;
+    for (size_t i = 0; i < element.properties.size(); ++i) {
+      const Property& p = element.properties[i];
+      if (p.name == "vertex_indices" || p.name == "vertex_index") {
+        if (!p.isList) fail(path_, "face property '" + p.name + "' is not a list");
+        indexProperty = int(i);
+      }
+    }
+    if (indexProperty < 0) fail(path_, "the face element has no vertex_indices list");
+    std::vector<uint32_t> polygon;
+    for (size_t f = 0; f < element.count; ++f) {
+      const std::string where = "face " + std::to_string(f);
+      for (size_t i = 0; i < element.properties.size(); ++i) {
+        const Property& p = element.properties[i];
+        if (int(i) != indexProperty) {
+          if (p.isList)
+            skipList(p, where);
+          else
+            values_.read(p.type, where);
+          continue;
+        }
+        const size_t n = listLength(p, where);
+        polygon.clear();
+        for (size_t k = 0; k < n; ++k) polygon.push_back(vertexIndex(p.type, where));
+      }
+      if (polygon.size() < 3) ++contents_.droppedDegenerate;
+      // Faces may come before the vertices; triangulate once both are read.
+      polygonSizes_.push_back(uint32_t(polygon.size()));
+      polygonCorners_.insert(polygonCorners_.end(), polygon.begin(), polygon.end());
+    }
+  }
+
+  uint32_t vertexIndex(Type type, const std::string& where) {
+    const double value = values_.read(type, where);
+    // The range first, in double: a float index beyond the integers (1e300, NaN) must not
+    // reach an integer conversion, which would be undefined. Quoted as the file gives it.
+    const double end = std::min(double(vertexCount_), 4294967296.0);
+    if (!(value >= 0 && value < end))
+      fail(path_, where + ": vertex index " + numberText(value) + " is out of range (" +
+                      std::to_string(vertexCount_) + " vertices)");
+    if (value != std::floor(value))
+      fail(path_, where + ": vertex index " + numberText(value) + " is not an integer");
+    return uint32_t(value);
+  }
+
+  size_t listLength(const Property& p, const std::string& where) {
+    const double n = values_.read(p.countType, where);
+    if (n < 0) fail(path_, where + ": negative list length");
+    return size_t(n);
+  }
+
+  void skipList(const Property& p, const std::string& where) {
+    const size_t n = listLength(p, where);
+    for (size_t k = 0; k < n; ++k) values_.read(p.type, where);
+  }
+
+  void skip(const Element& element) {
+    if (element.properties.empty()) return;  // nothing to read, however many items
+    checkCountFits(element);
+    for (size_t item = 0; item < element.count; ++item) {
+      const std::string where = element.name + " " + std::to_string(item);
+      for (const Property& p : element.properties) {
+        if (p.isList)
+          skipList(p, where);
+        else
+          values_.read(p.type, where);
+      }
+    }
+  }
+
+  FilePart& part() {
+    if (contents_.parts.empty()) contents_.parts.emplace_back();
+    return contents_.parts.front();
+  }
+
+  const std::string& path_;
+  std::vector<std::string> headerWarnings_;  // filled while header_ is initialised
+  Header header_;
+  ValueReader values_;
+  uint64_t vertexCount_ = 0;
+  std::vector<uint32_t> polygonSizes_, polygonCorners_;  // faces, before triangulation
+  FileContents contents_;
+};
+
+}  // namespace
+
+FileContents readPly(const std::string& path) {
+  const std::string bytes = readFileBytes(path);
+  return PlyParser(path, bytes).parse();
+}
+
+}  // namespace parallax::meshio

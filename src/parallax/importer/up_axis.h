@@ -1,0 +1,16 @@
+// Which file axis points up in a mesh file (docs/import.md, "Up axis"): the option, the scene
+// file's key and the readers' declared axis share it.
+#pragma once
+
+#include <string>
+
+namespace parallax {
+
+// Auto: the format's convention: Z for STL, the FBX file's own UpAxis, Y otherwise (glTF is
+// Y-up by its specification).
+enum class UpAxis { Auto, Y, Z };
+// "auto", "y", "z"; parseUpAxis returns false for anything else.
+const char* upAxisName(UpAxis up);
+bool parseUpAxis(const std::string& text, UpAxis& up);
+
+}  // namespace parallax
