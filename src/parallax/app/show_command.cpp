@@ -14,9 +14,9 @@
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/image_file.h"
-#include "parallax/io/json_reader.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/quilt_player.h"
+#include "parallax/jobs/show_set.h"
 #include "parallax/window/layer_windows.h"
 
 namespace parallax::app {
@@ -35,136 +35,6 @@ struct ShowOptions {
   double fps = 0;  // frames: per second (0: pairs at the monitor's refresh, sequences at theirs)
   std::string display;  // a quilt's lenticular panel (a calibration or lkg:NAME)
 };
-
-// A calibration pattern set's mask patterns, as index.json lists them.
-struct MaskPattern {
-  std::string file, purpose, label;
-  double screenPeriodPx = 0, slitPeriodPx = 0, phasePx = 0, distanceMm = 0;
-};
-
-struct ShowSet {
-  std::string imagePath;                  // the image layer (or the lenticular panel)
-  std::string maskPath;                   // a render's mask layer; empty for one panel
-  std::vector<MaskPattern> maskPatterns;  // a calibration set's, stepped through
-  // Frames played one after another: nmf's time-multiplexed pairs (image-K.png, mask-K.png;
-  // imagePath and maskPath are the first) or a sequence's frames (frame-NNNN/).
-  std::vector<std::string> imageFrames, maskFrames;
-  double fps = 0;  // a sequence's own; 0 for pairs (the monitor's refresh)
-  const char* framesKind = "";
-};
-
-// nmf's frame pairs of a render folder: image-1.png, mask-1.png, image-2.png, ...
-void readFramePairs(const fs::path& dir, ShowSet& set) {
-  for (int k = 1;; ++k) {
-    const fs::path image = dir / ("image-" + std::to_string(k) + ".png");
-    const fs::path mask = dir / ("mask-" + std::to_string(k) + ".png");
-    if (!fs::exists(image)) break;
-    if (!fs::exists(mask))
-      throw InputError(mask.string(), "",
-                       "missing: frame pair " + std::to_string(k) + " has no mask");
-    set.imageFrames.push_back(image.string());
-    set.maskFrames.push_back(mask.string());
-  }
-  set.framesKind = "time-multiplexed frame pairs";
-}
-
-// A sequence's frames (render --frames): frame-NNNN/image.png (and mask.png), at the fps its
-// render.json records.
-void readSequence(const fs::path& dir, ShowSet& set) {
-  std::vector<fs::path> frames;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.is_directory() && name.rfind("frame-", 0) == 0 &&
-        fs::exists(entry.path() / "image.png"))
-      frames.push_back(entry.path());
-  }
-  std::sort(frames.begin(), frames.end());
-  for (const fs::path& frame : frames) {
-    set.imageFrames.push_back((frame / "image.png").string());
-    if (fs::exists(frame / "mask.png")) set.maskFrames.push_back((frame / "mask.png").string());
-  }
-  if (!set.maskFrames.empty() && set.maskFrames.size() != set.imageFrames.size())
-    throw InputError(dir.string(), "", "some frames have a mask.png and others not");
-  const fs::path record = frames.front() / "render.json";
-  if (fs::exists(record)) {
-    const JsonDocument doc = JsonDocument::parseFile(record.string());
-    if (const auto sequence = doc.root().find("sequence"))
-      set.fps = (*sequence)["fps"].number(1e-3, 1000);
-  }
-  set.framesKind = "sequence frames";
-}
-
-bool hasSequenceFrames(const fs::path& dir) {
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.is_directory() && entry.path().filename().string().rfind("frame-", 0) == 0 &&
-        fs::exists(entry.path() / "image.png"))
-      return true;
-  return false;
-}
-
-ShowSet readShowSet(const ShowOptions& o) {
-  const fs::path dir(o.dir);
-  if (!fs::is_directory(dir))
-    throw InputError(o.dir, "", "not a folder: give the output folder of render or calibrate");
-  ShowSet set;
-  const fs::path index = dir / "index.json";
-  if (fs::exists(index)) {  // calibrate patterns: one image pattern, mask patterns to step
-    const JsonDocument doc = JsonDocument::parseFile(index.string());
-    if (doc.root().has("shots")) {
-      // calibrate patterns --photo: one shot, on both layers (barrier) or the panel.
-      const JsonReader shots = doc.root()["shots"];
-      if (shots.size() != 1) throw InputError(index.string(), "/shots", "expected one shot");
-      const JsonReader shot = shots.elements().front();
-      if (shot.has("panel")) {
-        set.imagePath = (dir / shot["panel"].string()).string();
-      } else {
-        set.imagePath = (dir / shot["image"].string()).string();
-        set.maskPath = (dir / shot["mask"].string()).string();
-      }
-      return set;
-    }
-    const JsonReader patterns = doc.root()["patterns"];
-    for (const JsonReader& p : patterns.elements()) {
-      const std::string file = (dir / p["file"].string()).string();
-      if (p["layer"].string() == "image") {
-        if (set.imagePath.empty()) set.imagePath = file;
-        continue;
-      }
-      set.maskPatterns.push_back({file, p["purpose"].string(), p["label"].string(),
-                                  p["screen_period_px"].number(), p["slit_period_px"].number(),
-                                  p["phase_px"].number(), p["view_distance_mm"].number()});
-    }
-    if (set.imagePath.empty() || set.maskPatterns.empty())
-      throw InputError(index.string(), "/patterns", "needs an image pattern and mask patterns");
-    if (o.pattern < 0 || o.pattern >= int(set.maskPatterns.size()))
-      throw InputError("command line", "--pattern",
-                       "expected 0 to " + std::to_string(set.maskPatterns.size() - 1));
-    return set;
-  }
-  set.imagePath = (dir / "image.png").string();
-  if (fs::exists(dir / "mask.png")) set.maskPath = (dir / "mask.png").string();
-  if (!fs::exists(set.imagePath)) {
-    if (fs::exists(dir / "image-1.png"))
-      readFramePairs(dir, set);
-    else if (hasSequenceFrames(dir))
-      readSequence(dir, set);
-    if (set.imageFrames.empty()) {
-      bool quilt = false;
-      for (const auto& entry : fs::directory_iterator(dir))
-        quilt |= entry.path().filename().string().find("_qs") != std::string::npos;
-      throw InputError(set.imagePath, "",
-                       quilt ? "missing: the folder holds several quilts: show one of them "
-                               "(with --display, the lenticular panel), or map one onto a "
-                               "barrier with `parallax interlace` (docs/quilts.md)"
-                             : "missing: give the output folder of render (image.png, nmf's "
-                               "image-K.png pairs, or a sequence's frame-NNNN folders) or of "
-                               "calibrate");
-    }
-    set.imagePath = set.imageFrames.front();
-    if (!set.maskFrames.empty()) set.maskPath = set.maskFrames.front();
-  }
-  return set;
-}
 
 std::vector<ShowKey> parseKeys(const std::string& text) {
   std::vector<ShowKey> keys;
@@ -189,8 +59,8 @@ std::vector<ShowKey> parseKeys(const std::string& text) {
   return keys;
 }
 
-void printPattern(const std::vector<MaskPattern>& patterns, int k) {
-  const MaskPattern& p = patterns[size_t(k)];
+void printPattern(const std::vector<jobs::MaskPattern>& patterns, int k) {
+  const jobs::MaskPattern& p = patterns[size_t(k)];
   std::printf(
       "pattern %d/%zu %s: screen period %.0f px, slit period %.4f mask px, phase %.2f px, "
       "D %.1f mm (%s)\n",
@@ -206,35 +76,6 @@ void printPattern(const std::vector<MaskPattern>& patterns, int k) {
 // is their middle (peak / estimate 0.92-1.08 on both). A GPU's driver loads other libraries.
 constexpr double kWindowSystemBytes = 110e6;
 constexpr double kWindowPixelBytes = 5 * kRgba8PixelBytes;
-
-// The whole estimate before any picture is decoded, from their headers (docs/inputs.md,
-// "Memory"): every picture kept as a float image; while one is read, its file and stb_image's
-// samples; the window system and the windows' copies of what they show.
-void checkShowMemory(const ShowOptions& o, const ShowSet& set) {
-  std::vector<std::string> files{set.imagePath};
-  for (const MaskPattern& p : set.maskPatterns) files.push_back(p.file);
-  if (!set.maskPath.empty()) files.push_back(set.maskPath);
-  double kept = 0, reading = 0, shown = 0;
-  for (size_t i = 0; i < files.size(); ++i) {
-    const ImageInfo info = readImageInfo(files[i]);
-    const double pixels = double(info.width) * double(info.height);
-    kept += pixels * kFloatRgbPixelBytes;
-    reading = std::max(reading, info.fileBytes + pixels * info.channels * info.bytesPerSample);
-    if (i < 2) shown += pixels * kWindowPixelBytes;  // the image's window and the mask's
-  }
-  // Frames after the first: each kept as a float image and as its window's texture.
-  for (const auto* list : {&set.imageFrames, &set.maskFrames})
-    for (size_t i = 1; i < list->size(); ++i) {
-      const ImageInfo info = readImageInfo((*list)[i]);
-      const double pixels = double(info.width) * double(info.height);
-      kept += pixels * kFloatRgbPixelBytes;
-      reading = std::max(reading, info.fileBytes + pixels * info.channels * info.bytesPerSample);
-      shown += pixels * kRgba8PixelBytes;
-    }
-  checkPeakMemory(kWindowSystemBytes + kept + reading + shown, o.dir,
-                  std::to_string(files.size()) + " pictures and their windows",
-                  "show fewer or smaller pictures");
-}
 
 // The panels' modes against the layers: 1:1 pixels need a layer the monitor's size, and two
 // layers need two monitors.
@@ -256,26 +97,6 @@ void noteMonitorModes(const LayerWindows& windows, const std::vector<WindowReque
         "both layers are on monitor %d, one over the other's place: a two-panel display needs "
         "each layer on its own monitor (--image-monitor, --mask-monitor)",
         requests[0].monitor));
-}
-
-// A quilt's file: `path` itself, or the one quilt picture or video (a name with _qs) in the
-// folder `path` when it has no image.png; "" for neither.
-std::string quiltFile(const fs::path& path) {
-  const auto isQuilt = [](const fs::path& p) {
-    const std::string name = p.filename().string();
-    std::string ext = p.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return name.find("_qs") != std::string::npos &&
-           (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || jobs::isVideoPath(name));
-  };
-  if (!fs::is_directory(path)) return isQuilt(path) ? path.string() : "";
-  if (fs::exists(path / "image.png") || fs::exists(path / "image-1.png")) return "";
-  std::vector<std::string> found;
-  for (const auto& entry : fs::directory_iterator(path))
-    if (entry.is_regular_file() && isQuilt(entry.path())) found.push_back(entry.path().string());
-  std::sort(found.begin(), found.end());
-  return found.size() == 1 ? found.front() : "";
 }
 
 // A quilt picture or video on a lenticular panel, interlaced as it is shown.
@@ -325,17 +146,18 @@ void runQuiltShow(const ShowOptions& o, const std::string& quilt) {
 }
 
 void runShow(const ShowOptions& o) {
-  if (const std::string quilt = quiltFile(o.dir); !quilt.empty()) return runQuiltShow(o, quilt);
+  if (const std::string quilt = jobs::quiltFile(o.dir); !quilt.empty())
+    return runQuiltShow(o, quilt);
   if (!o.display.empty())
     throw RequestError("display", "applies to a quilt picture or video (NAME_qs{C}x{R}...)");
   const std::vector<ShowKey> keys = parseKeys(o.keys);
-  const ShowSet set = readShowSet(o);
-  checkShowMemory(o, set);
+  const jobs::ShowSet set = jobs::readShowSet(o.dir, o.pattern);
+  jobs::checkShowMemory(o.dir, set, {kWindowSystemBytes, kWindowPixelBytes, kRgba8PixelBytes});
   // Read every picture before a window opens: a bad file is refused with nothing shown.
   const Image image = readImage(set.imagePath);
   Image mask;
   std::vector<Image> masks, imageFrames, maskFrames;
-  for (const MaskPattern& p : set.maskPatterns) masks.push_back(readImage(p.file));
+  for (const jobs::MaskPattern& p : set.maskPatterns) masks.push_back(readImage(p.file));
   if (!set.maskPath.empty()) mask = readImage(set.maskPath);
   for (const std::string& f : set.imageFrames) imageFrames.push_back(readImage(f));
   for (const std::string& f : set.maskFrames) maskFrames.push_back(readImage(f));

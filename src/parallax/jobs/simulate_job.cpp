@@ -313,6 +313,19 @@ std::vector<EyeFigures> qualityFigures(const Scene& scene, const DisplayModel& d
   return figures;
 }
 
+std::string qualityReport(const Scene& scene, const DisplayModel& display, LayerImages layers,
+                          const SimulatorRequest& request, const std::vector<Vec3d>& eyes,
+                          int referenceSpp, const FramingRequest& framing) {
+  const RenderedReference reference = referenceScene(scene, display, framing);
+  const std::vector<EyeFigures> figures = qualityFigures(
+      reference.scene, *reference.display, std::move(layers), request, eyes, referenceSpp);
+  JsonWriter json;
+  json.set("/display", display.source());
+  json.set("/display_kind", displayKindName(display.kind()));
+  recordEyeFigures(json, eyes, figures);
+  return json.dump();
+}
+
 void recordEyeFigures(JsonWriter& json, const std::vector<Vec3d>& eyes,
                       const std::vector<EyeFigures>& figures) {
   EyeFigures mean;

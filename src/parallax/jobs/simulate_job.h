@@ -161,6 +161,13 @@ std::vector<EyeFigures> qualityFigures(const Scene& scene, const DisplayModel& d
 void recordEyeFigures(JsonWriter& json, const std::vector<Vec3d>& eyes,
                       const std::vector<EyeFigures>& figures);
 
+// Python's quality, one call: the scene framed as the render framed it (referenceScene with
+// `framing`), the figures of `layers` at each eye (qualityFigures), as `simulate --reference
+// --eye ... --json` writes them: /display, /display_kind, /eyes and /mean.
+std::string qualityReport(const Scene& scene, const DisplayModel& display, LayerImages layers,
+                          const SimulatorRequest& request, const std::vector<Vec3d>& eyes,
+                          int referenceSpp, const FramingRequest& framing);
+
 struct SimulateRequest {
   // The inputs: a render folder (its layers, display and render.json), or given layers.
   std::string dir = "out";

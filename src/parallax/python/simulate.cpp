@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "parallax/display/display_model.h"
-#include "parallax/io/json_writer.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/simulate_job.h"
@@ -95,18 +94,8 @@ std::string quality(const Scene& loaded, const DisplayDescription& description,
   LayerImages layers = layerImages(image, mask, *display);
   jobs::FramingRequest framing;
   framing.fit = fit, framing.focus = focus, framing.depthBudget = depthBudget;
-  const jobs::RenderedReference reference = jobs::referenceScene(loaded, *display, framing);
-  std::vector<jobs::EyeFigures> figures;
-  {
-    py::gil_scoped_release released;
-    figures = jobs::qualityFigures(reference.scene, *reference.display, std::move(layers), o, eyes,
-                                   referenceSpp);
-  }
-  JsonWriter json;
-  json.set("/display", display->source());
-  json.set("/display_kind", displayKindName(display->kind()));
-  jobs::recordEyeFigures(json, eyes, figures);
-  return json.dump();
+  py::gil_scoped_release released;
+  return jobs::qualityReport(loaded, *display, std::move(layers), o, eyes, referenceSpp, framing);
 }
 
 }  // namespace
