@@ -61,6 +61,15 @@ class BarrierDisplay final : public DisplayModel {
             {"virtual_gap", d.virtualGapMm, "mm"},
             {"virtual_distance", d.virtualDistanceMm, "mm"}};
   }
+  PanelSize viewerPanel() const override {
+    const DisplaySpec& spec = design_.spec;
+    const Panel& front = spec.order == LayerOrder::BarrierBack ? spec.imagePanel : spec.maskPanel;
+    return {front.width, front.height};
+  }
+  double diffuserSigmaMm() const override { return design_.spec.diffuserSigmaMm; }
+  double directMappingViews() const override {
+    return std::max(1.0, std::round(design_.screenPeriodPx));
+  }
   const DisplayDesign* barrierDesign() const override { return &design_; }
 
  private:

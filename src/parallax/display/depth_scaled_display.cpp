@@ -56,6 +56,15 @@ class DepthScaledDisplay final : public DisplayModel {
   bool hasMaskLayer() const override { return inner_->hasMaskLayer(); }
   Image maskLayer() const override { return inner_->maskLayer(); }
   std::vector<DesignFigure> designReport() const override { return inner_->designReport(); }
+  PanelSize viewerPanel() const override { return inner_->viewerPanel(); }
+  double diffuserSigmaMm() const override { return inner_->diffuserSigmaMm(); }
+  QuiltShape defaultQuilt() const override { return inner_->defaultQuilt(); }
+  PanelSize quiltTile(int columns, int rows) const override {
+    return inner_->quiltTile(columns, rows);
+  }
+  double directMappingViews() const override { return inner_->directMappingViews(); }
+  std::string deviceNote() const override { return inner_->deviceNote(); }
+  std::string summaryClause() const override { return inner_->summaryClause(); }
   const DisplayDesign* barrierDesign() const override { return inner_->barrierDesign(); }
   const LenticularDesign* lenticularDesign() const override { return inner_->lenticularDesign(); }
 

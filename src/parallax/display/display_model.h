@@ -43,6 +43,16 @@ struct DisplayRay {
   Vec3d origin, direction;
 };
 
+// A panel's or a picture's size in pixels.
+struct PanelSize {
+  int width = 0, height = 0;
+};
+
+// A quilt's layout: views in columns x rows.
+struct QuiltShape {
+  int columns = 0, rows = 0;
+};
+
 // One line of the design report: a named figure and its unit ("" for a plain number).
 struct DesignFigure {
   std::string key;
@@ -104,6 +114,28 @@ class DisplayModel {
 
   // The figures `design` prints and render.json records.
   virtual std::vector<DesignFigure> designReport() const = 0;
+
+  // The panel an eye looks at first, whose resolution a viewer's picture of the display is made
+  // at (view --display-eye, simulate): a barrier's front layer; the panel itself otherwise.
+  virtual PanelSize viewerPanel() const { return {film().panelWidth, film().panelHeight}; }
+  // A diffuser foil between the layers (a Gaussian's sigma, mm): 0 without one.
+  virtual double diffuserSigmaMm() const { return 0.0; }
+  // `render --quilt`'s layout when none is asked (a device's own quilt, or one row of the
+  // views), and one view's size in a quilt of `columns` x `rows`.
+  virtual QuiltShape defaultQuilt() const { return {viewCount(), 1}; }
+  virtual PanelSize quiltTile(int /*columns*/, int /*rows*/) const {
+    return {film().panelWidth, film().panelHeight};
+  }
+  // Views a render by direct mapping takes per panel pixel column (the usual practice's
+  // baseline, one ordinary view each: a barrier's screen period); 1 for a display that does
+  // not interleave views by columns.
+  virtual double directMappingViews() const { return 1.0; }
+  // What the display's file was recognised as, where that decides its defaults (a lenticular
+  // unit's own file: which Looking Glass device, hence its quilt); "" for nothing to say.
+  virtual std::string deviceNote() const { return ""; }
+  // What the render's summary line says of the display first ("": nothing), e.g. a lens
+  // sheet's pixels per lens and view cone.
+  virtual std::string summaryClause() const { return ""; }
 
   // The kind-specific description, for the parts that are one kind's own (the two-layer
   // simulator, the lenticular interlacer); null for the other kinds.

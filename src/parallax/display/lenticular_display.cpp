@@ -2,9 +2,11 @@
 // its view fraction gives (lenticular.h, docs/lenticular.md).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "parallax/core/lane_kernel.h"
 #include "parallax/display/display_model.h"
+#include "parallax/display/lenticular_presets.h"
 
 // glibc's vector tangents (libmvec, which libm's link script pulls in as needed): with this
 // declaration GCC calls them from vectorised lane loops (_ZGVeN8v_tan with AVX-512,
@@ -328,6 +330,36 @@ class LenticularDisplay final : public DisplayModel {
             {"view_zone_width", d.viewZoneWidthMm, "mm"},
             {"views", double(d.quiltViews), ""},
             {"lens_spot", d.optics.spotWidthSubpixels, "subpixels"}};
+  }
+  QuiltShape defaultQuilt() const override {
+    return {design_.calibration.quilt.columns, design_.calibration.quilt.rows};
+  }
+  // The device quilt's size shared among the views.
+  PanelSize quiltTile(int columns, int rows) const override {
+    return {design_.calibration.quilt.width / columns, design_.calibration.quilt.height / rows};
+  }
+  // A unit's own file (not a preset): which device it was recognised as decides its quilt.
+  std::string deviceNote() const override {
+    const LenticularCalibration& c = design_.calibration;
+    if (c.source.rfind("lkg:", 0) == 0) return "";
+    char text[160];
+    std::snprintf(text, sizeof text, "%dx%d views on %dx%d", c.quilt.columns, c.quilt.rows,
+                  c.quilt.width, c.quilt.height);
+    const std::string quilt = text;
+    if (!c.device.empty())
+      return c.source + " is a " + lenticularPresetDescription(c.device) + " (lkg:" + c.device +
+             ", by its " + c.deviceBasis + "): its default quilt " + quilt;
+    std::snprintf(text, sizeof text, " (%dx%d pixels at %g DPI", c.screenW, c.screenH, c.dpi);
+    return c.source + text + (c.serial.empty() ? "" : ", serial " + c.serial) +
+           ") is no Looking Glass device parallax knows: its default quilt is derived from the "
+           "panel, " +
+           quilt;
+  }
+  std::string summaryClause() const override {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.2f pixels per lens, views over %.0f degrees; ",
+                  design_.pixelsPerLens, design_.calibration.viewConeDegrees);
+    return text;
   }
   const LenticularDesign* lenticularDesign() const override { return &design_; }
 

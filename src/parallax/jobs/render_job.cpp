@@ -100,10 +100,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   if (r.quilt.wanted) {
     plan.pictureWidth = plan.layout.columns * plan.tileWidth;
     plan.pictureHeight = plan.layout.rows * plan.tileHeight;
-  } else if (const DisplayDesign* design = display->barrierDesign()) {
-    plan.pictureWidth = design->spec.imagePanel.width;
-    plan.pictureHeight = design->spec.imagePanel.height;
-  } else {
+  } else {  // the panel's (a barrier's image layer)
     plan.pictureWidth = display->film().panelWidth;
     plan.pictureHeight = display->film().panelHeight;
   }

@@ -23,40 +23,25 @@ namespace parallax::jobs {
 
 namespace {
 
-// A unit's own file (not a preset): which device it was recognised as decides its quilt.
-void noteDevice(const LenticularCalibration& c, Reporter& reporter) {
-  if (c.source.rfind("lkg:", 0) == 0 || !writesJobOutputs()) return;
-  const std::string quilt =
-      printed("%dx%d views on %dx%d", c.quilt.columns, c.quilt.rows, c.quilt.width, c.quilt.height);
-  if (!c.device.empty())
-    reporter.note(printed("%s is a %s (lkg:%s, by its %s): its default quilt %s", c.source.c_str(),
-                          lenticularPresetDescription(c.device).c_str(), c.device.c_str(),
-                          c.deviceBasis.c_str(), quilt.c_str()));
-  else
-    reporter.note(
-        printed("%s (%dx%d pixels at %g DPI%s) is no Looking Glass device parallax "
-                "knows: its default quilt is derived from the panel, %s",
-                c.source.c_str(), c.screenW, c.screenH, c.dpi,
-                c.serial.empty() ? "" : (", serial " + c.serial).c_str(), quilt.c_str()));
+// What the display file was recognised as, where that decides the default quilt.
+void noteDevice(const DisplayModel& display, Reporter& reporter) {
+  if (!writesJobOutputs()) return;
+  if (const std::string note = display.deviceNote(); !note.empty()) reporter.note(note);
 }
 
 }  // namespace
 
 void planQuilt(const RenderRequest& r, const DisplayModel& display, RenderPlan& plan,
                Reporter& reporter) {
-  const LenticularDesign* lenticular = display.lenticularDesign();
   QuiltLayout& layout = plan.layout;
   layout.columns = r.quilt.columns, layout.rows = r.quilt.rows;
-  if (layout.columns == 0 && lenticular) noteDevice(lenticular->calibration, reporter);
   if (layout.columns == 0) {  // auto: the device's quilt, or one row of the barrier's views
-    layout.columns = lenticular ? lenticular->calibration.quilt.columns : display.viewCount();
-    layout.rows = lenticular ? lenticular->calibration.quilt.rows : 1;
+    noteDevice(display, reporter);
+    layout.columns = display.defaultQuilt().columns;
+    layout.rows = display.defaultQuilt().rows;
   }
-  int width = display.film().panelWidth, height = display.film().panelHeight;
-  if (lenticular) {
-    width = lenticular->calibration.quilt.width / layout.columns;
-    height = lenticular->calibration.quilt.height / layout.rows;
-  }
+  int width = display.quiltTile(layout.columns, layout.rows).width;
+  int height = display.quiltTile(layout.columns, layout.rows).height;
   const bool sized = r.quilt.width > 0;
   if (sized) width = r.quilt.width, height = r.quilt.height;
   if (width < 1 || height < 1)
@@ -166,9 +151,7 @@ AcceleratorOptions cameraRayAccelerator(const RenderRequest& r, const RenderPlan
     return acceleratorForCameraRays(double(plan.layout.views()) * plan.tileWidth * plan.tileHeight *
                                     spp);
   const FilmLayout film = display.film();
-  const DisplayDesign* design = display.barrierDesign();
-  const double views =
-      r.directMapping && design ? std::max(1.0, std::round(design->screenPeriodPx)) : 1.0;
+  const double views = r.directMapping ? display.directMappingViews() : 1.0;
   return acceleratorForCameraRays(double(film.columns) * film.rows * views * spp);
 }
 
@@ -385,10 +368,7 @@ void renderFrameToFiles(const FrameTarget& t, const Scene& scene, const Accelera
   if (pictures.solveSeconds > 0)
     speed +=
         printed("; layers %s solved in %.1f s", r.layers.method.c_str(), pictures.solveSeconds);
-  if (const LenticularDesign* lenticular = (*t.display)->lenticularDesign())
-    speed = printed("%.2f pixels per lens, views over %.0f degrees; ", lenticular->pixelsPerLens,
-                    lenticular->calibration.viewConeDegrees) +
-            speed;
+  speed = (*t.display)->summaryClause() + speed;
   reporter.result(speed);
 }
 

@@ -32,12 +32,12 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
   checkThreads(r.threads);
   if (r.pupilSamples < 1)
     throw RequestError("pupil_samples", "must be a whole number of at least 1");
-  const DisplayDesign* barrier = display.barrierDesign();
-  const double diffuser = r.diffuser ? *r.diffuser : barrier ? barrier->spec.diffuserSigmaMm : 0.0;
+  const double diffuser = r.diffuser ? *r.diffuser : display.diffuserSigmaMm();
   if (!(diffuser >= 0 && std::isfinite(diffuser)))
     throw RequestError("diffuser", "must be a number of at least 0");
-  // Options that only the two-layer simulator has, refused for other kinds by name.
-  if (!display.barrierDesign()) {
+  // Options that only the two-layer simulator has (a display with a mask layer), refused for
+  // other kinds by name.
+  if (!display.hasMaskLayer()) {
     const auto refuse = [](const char* field) {
       throw RequestError(field,
                          "applies to the two-layer (barrier) simulator; a lenticular panel is seen "
@@ -169,14 +169,9 @@ void checkLayerValues(const LayerImages& layers) {
 }
 
 std::pair<double, double> seenPictureSize(const DisplayModel& display, const SimulatorRequest& r) {
-  double w = display.film().panelWidth, h = display.film().panelHeight;
-  if (const DisplayDesign* d = display.barrierDesign()) {
-    const Panel& front =
-        d->spec.order == LayerOrder::BarrierBack ? d->spec.imagePanel : d->spec.maskPanel;
-    w = r.size ? (*r.size)[0] : front.width;
-    h = r.size ? (*r.size)[1] : front.height;
-  }
-  return {w, h};
+  // (A size is the two-layer simulator's: refused for the other kinds.)
+  const PanelSize panel = display.viewerPanel();
+  return {r.size ? (*r.size)[0] : panel.width, r.size ? (*r.size)[1] : panel.height};
 }
 
 void checkSimulationWork(const DisplayModel& display, const LayerImages& layers,

@@ -33,12 +33,7 @@ std::unique_ptr<Camera> displayEyeCamera(const ViewRequest& r, const Scene& scen
   placed.display = scene.display;
   if (!placed.display.content) placed.display.content = scene.bounds();
   const BuiltDisplay display = makeFramedDisplay(description, {}, r.framing, placed);
-  int width = display->film().panelWidth, height = display->film().panelHeight;
-  if (const DisplayDesign* barrier = display->barrierDesign()) {
-    const DisplaySpec& spec = barrier->spec;
-    const Panel& front = spec.order == LayerOrder::BarrierBack ? spec.imagePanel : spec.maskPanel;
-    width = front.width, height = front.height;
-  }
+  int width = display->viewerPanel().width, height = display->viewerPanel().height;
   if (r.width > 0) width = r.width, height = r.height;
   if (!(eye.z > 0)) throw RequestError("display_eye", "the eye must be in front (z > 0 mm)");
   return std::make_unique<WindowCamera>(eye, *display, placed.display, width, height);
