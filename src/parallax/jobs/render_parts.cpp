@@ -11,7 +11,6 @@
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/core/parallel.h"
-#include "parallax/display/lenticular_presets.h"
 #include "parallax/io/image_file.h"
 #include "parallax/jobs/distributed.h"
 #include "parallax/jobs/layer_output.h"
