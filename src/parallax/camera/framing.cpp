@@ -286,6 +286,16 @@ Framing frameForDisplay(const Scene& scene, const LenticularDesign& design) {
   return f;
 }
 
+Framing frameForDisplay(const Scene& scene, const DisplayModel& display) {
+  if (const DisplayDesign* barrier = display.barrierDesign())
+    return frameForDisplay(scene, *barrier);
+  if (const LenticularDesign* lenticular = display.lenticularDesign())
+    return frameForDisplay(scene, *lenticular);
+  Framing unframed;
+  unframed.placement = scene.display;
+  return unframed;
+}
+
 Scene framedScene(Scene scene, const DisplayDesign& design) {
   scene.display = frameForDisplay(scene, design).placement;
   return scene;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "parallax/display/display.h"
+#include "parallax/display/display_model.h"
 #include "parallax/display/lenticular.h"
 #include "parallax/scene/scene.h"
 
@@ -53,6 +54,10 @@ Framing frameForDisplay(const Scene& scene, const DisplayDesign& design);
 // display/depth_scaled_display.h): for Depth the camera's depth scale k = min(1, budget /
 // largest |z|) flattens the content into the budget (never deepened).
 Framing frameForDisplay(const Scene& scene, const LenticularDesign& design);
+
+// The framing of `scene` for a display of any kind: the barrier's or the lenticular panel's
+// above; for a kind that frames nothing, the scene's own placement (fit None).
+Framing frameForDisplay(const Scene& scene, const DisplayModel& display);
 
 // The scene with its display placement replaced by the framing's (the design's g' is
 // framing.design; simulate reads it from the render's display.json).

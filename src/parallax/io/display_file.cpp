@@ -210,6 +210,12 @@ std::string displayFileText(const DisplaySpec& s, const BarrierCameraSettings& c
   return json.dump() + "\n";
 }
 
+void writeDisplayDesignJson(JsonWriter& json, const std::string& at, const DisplayModel& display) {
+  if (const DisplayDesign* barrier = display.barrierDesign()) writeDesignJson(json, at, *barrier);
+  if (const LenticularDesign* lenticular = display.lenticularDesign())
+    writeLenticularDesignJson(json, at, *lenticular);
+}
+
 void writeDesignJson(JsonWriter& json, const std::string& at, const DisplayDesign& d) {
   const auto finiteOr = [&json, &at](const std::string& key, double v) {
     if (std::isinf(v))

@@ -45,5 +45,8 @@ std::string displayFileText(const DisplaySpec& spec, const BarrierCameraSettings
 
 // Writes every given and derived figure of a design under the JSON pointer `at` ("" = root).
 void writeDesignJson(JsonWriter& json, const std::string& at, const DisplayDesign& design);
+// A display of any kind's design under `at`: the barrier's above, a lenticular panel's
+// (writeLenticularDesignJson); nothing for a kind without a file of its own.
+void writeDisplayDesignJson(JsonWriter& json, const std::string& at, const DisplayModel& display);
 
 }  // namespace parallax

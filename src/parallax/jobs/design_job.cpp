@@ -88,8 +88,6 @@ DesignReport designReport(const DesignRequest& r, Reporter& reporter, const Scen
   const BuiltDisplay display = makeDisplay(description);
   DesignReport report;
   JsonWriter json;
-  const DisplayDesign* barrier = display->barrierDesign();
-  const LenticularDesign* lenticular = display->lenticularDesign();
   // The framing of the scene, as render frames it for this display.
   std::optional<Framing> framing;
   std::string sceneSource;
@@ -97,7 +95,7 @@ DesignReport designReport(const DesignRequest& r, Reporter& reporter, const Scen
     Scene scene = given ? *given : loadSceneQuietly(*r.scene);
     sceneSource = given ? given->source : r.scene->path;
     r.framing.apply(scene.display);
-    framing = barrier ? frameForDisplay(scene, *barrier) : frameForDisplay(scene, *lenticular);
+    framing = frameForDisplay(scene, *display);
   } else if (r.framing.given()) {
     throw RequestError("fit", "{fit}, {focus} and {depth_budget} need {scene}");
   }
@@ -109,11 +107,25 @@ DesignReport designReport(const DesignRequest& r, Reporter& reporter, const Scen
     json.set("/scene/source", sceneSource);
     setFramingFigures(json, "/scene", *framing);
   };
-  if (!barrier) {
+  if (const LenticularDesign* lenticular = display->lenticularDesign()) {
     json.set("/kind", "lenticular");
     writeLenticularDesignJson(json, "", *lenticular);
     json.set("/depth_of_field_mm", lensDepthOfFieldMm(*lenticular));
     report.text = lenticularText(*lenticular);
+    addFraming();
+    report.json = json.dump();
+    return report;
+  }
+  const DisplayDesign* barrier = display->barrierDesign();
+  if (!barrier) {  // another kind: the figures its model reports
+    json.set("/kind", displayKindName(display->kind()));
+    report.text = printed("display              %s (%s)\n", display->source().c_str(),
+                          displayKindName(display->kind()));
+    for (const DesignFigure& f : display->designReport()) {
+      json.set("/" + f.key, f.value);
+      report.text += printed("%-20s %.6g%s%s\n", f.key.c_str(), f.value, f.unit.empty() ? "" : " ",
+                             f.unit.c_str());
+    }
     addFraming();
     report.json = json.dump();
     return report;

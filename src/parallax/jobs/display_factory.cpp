@@ -117,9 +117,7 @@ BuiltDisplay makeFramedDisplay(const DisplayDescription& description,
 }
 
 void BuiltDisplay::recordDesign(JsonWriter& record, const std::string& at) const {
-  if (const DisplayDesign* barrier = model->barrierDesign()) writeDesignJson(record, at, *barrier);
-  if (const LenticularDesign* lenticular = model->lenticularDesign())
-    writeLenticularDesignJson(record, at, *lenticular);
+  writeDisplayDesignJson(record, at, *model);
 }
 
 DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& reporter) {

@@ -12,6 +12,7 @@
 #include "parallax/display/depth_scaled_display.h"
 #include "parallax/image/metrics.h"
 #include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/lens_readings.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/quality/viewer_quality.h"
 #include "parallax/sim/crosstalk.h"
@@ -50,11 +51,7 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
     if (r.colorFilters) refuse("color_filters");
     if (r.raw) refuse("raw");
   }
-  std::optional<LensOptics> optics;
-  if (const LenticularDesign* lenticular = display.lenticularDesign())
-    optics = lensReading(*lenticular, r.lensSpot, r.bundles);
-  else
-    refuseLensReading(r.lensSpot, r.bundles);
+  const std::optional<LensOptics> optics = lensReading(display, r.lensSpot, r.bundles);
   SimulationOptions sim;
   if (r.size) {
     if ((*r.size)[0] < 1 || (*r.size)[1] < 1)
@@ -74,33 +71,6 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
   sim.threads = r.threads;
   sim.lensOptics = optics;
   return sim;
-}
-
-std::vector<std::pair<std::string, LensOptics>> lensReadings(const LenticularDesign& design) {
-  std::vector<std::pair<std::string, LensOptics>> readings;
-  const auto label = [](const LensOptics& o) {
-    return printed("spot %g, %s", o.spotWidthSubpixels, lensBundlesName(o.bundles));
-  };
-  for (const double spot : {0.0, 3.0})
-    for (const LensBundles bundles : {LensBundles::Parallel, LensBundles::Converging}) {
-      LensOptics o = design.optics;
-      o.spotWidthSubpixels = spot, o.bundles = bundles;
-      readings.push_back({label(o), o});
-    }
-  readings.push_back({label(design.optics) + " (the display's)", design.optics});
-  return readings;
-}
-
-std::string lensReadingLine(const DisplayModel& display, const SimulationOptions& options) {
-  const LenticularDesign* lenticular = display.lenticularDesign();
-  if (!lenticular) return "";
-  const LensOptics o =
-      withOptics(*lenticular, options.lensOptics.value_or(lenticular->optics)).optics;
-  return printed("seen through lenses with a %g-subpixel focal spot, bundles ",
-                 o.spotWidthSubpixels) +
-         (o.bundles == LensBundles::Parallel
-              ? std::string("parallel")
-              : printed("converging at %.0f mm", o.convergenceDistanceMm));
 }
 
 void checkMaskLayer(const DisplayModel& display, bool maskGiven) {
@@ -243,18 +213,14 @@ RenderedReference referenceScene(Scene scene, const DisplayModel& display,
   RenderedReference reference;
   reference.display = &display;
   framing.apply(scene.display);
-  if (const DisplayDesign* barrier = display.barrierDesign()) {
-    reference.scene = framedScene(std::move(scene), *barrier);
-  } else if (const LenticularDesign* lenticular = display.lenticularDesign()) {
-    const Framing framed = frameForDisplay(scene, *lenticular);
-    scene.display = framed.placement;
-    reference.scene = std::move(scene);
-    if (framed.depthScale != 1) {
-      reference.scaled = depthScaledView(display, framed.depthScale);
-      reference.display = reference.scaled.get();
-    }
-  } else {
-    reference.scene = std::move(scene);
+  const Framing framed = frameForDisplay(scene, display);
+  scene.display = framed.placement;
+  reference.scene = std::move(scene);
+  // A barrier shows the camera's depth through its virtual gap, which its display file
+  // carries; a lenticular panel's camera scaled depth, which the reference's display does too.
+  if (framed.lenticular && framed.depthScale != 1) {
+    reference.scaled = depthScaledView(display, framed.depthScale);
+    reference.display = reference.scaled.get();
   }
   return reference;
 }

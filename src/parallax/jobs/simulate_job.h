@@ -47,15 +47,6 @@ struct SimulatorRequest {
   std::string bundles;
 };
 
-// The readings --all-readings scores under: an ideal lens and a pixel-wide spot (0 and 3
-// subpixels), each with parallel and with converging bundles, then the design's own; with a
-// label each ("spot 0, parallel").
-std::vector<std::pair<std::string, LensOptics>> lensReadings(const LenticularDesign& design);
-
-// The reading a lenticular simulator uses, in words ("seen through lenses with a 1-subpixel
-// focal spot, bundles converging at 1374 mm"); "" for other kinds.
-std::string lensReadingLine(const DisplayModel& display, const SimulationOptions& options);
-
 // The simulator's options for `display`. Throws RequestError naming spp (not 0 or a square),
 // pupil, pupil_samples, diffuser (also one wider than the display) or size, and refuses the
 // two-layer simulator's options for other kinds by their fields.

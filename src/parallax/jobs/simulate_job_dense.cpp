@@ -10,6 +10,7 @@
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/jobs/lens_readings.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/simulate_parts.h"
 #include "parallax/quality/viewer_quality.h"
@@ -137,8 +138,8 @@ void checkDenseMemory(const SimulateInputs& in, const SimulateRequest& r, const 
     frames +=
         imageBytes(f.image.width(), f.image.height()) + imageBytes(f.mask.width(), f.mask.height());
   // Each reading of --all-readings is one more simulator holding its copy of the layers.
-  const double readings = r.allReadings && in.display->lenticularDesign()
-                              ? double(lensReadings(*in.display->lenticularDesign()).size())
+  const double readings = r.allReadings && !lensReadings(*in.display).empty()
+                              ? double(lensReadings(*in.display).size())
                               : 1.0;
   const double sets = (1.0 + double(r.compare.size())) * readings;
   const auto [w, h] = seenPictureSize(*in.display, r.simulator);
@@ -186,7 +187,7 @@ void runDenseReference(const SimulateRequest& r, const SimulateInputs& in,
   std::vector<std::pair<std::string, std::optional<LensOptics>>> readings{{"", sim.lensOptics}};
   if (r.allReadings) {
     readings.clear();
-    for (const auto& [label, optics] : lensReadings(*display.lenticularDesign()))
+    for (const auto& [label, optics] : lensReadings(display))
       readings.push_back({" [" + label + "]", optics});
   }
   std::vector<std::string> rowLabels;

@@ -18,6 +18,7 @@
 #include "parallax/io/json_reader.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/jobs/display_factory.h"
+#include "parallax/jobs/lens_readings.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/sequence.h"
@@ -251,7 +252,7 @@ void runSimulate(const SimulateRequest& r, Reporter& reporter) {
     throw RequestError("all_readings",
                        "applies to the dense measure ({reference} without {eye} "
                        "or {sweep})");
-  if (r.allReadings && !display.lenticularDesign())
+  if (r.allReadings && lensReadings(display).empty())
     throw RequestError("all_readings", "applies to lenticular displays (the lenses' optics)");
   if (const std::string line = lensReadingLine(display, sim); !line.empty() && !r.allReadings)
     reporter.note(line);
