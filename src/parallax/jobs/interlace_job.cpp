@@ -4,17 +4,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "parallax/core/error.h"
 #include "parallax/core/memory.h"
-#include "parallax/core/output_path.h"
 #include "parallax/io/image_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/layer_output.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/simulate_job.h"
-#include "parallax/sim/lenticular_sim.h"
 
 namespace parallax::jobs {
 
@@ -24,35 +23,6 @@ ViewResampling viewResampling(const std::string& text) {
   if (text == "nearest") return ViewResampling::Nearest;
   if (text == "linear") return ViewResampling::Linear;
   throw RequestError("view_resampling", "expected nearest or linear, got '" + text + "'");
-}
-
-// The display, built for interlacing, once its pictures are known to fit in memory.
-BuiltDisplay interlaceDisplay(const InterlaceRequest& r, Reporter& reporter) {
-  const DisplayDescription description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
-  DisplayCameraRequest optics;
-  optics.lensSpot = r.lensSpot;
-  optics.bundles = r.bundles;
-  BuiltDisplay display = makeDisplay(description, optics);  // a barrier refuses lens optics
-  if (const LenticularDesign* lenticular = display->lenticularDesign()) {
-    if (r.subpixels)
-      throw RequestError("subpixels",
-                         "applies to barrier displays; a lenticular panel is interlaced per "
-                         "subpixel");
-    const double w = lenticular->calibration.screenW, h = lenticular->calibration.screenH;
-    checkMemoryEstimate(
-        imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
-        lenticular->calibration.source, "the panel image", "use a smaller panel");
-    return display;
-  }
-  if (r.subpixels) {
-    DisplayCameraRequest camera;
-    camera.subpixels = true;
-    display = makeDisplay(description, camera);
-  }
-  const DisplayDesign& design = *display->barrierDesign();
-  checkLayerMemory(design, design.spec.imagePanel.width, 1,
-                   r.display.empty() ? "<built-in display>" : r.display);
-  return display;
 }
 
 // The views as given: leftmost camera first, and the quilt's layout if they came as one.
@@ -151,6 +121,19 @@ std::string viewsNeeded(const DisplayDesign& design) {
                  design.views);
 }
 
+// A quilt named for a display of another shape: its views are stretched to this one's.
+void noteQuiltAspect(const Views& given, const DisplayModel& display, Reporter& reporter) {
+  const DisplayWindow window = display.window();
+  const double aspect = window.widthMm / window.heightMm;
+  if (!given.quilt || !(given.layout.aspect > 0) ||
+      std::abs(given.layout.aspect / aspect - 1.0) <= 0.01)
+    return;
+  reporter.note(
+      printed("the quilt is named for a display of aspect %s, this one's is %s: its "
+              "views are stretched to the display",
+              formatQuiltAspect(given.layout.aspect).c_str(), formatQuiltAspect(aspect).c_str()));
+}
+
 // A lenticular panel: every subpixel takes the views its view fraction lies between, blended,
 // as Looking Glass's interlacing shader does (render/quilt.h, interlaceQuiltLenticular).
 Image interlaceLenticular(const InterlaceRequest& r, const LenticularDesign& design,
@@ -168,23 +151,10 @@ Image interlaceLenticular(const InterlaceRequest& r, const LenticularDesign& des
   return panel;
 }
 
-// A quilt named for a display of another shape: its views are stretched to this one's.
-void noteQuiltAspect(const Views& given, const DisplayModel& display, Reporter& reporter) {
-  const DisplayWindow window = display.window();
-  const double aspect = window.widthMm / window.heightMm;
-  if (!given.quilt || !(given.layout.aspect > 0) ||
-      std::abs(given.layout.aspect / aspect - 1.0) <= 0.01)
-    return;
-  reporter.note(
-      printed("the quilt is named for a display of aspect %s, this one's is %s: its "
-              "views are stretched to the display",
-              formatQuiltAspect(given.layout.aspect).c_str(), formatQuiltAspect(aspect).c_str()));
-}
-
 // A barrier: the views resampled to its count if need be, then interleaved by direct mapping.
-Image interlaceBarrier(const InterlaceRequest& r, const DisplayModel& display, Views given,
-                       JsonWriter& record, Reporter& reporter) {
-  const DisplayDesign& design = *display.barrierDesign();
+Image interlaceBarrier(const InterlaceRequest& r, const DisplayModel& display,
+                       const DisplayDesign& design, Views given, JsonWriter& record,
+                       Reporter& reporter) {
   const int count = int(given.images.size()), needed = interlacedViewCount(design);
   if (count != needed) {
     // A standard quilt (48 views) on a 9-view barrier, or the reverse: resampled across views.
@@ -220,16 +190,8 @@ struct Interlaced {
   JsonWriter record;
 };
 
-void interlace(const InterlaceRequest& r, const BuiltDisplay& display, Views given, Interlaced& out,
-               Reporter& reporter) {
-  noteQuiltAspect(given, *display, reporter);
-  if (const LenticularDesign* lenticular = display->lenticularDesign()) {
-    out.image = interlaceLenticular(r, *lenticular, given, out.record);
-    return;
-  }
-  out.image = interlaceBarrier(r, *display, std::move(given), out.record, reporter);
-  out.mask = maskLayerImage(*display->barrierDesign());
-}
+// Each kind's own way from views to its pictures, chosen once (interlacerFor): the display
+// checked for it before the views are read, the views mapped, the set written.
 
 std::string writeLenticularSet(const InterlaceRequest& r, const BuiltDisplay& display,
                                Interlaced& made, size_t views) {
@@ -248,83 +210,139 @@ std::string writeLenticularSet(const InterlaceRequest& r, const BuiltDisplay& di
                  made.image.width(), made.image.height(), views, dir, dir);
 }
 
+class Interlacer {
+ public:
+  virtual ~Interlacer() = default;
+  // The display as the views are interlaced for it (`built`: as the request's optics built
+  // it), its pictures known to fit in memory; refusals of what does not apply to the kind.
+  virtual BuiltDisplay prepare(const InterlaceRequest& r, const DisplayDescription& description,
+                               BuiltDisplay built) const = 0;
+  virtual bool writesMask() const = 0;
+  virtual void interlace(const InterlaceRequest& r, const DisplayModel& display, Views given,
+                         Interlaced& out, Reporter& reporter) const = 0;
+  // Writes the set into r.output; returns the result line.
+  virtual std::string write(const InterlaceRequest& r, const BuiltDisplay& display,
+                            Interlaced& made, size_t views) const = 0;
+};
+
+class LenticularInterlacer final : public Interlacer {
+ public:
+  explicit LenticularInterlacer(const LenticularDesign& design) : design_(design) {}
+  BuiltDisplay prepare(const InterlaceRequest& r, const DisplayDescription&,
+                       BuiltDisplay built) const override {
+    if (r.subpixels)
+      throw RequestError("subpixels",
+                         "applies to barrier displays; a lenticular panel is interlaced per "
+                         "subpixel");
+    const double w = design_.calibration.screenW, h = design_.calibration.screenH;
+    checkMemoryEstimate(
+        imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
+        design_.calibration.source, "the panel image", "use a smaller panel");
+    return built;
+  }
+  bool writesMask() const override { return false; }
+  void interlace(const InterlaceRequest& r, const DisplayModel&, Views given, Interlaced& out,
+                 Reporter&) const override {
+    out.image = interlaceLenticular(r, design_, given, out.record);
+  }
+  std::string write(const InterlaceRequest& r, const BuiltDisplay& display, Interlaced& made,
+                    size_t views) const override {
+    return writeLenticularSet(r, display, made, views);
+  }
+
+ private:
+  const LenticularDesign& design_;
+};
+
+class BarrierInterlacer final : public Interlacer {
+ public:
+  explicit BarrierInterlacer(const DisplayDesign& design) : design_(design) {}
+  BuiltDisplay prepare(const InterlaceRequest& r, const DisplayDescription& description,
+                       BuiltDisplay built) const override {
+    if (r.subpixels) {
+      DisplayCameraRequest camera;
+      camera.subpixels = true;
+      built = makeDisplay(description, camera);
+    }
+    const DisplayDesign& design = *built->barrierDesign();
+    checkLayerMemory(design, design.spec.imagePanel.width, 1,
+                     r.display.empty() ? "<built-in display>" : r.display);
+    return built;
+  }
+  bool writesMask() const override { return true; }
+  void interlace(const InterlaceRequest& r, const DisplayModel& display, Views given,
+                 Interlaced& out, Reporter& reporter) const override {
+    out.image = interlaceBarrier(r, display, design_, std::move(given), out.record, reporter);
+    out.mask = maskLayerImage(design_);
+  }
+  std::string write(const InterlaceRequest& r, const BuiltDisplay&, Interlaced& made,
+                    size_t) const override {
+    return writeDisplayLayers(r.output, made.image, made.mask, design_, r.linear, made.record);
+  }
+
+ private:
+  const DisplayDesign& design_;
+};
+
+// The one place interlacing asks which kind a display is.
+std::unique_ptr<Interlacer> interlacerFor(const DisplayModel& display) {
+  if (const LenticularDesign* lenticular = display.lenticularDesign())
+    return std::make_unique<LenticularInterlacer>(*lenticular);
+  if (const DisplayDesign* barrier = display.barrierDesign())
+    return std::make_unique<BarrierInterlacer>(*barrier);
+  throw RequestError("display", "cannot be interlaced: a display of kind " +
+                                    std::string(displayKindName(display.kind())) +
+                                    " has no interlacer");
+}
+
+// The display, built for interlacing, once its pictures are known to fit in memory; and its
+// interlacer.
+struct InterlaceTarget {
+  BuiltDisplay display;
+  std::unique_ptr<Interlacer> interlacer;
+};
+InterlaceTarget interlaceDisplay(const InterlaceRequest& r, Reporter& reporter) {
+  const DisplayDescription description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
+  DisplayCameraRequest optics;
+  optics.lensSpot = r.lensSpot;
+  optics.bundles = r.bundles;
+  BuiltDisplay built = makeDisplay(description, optics);  // a barrier refuses lens optics
+  std::unique_ptr<Interlacer> interlacer = interlacerFor(*built);
+  BuiltDisplay display = interlacer->prepare(r, description, std::move(built));
+  // The interlacer holds its kind's design: made again for the display it prepared.
+  interlacer = interlacerFor(*display);
+  return {std::move(display), std::move(interlacer)};
+}
+
+void interlace(const InterlaceTarget& target, const InterlaceRequest& r, Views given,
+               Interlaced& out, Reporter& reporter) {
+  noteQuiltAspect(given, *target.display, reporter);
+  target.interlacer->interlace(r, *target.display, std::move(given), out, reporter);
+}
+
 }  // namespace
 
 void runInterlace(const InterlaceRequest& r, Reporter& reporter) {
   viewResampling(r.viewResampling);
-  const BuiltDisplay display = interlaceDisplay(r, reporter);
+  const InterlaceTarget target = interlaceDisplay(r, reporter);
   // Before the views are read: where the set goes can take it (docs/inputs.md, "Outputs").
-  OutputSet::check(r.output,
-                   pictureSetNames(1, !display->lenticularDesign(), r.linear, display.file.name));
+  OutputSet::check(r.output, pictureSetNames(1, target.interlacer->writesMask(), r.linear,
+                                             target.display.file.name));
   Views given = readViews(r);
   const size_t count = given.images.size();
   Interlaced made;
-  interlace(r, display, std::move(given), made, reporter);
-  if (display->lenticularDesign()) {
-    reporter.result(writeLenticularSet(r, display, made, count));
-    return;
-  }
-  reporter.result(writeDisplayLayers(r.output, made.image, made.mask, *display->barrierDesign(),
-                                     r.linear, made.record));
+  interlace(target, r, std::move(given), made, reporter);
+  reporter.result(target.interlacer->write(r, target.display, made, count));
 }
 
 InterlaceResult interlaceInMemory(const InterlaceRequest& r, const std::vector<Image>& views,
                                   const Image& quilt, Reporter& reporter) {
   viewResampling(r.viewResampling);
-  const BuiltDisplay display = interlaceDisplay(r, reporter);
+  const InterlaceTarget target = interlaceDisplay(r, reporter);
   Interlaced made;
-  interlace(r, display, givenViews(r, views, quilt), made, reporter);
-  display.recordDesign(made.record, "/design");
+  interlace(target, r, givenViews(r, views, quilt), made, reporter);
+  target.display.recordDesign(made.record, "/design");
   return {std::move(made.image), std::move(made.mask), made.record.dump()};
-}
-
-// ---- lenticular simulate --------------------------------------------------------------------
-
-namespace {
-
-// The panel's design (at the request's viewer distance), its pictures checked against memory.
-LenticularDesign simulatedPanel(const LenticularSimulateRequest& r, Reporter& reporter) {
-  const DisplayDescription description =
-      r.loaded ? *r.loaded : loadDisplay(r.calibration, reporter);
-  const BuiltDisplay display = makeDisplay(description);
-  if (!display->lenticularDesign())
-    throw InputError(description.source(), "",
-                     "is a barrier display, not a lenticular calibration (visual.json, lkg:NAME)");
-  DisplayCameraRequest camera;
-  camera.viewDistanceMm = r.distance;
-  camera.lensSpot = r.lensSpot;
-  camera.bundles = r.bundles;
-  const LenticularDesign design = *makeDisplay(description, camera)->lenticularDesign();
-  const double w = design.calibration.screenW, h = design.calibration.screenH;
-  checkMemoryEstimate(imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
-                      r.loaded ? description.source() : r.calibration, "the panel and the view",
-                      "use a smaller panel");
-  return design;
-}
-
-Vec3d simulatedEye(const LenticularSimulateRequest& r, const LenticularDesign& design) {
-  if (!r.eye) return {0, 0, design.viewDistanceMm};
-  if (!(r.eye->z > 0)) throw RequestError("eye", "the eye must be in front (z > 0)");
-  return *r.eye;
-}
-
-}  // namespace
-
-void runLenticularSimulate(const LenticularSimulateRequest& r, Reporter& reporter) {
-  const LenticularDesign design = simulatedPanel(r, reporter);
-  checkOutputFile(r.output);
-  const Image panel = readImage(r.image);
-  const Vec3d eye = simulatedEye(r, design);
-  const Image view = simulateLenticularView(design, panel, eye);
-  writeImage(r.output, view);
-  reporter.result(printed("wrote %s (%dx%d): the panel seen from %.1f,%.1f,%.1f mm",
-                          r.output.c_str(), view.width(), view.height(), eye.x, eye.y, eye.z));
-}
-
-Image lenticularViewInMemory(const LenticularSimulateRequest& r, const Image& panel,
-                             Reporter& reporter) {
-  const LenticularDesign design = simulatedPanel(r, reporter);
-  return simulateLenticularView(design, panel, simulatedEye(r, design));
 }
 
 }  // namespace parallax::jobs
