@@ -2,6 +2,8 @@
 // (barrier_rays.h), the mask as its second layer.
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include "parallax/display/barrier_rays.h"
 #include "parallax/display/display_model.h"
@@ -69,6 +71,21 @@ class BarrierDisplay final : public DisplayModel {
   double diffuserSigmaMm() const override { return design_.spec.diffuserSigmaMm; }
   double directMappingViews() const override {
     return std::max(1.0, std::round(design_.screenPeriodPx));
+  }
+  int denseViewCount() const override { return pixelViewCount(design_); }
+  Vec3d denseEye(int view, double inView, double distance) const override {
+    const int views = pixelViewCount(design_);
+    const double centre = design_.spec.viewZoneCenterXMm, y = design_.spec.viewZoneHeightMm;
+    const double zone = design_.viewZoneWidthMm, window = zone / views;
+    const double x = -0.5 * zone + (view + inView) * window;
+    return {centre + x * distance, y, design_.viewDistanceMm * distance};
+  }
+  // The panel's pixel views (the default camera's), as the dense eyes count them.
+  std::vector<Vec3d> denseDesignEyes() const override {
+    const std::unique_ptr<DisplayModel> pixels = makeBarrierDisplay(designDisplay(design_.spec));
+    std::vector<Vec3d> eyes;
+    for (int v = 0; v < pixelViewCount(design_); ++v) eyes.push_back(pixels->viewPosition(v));
+    return eyes;
   }
   const DisplayDesign* barrierDesign() const override { return &design_; }
 

@@ -64,6 +64,11 @@ class DepthScaledDisplay final : public DisplayModel {
   }
   double directMappingViews() const override { return inner_->directMappingViews(); }
   std::string deviceNote() const override { return inner_->deviceNote(); }
+  int denseViewCount() const override { return inner_->denseViewCount(); }
+  Vec3d denseEye(int view, double inView, double distance) const override {
+    return inner_->denseEye(view, inView, distance);
+  }
+  std::vector<Vec3d> denseDesignEyes() const override { return inner_->denseDesignEyes(); }
   std::string summaryClause() const override { return inner_->summaryClause(); }
   const DisplayDesign* barrierDesign() const override { return inner_->barrierDesign(); }
   const LenticularDesign* lenticularDesign() const override { return inner_->lenticularDesign(); }

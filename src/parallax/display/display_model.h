@@ -130,6 +130,21 @@ class DisplayModel {
   // baseline, one ordinary view each: a barrier's screen period); 1 for a display that does
   // not interleave views by columns.
   virtual double directMappingViews() const { return 1.0; }
+  // The dense measure's eyes (quality/viewer_quality.h, docs/simulator.md): the views it counts
+  // them by (a barrier's pixel views: one per image pixel column of a screen period), the eye
+  // `inView` (0 to 1) of the way across view `view`'s window at `distance` times the design
+  // distance, and each view's design eye.
+  virtual int denseViewCount() const { return viewCount(); }
+  virtual Vec3d denseEye(int view, double inView, double distance) const {
+    const Vec3d centre = window().eyeMm;
+    const Vec3d e = eyeAcrossZone((view + inView) / viewCount());
+    return {centre.x + (e.x - centre.x) * distance, e.y, e.z * distance};
+  }
+  virtual std::vector<Vec3d> denseDesignEyes() const {
+    std::vector<Vec3d> eyes;
+    for (int v = 0; v < viewCount(); ++v) eyes.push_back(viewPosition(v));
+    return eyes;
+  }
   // What the display's file was recognised as, where that decides its defaults (a lenticular
   // unit's own file: which Looking Glass device, hence its quilt); "" for nothing to say.
   virtual std::string deviceNote() const { return ""; }

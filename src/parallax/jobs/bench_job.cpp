@@ -254,7 +254,7 @@ RayBench benchRays(const BenchRequest& r, Reporter& reporter) {
   bench.result =
       benchmark(scene, accelerator, measured, *cameras.limit, settings, r.repeats, cameras.views);
   // A lenticular panel: its direct render against its own device quilt route, in this run.
-  if (model && model->lenticularDesign())
+  if (model && hasQuiltRoute(*model))
     bench.quiltRoute = benchmarkQuiltRoute(scene, accelerator, *model, settings, r.repeats);
   bench.peakMiB = peakResidentMiB();
   bench.bvhQuality = qualityName(accelerator.buildQuality());

@@ -14,49 +14,29 @@ namespace parallax {
 
 std::vector<DenseEye> denseEyes(const DisplayDesign& design, int eyesPerView,
                                 const std::vector<double>& distances) {
-  std::vector<DenseEye> eyes;
-  const int views = pixelViewCount(design);
-  const double centre = design.spec.viewZoneCenterXMm, y = design.spec.viewZoneHeightMm;
-  const double zone = design.viewZoneWidthMm, window = zone / views;
-  for (double f : distances)
-    for (int v = 0; v < views; ++v)
-      for (int k = 0; k < eyesPerView; ++k) {
-        const double x = -0.5 * zone + (v + (k + 0.5) / eyesPerView) * window;
-        eyes.push_back({{centre + x * f, y, design.viewDistanceMm * f}, f, v, false});
-      }
-  return eyes;
+  return denseEyes(*makeBarrierDisplay(design), eyesPerView, distances);
 }
 
 std::vector<DenseEye> designEyes(const DisplayDesign& design) {
-  // The panel's pixel views (the default camera), as the dense eyes count them.
-  const std::unique_ptr<DisplayModel> pixels = makeBarrierDisplay(designDisplay(design.spec));
-  std::vector<DenseEye> eyes;
-  for (int v = 0; v < pixelViewCount(design); ++v)
-    eyes.push_back({pixels->viewPosition(v), 1.0, v, true});
-  return eyes;
+  return designEyes(*makeBarrierDisplay(design));
 }
 
 std::vector<DenseEye> denseEyes(const DisplayModel& display, int eyesPerView,
                                 const std::vector<double>& distances) {
-  if (const DisplayDesign* barrier = display.barrierDesign())
-    return denseEyes(*barrier, eyesPerView, distances);
   std::vector<DenseEye> eyes;
-  const int views = display.viewCount();
-  const Vec3d centre = display.window().eyeMm;
+  const int views = display.denseViewCount();
   for (double f : distances)
     for (int v = 0; v < views; ++v)
-      for (int k = 0; k < eyesPerView; ++k) {
-        const Vec3d e = display.eyeAcrossZone((v + (k + 0.5) / eyesPerView) / views);
-        eyes.push_back({{centre.x + (e.x - centre.x) * f, e.y, e.z * f}, f, v, false});
-      }
+      for (int k = 0; k < eyesPerView; ++k)
+        eyes.push_back({display.denseEye(v, (k + 0.5) / eyesPerView, f), f, v, false});
   return eyes;
 }
 
 std::vector<DenseEye> designEyes(const DisplayModel& display) {
-  if (const DisplayDesign* barrier = display.barrierDesign()) return designEyes(*barrier);
   std::vector<DenseEye> eyes;
-  for (int v = 0; v < display.viewCount(); ++v)
-    eyes.push_back({display.viewPosition(v), 1.0, v, true});
+  const std::vector<Vec3d> positions = display.denseDesignEyes();
+  for (int v = 0; v < int(positions.size()); ++v)
+    eyes.push_back({positions[size_t(v)], 1.0, v, true});
   return eyes;
 }
 

@@ -143,6 +143,10 @@ QuiltLayout deviceQuilt(const LenticularDesign& design, int& tileWidth, int& til
 
 }  // namespace
 
+bool hasQuiltRoute(const DisplayModel& display) {
+  return display.lenticularDesign() != nullptr;
+}
+
 double quiltRouteBytes(const DisplayModel& display) {
   const LenticularDesign* design = display.lenticularDesign();
   if (!design) return 0.0;

@@ -108,6 +108,8 @@ struct QuiltRouteTimes {
 // Bytes the quilt route holds at once (the float quilt, its views and the panel), for the
 // caller's memory check before it runs.
 double quiltRouteBytes(const DisplayModel& display);
+// Whether `display` has a device quilt route to time (a lenticular panel).
+bool hasQuiltRoute(const DisplayModel& display);
 // Throws std::invalid_argument for a display that is not lenticular.
 QuiltRouteTimes benchmarkQuiltRoute(const Scene& scene, const Accelerator& accelerator,
                                     const DisplayModel& display, const RenderSettings& settings,
