@@ -18,16 +18,8 @@ Image viewOf(const SeenLayers& seen, const Image& image, const Image& mask, int 
 // Every value into [0, 1] (not a number: 0).
 void clampToUnit(Image& image);
 
-// TrainingView::encodedTarget's unit: S in [0, 1] as 0 .. 65535.
-constexpr float kEncodedUnit = 65535.0f, kInverseEncodedUnit = 1.0f / 65535.0f;
-
 // Running sums of squares are kept in kLanes lanes, added in lane order at the end.
 constexpr int kLanes = 16;
-
-// The targets' codes stream from memory, a row of each eye in turn: the loops ask for them this
-// many codes ahead (a kilobyte: their loads stalled the loops otherwise, the prefetcher
-// starting anew with each row).
-constexpr size_t kPrefetchCodes = 512;
 
 // One eye's error E_e for its view `seen`, and optionally the residual dE_e/dV (what the
 // adjoint takes) and the Gauss-Newton weights (E_e's curvature along V). In linear light

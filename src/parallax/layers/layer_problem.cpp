@@ -10,12 +10,9 @@
 #include "parallax/core/lane_kernel.h"
 #include "parallax/core/parallel.h"
 #include "parallax/image/srgb_arithmetic.h"
-#include "parallax/layers/layer_numerics.h"
 #include "parallax/sim/diffuser.h"
 
 namespace parallax {
-
-using namespace layer_numerics;
 
 namespace {
 

@@ -23,6 +23,7 @@
 // are image_layer_solver.h and layer_factorization.h, their shared numerics layer_numerics.h.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -86,6 +87,13 @@ struct TrainingView {
   // The whole target in linear light: `target`, or the codes decoded into `holder`.
   const Image& linearTarget(Image& holder, int threads = 0) const;
 };
+
+// TrainingView::encodedTarget's unit: S in [0, 1] as 0 .. 65535.
+inline constexpr float kEncodedUnit = 65535.0f, kInverseEncodedUnit = 1.0f / 65535.0f;
+// The targets' codes stream from memory, a row of each eye in turn: the loops that read them
+// ask for them this many codes ahead (a kilobyte: their loads stalled the loops otherwise, the
+// prefetcher starting anew with each row).
+inline constexpr size_t kPrefetchCodes = 512;
 
 // One frame of layers (image and mask panels), linear transmittance.
 struct LayerFrame {
