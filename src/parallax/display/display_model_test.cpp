@@ -4,10 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "parallax/display/depth_scaled_display.h"
 #include "parallax/display/lenticular_test_support.h"
 
 namespace parallax {
@@ -122,6 +126,101 @@ TEST_P(DisplayContract, MaskLayerOnlyForKindsThatHaveOne) {
   EXPECT_EQ(display->hasMaskLayer(), display->barrierDesign() != nullptr);
   EXPECT_EQ(display->lenticularDesign() != nullptr, display->kind() == DisplayKind::Lenticular);
   EXPECT_FALSE(display->designReport().empty());
+}
+
+TEST_P(DisplayContract, DenseEyesSpanTheZoneAndScaleWithDistance) {
+  const auto display = GetParam().make();
+  const int views = display->denseViewCount();
+  ASSERT_GE(views, 1);
+  // At the design distance the dense eyes run from one edge of the zone to the other: the first
+  // view's window starts where the zone does, the last one's ends where it ends.
+  const Vec3d first = display->denseEye(0, 0.0, 1.0), last = display->denseEye(views - 1, 1.0, 1.0);
+  EXPECT_NEAR(first.x, display->eyeAcrossZone(0.0).x, 1e-9);
+  EXPECT_NEAR(last.x, display->eyeAcrossZone(1.0).x, 1e-9);
+  EXPECT_NEAR(first.z, display->window().eyeMm.z, 1e-9);
+  // Nearer and farther, each eye moves with the distance about the zone's centre: x from the
+  // centre and z both scale by the factor.
+  const double cx = display->window().eyeMm.x;
+  for (const double f : {0.8, 1.25})
+    for (int v = 0; v < views; v += std::max(1, views / 4)) {
+      const Vec3d at1 = display->denseEye(v, 0.5, 1.0), atF = display->denseEye(v, 0.5, f);
+      EXPECT_NEAR(atF.x - cx, f * (at1.x - cx), 1e-9);
+      EXPECT_NEAR(atF.z, f * at1.z, 1e-9);
+      EXPECT_NEAR(atF.y, at1.y, 1e-9);
+    }
+  // A design eye per dense view, at the design distance, left to right.
+  const std::vector<Vec3d> design = display->denseDesignEyes();
+  ASSERT_EQ(int(design.size()), views);
+  for (const Vec3d& e : design) EXPECT_NEAR(e.z, display->window().eyeMm.z, 1e-6);
+}
+
+TEST_P(DisplayContract, TheViewersPictureIsTheFrontPanels) {
+  const auto display = GetParam().make();
+  const PanelSize panel = display->viewerPanel();
+  if (const DisplayDesign* d = display->barrierDesign()) {
+    const Panel& front =
+        d->spec.order == LayerOrder::BarrierBack ? d->spec.imagePanel : d->spec.maskPanel;
+    EXPECT_EQ(panel.width, front.width);
+    EXPECT_EQ(panel.height, front.height);
+  } else {
+    EXPECT_EQ(panel.width, display->film().panelWidth);
+    EXPECT_EQ(panel.height, display->film().panelHeight);
+  }
+}
+
+TEST(BarrierDisplay, TheViewersPictureIsTheFrontLayersWhicheverItIs) {
+  // A mask panel of twice the image panel's resolution (the same size in mm): the viewer's
+  // picture follows the layer in front.
+  DisplaySpec s = smallBarrier();
+  s.maskPanel.width = 2 * s.imagePanel.width, s.maskPanel.height = 2 * s.imagePanel.height;
+  s.maskPanel.pitchMm = 0.5 * s.imagePanel.pitchMm;
+  const PanelSize back = makeBarrierDisplay(designDisplay(s))->viewerPanel();
+  EXPECT_EQ(back.width, s.imagePanel.width);
+  EXPECT_EQ(back.height, s.imagePanel.height);
+  s.order = LayerOrder::BarrierFront;
+  const PanelSize front = makeBarrierDisplay(designDisplay(s))->viewerPanel();
+  EXPECT_EQ(front.width, s.maskPanel.width);
+  EXPECT_EQ(front.height, s.maskPanel.height);
+}
+
+TEST_P(DisplayContract, QuiltTilesShareTheDevicesQuiltOrAreThePanel) {
+  const auto display = GetParam().make();
+  const QuiltShape quilt = display->defaultQuilt();
+  ASSERT_GE(quilt.columns, 1);
+  ASSERT_GE(quilt.rows, 1);
+  for (const QuiltShape layout : {quilt, QuiltShape{3, 2}}) {
+    const PanelSize tile = display->quiltTile(layout.columns, layout.rows);
+    if (const LenticularDesign* l = display->lenticularDesign()) {
+      // The device's quilt shared out, whole pixels, nothing left over but the remainder.
+      const QuiltFormat& q = l->calibration.quilt;
+      EXPECT_LE(tile.width * layout.columns, q.width);
+      EXPECT_GT((tile.width + 1) * layout.columns, q.width);
+      EXPECT_LE(tile.height * layout.rows, q.height);
+      EXPECT_GT((tile.height + 1) * layout.rows, q.height);
+    } else {
+      // A barrier's views are its panel's pictures, whatever the layout; one row of its views.
+      EXPECT_EQ(tile.width, display->film().panelWidth);
+      EXPECT_EQ(tile.height, display->film().panelHeight);
+      EXPECT_EQ(quilt.columns, display->viewCount());
+      EXPECT_EQ(quilt.rows, 1);
+    }
+  }
+}
+
+TEST_P(DisplayContract, ADepthScaledViewAnswersAsTheDisplay) {
+  const std::shared_ptr<const DisplayModel> display = GetParam().make();
+  const std::unique_ptr<DisplayModel> scaled = depthScaledView(*display, 0.5);
+  EXPECT_EQ(scaled->viewerPanel().width, display->viewerPanel().width);
+  EXPECT_EQ(scaled->viewerPanel().height, display->viewerPanel().height);
+  EXPECT_EQ(scaled->diffuserSigmaMm(), display->diffuserSigmaMm());
+  EXPECT_EQ(scaled->defaultQuilt().columns, display->defaultQuilt().columns);
+  EXPECT_EQ(scaled->quiltTile(4, 2).width, display->quiltTile(4, 2).width);
+  EXPECT_EQ(scaled->directMappingViews(), display->directMappingViews());
+  EXPECT_EQ(scaled->deviceNote(), display->deviceNote());
+  EXPECT_EQ(scaled->summaryClause(), display->summaryClause());
+  EXPECT_EQ(scaled->denseViewCount(), display->denseViewCount());
+  EXPECT_EQ(scaled->denseEye(1, 0.25, 1.1).x, display->denseEye(1, 0.25, 1.1).x);
+  EXPECT_EQ(scaled->denseDesignEyes().size(), display->denseDesignEyes().size());
 }
 
 INSTANTIATE_TEST_SUITE_P(
