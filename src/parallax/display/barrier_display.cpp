@@ -98,7 +98,15 @@ class BarrierDisplay final : public DisplayModel {
 }  // namespace
 
 const char* displayKindName(DisplayKind kind) {
-  return kind == DisplayKind::Barrier ? "barrier" : "lenticular";
+  switch (kind) {
+    case DisplayKind::Barrier:
+      return "barrier";
+    case DisplayKind::Lenticular:
+      return "lenticular";
+    case DisplayKind::Other:
+      break;
+  }
+  return "other";
 }
 
 void DisplayModel::rays16(const float filmX[16], const float filmY[16], const float u[16],

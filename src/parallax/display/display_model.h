@@ -60,7 +60,9 @@ struct DesignFigure {
   std::string unit;
 };
 
-enum class DisplayKind { Barrier, Lenticular };
+// Other: a kind outside the two that have files (a model made in code, such as the tests'
+// third kind); the runners ask it only what DisplayModel answers.
+enum class DisplayKind { Barrier, Lenticular, Other };
 const char* displayKindName(DisplayKind kind);
 
 class DisplayModel {

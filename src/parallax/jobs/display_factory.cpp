@@ -80,8 +80,10 @@ BuiltDisplay makeDisplay(const DisplayDescription& description,
       return barrierDisplay(barrierDesign(description, camera), camera.filter);
     case DisplayKind::Lenticular:
       return lenticularDisplay(lenticularDesign(description, camera), camera.filter);
+    case DisplayKind::Other:  // made in code, never read from a file
+      break;
   }
-  throw std::logic_error("unknown display kind");
+  throw std::logic_error("makeDisplay: a description of a kind without a file");
 }
 
 DisplayDesign barrierDesignOf(const DisplayDescription& description) {
