@@ -97,10 +97,10 @@ void registerBenchCommand(Command& cli) {
   cmd->addOption("--camera", options->camera,
                  "Camera to measure: pinhole, or display (the image layer through the barrier)")
       ->captureDefault();
-  cmd->addOption("--display", options->display,
-                 "Display for --camera display: a file of any kind, or lkg:NAME (a lenticular "
-                 "panel's direct render is also timed against its own device quilt and "
-                 "interlace, in the same run)");
+  addDisplayOption(*cmd, options->display,
+                   "Display for --camera display: a file of any kind, or lkg:NAME (a lenticular "
+                   "panel's direct render is also timed against its own device quilt and "
+                   "interlace, in the same run)");
   addFilterOptions(*cmd, options->filter, "With --camera display: ", "as render --filter-width");
   cmd->addOption("--scene", options->scene.path, "Scene or mesh file (built-in scene if omitted)");
   cmd->addOption("--size", options->size,

@@ -25,7 +25,7 @@ struct PatternsOptions {
 
 void runPatterns(const PatternsOptions& o) {
   if (o.photo) {
-    runCalibrationShots({o.request.display, std::nullopt, o.request.output}, cliReporter());
+    runCalibrationShots({o.request.display, o.request.output}, cliReporter());
     return;
   }
   runCalibrationPatterns(o.request, cliReporter());
@@ -59,7 +59,7 @@ void registerCalibrateCommand(Command& cli) {
   p->addFlag("--photo", patternOptions->photo,
              "Write the shots to photograph with a phone instead (any display kind; then "
              "`calibrate photo`)");
-  p->addOption("--display", patterns->display, "Display file (built-in display if omitted)");
+  addDisplayOption(*p, patterns->display, "Display file (built-in display if omitted)");
   p->addOption("-o,--output", patterns->output, "Output folder")->captureDefault();
   p->addOption("--screen-period", s.screenPeriodPx,
                "Integer screen period Tx in image pixels (default: the design's, rounded)")
@@ -91,7 +91,7 @@ void registerCalibrateCommand(Command& cli) {
   Command* q = cmd->addSubcommand(
       "predict", "Simulate the patterns: the periods and phase with the most contrast");
   CalibrationPredictRequest& prediction = predict->request;
-  q->addOption("--display", prediction.display, "Display file (built-in display if omitted)");
+  addDisplayOption(*q, prediction.display, "Display file (built-in display if omitted)");
   q->addOption("--eye", predict->eye,
                "Eye position X,Y,Z in display mm (default: the view-zone centre at D)");
   q->addOption("--screen-period", prediction.settings.screenPeriodPx,
@@ -127,7 +127,7 @@ void registerCalibrateCommand(Command& cli) {
       ->check(realIn(-kInfinity, kInfinity));
   a->addOption("--gap", apply->gapMm, "Gap g in mm, above 0 (default: the base display's)")
       ->check(realIn(0, kInfinity, Bound::Open));
-  a->addOption("--display", apply->display, "Base display file (built-in display if omitted)");
+  addDisplayOption(*a, apply->display, "Base display file (built-in display if omitted)");
   a->addOption("-o,--output", apply->output, "Display file to write")->required();
   a->callback([apply] { runCalibrationApply(*apply, cliReporter()); });
 
@@ -139,8 +139,8 @@ void registerCalibrateCommand(Command& cli) {
   f->addOption("photos", photo->photos,
                "Photos (JPEG or PNG), each named after its shot: grid-1.jpg, grid.far.png")
       ->required();
-  f->addOption("--display", photo->display,
-               "The nominal display (default: the one the shots were made for)");
+  addDisplayOption(*f, photo->display,
+                   "The nominal display (default: the one the shots were made for)");
   f->addOption("-o,--output", photo->output, "The measured display file to write")->required();
   f->addFlag("--json", photo->json, "Print one JSON object");
   addLimitOptions(*f);
@@ -156,8 +156,8 @@ void registerCalibrateCommand(Command& cli) {
   k->addOption("photos", check->photos,
                "Photos (JPEG or PNG), one from each seat, named after the shot: lens-left.jpg")
       ->required();
-  k->addOption("--display", check->display,
-               "The display the shots show (default: the one they were made for)");
+  addDisplayOption(*k, check->display,
+                   "The display the shots show (default: the one they were made for)");
   k->addFlag("--json", check->json, "Print one JSON object");
   addLimitOptions(*k);
   k->callback([check] { runCalibrationCheck(*check, cliReporter()); });
@@ -167,7 +167,7 @@ void registerCalibrateCommand(Command& cli) {
       "study",
       "How precise calibrate photo is: random true displays, photographed by the photo "
       "maker, measured and compared with the truth");
-  t->addOption("--display", study->display, "The nominal display (built-in display if omitted)");
+  addDisplayOption(*t, study->display, "The nominal display (built-in display if omitted)");
   t->addOption("--sets", study->sets, "Photo sets (trials)")
       ->captureDefault()
       ->check(integerIn(1, 100000));

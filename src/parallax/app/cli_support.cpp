@@ -15,7 +15,6 @@
 #include "parallax/core/memory.h"
 #include "parallax/display/lenticular.h"
 #include "parallax/importer/scene_file.h"
-#include "parallax/io/display_file.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/layer_output.h"
 
@@ -217,18 +216,23 @@ void addFilterOptions(Command& cmd, FilterRequest& options, const std::string& s
       ->captureDefault();
 }
 
-void addLensReadingOptions(Command& cmd, std::optional<double>& lensSpot, std::string& bundles,
-                           bool forRender) {
+Option* addDisplayOption(Command& cmd, DisplayRequest& display, const std::string& help,
+                         const std::string& name) {
+  Option* option = cmd.addOption(name, display.path, help);
+  return name.rfind("--", 0) == 0 ? option->typeName("FILE|lkg:NAME") : option;
+}
+
+void addLensReadingOptions(Command& cmd, LensReadingRequest& lens, bool forRender) {
   const std::string verb = forRender ? "render the panel for" : "read the panel through";
   cmd.addOptionFunction<double>(
-         "--lens-spot", [&lensSpot](const double& w) { lensSpot = w; },
+         "--lens-spot", [&lens](const double& w) { lens.spot = w; },
          "Lenticular: " + verb +
              " lenses whose focal spot is W subpixels wide (0: an ideal lens, one subpixel seen "
              "per lens; 3: a pixel-wide spot); default: the display's optics "
              "(docs/lenticular.md, \"The optics\")")
       ->typeName("W")
       ->check(realIn(0, kMaxLensSpotSubpixels));
-  cmd.addOption("--bundles", bundles,
+  cmd.addOption("--bundles", lens.bundles,
                 std::string("Lenticular: ") +
                     (forRender ? "render the panel for" : "read the panel with") +
                     " the light of one view leaving parallel, or converging at the design "
@@ -299,10 +303,6 @@ void addSceneLoadOptions(Command& cmd, SceneLoadOptions& options) {
 
 DisplayDesign loadDesignOrDefault(const std::string& path) {
   return jobs::loadBarrierDesign(path, cliReporter());
-}
-
-DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset) {
-  return jobs::loadDisplay(pathOrPreset, cliReporter());
 }
 
 void addSequenceOptions(Command& cmd, SequenceRequest& options, const std::string& frames) {

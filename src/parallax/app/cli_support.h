@@ -13,7 +13,7 @@
 #include "parallax/display/display.h"
 #include "parallax/importer/mesh_file.h"
 #include "parallax/importer/scene_file.h"
-#include "parallax/io/display_file.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
@@ -95,11 +95,15 @@ void addFramingOptions(Command& cmd, FramingRequest& options, const std::string&
 void addFilterOptions(Command& cmd, FilterRequest& options, const std::string& scope,
                       const std::string& viewUnit);
 
+// --display PATH (`name` instead for a positional argument such as lenticular's calibration):
+// the display a command works on (jobs::DisplayRequest::path), `help` saying what it may be and
+// what it is when omitted.
+Option* addDisplayOption(Command& cmd, DisplayRequest& display, const std::string& help,
+                         const std::string& name = "--display");
 // --lens-spot W and --bundles parallel|converging: the lenticular optics a simulator reads a panel
-// under (jobs::SimulatorRequest::lensSpot, bundles), or a render renders for (`forRender`,
-// jobs::RenderRequest); unset when not given.
-void addLensReadingOptions(Command& cmd, std::optional<double>& lensSpot, std::string& bundles,
-                           bool forRender = false);
+// under (jobs::SimulatorRequest::lens), or a render renders for (`forRender`,
+// jobs::DisplayRequest::lens); unset when not given.
+void addLensReadingOptions(Command& cmd, LensReadingRequest& lens, bool forRender = false);
 
 // --up auto|y|z (also --mesh-up; only that on view, whose --up is the camera's) and --crease
 // DEGREES (docs/import.md): how the scene's mesh files are imported (a scene file's mesh
@@ -119,8 +123,6 @@ void addSceneLoadOptions(Command& cmd, SceneLoadOptions& options);
 // The built-in display when `path` is empty, otherwise the display file; checked (G1-G4).
 // A lenticular calibration is refused.
 DisplayDesign loadDesignOrDefault(const std::string& path);
-// A display of any kind, with the reader's warnings printed (jobs::loadDisplay).
-DisplayDescription loadDisplayOrDefault(const std::string& pathOrPreset);
 
 // --frames, --chunk, --turntable, --duration, --fps, and --video with its codec and quality;
 // `frames` says what a video's frames are.

@@ -13,7 +13,8 @@ namespace parallax::app {
 
 void registerDesignCommand(Command& cli) {
   struct Options {
-    std::string display, scene;
+    DisplayRequest display;
+    std::string scene;
     FramingRequest framing;
     bool json = false;
     double depth = 0.0;
@@ -21,8 +22,9 @@ void registerDesignCommand(Command& cli) {
   auto options = std::make_shared<Options>();
   Command* cmd =
       cli.addSubcommand("design", "Print the derived design of a display (barrier or lenticular)");
-  cmd->addOption("display", options->display,
-                 "Display file of any kind, or lkg:NAME (built-in display if omitted)");
+  addDisplayOption(*cmd, options->display,
+                   "Display file of any kind, or lkg:NAME (built-in display if omitted)",
+                   "display");
   cmd->addOption("--depth", options->depth,
                  "Depth (mm, + toward the viewer) for the disparity figure; default: the depth "
                  "of field")

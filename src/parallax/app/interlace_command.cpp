@@ -51,8 +51,8 @@ void registerInterlaceCommand(Command& cli) {
                  "(NAME_qs{C}x{R}a{aspect}.png, tiles from the bottom-left)")
       ->required()
       ->typeName("VIEW... | QUILT");
-  cmd->addOption("--display", request.display,
-                 "Display file of any kind, or lkg:NAME (built-in display if omitted)");
+  addDisplayOption(*cmd, request.display,
+                   "Display file of any kind, or lkg:NAME (built-in display if omitted)");
   cmd->addOption("--view-resampling", request.viewResampling,
                  "Views between the given ones: nearest or linear (blend the two around "
                  "each needed one); for a barrier when the views are not its count, for a "
@@ -61,9 +61,9 @@ void registerInterlaceCommand(Command& cli) {
   cmd->addOption("--quilt-layout", options->quiltLayout,
                  "The quilt's tiles, when its name does not say")
       ->typeName("CxR");
-  addLensReadingOptions(*cmd, request.lensSpot, request.bundles, true);
+  addLensReadingOptions(*cmd, request.display.lens, true);
   cmd->addOption("-o,--output", request.output, "Output folder")->required();
-  cmd->addFlag("--subpixels", request.subpixels,
+  cmd->addFlag("--subpixels", request.display.subpixels,
                "Views per R, G, B subpixel column (three times the views)");
   cmd->addFlag("--linear", request.linear, "Also write image.pfm, linear float");
   cmd->callback([options] { runInterlace(*options); });

@@ -17,62 +17,38 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct LenticularRenderOptions {
-  std::string calibration, scene, output = "out";
-  SceneLoadOptions load;     // --camera
-  SamplingRequest sampling;  // 16 rays per subpixel over its view window, as render
-  FilterRequest filter;
-  double distance = 0;
-  std::optional<double> lensSpot;
-  std::string bundles;
-};
-
 struct LenticularSimulateOptions {
   std::vector<std::string> inputs;  // DIR [CALIBRATION], or CALIBRATION with --image
   std::string image, eye, output = "out/lenticular-view.png";
-  double distance = 0;
-  std::optional<double> lensSpot;
-  std::string bundles;
+  DisplayRequest display;  // the calibration (from inputs), distance and the lens reading
 };
 
 // `lenticular render CALIBRATION`: `render --display CALIBRATION` with a viewer distance.
-void runRender(const LenticularRenderOptions& o) {
-  RenderRequest r;
-  r.display = o.calibration;
-  r.scene.path = o.scene;
-  r.scene.load = o.load;
+void runRender(RenderRequest r) {
   r.scene.load.import = importOptions();
-  r.sampling = o.sampling;
-  r.filter = o.filter;
-  r.distance = o.distance;
-  r.lensSpot = o.lensSpot;
-  r.bundles = o.bundles;
-  r.output = o.output;
   jobs::runRender(r, cliReporter());
 }
 
 void runSimulate(const LenticularSimulateOptions& o) {
   LenticularSimulateRequest r;
+  r.display = o.display;
   r.image = o.image;
   if (!o.image.empty()) {
     if (o.inputs.size() != 1)
       throw InputError("command line", "--image", "takes the calibration file as the argument");
-    r.calibration = o.inputs[0];
+    r.display.path = o.inputs[0];
   } else {
     if (o.inputs.empty() || o.inputs.size() > 2)
       throw InputError("command line", "DIR",
                        "expected DIR [CALIBRATION] or --image FILE CALIBRATION");
     r.image = (fs::path(o.inputs[0]) / "image.png").string();
-    r.calibration =
+    r.display.path =
         o.inputs.size() == 2 ? o.inputs[1] : (fs::path(o.inputs[0]) / "visual.json").string();
   }
   if (!o.eye.empty()) {
     const Vec3f e = parseVec3("--eye", o.eye);
     r.eye = Vec3d{e.x, e.y, e.z};
   }
-  r.distance = o.distance;
-  r.lensSpot = o.lensSpot;
-  r.bundles = o.bundles;
   r.output = o.output;
   jobs::runLenticularSimulate(r, cliReporter());
 }
@@ -84,12 +60,13 @@ void registerLenticularCommand(Command& cli) {
       "lenticular", "Slanted lenticular displays (Looking Glass family) from their visual.json");
   cmd->requireSubcommand(1);
 
-  auto r = std::make_shared<LenticularRenderOptions>();
+  auto r = std::make_shared<RenderRequest>();
   Command* render = cmd->addSubcommand(
       "render", "The panel image: one ray per subpixel along its calibrated view");
-  render->addOption("calibration", r->calibration, "Calibration file (visual.json)")->required();
-  render->addOption("scene", r->scene, "Scene or mesh file (built-in scene if omitted)");
-  addSceneLoadOptions(*render, r->load);
+  addDisplayOption(*render, r->display, "Calibration file (visual.json)", "calibration")
+      ->required();
+  render->addOption("scene", r->scene.path, "Scene or mesh file (built-in scene if omitted)");
+  addSceneLoadOptions(*render, r->scene.load);
   addSamplingOptions(
       *render, r->sampling,
       "Rays per subpixel (n*n over its area and its view window; 1: the formula's ray)");
@@ -97,10 +74,10 @@ void registerLenticularCommand(Command& cli) {
                    "one view: the lens's focal spot (docs/lenticular.md, \"Prefilter\"); each "
                    "subpixel's own span of views is always integrated");
   render
-      ->addOption("--distance", r->distance,
+      ->addOption("--distance", r->display.distance,
                   "Design viewer distance in mm, above 0 (default: the cone spans 1 m)")
       ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open));
-  addLensReadingOptions(*render, r->lensSpot, r->bundles, true);
+  addLensReadingOptions(*render, r->display.lens, true);
   render->addOption("-o,--output", r->output, "Output folder")->captureDefault();
   render->callback([r] { runRender(*r); });
 
@@ -114,9 +91,10 @@ void registerLenticularCommand(Command& cli) {
                       "Eye X,Y,Z in mm (origin: panel centre, z toward the viewer; default: "
                       "the centre of the view cone at the design distance)");
   simulate
-      ->addOption("--distance", s->distance, "Design viewer distance in mm, above 0 (default eye)")
+      ->addOption("--distance", s->display.distance,
+                  "Design viewer distance in mm, above 0 (default eye)")
       ->check(realIn(0, std::numeric_limits<double>::infinity(), Bound::Open));
-  addLensReadingOptions(*simulate, s->lensSpot, s->bundles);
+  addLensReadingOptions(*simulate, s->display.lens);
   addLimitOptions(*simulate);
   simulate->addOption("-o,--output", s->output, "Output image (.png or .pfm)")->captureDefault();
   simulate->callback([s] { runSimulate(*s); });

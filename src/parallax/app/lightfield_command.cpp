@@ -16,14 +16,14 @@ namespace parallax::app {
 
 void registerLightfieldCommand(Command& cli) {
   struct Options {
-    std::string display;
+    DisplayRequest display;
     LightFieldOptions plot;
     std::string output = "out/lightfield.svg";
   };
   auto options = std::make_shared<Options>();
   Command* cmd = cli.addSubcommand(
       "lightfield", "Plot the display's rays in two-plane (x, v) space as an SVG (Figs. 7, 8)");
-  cmd->addOption("display", options->display, "Display file (built-in display if omitted)");
+  addDisplayOption(*cmd, options->display, "Display file (built-in display if omitted)", "display");
   cmd->addOption("--from", options->plot.fromMm, "Left end of the stretch on the image layer (mm)")
       ->captureDefault()
       ->check(realIn(-kInfinity, kInfinity));
@@ -39,7 +39,7 @@ void registerLightfieldCommand(Command& cli) {
   addLimitOptions(*cmd);
   cmd->addOption("-o,--output", options->output, "Output SVG")->captureDefault();
   cmd->callback([options] {
-    const DisplayDesign design = loadDesignOrDefault(options->display);
+    const DisplayDesign design = loadDesignOrDefault(options->display.path);
     const LightFieldOptions& plot = options->plot;
     const Panel& panel = design.spec.imagePanel;
     if (!(plot.fromMm < plot.toMm)) throw InputError("--to", "", "must be above --from");

@@ -46,9 +46,9 @@ void registerRenderCommand(Command& cli) {
       cmd->addOption("scene", request.scene.path, "Scene or mesh file (built-in scene if omitted)");
   addRgbdOptions(*cmd, request.scene.rgbd)->excludes(sceneOption);
   addSceneLoadOptions(*cmd, request.scene.load);
-  cmd->addOption("--display", request.display,
-                 "Display: a barrier display file, a lenticular calibration (visual.json), or a "
-                 "Looking Glass preset lkg:NAME (built-in barrier display if omitted)");
+  addDisplayOption(*cmd, request.display,
+                   "Display: a barrier display file, a lenticular calibration (visual.json), or a "
+                   "Looking Glass preset lkg:NAME (built-in barrier display if omitted)");
   addSamplingOptions(*cmd, request.sampling,
                      "Rays per pixel: n*n stratified over pixel and aperture");
   addFilterOptions(
@@ -57,12 +57,12 @@ void registerRenderCommand(Command& cli) {
       "spot");
   addFramingOptions(*cmd, request.framing, "");
   cmd->addOption("-o,--output", request.output, "Output folder")->captureDefault();
-  addLensReadingOptions(*cmd, request.lensSpot, request.bundles, true);
+  addLensReadingOptions(*cmd, request.display.lens, true);
   cmd->addFlag("--linear", request.linear, "Also write image.pfm, linear float");
   Option* direct =
       cmd->addFlag("--direct-mapping", request.directMapping,
                    "The usual practice as a baseline: N ordinary views, interleaved (Fig. 2)");
-  Option* subpixels = cmd->addFlag("--subpixels", request.subpixels,
+  Option* subpixels = cmd->addFlag("--subpixels", request.display.subpixels,
                                    "One ray per R, G, B subpixel (three times the views)");
   cmd->addOption("--quilt", options->quilt,
                  "Instead of the layers: C*R off-axis views of the display's window, leftmost "

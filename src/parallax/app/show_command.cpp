@@ -33,7 +33,7 @@ struct ShowOptions {
   double exitAfter = 0;
   std::string keys;
   double fps = 0;  // frames: per second (0: pairs at the monitor's refresh, sequences at theirs)
-  std::string display;  // a quilt's lenticular panel (a calibration or lkg:NAME)
+  DisplayRequest display;  // a quilt's lenticular panel (a calibration or lkg:NAME)
 };
 
 std::vector<ShowKey> parseKeys(const std::string& text) {
@@ -102,7 +102,7 @@ void noteMonitorModes(const LayerWindows& windows, const std::vector<WindowReque
 // A quilt picture or video on a lenticular panel, interlaced as it is shown.
 void runQuiltShow(const ShowOptions& o, const std::string& quilt) {
   const std::vector<ShowKey> keys = parseKeys(o.keys);
-  if (o.display.empty())
+  if (o.display.path.empty())
     throw RequestError("display",
                        "a quilt is shown on the lenticular panel it is interlaced for: give "
                        "lkg:NAME or the panel's visual.json");
@@ -148,7 +148,7 @@ void runQuiltShow(const ShowOptions& o, const std::string& quilt) {
 void runShow(const ShowOptions& o) {
   if (const std::string quilt = jobs::quiltFile(o.dir); !quilt.empty())
     return runQuiltShow(o, quilt);
-  if (!o.display.empty())
+  if (!o.display.path.empty())
     throw RequestError("display", "applies to a quilt picture or video (NAME_qs{C}x{R}...)");
   const std::vector<ShowKey> keys = parseKeys(o.keys);
   const jobs::ShowSet set = jobs::readShowSet(o.dir, o.pattern);
@@ -241,10 +241,9 @@ void registerShowCommand(Command& cli) {
                  "(NAME_qs{C}x{R}a{aspect}.png/.mp4/.webm, or a folder holding one) with "
                  "--display, interlaced for that lenticular panel as it is shown")
       ->required();
-  cmd->addOption("--display", o->display,
-                 "With a quilt: the lenticular panel it is shown on (lkg:NAME or its "
-                 "visual.json)")
-      ->typeName("FILE|lkg:NAME");
+  addDisplayOption(*cmd, o->display,
+                   "With a quilt: the lenticular panel it is shown on (lkg:NAME or its "
+                   "visual.json)");
   cmd->addOption("--image-monitor", o->imageMonitor,
                  "Monitor for the image layer (or a lenticular panel), from 0")
       ->captureDefault()

@@ -47,9 +47,9 @@ void registerSimulateCommand(Command& cli) {
       ->captureDefault();
   cmd->addOption("--image", r.image, "Image layer (instead of DIR/image.png)");
   cmd->addOption("--mask", r.mask, "Mask layer (instead of DIR/mask.png)");
-  cmd->addOption("--display", r.display,
-                 "Display file of any kind, or lkg:NAME (instead of DIR/display.json or "
-                 "DIR/visual.json)");
+  addDisplayOption(*cmd, r.display,
+                   "Display file of any kind, or lkg:NAME (instead of DIR/display.json or "
+                   "DIR/visual.json)");
   cmd->addOption("--frames", r.frames,
                  "DIR is a sequence of render --frames: what the eye sees in frames FIRST:LAST "
                  "(or all), as OUTPUT-NNNN.png (and --video)")
@@ -127,7 +127,7 @@ void registerSimulateCommand(Command& cli) {
                  "of the design distance D")
       ->captureDefault()
       ->needs(reference);
-  addLensReadingOptions(*cmd, r.simulator.lensSpot, r.simulator.bundles);
+  addLensReadingOptions(*cmd, r.simulator.lens);
   cmd->addFlag("--all-readings", r.allReadings,
                "With the dense measure on a lenticular display: score every render under each "
                "reading of the optics (ideal and pixel-wide spot, parallel and converging "

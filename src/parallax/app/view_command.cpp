@@ -54,8 +54,8 @@ void registerViewCommand(Command& cli) {
   cmd->addOption("--display-eye", options->displayEye,
                  "Ideal view through the display window from this eye X,Y,Z (display mm, "
                  "origin at the front layer's centre, z toward the viewer)");
-  cmd->addOption("--display", request.display,
-                 "Display for --display-eye: a file of any kind, or lkg:NAME");
+  addDisplayOption(*cmd, request.display,
+                   "Display for --display-eye: a file of any kind, or lkg:NAME");
   addFramingOptions(*cmd, request.framing, "With --display-eye: ");
   addSamplingOptions(*cmd, request.sampling, "Samples per pixel (n*n is stratified)");
   cmd->addOption("-o,--output", request.output, "Output image (.png, or .pfm linear float)")

@@ -65,14 +65,10 @@ SimulatorBench benchSimulator(const DisplayDesign& design, const Scene& scene, i
 LayerBench benchLayers(const BenchRequest& r, Reporter& reporter) {
   const LayersRequest& request = r.layers;
   request.check();
-  const DisplayDesign design = loadBarrierDesign(r.display, reporter);
+  const DisplayDesign design = loadBarrierDesign(r.display.path, reporter);
   const TrainingOptions training = trainingOptions(request, r.sampling.threads, 0, r.sampling.seed);
-  const Panel& panel = design.spec.imagePanel;
-  checkMemoryEstimate(
-      trainingHeldBytes(design, training, request.methodKind()) +
-          double(panel.width) * panel.height * sizeof(Vec3f) * (4.0 * request.rank + 6.0),
-      r.display.empty() ? kBuiltInDisplay : r.display,
-      "the training views of --layers " + request.method, "use a smaller display");
+  checkMemoryEstimate(layerSolveBytes(design, request, training), r.display.named(kBuiltInDisplay),
+                      "the training views of --layers " + request.method, "use a smaller display");
   const Scene scene = loadSceneQuietly(r.scene);
   const Accelerator accelerator(scene);
   // The slit layers the solve starts from, rendered as `render` renders them.
@@ -86,8 +82,8 @@ LayerBench benchLayers(const BenchRequest& r, Reporter& reporter) {
   bench.method = request.method;
   bench.nmf = request.methodKind() == LayerMethod::Nmf;
   bench.rank = request.rank;
-  bench.width = panel.width;
-  bench.height = panel.height;
+  bench.width = design.spec.imagePanel.width;
+  bench.height = design.spec.imagePanel.height;
   bench.passSeconds = streamingPassSeconds(figures.targetBytes, r.sampling.threads);
   bench.limitSeconds = bench.passSeconds * figures.iterations;
   bench.ratio = figures.solveSeconds > 0 ? bench.limitSeconds / figures.solveSeconds : 0.0;
@@ -193,7 +189,7 @@ BenchCameras displayCameras(std::unique_ptr<DisplayModel> display, const Scene& 
   // The panel's film, and a lenticular panel's quilt route (timed below), before either is
   // allocated.
   checkMemoryEstimate(imageBytes(width, height) * 4 + quiltRouteBytes(model),
-                      "--display " + r.display, "the panel's film and its quilt route",
+                      "--display " + r.display.path, "the panel's film and its quilt route",
                       "use a smaller display");
   return cameras;
 }
@@ -219,10 +215,8 @@ RayBench benchRays(const BenchRequest& r, Reporter& reporter) {
   std::unique_ptr<DisplayModel> display;
   const Scene scene = clock.run("load", [&] {
     if (r.camera == "display") {
-      const DisplayDescription description = loadDisplay(r.display, reporter);
-      DisplayCameraRequest camera;
-      camera.filter = r.filter.filter();
-      display = makeDisplay(description, camera).model;
+      display =
+          makeDisplay(r.display.describe(reporter), r.display.camera(r.filter.filter())).model;
     }
     return loadSceneQuietly(r.scene);
   });
@@ -378,10 +372,10 @@ BenchReport runBench(const BenchRequest& r, Reporter& reporter) {
   if (r.layers.solved()) {
     report.layers = benchLayers(r, reporter);
   } else if (r.simulateViews > 0) {
-    const DisplayDesign design = loadBarrierDesign(r.display, reporter);
+    const DisplayDesign design = loadBarrierDesign(r.display.path, reporter);
     const Panel& panel = design.spec.imagePanel;
     checkLayerMemory(design, panel.width * (design.camera.subpixelRays ? 3.0 : 1.0), 1,
-                     r.display.empty() ? "<built-in display>" : r.display);
+                     r.display.named());
     checkTimeEstimate(double(r.simulateViews) * panel.width * panel.height, r.sampling.threads,
                       "simulate", std::to_string(r.simulateViews), "time fewer views");
     report.simulator = benchSimulator(design, loadSceneQuietly(r.scene), r.simulateViews);

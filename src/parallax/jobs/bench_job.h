@@ -20,7 +20,7 @@ namespace parallax::jobs {
 struct BenchRequest {
   std::string camera = "pinhole";  // pinhole, or display (the display's own rays)
   SceneRequest scene;              // path "": the built-in scene
-  std::string display;             // "": the built-in barrier
+  DisplayRequest display;          // "": the built-in barrier
   std::string size = "1920x1080";  // the pinhole's film (the display camera uses the panel's)
   SamplingRequest sampling;
   int repeats = 2;               // alternating runs; the fastest of each counts

@@ -55,8 +55,9 @@ auto withFieldNames(Call call) {
 
 // A barrier display as its file describes it ("" the built-in), designed: the display itself
 // must be possible. A display already loaded must be a barrier.
-DisplayDesign barrierDisplay(const std::string& path,
-                             const std::optional<DisplayDescription>& loaded) {
+DisplayDesign barrierDisplay(const DisplayRequest& request) {
+  const std::string& path = request.path;
+  const std::optional<DisplayDescription>& loaded = request.loaded;
   // Any kind is read (lkg:NAME too), so that a lenticular panel is told what it can use.
   const DisplayDescription display =
       loaded ? *loaded : (path.empty() ? DisplayDescription{} : loadDisplayDescription(path));
@@ -79,7 +80,7 @@ const char* orderName(LayerOrder order) {
 CalibrationPatternSet calibrationPatterns(const CalibrationPatternsRequest& r, Reporter&,
                                           bool inMemory) {
   CalibrationPatternSet set;
-  set.display = barrierDisplay(r.display, r.loaded).spec;
+  set.display = barrierDisplay(r.display).spec;
   const DisplaySpec& display = set.display;
   const Panel &image = display.imagePanel, &mask = display.maskPanel;
   if (r.settings.labelScale > mask.height)
@@ -90,9 +91,7 @@ CalibrationPatternSet calibrationPatterns(const CalibrationPatternsRequest& r, R
   // One pattern at a time: its picture and the writer's 8-bit copy; every pixel of every
   // pattern drawn (a few more than the steps: the phase sweep and the tests).
   const double pixels = double(mask.width) * mask.height;
-  const std::string subject = r.loaded            ? display.source
-                              : r.display.empty() ? "<built-in display>"
-                                                  : r.display;
+  const std::string subject = r.display.loaded ? display.source : r.display.named();
   checkMemoryEstimate(pixels * (kFloatRgbPixelBytes + kRgba8PixelBytes), subject, "one pattern",
                       "use a smaller display");
   checkTimeEstimate(pixels * (double(r.settings.periodSteps) + 8), 0, "period_steps",
@@ -162,7 +161,7 @@ void runCalibrationPatterns(const CalibrationPatternsRequest& r, Reporter& repor
 
 void runCalibrationPredict(const CalibrationPredictRequest& r, Reporter& reporter) {
   const DisplayDesign design =
-      r.loaded ? barrierDisplay("", r.loaded) : loadBarrierDesign(r.display, reporter);
+      r.display.loaded ? barrierDisplay(r.display) : loadBarrierDesign(r.display.path, reporter);
   const DisplaySpec& spec = design.spec;
   Vec3d eye{spec.viewZoneCenterXMm, spec.viewZoneHeightMm, design.viewDistanceMm};
   if (r.eye) {
@@ -219,7 +218,7 @@ void runCalibrationPredict(const CalibrationPredictRequest& r, Reporter& reporte
 // ---- apply -----------------------------------------------------------------------------------
 
 DisplayDesign appliedCalibration(const CalibrationApplyRequest& r, Reporter&) {
-  const DisplayDesign file = barrierDisplay(r.display, r.loaded);
+  const DisplayDesign file = barrierDisplay(r.display);
   DisplaySpec base = file.spec;
   // What is wrong from here on came from the request (core/error.h, errorText).
   base.source = RequestError::kRequestSource;

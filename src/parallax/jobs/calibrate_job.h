@@ -13,7 +13,7 @@
 #include "parallax/core/math.h"
 #include "parallax/display/display.h"
 #include "parallax/image/image.h"
-#include "parallax/io/display_file.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/sim/calibration.h"
 
@@ -22,9 +22,8 @@ namespace parallax::jobs {
 // ---- patterns --------------------------------------------------------------------------------
 
 struct CalibrationPatternsRequest {
-  std::string display;                       // "" the built-in barrier, or a barrier display file
-  std::optional<DisplayDescription> loaded;  // the display already loaded (else `display`'s)
-  PatternSettings settings;                  // 0: each field's default
+  DisplayRequest display;    // "" the built-in barrier, or a barrier display file
+  PatternSettings settings;  // 0: each field's default
   std::string output = "calibration";
 };
 
@@ -50,8 +49,7 @@ void runCalibrationPatterns(const CalibrationPatternsRequest& request, Reporter&
 // ---- predict ---------------------------------------------------------------------------------
 
 struct CalibrationPredictRequest {
-  std::string display;  // "" the built-in barrier, or a barrier display file
-  std::optional<DisplayDescription> loaded;
+  DisplayRequest display;       // "" the built-in barrier, or a barrier display file
   std::optional<Vec3d> eye;     // display mm; default the view-zone centre at D
   PredictionSettings settings;  // screen_period_px, from_px, to_px, duty, samples
   bool json = false;            // report one JSON object instead of the text
@@ -63,8 +61,7 @@ void runCalibrationPredict(const CalibrationPredictRequest& request, Reporter& r
 // ---- apply -----------------------------------------------------------------------------------
 
 struct CalibrationApplyRequest {
-  std::string display;  // the base display: "" the built-in barrier, or a barrier display file
-  std::optional<DisplayDescription> loaded;
+  DisplayRequest display;  // the base display: "" the built-in barrier, or a barrier display file
   double screenPeriodPx = 0, slitPeriodPx = 0;  // measured Tx (image px), Tv (mask px)
   // phase_px: the mask phase that looked right from the view-zone centre, written as the mask
   // panel's offset (it moves the drawn mask, not the traced apertures).

@@ -13,7 +13,7 @@ namespace {
 
 CalibrationPatternsRequest smallPatterns() {
   CalibrationPatternsRequest r;
-  r.display = kSmallDisplayFile;
+  r.display.path = kSmallDisplayFile;
   return r;
 }
 
@@ -73,13 +73,13 @@ TEST(CalibrationPatterns, RefusalsNameTheSettingsFields) {
   r.settings.periodSteps = 1000000000;  // beyond the time limit
   EXPECT_EQ(refusal([&] { calibrationPatterns(r, silentReporter()); }).field(), "period_steps");
   r = smallPatterns();
-  r.loaded = loadDisplayDescription("lkg:portrait");
+  r.display.loaded = loadDisplayDescription("lkg:portrait");
   EXPECT_THROW(calibrationPatterns(r, silentReporter()), InputError);
 }
 
 TEST(CalibrationPredict, RefusesAnEyeBehindTheDisplay) {
   CalibrationPredictRequest r;
-  r.display = kSmallDisplayFile;
+  r.display.path = kSmallDisplayFile;
   r.eye = Vec3d{0, 0, -5};
   EXPECT_EQ(refusal([&] { runCalibrationPredict(r, silentReporter()); }).field(), "eye");
 }
@@ -88,7 +88,7 @@ TEST(CalibrationPredict, RefusesAnEyeBehindTheDisplay) {
 // the mask panel's offset; periods that break G1 are refused under their display-file key.
 TEST(CalibrationApply, TheMeasuredPeriodsMakeTheDisplay) {
   CalibrationApplyRequest r;
-  r.display = kSmallDisplayFile;
+  r.display.path = kSmallDisplayFile;
   r.screenPeriodPx = 9;
   r.slitPeriodPx = 9.0347;
   r.phasePx = 0.25;

@@ -35,12 +35,6 @@ constexpr int kShotsVersion = 1;  // the shots' layout; the estimator reads only
 constexpr uint64_t kMaxPhotoPixels = 250'000'000;
 constexpr uintmax_t kMaxPhotoFileBytes = 512u << 20;
 
-DisplayDescription requestedDisplay(const std::string& display,
-                                    const std::optional<DisplayDescription>& loaded,
-                                    Reporter& reporter) {
-  return loaded ? *loaded : loadDisplay(display, reporter);
-}
-
 const char* kindName(const DisplayDescription& d) {
   return d.kind == DisplayKind::Barrier ? "barrier" : "lenticular";
 }
@@ -51,7 +45,7 @@ const char* kindName(const DisplayDescription& d) {
 
 CalibrationShotSet calibrationShots(const CalibrationShotsRequest& r, Reporter& reporter) {
   CalibrationShotSet set;
-  set.display = requestedDisplay(r.display, r.loaded, reporter);
+  set.display = r.display.describe(reporter);
   set.kind = kindName(set.display);
   JsonWriter index;
   index.set("/kind", set.kind);
@@ -349,15 +343,13 @@ struct PhotosOfShots {
 
 // `refuseKind`: a kind of shots the caller cannot read ("" none) and why, refused before any
 // display or photo is read.
-PhotosOfShots readPhotosOfShots(const std::string& shots, const std::string& display,
-                                const std::optional<DisplayDescription>& loaded,
+PhotosOfShots readPhotosOfShots(const std::string& shots, const DisplayRequest& display,
                                 const std::vector<std::string>& paths, Reporter& reporter,
                                 const std::string& refuseKind = "", const std::string& why = "") {
   PhotosOfShots out;
   out.folder = readShotsFolder(shots);
   if (!refuseKind.empty() && out.folder.kind == refuseKind) throw InputError(shots, "", why);
-  out.display =
-      loaded ? *loaded : loadDisplay(display.empty() ? out.folder.displayPath : display, reporter);
+  out.display = display.describe(reporter, out.folder.displayPath);
   if (kindName(out.display) != out.folder.kind)
     throw InputError(out.display.source(), "",
                      std::string("is a ") + kindName(out.display) + " display, and " + shots +
@@ -395,7 +387,7 @@ PhotosOfShots readPhotosOfShots(const std::string& shots, const std::string& dis
 }  // namespace
 
 PhotoCalibration calibrateFromPhotos(const CalibratePhotoRequest& r, Reporter& reporter) {
-  const PhotosOfShots in = readPhotosOfShots(r.shots, r.display, r.loaded, r.photos, reporter);
+  const PhotosOfShots in = readPhotosOfShots(r.shots, r.display, r.photos, reporter);
   PhotoCalibration result;
   result.kind = in.folder.kind;
   result.measured = in.display;
@@ -422,7 +414,7 @@ void runCalibratePhoto(const CalibratePhotoRequest& r, Reporter& reporter) {
 
 SeatCheckReport checkSeats(const CalibrationCheckRequest& r, Reporter& reporter) {
   const PhotosOfShots in =
-      readPhotosOfShots(r.shots, r.display, r.loaded, r.photos, reporter, "barrier",
+      readPhotosOfShots(r.shots, r.display, r.photos, reporter, "barrier",
                         "holds barrier shots: the seat check reads a lenticular panel's lens shot "
                         "(a barrier's is not written yet)");
   const LenticularDesign shown = designLenticular(in.display.lenticular);

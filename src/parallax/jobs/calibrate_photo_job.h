@@ -10,6 +10,7 @@
 
 #include "parallax/image/image.h"
 #include "parallax/io/display_file.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/photocal/barrier_estimate.h"
 #include "parallax/photocal/lenticular_check.h"
@@ -20,8 +21,7 @@ namespace parallax::jobs {
 // ---- the shots -------------------------------------------------------------------------------
 
 struct CalibrationShotsRequest {
-  std::string display;  // "" the built-in barrier, a display file, or lkg:NAME
-  std::optional<DisplayDescription> loaded;
+  DisplayRequest display;  // "" the built-in barrier, a display file, or lkg:NAME
   std::string output = "shots";
 };
 
@@ -51,8 +51,7 @@ void runCalibrationShots(const CalibrationShotsRequest& request, Reporter& repor
 // ---- the photos ------------------------------------------------------------------------------
 
 struct CalibratePhotoRequest {
-  std::string display;  // the nominal display; "" the one the shots were made for
-  std::optional<DisplayDescription> loaded;
+  DisplayRequest display;           // the nominal display; "" the one the shots were made for
   std::string shots;                // the folder calibrationShots wrote
   std::vector<std::string> photos;  // JPEG or PNG, each named after its shot
   std::string output;               // MEASURED.json ("" writes nothing: Python)
@@ -81,8 +80,7 @@ void runCalibratePhoto(const CalibratePhotoRequest& request, Reporter& reporter)
 // drawn with the calibration to check (`calibrate patterns --photo --display FILE`), one from
 // each place a viewer sits. `parallax calibrate check`, Python's calibration_check.
 struct CalibrationCheckRequest {
-  std::string display;  // the display the shots show; "" the one they were made for
-  std::optional<DisplayDescription> loaded;
+  DisplayRequest display;  // the display the shots show; "" the one they were made for
   std::string shots;
   std::vector<std::string> photos;
   bool json = false;

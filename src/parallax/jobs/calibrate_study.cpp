@@ -352,7 +352,7 @@ CalibrationStudy calibrationStudy(const CalibrationStudyRequest& r, Reporter& re
   if (!(r.snrDb > -20 && r.snrDb < 120)) throw RequestError("snr", "must be -20 to 120 dB");
   if (!(r.maxOffAxisDegrees >= 0 && r.maxOffAxisDegrees <= 60))
     throw RequestError("max_off_axis", "must be 0 to 60 degrees");
-  const DisplayDescription display = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
+  const DisplayDescription display = r.display.describe(reporter);
   if (!r.photos.empty()) std::filesystem::create_directories(r.photos);
   CalibrationStudy study;
   Draw draw(r.seed);

@@ -9,17 +9,16 @@
 #include <string>
 #include <vector>
 
-#include "parallax/io/display_file.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/reporter.h"
 
 namespace parallax::jobs {
 
 struct CalibrationStudyRequest {
-  std::string display;  // the nominal display ("" the built-in barrier, a file, lkg:NAME)
-  std::optional<DisplayDescription> loaded;
-  int sets = 100;        // photo sets (trials), each with its own true display and photos
-  int photosPerSet = 2;  // photos of the one shot per set, from distances 25 % apart
-  double snrDb = 20;     // the pattern's contrast over the read noise
+  DisplayRequest display;  // the nominal display ("" the built-in barrier, a file, lkg:NAME)
+  int sets = 100;          // photo sets (trials), each with its own true display and photos
+  int photosPerSet = 2;    // photos of the one shot per set, from distances 25 % apart
+  double snrDb = 20;       // the pattern's contrast over the read noise
   int photoWidth = 4032, photoHeight = 3024;  // the phone's sensor (landscape)
   int samplesPerPixel = 8;                    // the photo maker's samples per photo pixel
   double maxOffAxisDegrees = 30;

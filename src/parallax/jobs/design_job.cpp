@@ -84,8 +84,7 @@ std::string lenticularText(const LenticularDesign& d) {
 }  // namespace
 
 DesignReport designReport(const DesignRequest& r, Reporter& reporter, const Scene* given) {
-  const DisplayDescription description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
-  const BuiltDisplay display = makeDisplay(description);
+  const BuiltDisplay display = buildDisplay(r.display, r.display.describe(reporter));
   DesignReport report;
   JsonWriter json;
   // The framing of the scene, as render frames it for this display.

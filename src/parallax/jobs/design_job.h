@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "parallax/io/display_file.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/scene/scene.h"
@@ -14,8 +14,7 @@
 namespace parallax::jobs {
 
 struct DesignRequest {
-  std::string display;                       // "" the built-in, a file, lkg:NAME
-  std::optional<DisplayDescription> loaded;  // the display already loaded (else `display`'s)
+  DisplayRequest display;  // "" the built-in, a file, lkg:NAME
   double depth =
       0;  // depth (mm, + toward the viewer) of the disparity figure; 0: the depth of field
   std::optional<SceneRequest> scene;  // scene: framed for the display as render frames it

@@ -17,7 +17,7 @@ namespace {
 
 TEST(DesignRunner, TextAndJsonSayTheSameDesign) {
   DesignRequest request;
-  request.loaded = smallBarrier();
+  request.display.loaded = smallBarrier();
   const DesignReport report = designReport(request, silentReporter());
   EXPECT_NE(report.text.find("views                9"), std::string::npos) << report.text;
   EXPECT_NE(report.json.find("\"views\": 9"), std::string::npos) << report.json;
@@ -29,7 +29,7 @@ TEST(DesignRunner, TextAndJsonSayTheSameDesign) {
 // as render frames it (a bare scene, no width given: the depth fit).
 TEST(DesignRunner, ALenticularPanelReportsTheScenesFraming) {
   DesignRequest request;
-  request.loaded = portrait();
+  request.display.loaded = portrait();
   const DesignReport plain = designReport(request, silentReporter());
   EXPECT_NE(plain.text.find("depth of field       +-12.8 mm around the panel"), std::string::npos)
       << plain.text;

@@ -16,7 +16,7 @@ DisplayDesign barrierDesign(const DisplayDescription& description,
     throw RequestError("distance",
                        "applies to lenticular displays; a barrier's view distance is its "
                        "design's (view_distance_mm in the display file)");
-  refuseLensReading(camera.lensSpot, camera.bundles);
+  refuseLensReading(camera.lens);
   BarrierCameraSettings settings = description.camera;
   settings.subpixelRays = settings.subpixelRays || camera.subpixels;
   return designDisplay(description.barrier, settings);
@@ -31,13 +31,14 @@ LenticularDesign lenticularDesign(const DisplayDescription& description,
   if (!(camera.viewDistanceMm >= 0 && std::isfinite(camera.viewDistanceMm)))
     throw RequestError("distance", "must be 0 (the calibration's own) or a distance in mm");
   const LenticularDesign design = designLenticular(description.lenticular, camera.viewDistanceMm);
-  const std::optional<LensOptics> optics = lensReading(design, camera.lensSpot, camera.bundles);
+  const std::optional<LensOptics> optics = lensReading(design, camera.lens);
   return optics ? withOptics(design, *optics) : design;
 }
 
 BuiltDisplay barrierDisplay(const DisplayDesign& design, const ViewFilter& filter) {
   BuiltDisplay built;
   built.model = makeBarrierDisplay(design, filter);
+  built.filter = filter;
   built.file = {"display.json", displayFileText(design.spec, design.camera), "display"};
   return built;
 }
@@ -45,6 +46,7 @@ BuiltDisplay barrierDisplay(const DisplayDesign& design, const ViewFilter& filte
 BuiltDisplay lenticularDisplay(const LenticularDesign& design, const ViewFilter& filter) {
   BuiltDisplay built;
   built.model = makeLenticularDisplay(design, filter);
+  built.filter = filter;
   built.file = {"visual.json", lenticularCalibrationText(design.calibration), "calibration"};
   return built;
 }
@@ -52,23 +54,22 @@ BuiltDisplay lenticularDisplay(const LenticularDesign& design, const ViewFilter&
 }  // namespace
 
 std::optional<LensOptics> lensReading(const LenticularDesign& design,
-                                      const std::optional<double>& lensSpot,
-                                      const std::string& bundles) {
-  if (!lensSpot && bundles.empty()) return std::nullopt;
+                                      const LensReadingRequest& lens) {
+  if (!lens.given()) return std::nullopt;
   LensOptics optics = design.optics;
-  if (lensSpot) {
-    optics.spotWidthSubpixels = *lensSpot;
+  if (lens.spot) {
+    optics.spotWidthSubpixels = *lens.spot;
     const std::string problem = lensOpticsProblem(optics);
     if (!problem.empty()) throw RequestError("lens_spot", problem);
   }
-  if (!bundles.empty() && !parseLensBundles(bundles, optics.bundles))
-    throw RequestError("bundles", "expected parallel or converging", bundles);
+  if (!lens.bundles.empty() && !parseLensBundles(lens.bundles, optics.bundles))
+    throw RequestError("bundles", "expected parallel or converging", lens.bundles);
   return optics;
 }
 
-void refuseLensReading(const std::optional<double>& lensSpot, const std::string& bundles) {
-  if (lensSpot || !bundles.empty())
-    throw RequestError(lensSpot ? "lens_spot" : "bundles",
+void refuseLensReading(const LensReadingRequest& lens) {
+  if (lens.given())
+    throw RequestError(lens.spot ? "lens_spot" : "bundles",
                        "applies to lenticular displays (the lenses' optics); a barrier display "
                        "has no lenses");
 }
@@ -86,6 +87,15 @@ BuiltDisplay makeDisplay(const DisplayDescription& description,
   throw std::logic_error("makeDisplay: a description of a kind without a file");
 }
 
+BuiltDisplay buildDisplay(const DisplayRequest& request, const DisplayDescription& described,
+                          const ViewFilter& filter) {
+  if (!request.madeInCode) return makeDisplay(described, request.camera(filter));
+  BuiltDisplay built;
+  built.model = request.madeInCode(request.camera(filter));
+  built.filter = filter;
+  return built;
+}
+
 DisplayDesign barrierDesignOf(const DisplayDescription& description) {
   if (description.kind != DisplayKind::Barrier)
     throw InputError(description.source(), "",
@@ -93,39 +103,31 @@ DisplayDesign barrierDesignOf(const DisplayDescription& description) {
   return designDisplay(description.barrier, description.camera);
 }
 
-void checkFramingApplies(const DisplayDescription& /*description*/, const FramingRequest& framing) {
+BuiltDisplay frameDisplay(BuiltDisplay display, const FramingRequest& framing, Scene& scene) {
   framing.check();  // every kind frames: a barrier by its virtual gap, a lens by a depth scale
+  framing.apply(scene.display);
+  const Framing framed = frameForDisplay(scene, *display.model);
+  scene.display = framed.placement;
+  if (const DisplayDesign* barrier = display->barrierDesign()) {
+    // A barrier shows depth through its virtual gap g' (geometry.md, "Physical display vs
+    // virtual camera"): the framing's design when the depth budget chose one.
+    if (framed.design.virtualGapMm != barrier->virtualGapMm)
+      display = barrierDisplay(framed.design, display.filter);
+  } else {
+    display.model = scaleDisplayedDepth(std::move(display.model), framed.depthScale);
+  }
+  display.framing = framed;
+  return display;
 }
 
 BuiltDisplay makeFramedDisplay(const DisplayDescription& description,
                                const DisplayCameraRequest& camera, const FramingRequest& framing,
                                Scene& scene) {
-  checkFramingApplies(description, framing);
-  framing.apply(scene.display);
-  if (description.kind == DisplayKind::Lenticular) {
-    const LenticularDesign design = lenticularDesign(description, camera);
-    const Framing framed = frameForDisplay(scene, design);
-    scene.display = framed.placement;
-    BuiltDisplay built = lenticularDisplay(design, camera.filter);
-    built.model = scaleDisplayedDepth(std::move(built.model), framed.depthScale);
-    built.framing = framed;
-    return built;
-  }
-  const Framing framed = frameForDisplay(scene, barrierDesign(description, camera));
-  scene.display = framed.placement;
-  BuiltDisplay built = barrierDisplay(framed.design, camera.filter);
-  built.framing = framed;
-  return built;
+  return frameDisplay(makeDisplay(description, camera), framing, scene);
 }
 
 void BuiltDisplay::recordDesign(JsonWriter& record, const std::string& at) const {
   writeDisplayDesignJson(record, at, *model);
-}
-
-DisplayDescription loadDisplay(const std::string& pathOrPreset, Reporter& reporter) {
-  DisplayDescription description = loadDisplayDescription(pathOrPreset);
-  for (const std::string& warning : description.lenticular.warnings) reporter.warning(warning);
-  return description;
 }
 
 DisplayDesign loadBarrierDesign(const std::string& path, Reporter& reporter) {

@@ -140,7 +140,7 @@ Image interlaceLenticular(const InterlaceRequest& r, const LenticularDesign& des
                           const Views& given, JsonWriter& record) {
   const ViewResampling resampling = viewResampling(r.viewResampling);
   Image panel = interlaceQuiltLenticular(design, given.images, resampling);
-  startRenderRecord(record, "interlace", r.display, {}, {});
+  startRenderRecord(record, "interlace", r.display.path, {}, {});
   record.set("/display_kind", "lenticular");
   recordInputs(record, r, given);
   record.set("/inputs/view_resampling", r.viewResampling);
@@ -169,7 +169,7 @@ Image interlaceBarrier(const InterlaceRequest& r, const DisplayModel& display,
                           first.width(), first.height(), panel.width, panel.height));
   Image image = interlaceCameraViews(design, given.images);
 
-  startRenderRecord(record, "interlace", r.display, {}, {});
+  startRenderRecord(record, "interlace", r.display.path, {}, {});
   recordInputs(record, r, given);
   record.set("/inputs/view_count", count);
   if (count != needed) record.set("/inputs/view_resampling", r.viewResampling);
@@ -230,7 +230,7 @@ class LenticularInterlacer final : public Interlacer {
   explicit LenticularInterlacer(const LenticularDesign& design) : design_(design) {}
   BuiltDisplay prepare(const InterlaceRequest& r, const DisplayDescription&,
                        BuiltDisplay built) const override {
-    if (r.subpixels)
+    if (r.display.subpixels)
       throw RequestError("subpixels",
                          "applies to barrier displays; a lenticular panel is interlaced per "
                          "subpixel");
@@ -259,14 +259,13 @@ class BarrierInterlacer final : public Interlacer {
   explicit BarrierInterlacer(const DisplayDesign& design) : design_(design) {}
   BuiltDisplay prepare(const InterlaceRequest& r, const DisplayDescription& description,
                        BuiltDisplay built) const override {
-    if (r.subpixels) {
+    if (r.display.subpixels) {
       DisplayCameraRequest camera;
       camera.subpixels = true;
       built = makeDisplay(description, camera);
     }
     const DisplayDesign& design = *built->barrierDesign();
-    checkLayerMemory(design, design.spec.imagePanel.width, 1,
-                     r.display.empty() ? "<built-in display>" : r.display);
+    checkLayerMemory(design, design.spec.imagePanel.width, 1, r.display.named());
     return built;
   }
   bool writesMask() const override { return true; }
@@ -302,10 +301,9 @@ struct InterlaceTarget {
   std::unique_ptr<Interlacer> interlacer;
 };
 InterlaceTarget interlaceDisplay(const InterlaceRequest& r, Reporter& reporter) {
-  const DisplayDescription description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
-  DisplayCameraRequest optics;
-  optics.lensSpot = r.lensSpot;
-  optics.bundles = r.bundles;
+  const DisplayDescription description = r.display.describe(reporter);
+  DisplayCameraRequest optics;  // subpixels: the interlacer's to refuse or build (prepare)
+  optics.lens = r.display.lens;
   BuiltDisplay built = makeDisplay(description, optics);  // a barrier refuses lens optics
   std::unique_ptr<Interlacer> interlacer = interlacerFor(*built);
   BuiltDisplay display = interlacer->prepare(r, description, std::move(built));

@@ -12,7 +12,7 @@
 
 #include "parallax/core/math.h"
 #include "parallax/image/image.h"
-#include "parallax/io/display_file.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/render/quilt.h"
 
@@ -23,16 +23,13 @@ struct InterlaceRequest {
   std::string quilt;               // or one quilt file (NAME_qs{C}x{R}a{aspect}.png)
   // quilt_layout: the quilt's tiles when its name does not say (the aspect: the display's).
   std::optional<QuiltLayout> quiltLayout;
-  std::string display;  // "" the built-in barrier, a display file of any kind, lkg:NAME
-  std::optional<DisplayDescription> loaded;  // the display already loaded (else `display`'s)
-  bool subpixels = false;                    // views per R, G, B subpixel column (barriers)
+  // "" the built-in barrier, a display file of any kind, lkg:NAME; subpixels: views per R, G, B
+  // subpixel column (barriers); the lens reading: the quilt views each subpixel's light reaches
+  // (docs/lenticular.md, "The optics").
+  DisplayRequest display;
   // view_resampling: nearest or linear, when the views given are not the barrier's count.
   std::string viewResampling = "linear";
   bool linear = false;  // also image.pfm
-  // A lenticular panel's optics to interlace for (lens_spot, bundles; unset: the display's
-  // own): the quilt views each subpixel's light reaches (docs/lenticular.md, "The optics").
-  std::optional<double> lensSpot;
-  std::string bundles;
   std::string output = "out";
 };
 
@@ -57,23 +54,20 @@ InterlaceResult interlaceInMemory(const InterlaceRequest& request, const std::ve
 // ---- lenticular simulate --------------------------------------------------------------------
 
 struct LenticularSimulateRequest {
-  std::string image;                         // the panel picture file
-  std::string calibration;                   // its calibration (visual.json, lkg:NAME)
-  std::optional<DisplayDescription> loaded;  // the calibration already loaded
+  std::string image;  // the panel picture file
+  // Its calibration (visual.json, lkg:NAME), distance (the design viewer in mm; 0: the cone
+  // spans 1 m) and the lens reading to read the panel under (SimulatorRequest's lens).
+  DisplayRequest display;
   // eye: display mm (origin the panel centre, z toward the viewer); default the centre of the
   // view cone at the design distance.
   std::optional<Vec3d> eye;
-  double distance = 0;  // the design viewer distance in mm (0: the cone spans 1 m)
-  // The optics to read the panel under (SimulatorRequest's lens_spot and bundles).
-  std::optional<double> lensSpot;
-  std::string bundles;
   std::string output = "out/lenticular-view.png";
 };
 
 // Writes request.output: the panel seen from the eye through the lenses.
 void runLenticularSimulate(const LenticularSimulateRequest& request, Reporter& reporter);
 
-// The same for a panel picture in memory (request.loaded, or request.calibration's).
+// The same for a panel picture in memory (the calibration request.display describes).
 Image lenticularViewInMemory(const LenticularSimulateRequest& request, const Image& panel,
                              Reporter& reporter);
 

@@ -31,7 +31,7 @@ std::vector<Image> constantViews(int count, int width, int height) {
 
 InterlaceRequest smallRequest() {
   InterlaceRequest r;
-  r.display = kSmallDisplayFile;
+  r.display.path = kSmallDisplayFile;
   return r;
 }
 
@@ -117,7 +117,7 @@ SmallPanel smallPanel(int count) {
   LenticularCalibration& calibration = description.lenticular;
   calibration.screenW /= 8, calibration.screenH /= 8;
   SmallPanel panel;
-  panel.request.loaded = description;
+  panel.request.display.loaded = description;
   panel.design = designLenticular(calibration);
   for (int k = 0; k < count; ++k) panel.views.emplace_back(16, 16, Vec3f(float(k) / (count - 1)));
   return panel;
@@ -171,8 +171,8 @@ TEST(InterlaceRequestChecks, NameTheirFields) {
   r.quiltLayout = QuiltLayout{3, 3, 0.0};
   expectRefusal([&] { interlaceInMemory(r, views, {}, silentReporter()); }, "quilt_layout");
   InterlaceRequest lenticular;
-  lenticular.display = "lkg:portrait";
-  lenticular.subpixels = true;
+  lenticular.display.path = "lkg:portrait";
+  lenticular.display.subpixels = true;
   expectRefusal([&] { interlaceInMemory(lenticular, views, {}, silentReporter()); }, "subpixels");
   // Views of another size are named by their place.
   std::vector<Image> mixed = views;
@@ -188,12 +188,12 @@ TEST(InterlaceRequestChecks, NameTheirFields) {
 
 TEST(LenticularSimulateRequest, RefusesAnEyeBehindThePanelAndABarrier) {
   LenticularSimulateRequest r;
-  r.calibration = "lkg:portrait";
+  r.display.path = "lkg:portrait";
   r.eye = Vec3d{0, 0, -5};
   const LenticularCalibration portrait = *lenticularPreset("portrait");
   const Image panel(portrait.screenW, portrait.screenH);
   expectRefusal([&] { lenticularViewInMemory(r, panel, silentReporter()); }, "eye");
-  r.calibration = kSmallDisplayFile;
+  r.display.path = kSmallDisplayFile;
   r.eye.reset();
   EXPECT_THROW(lenticularViewInMemory(r, panel, silentReporter()), InputError);
 }

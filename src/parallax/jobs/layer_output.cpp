@@ -38,7 +38,8 @@ std::vector<std::string> pictureSetNames(size_t frames, bool mask, bool linear,
     if (mask) names.push_back("mask.png");
     if (linear) names.push_back("image.pfm");
   }
-  names.insert(names.end(), {displayFileName, "render.json"});
+  if (!displayFileName.empty()) names.push_back(displayFileName);
+  names.push_back("render.json");
   return names;
 }
 
@@ -182,18 +183,19 @@ std::string writePictureSet(const std::string& output, const std::vector<LayerFr
     return writeLayerPictures(output, frames, linear, file, record);
   const Image& image = frames[0].image;
   record.set("/outputs/image", "image.png");
-  record.set("/outputs/" + file.recordKey, file.name);
+  if (file.written()) record.set("/outputs/" + file.recordKey, file.name);
   if (linear) record.set("/outputs/image_linear", "image.pfm");
   OutputSet set(output);
   writeImage(set.path("image.png"), image);
   if (linear) writeImage(set.path("image.pfm"), image);
   // The display's file beside the picture, so that `lenticular simulate DIR` finds it.
-  writeFileAtomically(set.path(file.name), file.text);
+  if (file.written()) writeFileAtomically(set.path(file.name), file.text);
   writeFileAtomically(set.path("render.json"), record.dump() + "\n");
   set.commit();
   const char* dir = set.dir().c_str();
-  return printed("wrote %s/image.png (%dx%d), %s/%s, %s/render.json", dir, image.width(),
-                 image.height(), dir, file.name.c_str(), dir);
+  const std::string beside = file.written() ? printed("%s/%s, ", dir, file.name.c_str()) : "";
+  return printed("wrote %s/image.png (%dx%d), %s%s/render.json", dir, image.width(), image.height(),
+                 beside.c_str(), dir);
 }
 
 std::string writeLayerFrames(const std::string& output, const std::vector<LayerFrame>& frames,

@@ -55,6 +55,8 @@ std::string writeDisplayLayers(const std::string& output, const Image& image, co
 // (a lenticular calibration), and its key under /outputs ("display", "calibration").
 struct DisplayFile {
   std::string name, text, recordKey;
+  // A display made in code has no file: its sets hold the pictures and render.json alone.
+  bool written() const { return !name.empty(); }
 };
 
 // A display's pictures as one set in `output`, with its file and render.json (the record, with

@@ -41,6 +41,18 @@ std::vector<LayerFrame> nmfStart(const LayerFrame& slits, double periodPx, int r
 
 }  // namespace
 
+const DisplayDesign& solvedBarrier(const DisplayModel& display) {
+  if (const DisplayDesign* barrier = display.barrierDesign()) return *barrier;
+  throw std::logic_error("solvedBarrier: layers are solved for a display with a mask layer");
+}
+
+double layerSolveBytes(const DisplayDesign& design, const LayersRequest& request,
+                       const TrainingOptions& training) {
+  const Panel& panel = design.spec.imagePanel;
+  return trainingHeldBytes(design, training, request.methodKind()) +
+         double(panel.width) * panel.height * sizeof(Vec3f) * (4.0 * request.rank + 6.0);
+}
+
 TrainingOptions trainingOptions(const LayersRequest& request, int threads, int bounces,
                                 uint64_t seed) {
   TrainingOptions training;

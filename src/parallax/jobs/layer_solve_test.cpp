@@ -13,7 +13,7 @@ namespace {
 // `method`'s layers on the small barrier, one sample a pixel, one training eye a view.
 RenderRequest smallLayersRequest(const std::string& method) {
   RenderRequest request;
-  request.loaded = smallBarrier();
+  request.display.loaded = smallBarrier();
   request.sampling.spp = 1;
   request.layers.method = method;
   request.layers.trainEyes = 1;

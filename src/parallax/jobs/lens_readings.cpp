@@ -6,12 +6,10 @@
 
 namespace parallax::jobs {
 
-std::optional<LensOptics> lensReading(const DisplayModel& display,
-                                      const std::optional<double>& lensSpot,
-                                      const std::string& bundles) {
+std::optional<LensOptics> lensReading(const DisplayModel& display, const LensReadingRequest& lens) {
   if (const LenticularDesign* lenticular = display.lenticularDesign())
-    return lensReading(*lenticular, lensSpot, bundles);
-  refuseLensReading(lensSpot, bundles);
+    return lensReading(*lenticular, lens);
+  refuseLensReading(lens);
   return std::nullopt;
 }
 

@@ -10,15 +10,14 @@
 #include <vector>
 
 #include "parallax/display/display_model.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/sim/simulator.h"
 
 namespace parallax::jobs {
 
-// lens_spot and bundles (unset: the display's own optics) for `display`; refused (RequestError
-// naming the field) for a display without lenses.
-std::optional<LensOptics> lensReading(const DisplayModel& display,
-                                      const std::optional<double>& lensSpot,
-                                      const std::string& bundles);
+// The lens reading (unset: the display's own optics) for `display`; refused (RequestError
+// naming lens_spot or bundles) for a display without lenses.
+std::optional<LensOptics> lensReading(const DisplayModel& display, const LensReadingRequest& lens);
 
 // The readings --all-readings scores under: an ideal lens and a pixel-wide spot (0 and 3
 // subpixels), each with parallel and with converging bundles, then the design's own; with a

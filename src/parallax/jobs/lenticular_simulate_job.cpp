@@ -17,21 +17,15 @@ namespace {
 
 // The panel's design (at the request's viewer distance), its pictures checked against memory.
 LenticularDesign simulatedPanel(const LenticularSimulateRequest& r, Reporter& reporter) {
-  const DisplayDescription description =
-      r.loaded ? *r.loaded : loadDisplay(r.calibration, reporter);
-  const BuiltDisplay display = makeDisplay(description);
-  if (!display->lenticularDesign())
+  const DisplayDescription description = r.display.describe(reporter);
+  if (!makeDisplay(description)->lenticularDesign())
     throw InputError(description.source(), "",
                      "is a barrier display, not a lenticular calibration (visual.json, lkg:NAME)");
-  DisplayCameraRequest camera;
-  camera.viewDistanceMm = r.distance;
-  camera.lensSpot = r.lensSpot;
-  camera.bundles = r.bundles;
-  const LenticularDesign design = *makeDisplay(description, camera)->lenticularDesign();
+  const LenticularDesign design = *makeDisplay(description, r.display.camera())->lenticularDesign();
   const double w = design.calibration.screenW, h = design.calibration.screenH;
   checkMemoryEstimate(imageBytes(w, h, kFloatRgbPixelBytes, 2) + imageBytes(w, h, kRgba8PixelBytes),
-                      r.loaded ? description.source() : r.calibration, "the panel and the view",
-                      "use a smaller panel");
+                      r.display.loaded ? description.source() : r.display.path,
+                      "the panel and the view", "use a smaller panel");
   return design;
 }
 

@@ -107,15 +107,12 @@ QuiltPlayer::QuiltPlayer(const QuiltPlayRequest& r, Reporter& reporter)
     : state_(std::make_unique<State>()) {
   State& s = *state_;
   s.request = r;
-  const DisplayDescription description = loadDisplay(r.display, reporter);
+  const DisplayDescription description = r.display.describe(reporter);
   if (description.kind != DisplayKind::Lenticular)
     throw RequestError("display",
                        "a quilt is played on a lenticular panel (a calibration or lkg:NAME); "
                        "for a barrier display, map it with `parallax interlace` and show that");
-  DisplayCameraRequest optics;
-  optics.lensSpot = r.lensSpot;
-  optics.bundles = r.bundles;
-  const BuiltDisplay display = makeDisplay(description, optics);
+  const BuiltDisplay display = makeDisplay(description, r.display.camera());
   const LenticularDesign& design = *display->lenticularDesign();
   ViewResampling resampling = ViewResampling::Linear;
   if (r.viewResampling == "nearest")

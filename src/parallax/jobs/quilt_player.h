@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/reporter.h"
 
 namespace parallax::jobs {
@@ -18,10 +19,9 @@ struct QuiltPlayRequest {
   // A quilt picture (NAME_qs{C}x{R}a{aspect}.png, .jpg) or video (.mp4, .webm, .mkv, .mov):
   // its layout from its name as Looking Glass's tools write it.
   std::string quilt;
-  std::string display;                    // a lenticular panel: its calibration file or lkg:NAME
+  // A lenticular panel: its calibration file or lkg:NAME, and the lens reading (its optics).
+  DisplayRequest display;
   std::string viewResampling = "linear";  // view_resampling: nearest or linear
-  std::optional<double> lensSpot;         // lens_spot, bundles: the panel's optics
-  std::string bundles;
   // What the caller holds beside the player at its peak (its windows): in the memory estimate.
   double otherBytesPerPanelPixel = 0, otherBytes = 0;
 };

@@ -46,7 +46,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   if (r.quilt.wanted && (r.quilt.columns < 0 || r.quilt.rows < 0 || r.quilt.width < 0 ||
                          r.quilt.height < 0 || (r.quilt.columns == 0) != (r.quilt.rows == 0)))
     throw RequestError("quilt", "expected COLUMNSxROWS (both positive) or auto");
-  plan.description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
+  const DisplayDescription description = r.display.describe(reporter);
   r.layers.check();
   r.sequence.videoOptions();  // refuses bad video options before any work
   r.framing.check();
@@ -54,12 +54,8 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
     throw RequestError("video",
                        "time-multiplexed frames ({rank}) have several image layers a frame");
 
-  plan.camera.subpixels = r.subpixels;
-  plan.camera.filter = plan.filter;
-  plan.camera.viewDistanceMm = r.distance;
-  plan.camera.lensSpot = r.lensSpot;
-  plan.camera.bundles = r.bundles;
-  const BuiltDisplay display = makeDisplay(plan.description, plan.camera);
+  plan.display = buildDisplay(r.display, description, plan.filter);
+  const BuiltDisplay& display = plan.display;
   const bool layered = display->hasMaskLayer();
   if (r.directMapping && !layered)
     throw RequestError("direct_mapping",
@@ -73,7 +69,6 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
     throw RequestError("layers",
                        "optimised layers are made from the display camera's layers: not with "
                        "{direct_mapping} or {quilt}");
-  checkFramingApplies(plan.description, r.framing);
   if (!layered && !r.quilt.wanted && r.sequence.given())
     throw RequestError("sequence",
                        "a lenticular panel's sequence is a sequence of quilts: add {quilt} auto");
@@ -91,7 +86,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   }
 
   const std::string subject =
-      plan.description.source() == "<built-in>" ? "<built-in display>" : plan.description.source();
+      display->source() == "<built-in>" ? "<built-in display>" : display->source();
   if (r.quilt.wanted) {
     planQuilt(r, *display, plan, reporter);
   } else {
@@ -110,7 +105,8 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
     videoOfFrames(r, plan);  // a video named for another quilt, refused before any work
     plan.outputNames = {quiltFileName("quilt", plan.layout, ".png")};
     if (r.linear) plan.outputNames.push_back(quiltFileName("quilt", plan.layout, ".pfm"));
-    plan.outputNames.insert(plan.outputNames.end(), {display.file.name, "render.json"});
+    if (display.file.written()) plan.outputNames.push_back(display.file.name);
+    plan.outputNames.push_back("render.json");
   } else {
     plan.outputNames = pictureSetNames(size_t(r.layers.solved() ? r.layers.rank : 1), layered,
                                        r.linear, display.file.name);
@@ -118,15 +114,10 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
   plan.training =
       trainingOptions(r.layers, plan.settings.threads, plan.settings.bounces, plan.settings.seed);
   if (r.layers.solved()) {
-    // The training targets and, per frame, two layers and their gradients.
-    const DisplayDesign& design = *display->barrierDesign();
-    const double layerBytes = double(design.spec.imagePanel.width) * design.spec.imagePanel.height *
-                              sizeof(Vec3f) * (4.0 * r.layers.rank + 6.0);
-    checkMemoryEstimate(
-        trainingHeldBytes(design, plan.training, r.layers.methodKind()) + layerBytes,
-        r.display.empty() ? "the built-in display" : r.display,
-        "the training views of {layers} " + r.layers.method,
-        "use fewer {train_eyes} or {train_distances}, or a smaller display");
+    checkMemoryEstimate(layerSolveBytes(solvedBarrier(*display), r.layers, plan.training),
+                        r.display.named("the built-in display"),
+                        "the training views of {layers} " + r.layers.method,
+                        "use fewer {train_eyes} or {train_distances}, or a smaller display");
   }
   return plan;
 }
@@ -134,7 +125,7 @@ RenderPlan planRender(const RenderRequest& r, Reporter& reporter) {
 // What a memory refusal names: the quilt's layout, else the display.
 std::string memorySubject(const RenderRequest& r) {
   if (r.quilt.wanted) return "{quilt}";
-  return r.display.empty() ? "<built-in display>" : r.display;
+  return r.display.named();
 }
 
 // Once every check has passed: the depth summary, and a warning if the content reaches beyond
@@ -152,16 +143,16 @@ MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
   MadeFrom made = sceneMadeFrom(r.scene, scene);
   made.insert(
       made.end(),
-      {{"{display}", r.display.empty() ? "<built-in>" : r.display},
+      {{"{display}", r.display.named("<built-in>")},
        {"{filter}", r.filter.kind},
        {"{filter_width}", madeFromNumber(r.filter.widthViews)},
        {"{fit}", r.framing.fit},
        {"{focus}", r.framing.focus},
        {"{depth_budget}", r.framing.depthBudget},
-       {"{subpixels}", r.subpixels ? "on" : "off"},
+       {"{subpixels}", r.display.subpixels ? "on" : "off"},
        {"{direct_mapping}", r.directMapping ? "on" : "off"},
        {"{linear}", r.linear ? "on" : "off"},
-       {"{distance}", madeFromNumber(r.distance)},
+       {"{distance}", madeFromNumber(r.display.distance)},
        {"{quilt}", r.quilt.wanted
                        ? std::to_string(r.quilt.columns) + "x" + std::to_string(r.quilt.rows)
                        : "off"},
@@ -180,7 +171,7 @@ MadeFrom renderMadeFrom(const RenderRequest& r, const Scene& scene) {
        {"{pupil_samples}", std::to_string(r.layers.pupil > 0 ? r.layers.pupilSamples : 1)}});
   addSamplingMadeFrom(made, r.sampling);
   addSequenceMadeFrom(made, r.sequence);
-  addFileContent(made, r.display);
+  addFileContent(made, r.display.path);
   return made;
 }
 
@@ -239,7 +230,7 @@ void runRender(const RenderRequest& request, Reporter& reporter) {
     loaded = loadScene(r.scene, reporter);
     adoptAnimation(r.sequence, *loaded);
   }
-  const RenderPlan plan = planRender(r, reporter);
+  RenderPlan plan = planRender(r, reporter);
   // Before the scene is loaded: where the files go can take them (docs/inputs.md, "Outputs").
   if (r.sequence.given())
     checkOutputFolder(r.output.empty() ? "." : r.output);
@@ -251,7 +242,7 @@ void runRender(const RenderRequest& request, Reporter& reporter) {
   if (r.sequence.given()) checkSequenceFolder(r, plan, sequence, made);
   if (r.sequence.given()) prepareFraming(scene, sequence);
   noteAnimation(r.sequence, scene, reporter);
-  const BuiltDisplay display = makeFramedDisplay(plan.description, plan.camera, r.framing, scene);
+  const BuiltDisplay display = frameDisplay(std::move(plan.display), r.framing, scene);
   checkRenderMemory(r, plan, *display, scene, memorySubject(r), false);
   reportFraming(display, reporter);
 
@@ -284,10 +275,9 @@ RenderResult renderInMemory(const RenderRequest& r, const Scene& loaded, Reporte
     throw RequestError("sequence", "a sequence is rendered to files: give an output folder");
   RenderRequest request = r;
   request.linear = true;  // a quilt in memory is the float quilt
-  const RenderPlan plan = planRender(request, reporter);
+  RenderPlan plan = planRender(request, reporter);
   Scene scene = loaded;
-  const BuiltDisplay display =
-      makeFramedDisplay(plan.description, plan.camera, request.framing, scene);
+  const BuiltDisplay display = frameDisplay(std::move(plan.display), request.framing, scene);
   checkRenderMemory(request, plan, *display, scene, memorySubject(request), true);
   const Accelerator accelerator(scene, cameraRayAccelerator(request, plan, *display));
   const FrameTarget target{&request, &plan, &display, nullptr, 0, ""};

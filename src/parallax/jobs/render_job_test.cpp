@@ -24,7 +24,7 @@ namespace {
 TEST(RenderRunner, InMemoryLayersAreTheLibrarysLayers) {
   const Scene scene = defaultScene();
   RenderRequest request;
-  request.loaded = smallBarrier();
+  request.display.loaded = smallBarrier();
   request.sampling.spp = 4;
   RecordingReporter reporter;
   const RenderResult result = renderInMemory(request, scene, reporter);
@@ -48,14 +48,14 @@ TEST(RenderRunner, InMemoryLayersAreTheLibrarysLayers) {
 TEST(RenderRunner, RefusesBeforeAnyWork) {
   const Scene scene = defaultScene();
   RenderRequest request;
-  request.loaded = smallBarrier();
+  request.display.loaded = smallBarrier();
   request.quilt.width = request.quilt.height = 64;  // a tile size without a quilt
   EXPECT_EQ(fieldOf([&] { renderInMemory(request, scene, silentReporter()); }), "size");
   request.quilt = {};
   request.sequence.frames = "1:2";
   EXPECT_EQ(fieldOf([&] { renderInMemory(request, scene, silentReporter()); }), "sequence");
   request.sequence = {};
-  request.loaded = portrait();
+  request.display.loaded = portrait();
   request.directMapping = true;
   EXPECT_EQ(fieldOf([&] { renderInMemory(request, scene, silentReporter()); }), "direct_mapping");
   request.directMapping = false;
@@ -71,7 +71,7 @@ TEST(RenderRunner, FilterNoneSaysWhatItDoesWithSpp) {
   smallPanel.lenticular.screenW /= 8, smallPanel.lenticular.screenH /= 8;
   for (const DisplayDescription& display : {smallBarrier(), smallPanel}) {
     RenderRequest request;
-    request.loaded = display;
+    request.display.loaded = display;
     request.filter.kind = "none";
     request.sampling.spp = 4;
     RecordingReporter reporter;
@@ -103,7 +103,7 @@ TEST(RenderRunner, FilterNoneSaysWhatItDoesWithSpp) {
 TEST(RenderRunner, AQuiltInMemoryTakesTheDisplaysOwnLayout) {
   const Scene scene = defaultScene();
   RenderRequest request;
-  request.loaded = smallBarrier();
+  request.display.loaded = smallBarrier();
   request.sampling.spp = 1;
   request.quilt.wanted = true;
   request.quilt.width = 30, request.quilt.height = 10;

@@ -160,7 +160,10 @@ namespace {
 void startRecord(JsonWriter& record, const FrameTarget& t, const std::string& method,
                  const Scene& scene) {
   const RenderRequest& r = *t.request;
-  startRenderRecord(record, method, r.display, r.scene.load.import, scene.imports);
+  // A display made in code has no file: the record names it by its model's source.
+  const std::string displayFile =
+      t.display->file.written() ? r.display.path : (*t.display)->source();
+  startRenderRecord(record, method, displayFile, r.scene.load.import, scene.imports);
 }
 
 void recordSampling(JsonWriter& record, const RenderRequest& r, const RenderSettings& settings) {
@@ -228,7 +231,7 @@ bool renderLayers(const FrameTarget& t, const Scene& scene, const Accelerator& a
   out.frames = {{layers.image, layers.mask}};
   if (r.layers.solved()) {
     const auto solveStart = std::chrono::steady_clock::now();
-    out.frames = solveLayers(r.layers, scene, accelerator, *display->barrierDesign(), plan.training,
+    out.frames = solveLayers(r.layers, scene, accelerator, solvedBarrier(*display), plan.training,
                              out.frames[0], record, reporter);
     out.solveSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
@@ -338,7 +341,8 @@ void writeQuilt(const FrameTarget& t, FramePictures& pictures, Reporter& reporte
                         pngBytesFromSrgb8(pictures.codes, layout.columns * t.plan->tileWidth,
                                           layout.rows * t.plan->tileHeight));
   }
-  writeFileAtomically(set.path(t.display->file.name), t.display->file.text);
+  if (t.display->file.written())
+    writeFileAtomically(set.path(t.display->file.name), t.display->file.text);
   writeFileAtomically(set.path("render.json"), pictures.record.dump() + "\n");
   set.commit();
   const std::string dir = set.dir();

@@ -16,8 +16,9 @@ namespace parallax::jobs {
 struct RenderPlan {
   RenderSettings settings;  // one sample per pixel when every sample is the same ray
   ViewFilter filter;
-  DisplayDescription description;
-  DisplayCameraRequest camera;
+  // The display, designed once; the render frames the scene for it (frameDisplay), which takes
+  // it from the plan.
+  BuiltDisplay display;
   QuiltLayout layout;  // a quilt's: resolved (auto: the display's own), with the display's aspect
   int tileWidth = 0, tileHeight = 0;
   TrainingOptions training;  // content-adaptive layers' training eyes
@@ -81,6 +82,14 @@ struct LayerSolveFigures {
 // rendered on `threads` workers with `bounces` (render's and bench's).
 TrainingOptions trainingOptions(const LayersRequest& request, int threads, int bounces = 0,
                                 uint64_t seed = 0);
+
+// Layers are solved for a barrier, the one kind with a mask layer (a display without one is
+// refused by name before): its design.
+const DisplayDesign& solvedBarrier(const DisplayModel& display);
+// What a solve holds at its peak: the training targets and, per frame, two layers and their
+// gradients.
+double layerSolveBytes(const DisplayDesign& design, const LayersRequest& request,
+                       const TrainingOptions& training);
 
 // Content-adaptive layers from the slit layers (docs/content-adaptive.md): the training views,
 // then the solver; its figures go under /layers of `record` (and into `figures`).

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "parallax/image/image.h"
-#include "parallax/io/display_file.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/sequence.h"
 #include "parallax/layers/layer_method.h"
@@ -66,19 +66,15 @@ struct QuiltRequest {
 
 struct RenderRequest {
   SceneRequest scene;
-  std::string display;  // "" the built-in barrier, a display file, a calibration, lkg:NAME
-  std::optional<DisplayDescription> loaded;  // the display already loaded (else `display`'s)
+  // "" the built-in barrier, a display file, a calibration, lkg:NAME; subpixels (one ray per R,
+  // G, B subpixel of a barrier), distance (a lenticular panel's design viewer) and the lens
+  // reading to render for, as simulate reads them (docs/lenticular.md, "The optics").
+  DisplayRequest display;
   SamplingRequest sampling;
   FilterRequest filter;
   FramingRequest framing;
-  bool subpixels = false;      // one ray per R, G, B subpixel (barriers)
   bool directMapping = false;  // direct_mapping: N ordinary views, interleaved (Fig. 2)
   bool linear = false;         // also image.pfm (a quilt: its .pfm)
-  double distance = 0;         // a lenticular panel's design viewer in mm (0: its default)
-  // A lenticular panel's optics to render for (lens_spot, bundles; unset: the display's own),
-  // as simulate reads them (docs/lenticular.md, "The optics").
-  std::optional<double> lensSpot;
-  std::string bundles;
   QuiltRequest quilt;
   LayersRequest layers;
   SequenceRequest sequence;  // frames, chunk, turntable, duration, fps, video

@@ -51,7 +51,7 @@ SimulationOptions simulationOptions(const SimulatorRequest& r, const DisplayMode
     if (r.colorFilters) refuse("color_filters");
     if (r.raw) refuse("raw");
   }
-  const std::optional<LensOptics> optics = lensReading(display, r.lensSpot, r.bundles);
+  const std::optional<LensOptics> optics = lensReading(display, r.lens);
   SimulationOptions sim;
   if (r.size) {
     if ((*r.size)[0] < 1 || (*r.size)[1] < 1)

@@ -16,6 +16,7 @@
 #include "parallax/display/display_model.h"
 #include "parallax/image/image.h"
 #include "parallax/io/json_writer.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/video_output.h"
@@ -40,11 +41,8 @@ struct SimulatorRequest {
   bool raw = false;        // raw brightness (not normalised by the aperture ratio)
   bool rawPixels = false;  // the eye's samples as they are (not at the display's resolution)
   int threads = 0;
-  // Lenticular panels: the optics to read the panel under (docs/lenticular.md, "The optics"),
-  // each unset: the display's own. lens_spot: the focal spot in subpixels (0: an ideal lens);
-  // bundles: parallel or converging.
-  std::optional<double> lensSpot;
-  std::string bundles;
+  // Lenticular panels: the optics to read the panel under (docs/lenticular.md, "The optics").
+  LensReadingRequest lens;
 };
 
 // The simulator's options for `display`. Throws RequestError naming spp (not 0 or a square),
@@ -164,7 +162,7 @@ struct SimulateRequest {
   std::string dir = "out";
   std::string frames;       // FIRST:LAST or all: dir is a sequence of render --frames
   std::string image, mask;  // instead of dir's image.png and mask.png
-  std::string display;      // any kind (or lkg:NAME); "": dir's display.json or visual.json
+  DisplayRequest display;   // any kind (or lkg:NAME); "": dir's display.json or visual.json
   std::string scene;        // for reference; "": the one render.json names
   // The eyes (display mm), and a sweep after them; none: the view zone's centre.
   std::vector<Vec3d> eyes;

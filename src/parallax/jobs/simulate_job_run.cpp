@@ -61,12 +61,12 @@ SimulateInputs loadSimulateInputs(const SimulateRequest& r, Reporter& reporter) 
   const auto inDir = [&dir](const char* name) { return (dir / name).string(); };
   // The display: the request's, else the folder's display.json (barrier) or visual.json
   // (lenticular), else the built-in one.
-  std::string displayPath = r.display;
+  std::string folderDisplay;
   for (const char* name : {"display.json", "visual.json"})
-    if (displayPath.empty() && fs::exists(inDir(name))) displayPath = inDir(name);
+    if (folderDisplay.empty() && fs::exists(inDir(name))) folderDisplay = inDir(name);
   SimulateInputs in;
   in.scene = r.scene;
-  in.display = makeDisplay(loadDisplay(displayPath, reporter)).model;
+  in.display = makeDisplay(r.display.describe(reporter, folderDisplay), r.display.camera()).model;
   checkMaskLayer(*in.display, !r.mask.empty());
   if (r.image.empty() && r.mask.empty()) {
     LayerSet set = loadLayerSet(r.dir, in.display->hasMaskLayer());

@@ -25,14 +25,15 @@ namespace {
 // `render` frames it (camera/framing.h), so that this is what the render shows.
 std::unique_ptr<Camera> displayEyeCamera(const ViewRequest& r, const Scene& scene,
                                          Reporter& reporter) {
-  const DisplayDescription description = r.loaded ? *r.loaded : loadDisplay(r.display, reporter);
+  const DisplayDescription description = r.display.describe(reporter);
   const Vec3d eye = *r.displayEye;
   if (!(std::isfinite(eye.x) && std::isfinite(eye.y) && std::isfinite(eye.z)))
     throw RequestError("display_eye", "must be three finite numbers (display mm)");
   Scene placed;
   placed.display = scene.display;
   if (!placed.display.content) placed.display.content = scene.bounds();
-  const BuiltDisplay display = makeFramedDisplay(description, {}, r.framing, placed);
+  const BuiltDisplay display =
+      frameDisplay(buildDisplay(r.display, description), r.framing, placed);
   int width = display->viewerPanel().width, height = display->viewerPanel().height;
   if (r.width > 0) width = r.width, height = r.height;
   if (!(eye.z > 0)) throw RequestError("display_eye", "the eye must be in front (z > 0 mm)");
@@ -50,7 +51,7 @@ std::unique_ptr<Camera> viewCamera(const ViewRequest& r, const Scene& scene, Rep
                                   : "fov",
                        "places the pinhole camera: not with {display_eye}, whose view looks "
                        "through the display's window");
-  if (!r.displayEye && (!r.display.empty() || r.loaded))
+  if (!r.displayEye && (!r.display.path.empty() || r.display.loaded))
     throw RequestError("display", "is the display of {display_eye}: add {display_eye}");
   if (!r.displayEye && r.framing.given())
     throw RequestError("framing", "frames the scene for {display_eye}: add {display_eye}");
@@ -121,13 +122,13 @@ void checkViewSequence(const ViewRequest& r, const Scene& scene, const SequenceP
                {"{display_eye}", r.displayEye ? printed("%.9g,%.9g,%.9g", r.displayEye->x,
                                                         r.displayEye->y, r.displayEye->z)
                                               : ""},
-               {"{display}", r.display},
+               {"{display}", r.display.path},
                {"{fit}", r.framing.fit},
                {"{focus}", r.framing.focus},
                {"{depth_budget}", r.framing.depthBudget}});
   addSamplingMadeFrom(made, r.sampling);
   addSequenceMadeFrom(made, r.sequence);
-  if (r.displayEye) addFileContent(made, r.display);
+  if (r.displayEye) addFileContent(made, r.display.path);
   const std::string record = sequenceRecordPath(r.output);
   int finished = 0;
   std::string first;

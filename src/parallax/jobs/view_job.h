@@ -11,7 +11,7 @@
 #include "parallax/camera/camera.h"
 #include "parallax/core/math.h"
 #include "parallax/image/image.h"
-#include "parallax/io/display_file.h"
+#include "parallax/jobs/display_request.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/sequence.h"
@@ -26,9 +26,8 @@ struct ViewRequest {
   int width = 0, height = 0;  // size; 0: 960x540, or the display's front panel (display_eye)
   // display_eye: the ideal view through `display`'s window from this eye (display mm).
   std::optional<Vec3d> displayEye;
-  std::string display;
-  std::optional<DisplayDescription> loaded;  // the display already loaded (else `display`'s)
-  FramingRequest framing;                    // with display_eye: framed as render frames it
+  DisplayRequest display;
+  FramingRequest framing;  // with display_eye: framed as render frames it
   SamplingRequest sampling;
   std::string output = "out/view.png";
   SequenceRequest sequence;  // numbered pictures OUTPUT-NNNN.png

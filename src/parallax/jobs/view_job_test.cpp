@@ -33,7 +33,7 @@ TEST(ViewRunner, APinholeViewIsTheLibrarysRender) {
   EXPECT_EQ(fieldOf([&] { viewInMemory(request, scene, silentReporter()); }), "fov");
   request.fov.reset();
   request.displayEye = Vec3d{0, 0, -10};
-  request.loaded = smallBarrier();
+  request.display.loaded = smallBarrier();
   EXPECT_EQ(fieldOf([&] { viewInMemory(request, scene, silentReporter()); }), "display_eye");
 }
 

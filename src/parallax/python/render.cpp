@@ -48,8 +48,7 @@ jobs::SamplingRequest sampling(const py::kwargs& kw) {
 // The Python keywords of a RenderRequest (python/parallax/__init__.py passes them by name).
 jobs::RenderRequest renderRequest(const DisplayDescription& display, const py::kwargs& kw) {
   jobs::RenderRequest r;
-  r.loaded = display;
-  r.display = display.source() == "<built-in>" ? "" : display.source();
+  r.display = jobs::DisplayRequest::of(display);
   r.sampling = sampling(kw);
   const auto text = [&](const char* key, std::string& to) {
     if (kw.contains(key) && !kw[key].is_none()) to = py::str(kw[key]).cast<std::string>();
@@ -60,13 +59,13 @@ jobs::RenderRequest renderRequest(const DisplayDescription& display, const py::k
   text("fit", r.framing.fit);
   text("focus", r.framing.focus);
   text("depth_budget", r.framing.depthBudget);
-  if (kw.contains("subpixels")) r.subpixels = kw["subpixels"].cast<bool>();
+  if (kw.contains("subpixels")) r.display.subpixels = kw["subpixels"].cast<bool>();
   if (kw.contains("direct_mapping")) r.directMapping = kw["direct_mapping"].cast<bool>();
   if (kw.contains("linear")) r.linear = kw["linear"].cast<bool>();
-  if (kw.contains("distance")) r.distance = kw["distance"].cast<double>();
+  if (kw.contains("distance")) r.display.distance = kw["distance"].cast<double>();
   if (kw.contains("lens_spot") && !kw["lens_spot"].is_none())
-    r.lensSpot = kw["lens_spot"].cast<double>();
-  text("bundles", r.bundles);
+    r.display.lens.spot = kw["lens_spot"].cast<double>();
+  text("bundles", r.display.lens.bundles);
   text("layers", r.layers.method);
   if (kw.contains("rank")) r.layers.rank = kw["rank"].cast<int>();
   if (kw.contains("iterations") && !kw["iterations"].is_none())
@@ -187,8 +186,8 @@ void renderToFiles(const std::string& output, const std::optional<std::string>& 
                    const py::kwargs& kw) {
   checkKeywords(kw, knownRenderKeywords());
   jobs::RenderRequest request = renderRequest(DisplayDescription{}, kw);
-  request.loaded.reset();
-  request.display = displayPath.value_or("");
+  request.display.loaded.reset();
+  request.display.path = displayPath.value_or("");
   request.scene.path = scenePath.value_or("");
   request.scene.load.camera = camera;
   request.scene.load.focusOn = focusOn;
@@ -223,7 +222,7 @@ py::array_t<float> view(const Scene& scene, const std::optional<DisplayDescripti
   }
   // Everything given goes into the request, which refuses a mix of the two cameras.
   if (displayEye) r.displayEye = Vec3d{(*displayEye)[0], (*displayEye)[1], (*displayEye)[2]};
-  if (display) r.loaded = *display;
+  if (display) r.display.loaded = *display;
   const auto text = [&](const char* key, std::string& to) {
     if (kw.contains(key) && !kw[key].is_none()) to = py::str(kw[key]).cast<std::string>();
   };

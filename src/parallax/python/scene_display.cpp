@@ -22,7 +22,7 @@ std::string designJson(const DisplayDescription& description, double depthMm,
                        const std::optional<Scene>& scene, const std::string& fit,
                        const std::string& focus, const std::string& depthBudget) {
   jobs::DesignRequest request;
-  request.loaded = description;
+  request.display.loaded = description;
   request.depth = depthMm;
   if (scene) request.scene = jobs::SceneRequest{};
   request.framing.fit = fit, request.framing.focus = focus,

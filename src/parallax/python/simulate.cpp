@@ -106,8 +106,8 @@ void bindSimulate(py::module_& module) {
                           int pupilSamples, const std::optional<double>& diffuser,
                           bool colourFilters, bool raw, bool rawPixels, int threads,
                           const std::optional<double>& lensSpot, const std::string& bundles) {
-    return SeeOptions{size, spp,       pupil,   pupilSamples, diffuser, colourFilters,
-                      raw,  rawPixels, threads, lensSpot,     bundles};
+    return SeeOptions{size,          spp, pupil,     pupilSamples, diffuser,
+                      colourFilters, raw, rawPixels, threads,      {lensSpot, bundles}};
   };
   module.def(
       "_simulate",

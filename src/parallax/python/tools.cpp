@@ -31,10 +31,9 @@ jobs::InterlaceRequest interlaceRequest(const Layout& quiltLayout, bool subpixel
                                         const std::string& bundles) {
   jobs::InterlaceRequest r;
   if (quiltLayout) r.quiltLayout = QuiltLayout{(*quiltLayout)[0], (*quiltLayout)[1], 0.0};
-  r.subpixels = subpixels;
+  r.display.subpixels = subpixels;
   r.viewResampling = viewResampling;
-  r.lensSpot = lensSpot;
-  r.bundles = bundles;
+  r.display.lens = {lensSpot, bundles};
   return r;
 }
 
@@ -47,8 +46,8 @@ std::tuple<py::array_t<float>, py::object, std::string> interlace(
     const std::string& bundles) {
   jobs::InterlaceRequest r =
       interlaceRequest(quiltLayout, subpixels, viewResampling, lensSpot, bundles);
-  r.loaded = display;
-  r.display = display.source() == "<built-in>" ? "" : display.source();
+  const jobs::DisplayRequest given = jobs::DisplayRequest::of(display);
+  r.display.path = given.path, r.display.loaded = given.loaded;
   std::vector<Image> images;
   for (size_t k = 0; views && k < views->size(); ++k)
     images.push_back(arrayToImage((*views)[k], "views[" + std::to_string(k) + "]"));
@@ -69,7 +68,8 @@ void interlaceFiles(const std::string& output, const std::vector<std::string>& v
                     const std::optional<double>& lensSpot, const std::string& bundles) {
   jobs::InterlaceRequest r =
       interlaceRequest(quiltLayout, subpixels, viewResampling, lensSpot, bundles);
-  r.views = views, r.quilt = quilt, r.display = display, r.linear = linear, r.output = output;
+  r.views = views, r.quilt = quilt, r.display.path = display, r.linear = linear;
+  r.output = output;
   py::gil_scoped_release released;
   jobs::runInterlace(r, jobs::silentReporter());
 }
@@ -102,7 +102,7 @@ PatternSettings patternSettings(const py::kwargs& kw) {
 std::tuple<std::vector<std::pair<std::string, py::array_t<float>>>, std::string, std::string>
 calibrationPatterns(const DisplayDescription& display, const py::kwargs& kw) {
   jobs::CalibrationPatternsRequest r;
-  r.loaded = display;
+  r.display.loaded = display;
   r.settings = patternSettings(kw);
   jobs::CalibrationPatternSet set;
   std::vector<Image> pictures;
@@ -121,7 +121,7 @@ calibrationPatterns(const DisplayDescription& display, const py::kwargs& kw) {
 void calibrationPatternsFiles(const std::string& output, const std::string& display,
                               const py::kwargs& kw) {
   jobs::CalibrationPatternsRequest r;
-  r.display = display;
+  r.display.path = display;
   r.output = output;
   r.settings = patternSettings(kw);
   py::gil_scoped_release released;
@@ -131,7 +131,7 @@ void calibrationPatternsFiles(const std::string& output, const std::string& disp
 // `parallax calibrate patterns --photo`: the shots' folder.
 void calibrationPhotoPatterns(const std::string& output, const std::string& display) {
   jobs::CalibrationShotsRequest r;
-  r.display = display;
+  r.display.path = display;
   r.output = output;
   py::gil_scoped_release released;
   jobs::runCalibrationShots(r, jobs::silentReporter());
@@ -147,7 +147,7 @@ std::pair<std::string, std::string> calibratePhoto(const std::string& shots,
   r.shots = shots;
   r.photos = photos;
   r.output = output;
-  r.display = display;
+  r.display.path = display;
   r.json = true;
   py::gil_scoped_release released;
   jobs::RecordingReporter reporter;
@@ -165,7 +165,7 @@ std::string calibrationCheck(const std::string& shots, const std::vector<std::st
   jobs::CalibrationCheckRequest r;
   r.shots = shots;
   r.photos = photos;
-  r.display = display;
+  r.display.path = display;
   r.json = true;
   py::gil_scoped_release released;
   jobs::RecordingReporter reporter;
@@ -178,11 +178,10 @@ py::array_t<float> lenticularSimulate(const py::array& image, const DisplayDescr
                                       double distance, const std::optional<double>& lensSpot,
                                       const std::string& bundles) {
   jobs::LenticularSimulateRequest r;
-  r.loaded = display;
+  r.display.loaded = display;
   if (eye) r.eye = Vec3d{(*eye)[0], (*eye)[1], (*eye)[2]};
-  r.distance = distance;
-  r.lensSpot = lensSpot;
-  r.bundles = bundles;
+  r.display.distance = distance;
+  r.display.lens = {lensSpot, bundles};
   const Image panel = arrayToImage(image, "image");
   Image view;
   {
