@@ -17,6 +17,7 @@
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
+#include "parallax/jobs/scene_request.h"
 #include "parallax/jobs/sequence.h"
 #include "parallax/jobs/terminal_reporter.h"
 #include "parallax/jobs/video_output.h"

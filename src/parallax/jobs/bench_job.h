@@ -13,6 +13,7 @@
 #include "parallax/jobs/render_request.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
+#include "parallax/jobs/scene_request.h"
 #include "parallax/render/bench.h"
 
 namespace parallax::jobs {

@@ -10,6 +10,7 @@
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/render_job.h"
 #include "parallax/jobs/requests.h"
+#include "parallax/jobs/scene_request.h"
 #include "parallax/jobs/view_job.h"
 
 namespace parallax::jobs {

@@ -10,6 +10,7 @@
 #include "parallax/image/image.h"
 #include "parallax/jobs/display_request.h"
 #include "parallax/jobs/requests.h"
+#include "parallax/jobs/scene_request.h"
 #include "parallax/jobs/sequence.h"
 #include "parallax/layers/layer_method.h"
 #include "parallax/layers/layer_problem.h"

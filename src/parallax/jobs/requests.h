@@ -1,6 +1,6 @@
 // The typed requests every runner shares (docs/architecture.md, "Requests"): how to sample,
-// how a display pixel's rays spread, how the content is framed, which scene (a file, the
-// built-in one, or an RGB-D photo) and which display. Plain values that a front end fills from
+// how a display pixel's rays spread and how the content is framed; which scene is
+// scene_request.h's, which display display_request.h's. Plain values that a front end fills from
 // its own spelling (the CLI's --spp, Python's spp=); each check throws RequestError naming the
 // field as the request spells it ("spp", "depth_budget").
 #pragma once
@@ -11,11 +11,9 @@
 
 #include "parallax/camera/framing.h"
 #include "parallax/display/view_filter.h"
-#include "parallax/importer/scene_file.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/render/render.h"
-#include "parallax/scene/rgbd.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax::jobs {
@@ -27,6 +25,8 @@ std::string versionText();
 // The text as a whole number, or false: decimal digits with an optional leading minus, no
 // spaces, within int64_t.
 bool parseInteger(const std::string& text, int64_t& value);
+// The text as a finite real number filling all of it, or false.
+bool parseNumber(const std::string& text, double& value);
 // "WxH" -> (W, H) with both positive; throws InputError naming the option. Memory (and the
 // pixel count) are checked separately, with the estimate.
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);
@@ -82,38 +82,5 @@ void setFramingFigures(JsonWriter& json, const std::string& at, const Framing& f
 // The framing in render.json, under "/framing": what was asked (fit, focus, depth_budget:
 // simulate --reference frames the scene again from these) and what followed.
 void recordFraming(JsonWriter& record, const Framing& framing);
-
-// rgbd (COLOUR DEPTH), depth_convention, depth_range, rgbd_edges, rgbd_fov (docs/rgbd.md).
-struct RgbdRequest {
-  std::vector<std::string> files;  // empty: not given
-  std::string convention = depthConventionName(RgbdOptions{}.convention);
-  std::string range = "1:3";  // NEAR:FAR (RgbdOptions' default)
-  std::string edges = rgbdEdgesName(RgbdOptions{}.edges);
-  double fovDegrees = RgbdOptions{}.fovDegrees;
-
-  bool given() const { return !files.empty(); }
-  // The parsed options; throws RequestError naming depth_convention, depth_range, rgbd_edges
-  // or rgbd_fov.
-  RgbdOptions options() const;
-};
-
-// The scene: a scene or mesh file (empty: the built-in scene), with the glTF camera to use and
-// how meshes are imported, or an RGB-D photo instead.
-struct SceneRequest {
-  std::string path;
-  SceneLoadOptions load;  // load.camera: a glTF camera by name or index
-  RgbdRequest rgbd;
-};
-// Loads it; its notes and warnings go to `reporter` (once, from rank 0, under mpirun). A photo
-// is loaded within the memory limit.
-Scene loadScene(const SceneRequest& request, Reporter& reporter);
-// The same without reporting.
-Scene loadSceneQuietly(const SceneRequest& request);
-// /scene, /scene_camera and /rgbd of a render record.
-void recordScene(JsonWriter& record, const SceneRequest& request, const Scene& scene);
-// The RGB-D choices under /rgbd: colour, depth, convention, near, far, fov_degrees, edges (and
-// edge_jump, background_offset, background_radius_px when layered), width_px, height_px and
-// triangles (of `scene`, the loaded photo).
-void recordRgbd(JsonWriter& record, const RgbdRequest& request, const Scene& scene);
 
 }  // namespace parallax::jobs

@@ -14,6 +14,7 @@
 #include "parallax/jobs/limits.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
+#include "parallax/jobs/scene_request.h"
 
 namespace parallax::jobs {
 

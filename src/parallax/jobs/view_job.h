@@ -14,6 +14,7 @@
 #include "parallax/jobs/display_request.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/jobs/requests.h"
+#include "parallax/jobs/scene_request.h"
 #include "parallax/jobs/sequence.h"
 
 namespace parallax::jobs {

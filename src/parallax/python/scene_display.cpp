@@ -11,6 +11,7 @@
 #include "parallax/jobs/design_job.h"
 #include "parallax/jobs/display_factory.h"
 #include "parallax/jobs/requests.h"
+#include "parallax/jobs/scene_request.h"
 #include "parallax/python/bindings_internal.h"
 
 namespace parallax::python {
