@@ -8,7 +8,7 @@
 
 #include "parallax/image/image.h"
 #include "parallax/jobs/reporter.h"
-#include "parallax/render/render.h"
+#include "parallax/render/render_settings.h"
 
 namespace parallax::jobs {
 

@@ -1,4 +1,4 @@
-// The views an interlace maps onto a display (interlace_job.h), internal to jobs: N view files
+// The views an interlace maps onto a display (interlace_request.h), internal to jobs: N view files
 // or one quilt file, or the same in memory; checked (one of the two, all of one size), their
 // layout, and what the record says of them.
 #pragma once
@@ -9,7 +9,7 @@
 #include "parallax/display/display_model.h"
 #include "parallax/image/image.h"
 #include "parallax/io/json_writer.h"
-#include "parallax/jobs/interlace_job.h"
+#include "parallax/jobs/interlace_request.h"
 #include "parallax/jobs/reporter.h"
 #include "parallax/render/quilt.h"
 

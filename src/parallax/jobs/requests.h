@@ -13,7 +13,7 @@
 #include "parallax/display/view_filter.h"
 #include "parallax/io/json_writer.h"
 #include "parallax/jobs/reporter.h"
-#include "parallax/render/render.h"
+#include "parallax/render/render_settings.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax::jobs {

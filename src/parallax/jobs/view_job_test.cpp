@@ -13,6 +13,7 @@
 #include "parallax/jobs/render_job.h"
 #include "parallax/jobs/requests.h"
 #include "parallax/jobs/view_job.h"
+#include "parallax/render/render.h"
 
 namespace parallax::jobs {
 namespace {

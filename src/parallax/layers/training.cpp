@@ -8,7 +8,7 @@
 #include "parallax/core/random.h"
 #include "parallax/quality/viewer_quality.h"
 #include "parallax/render/render.h"
-#include "parallax/sim/simulated_display.h"
+#include "parallax/sim/simulator.h"
 
 namespace parallax {
 

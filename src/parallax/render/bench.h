@@ -8,7 +8,7 @@
 #include "parallax/accel/accelerator.h"
 #include "parallax/camera/camera.h"
 #include "parallax/display/display_model.h"
-#include "parallax/render/render.h"
+#include "parallax/render/render_settings.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax {

@@ -12,7 +12,7 @@
 #include "parallax/core/random.h"
 #include "parallax/render/light_sampler.h"
 #include "parallax/render/packet_types.h"
-#include "parallax/render/render.h"
+#include "parallax/render/render_settings.h"
 #include "parallax/render/surface.h"
 
 namespace parallax {

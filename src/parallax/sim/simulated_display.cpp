@@ -1,7 +1,6 @@
 #include "parallax/sim/simulated_display.h"
 
 #include "parallax/core/error.h"
-#include "parallax/image/metrics.h"
 #include "parallax/sim/lenticular_sim.h"
 
 namespace parallax {
@@ -97,18 +96,6 @@ std::unique_ptr<SimulatedDisplay> simulateDisplay(const DisplayModel& display, L
   return std::make_unique<SimulatedLenticular>(
       options.lensOptics ? withOptics(*lenticular, *options.lensOptics) : *lenticular,
       std::move(layers.image));
-}
-
-Image atDisplayResolution(const DisplayDesign& d, const Image& image) {
-  const double periodPx = d.screenPeriodMm / (d.frontWidthMm() / double(image.width()));
-  Image out = boxFilterX(image, periodPx);
-  if (d.spec.mask.kind == MaskKind::Pinholes) {
-    const double rowPeriodMm = d.spec.mask.verticalPeriodPx * d.spec.maskPanel.pitchMm *
-                               (d.viewDistanceMm - d.imageLayerZ()) /
-                               (d.viewDistanceMm - d.maskLayerZ());
-    out = boxFilterY(out, rowPeriodMm / (d.frontHeightMm() / double(image.height())));
-  }
-  return out;
 }
 
 }  // namespace parallax

@@ -38,8 +38,4 @@ std::unique_ptr<SimulatedDisplay> simulateDisplay(const DisplayModel& display,
                                                   std::vector<LayerImages> frames,
                                                   const SimulationOptions& options = {});
 
-// The barrier's display resolution (SimulatedDisplay::atDisplayResolution): a box one screen
-// period across (and, for pinhole grids, one vertical period down).
-Image atDisplayResolution(const DisplayDesign& design, const Image& image);
-
 }  // namespace parallax

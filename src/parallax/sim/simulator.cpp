@@ -8,8 +8,8 @@
 
 #include "parallax/core/error.h"
 #include "parallax/core/parallel.h"
+#include "parallax/image/metrics.h"
 #include "parallax/sim/seen_layers.h"
-#include "parallax/sim/simulated_display.h"
 #include "parallax/sim/view_pieces.h"
 
 namespace parallax {
@@ -234,6 +234,18 @@ Image DisplaySimulator::view(const Vec3d& eye) const {
       for (int i = 0; i < width_; ++i) out.at(i, j) = sum[size_t(i)] * scale;
     }
   });
+  return out;
+}
+
+Image atDisplayResolution(const DisplayDesign& d, const Image& image) {
+  const double periodPx = d.screenPeriodMm / (d.frontWidthMm() / double(image.width()));
+  Image out = boxFilterX(image, periodPx);
+  if (d.spec.mask.kind == MaskKind::Pinholes) {
+    const double rowPeriodMm = d.spec.mask.verticalPeriodPx * d.spec.maskPanel.pitchMm *
+                               (d.viewDistanceMm - d.imageLayerZ()) /
+                               (d.viewDistanceMm - d.maskLayerZ());
+    out = boxFilterY(out, rowPeriodMm / (d.frontHeightMm() / double(image.height())));
+  }
   return out;
 }
 

@@ -114,4 +114,8 @@ class DisplaySimulator {
   int width_ = 0, height_ = 0, threads_ = 1;
 };
 
+// The barrier's display resolution (SimulatedDisplay::atDisplayResolution): a box one screen
+// period across (and, for pinhole grids, one vertical period down).
+Image atDisplayResolution(const DisplayDesign& design, const Image& image);
+
 }  // namespace parallax
