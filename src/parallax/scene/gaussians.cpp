@@ -1,0 +1,81 @@
+#include "parallax/scene/gaussians.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace parallax {
+
+void rotationRows(const Quatf& q, Vec3f rows[3]) {
+  const float n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  const float w = q.w / n, x = q.x / n, y = q.y / n, z = q.z / n;
+  rows[0] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)};
+  rows[1] = {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)};
+  rows[2] = {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)};
+}
+
+// The real spherical harmonics with the Condon-Shortley phase in Cartesian form, the constants
+// those of 3DGS's rasteriser (sqrt((2l + 1) / 4 pi (l - |m|)! / (l + |m|)!) times the
+// polynomials' own factors); shBasis' test checks each against std::sph_legendre.
+void shBasis(int degree, const Vec3f& d, float* basis) {
+  constexpr float kC0 = 0.28209479177387814f, kC1 = 0.4886025119029199f;
+  basis[0] = kC0;
+  if (degree < 1) return;
+  const float x = d.x, y = d.y, z = d.z;
+  basis[1] = -kC1 * y;
+  basis[2] = kC1 * z;
+  basis[3] = -kC1 * x;
+  if (degree < 2) return;
+  const float xx = x * x, yy = y * y, zz = z * z;
+  basis[4] = 1.0925484305920792f * x * y;
+  basis[5] = -1.0925484305920792f * y * z;
+  basis[6] = 0.31539156525252005f * (2 * zz - xx - yy);
+  basis[7] = -1.0925484305920792f * x * z;
+  basis[8] = 0.5462742152960396f * (xx - yy);
+  if (degree < 3) return;
+  basis[9] = -0.5900435899266435f * y * (3 * xx - yy);
+  basis[10] = 2.890611442640554f * x * y * z;
+  basis[11] = -0.4570457994644658f * y * (4 * zz - xx - yy);
+  basis[12] = 0.3731763325901154f * z * (2 * zz - 3 * xx - 3 * yy);
+  basis[13] = -0.4570457994644658f * x * (4 * zz - xx - yy);
+  basis[14] = 1.445305721320277f * z * (xx - yy);
+  basis[15] = -0.5900435899266435f * x * (xx - 3 * yy);
+}
+
+Vec3f shColour(const Vec3f* coefficients, int degree, const Vec3f& direction) {
+  float basis[shCoefficientCount(kMaxShDegree)];
+  shBasis(degree, direction, basis);
+  Vec3f colour(0.5f);  // the offset 3DGS adds, so that zero coefficients are mid grey
+  for (int k = 0; k < shCoefficientCount(degree); ++k) colour += coefficients[k] * basis[k];
+  return {std::max(colour.x, 0.0f), std::max(colour.y, 0.0f), std::max(colour.z, 0.0f)};
+}
+
+float RayResponse::alpha(float opacity) const {
+  return std::min(kMaxSplatAlpha, opacity * std::exp(-0.5f * distanceSquared));
+}
+
+RayResponse gaussianRayResponse(const Vec3f& centre, const Vec3f& scale, const Quatf& rotation,
+                                const Vec3f& origin, const Vec3f& direction) {
+  Vec3f rows[3];
+  rotationRows(rotation, rows);
+  const Vec3f o = origin - centre;
+  // x' = S^-1 R^T x: component j is column j of R (row j of R^T) dotted with x, over scale j.
+  Vec3f local, towards;
+  for (int j = 0; j < 3; ++j) {
+    const Vec3f column{rows[0][j], rows[1][j], rows[2][j]};
+    local[j] = dot(column, o) / scale[j];
+    towards[j] = dot(column, direction) / scale[j];
+  }
+  RayResponse response;
+  response.t = -dot(local, towards) / dot(towards, towards);
+  // The closest point itself, not |o'|^2 - (o'.d')^2 / |d'|^2: no cancellation far away.
+  const Vec3f closest = local + towards * response.t;
+  response.distanceSquared = dot(closest, closest);
+  return response;
+}
+
+float boundingRadius(float opacity, float alphaMin) {
+  if (!(opacity > alphaMin)) return 0.0f;
+  return std::sqrt(2.0f * std::log(opacity / alphaMin));
+}
+
+}  // namespace parallax

@@ -1,0 +1,75 @@
+// Gaussian splats (3DGS: Kerbl et al., SIGGRAPH 2023) as scene geometry, and the two things a
+// ray tracer asks of one (docs/splats.md, "The model"): the colour it shows along a ray's own
+// direction, from its spherical harmonics, and its response along the ray, in closed form
+// (3DGRT: Moenne-Loccoz et al., SIGGRAPH Asia 2024).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "parallax/core/math.h"
+
+namespace parallax {
+
+// Spherical harmonics up to degree 3: 1, 4, 9 or 16 coefficients a colour channel.
+inline constexpr int kMaxShDegree = 3;
+constexpr int shCoefficientCount(int degree) {
+  return (degree + 1) * (degree + 1);
+}
+
+// A rotation as a unit quaternion (w, x, y, z), the order 3DGS files keep it in.
+struct Quatf {
+  float w = 1, x = 0, y = 0, z = 0;
+};
+
+// The rotation matrix of a quaternion, normalised first (files keep it unnormalised): rows.
+void rotationRows(const Quatf& q, Vec3f rows[3]);
+
+// Gaussians in world space, the values a 3DGS file's encodings stand for (its logs exponentiated,
+// its logits through the sigmoid).
+struct GaussianCloud {
+  int shDegree = 0;
+  std::vector<Vec3f> centres;
+  std::vector<Vec3f> scales;     // standard deviations along the local axes, above 0
+  std::vector<Quatf> rotations;  // local axes to world
+  std::vector<float> opacities;  // the peak's alpha, in (0, 1]
+  // shCoefficientCount(shDegree) RGB coefficients a Gaussian, coefficient-major: Gaussian g's
+  // coefficient k (k = l (l + 1) + m, m from -l to l) is sh[g * count + k].
+  std::vector<Vec3f> sh;
+  size_t size() const { return centres.size(); }
+};
+
+// The basis 3DGS's colours are written in: the real spherical harmonics with the Condon-Shortley
+// phase, Y_k(d) for k < shCoefficientCount(degree), at the unit direction d.
+void shBasis(int degree, const Vec3f& d, float* basis);
+
+// The colour a Gaussian shows along the unit direction `direction` (from the eye toward it):
+// sum_k c_k Y_k(direction) + 0.5 per channel, clamped below at 0, as 3DGS's rasteriser
+// computes it. Display values: blended as they are, not as light.
+Vec3f shColour(const Vec3f* coefficients, int degree, const Vec3f& direction);
+
+// A Gaussian's response along a ray o + t d. In the Gaussian's own frame, x' = S^-1 R^T (x - mu),
+// the ray is o' + t d' and the response exp(-|x'|^2 / 2) peaks where |x'| is least: at
+// t = -(o' . d') / |d'|^2, with |x'|^2 = |o'|^2 - (o' . d')^2 / |d'|^2 there (the squared
+// Mahalanobis distance of the ray from the centre).
+struct RayResponse {
+  float t = 0;
+  float distanceSquared = 0;
+  // opacity * exp(-distanceSquared / 2), capped as 3DGS caps it (kMaxSplatAlpha).
+  float alpha(float opacity) const;
+};
+RayResponse gaussianRayResponse(const Vec3f& centre, const Vec3f& scale, const Quatf& rotation,
+                                const Vec3f& origin, const Vec3f& direction);
+
+// 3DGS's blending: a Gaussian whose alpha is below 1/255 is skipped, alpha is capped at 0.99, and
+// a ray stops once its transmittance falls below 1e-4.
+inline constexpr float kMinSplatAlpha = 1.0f / 255.0f;
+inline constexpr float kMaxSplatAlpha = 0.99f;
+inline constexpr float kMinTransmittance = 1e-4f;
+
+// How far, in standard deviations, a Gaussian of `opacity` reaches alpha `alphaMin`: the
+// ellipsoid that bounds every ray it can be seen along, sqrt(2 ln(opacity / alphaMin)); 0 when
+// it never reaches alphaMin.
+float boundingRadius(float opacity, float alphaMin = kMinSplatAlpha);
+
+}  // namespace parallax
