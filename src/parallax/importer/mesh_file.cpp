@@ -534,6 +534,12 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
   zToY.m[2] = {0, -1, 0, 0};
   const Transform fileFromReader = up == UpAxis::Z ? Transform(zToY) : Transform();
 
+  // A splat file is read and checked whole; the renderer does not take splats yet.
+  if (contents.splats)
+    fail(path, "holds " + std::to_string(contents.splats->size()) +
+                   " Gaussian splats (3DGS, spherical harmonics of degree " +
+                   std::to_string(contents.splats->shDegree) +
+                   "): parallax reads splat files but does not render them yet (docs/splats.md)");
   // Validate everything before touching the scene, so a bad file leaves it unchanged.
   for (const FilePart& part : contents.parts) validate(path, part);
   SceneAppender appender(path, options, contents, scene);

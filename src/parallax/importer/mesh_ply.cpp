@@ -1,9 +1,7 @@
-// PLY reader (Greg Turk's format, http://paulbourke.net/dataformats/ply/): a text header
-// declaring elements and their properties, then the data as ASCII or binary (little or big
-// endian). Reads vertex x y z, optional nx ny nz and u v (also named s t, texture_u texture_v,
-// texture_s texture_t), red green blue (vertex colours, also diffuse_red ...; see
-// colorScale) and face lists named vertex_indices or vertex_index, split into triangle fans.
-// Every other element and property is read past and ignored.
+// PLY meshes (the format itself: ply_format.h). Reads vertex x y z, optional nx ny nz and u v (also
+// named s t, texture_u texture_v, texture_s texture_t), red green blue (vertex colours, also
+// diffuse_red ...; see colorScale) and face lists named vertex_indices or vertex_index, split into
+// triangle fans. Every other element and property is read past and ignored.
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -11,220 +9,11 @@
 #include <cstring>
 
 #include "parallax/importer/mesh_readers.h"
+#include "parallax/importer/ply_format.h"
+#include "parallax/importer/splat_ply.h"
 
 namespace parallax::meshio {
 namespace {
-
-enum class Format { Ascii, BinaryLittleEndian, BinaryBigEndian };
-enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
-
-struct Property {
-  std::string name;
-  Type type = Type::Float32;
-  bool isList = false;
-  Type countType = Type::UInt8;  // list properties: type of the length that precedes them
-};
-
-struct Element {
-  std::string name;
-  uint64_t count = 0;
-  std::vector<Property> properties;
-};
-
-struct Header {
-  Format format = Format::Ascii;
-  std::vector<Element> elements;
-  size_t dataOffset = 0;  // first byte after "end_header\n"
-  size_t dataLine = 0;    // line number of the first data line (ASCII messages)
-};
-
-bool parseType(std::string_view name, Type& type) {
-  static const struct {
-    std::string_view name;
-    Type type;
-  } kTypes[] = {{"char", Type::Int8},      {"int8", Type::Int8},       {"uchar", Type::UInt8},
-                {"uint8", Type::UInt8},    {"short", Type::Int16},     {"int16", Type::Int16},
-                {"ushort", Type::UInt16},  {"uint16", Type::UInt16},   {"int", Type::Int32},
-                {"int32", Type::Int32},    {"uint", Type::UInt32},     {"uint32", Type::UInt32},
-                {"float", Type::Float32},  {"float32", Type::Float32}, {"double", Type::Float64},
-                {"float64", Type::Float64}};
-  for (const auto& entry : kTypes)
-    if (entry.name == name) {
-      type = entry.type;
-      return true;
-    }
-  return false;
-}
-
-size_t sizeOf(Type type) {
-  switch (type) {
-    case Type::Int8:
-    case Type::UInt8:
-      return 1;
-    case Type::Int16:
-    case Type::UInt16:
-      return 2;
-    case Type::Int32:
-    case Type::UInt32:
-    case Type::Float32:
-      return 4;
-    case Type::Float64:
-      return 8;
-  }
-  return 0;
-}
-
-bool isInteger(Type type) {
-  return type != Type::Float32 && type != Type::Float64;
-}
-
-Header parseHeader(const std::string& path, const std::string& bytes,
-                   std::vector<std::string>& warnings) {
-  Header header;
-  size_t pos = 0, lineNumber = 0;
-  bool sawFormat = false;
-  auto headerError = [&](const std::string& message) {
-    fail(path, "header line " + std::to_string(lineNumber) + ": " + message);
-  };
-  while (true) {
-    if (pos >= bytes.size()) fail(path, "the header has no end_header line (not a PLY file?)");
-    const size_t end = std::min(bytes.find('\n', pos), bytes.size());
-    const std::string_view line(bytes.data() + pos, end - pos);
-    pos = end + 1;
-    ++lineNumber;
-    TextTokens words(line);
-    const std::string_view keyword = words.next();
-    if (lineNumber == 1) {
-      if (keyword != "ply" || !words.atEnd()) fail(path, "not a PLY file (no 'ply' first line)");
-    } else if (keyword == "format") {
-      const std::string_view name = words.next();
-      if (name == "ascii")
-        header.format = Format::Ascii;
-      else if (name == "binary_little_endian")
-        header.format = Format::BinaryLittleEndian;
-      else if (name == "binary_big_endian")
-        header.format = Format::BinaryBigEndian;
-      else
-        headerError("unknown format '" + std::string(name) + "'");
-      sawFormat = true;
-    } else if (keyword == "element") {
-      Element element;
-      element.name = std::string(words.next());
-      int64_t count = -1;
-      if (!parseInteger(words.next(), count) || count < 0)
-        headerError("element '" + element.name + "' needs a count");
-      element.count = uint64_t(count);
-      header.elements.push_back(std::move(element));
-    } else if (keyword == "property") {
-      if (header.elements.empty()) headerError("property before any element");
-      Property property;
-      std::string_view type = words.next();
-      if (type == "list") {
-        property.isList = true;
-        if (!parseType(words.next(), property.countType) || !isInteger(property.countType))
-          headerError("a list needs an integer count type");
-        type = words.next();
-      }
-      if (!parseType(type, property.type))
-        headerError("unknown property type '" + std::string(type) + "'");
-      property.name = std::string(words.next());
-      if (property.name.empty()) headerError("property without a name");
-      header.elements.back().properties.push_back(std::move(property));
-    } else if (keyword == "end_header") {
-      break;
-    } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
-      // Some exporters write a comment without the keyword; skip such lines, but say so.
-      std::string text(line.substr(0, 40));
-      while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
-        text.pop_back();
-      warnings.push_back("header line " + std::to_string(lineNumber) + ": ignored '" + text + "'");
-    }
-  }
-  if (!sawFormat) fail(path, "the header has no format line");
-  // "end_header" may be the file's last bytes, without a newline: no data follows.
-  header.dataOffset = std::min(pos, bytes.size());
-  header.dataLine = lineNumber + 1;
-  return header;
-}
-
-// Reads the values that follow the header, one at a time, in either encoding.
-class ValueReader {
- public:
-  ValueReader(const std::string& path, const std::string& bytes, const Header& header)
-      : path_(path),
-        bytes_(bytes),
-        format_(header.format),
-        pos_(header.dataOffset),
-        tokens_(std::string_view(bytes).substr(header.dataOffset), header.dataLine) {}
-
-  // `where` describes the item being read, for messages ("vertex 12").
-  double read(Type type, const std::string& where) {
-    if (format_ == Format::Ascii) return readText(type, where);
-    const size_t size = sizeOf(type);
-    if (bytes_.size() - pos_ < size)
-      fail(path_, where + ": the file ends inside the data (truncated)");
-    // Assemble the value's bits from the bytes in file order, independent of the host's.
-    const auto* raw = reinterpret_cast<const unsigned char*>(bytes_.data() + pos_);
-    pos_ += size;
-    uint64_t bits = 0;
-    for (size_t i = 0; i < size; ++i) {
-      const size_t significance = format_ == Format::BinaryLittleEndian ? i : size - 1 - i;
-      bits |= uint64_t(raw[i]) << (8 * significance);
-    }
-    return decode(type, bits);
-  }
-
-  // Bytes not yet read (for ASCII: all data bytes), to reject absurd element counts before
-  // allocating for them.
-  size_t remaining() const { return bytes_.size() - pos_; }
-  bool isText() const { return format_ == Format::Ascii; }
-
- private:
-  double readText(Type type, const std::string& where) {
-    const std::string_view token = tokens_.next();
-    if (token.empty()) fail(path_, where + ": the file ends inside the data (truncated)");
-    // The message is built only on failure: this runs once per number of the file.
-    auto at = [&] { return "line " + std::to_string(tokens_.line()) + ": " + where + ": "; };
-    if (isInteger(type)) {
-      int64_t value = 0;
-      if (!parseInteger(token, value))
-        fail(path_, at() + "expected an integer, found '" + std::string(token) + "'");
-      return double(value);
-    }
-    double value = 0;
-    if (!parseNumber(token, value))
-      fail(path_, at() + "expected a number, found '" + std::string(token) + "'");
-    return value;
-  }
-
-  static double decode(Type type, uint64_t bits) {
-    switch (type) {
-      case Type::Int8:
-        return double(int8_t(uint8_t(bits)));
-      case Type::UInt8:
-        return double(uint8_t(bits));
-      case Type::Int16:
-        return double(int16_t(uint16_t(bits)));
-      case Type::UInt16:
-        return double(uint16_t(bits));
-      case Type::Int32:
-        return double(int32_t(uint32_t(bits)));
-      case Type::UInt32:
-        return double(uint32_t(bits));
-      case Type::Float32:
-        return double(std::bit_cast<float>(uint32_t(bits)));
-      case Type::Float64:
-        return std::bit_cast<double>(bits);
-    }
-    return 0;
-  }
-
-  const std::string& path_;
-  const std::string& bytes_;
-  Format format_;
-  size_t pos_;
-  TextTokens tokens_;
-};
 
 // Which vertex property feeds which attribute; -1 where the file has none.
 struct VertexLayout {
@@ -262,7 +51,7 @@ class PlyParser {
  public:
   PlyParser(const std::string& path, const std::string& bytes)
       : path_(path),
-        header_(parseHeader(path, bytes, headerWarnings_)),
+        header_(parsePlyHeader(path, bytes, headerWarnings_)),
         values_(path, bytes, header_) {}
 
   FileContents parse() {
@@ -455,6 +244,15 @@ class PlyParser {
 
 FileContents readPly(const std::string& path) {
   const std::string bytes = readFileBytes(path);
+  // A mesh or Gaussian splats, by the vertex element's properties (docs/splats.md, "Files").
+  std::vector<std::string> warnings;
+  const Header header = parsePlyHeader(path, bytes, warnings);
+  if (holdsSplats(header)) {
+    FileContents contents;
+    contents.warnings = std::move(warnings);
+    contents.splats = readSplats(path, bytes, header);
+    return contents;
+  }
   return PlyParser(path, bytes).parse();
 }
 

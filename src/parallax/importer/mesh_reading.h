@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "parallax/core/transform.h"
 #include "parallax/image/image.h"
 #include "parallax/importer/up_axis.h"
+#include "parallax/scene/gaussians.h"
 #include "parallax/scene/scene.h"
 
 namespace parallax::meshio {
@@ -65,6 +67,8 @@ struct FileContents {
   NodeAnimation nodeAnimation;        // glTF: the node tree and its channels (no meshes yet)
   // The up axis the file itself declares (FBX's UpAxis metadata); Auto if it says nothing.
   UpAxis declaredUp = UpAxis::Auto;
+  // A splat file's Gaussians (a 3DGS PLY: splat_ply.h), in the file's space, instead of parts.
+  std::optional<GaussianCloud> splats;
 };
 
 // Splits the polygon `corners` (indices into `positions`, in order) into triangles appended
