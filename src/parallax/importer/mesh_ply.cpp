@@ -93,21 +93,8 @@ class PlyParser {
     return nullptr;
   }
 
-  // An item needs, in binary, the bytes of its scalars and list lengths; in ASCII, at least
-  // one character and one separator per value. A count that cannot fit in what is left of
-  // the file is truncation, found before any memory is reserved for it.
-  void checkCountFits(const Element& element) {
-    size_t binaryBytes = 0;
-    for (const Property& p : element.properties)
-      binaryBytes += sizeOf(p.isList ? p.countType : p.type);
-    const size_t perItem = values_.isText() ? 2 * element.properties.size() : binaryBytes;
-    if (perItem > 0 && element.count > (values_.remaining() + 1) / perItem)
-      fail(path_, "element '" + element.name + "' announces " + std::to_string(element.count) +
-                      " items, more than the file can hold (truncated?)");
-  }
-
   void readVertices(const Element& element) {
-    checkCountFits(element);
+    checkCountFits(path_, element, values_);
     const VertexLayout layout(element);
     if (!layout.hasPosition())
       fail(path_, "the vertex element lacks one of the properties x, y, z");
@@ -155,7 +142,7 @@ class PlyParser {
   }
 
   void readFaces(const Element& element) {
-    checkCountFits(element);
+    checkCountFits(path_, element, values_);
     int indexProperty = -1;
     for (size_t i = 0; i < element.properties.size(); ++i) {
       const Property& p = element.properties[i];
@@ -214,7 +201,7 @@ class PlyParser {
 
   void skip(const Element& element) {
     if (element.properties.empty()) return;  // nothing to read, however many items
-    checkCountFits(element);
+    checkCountFits(path_, element, values_);
     for (size_t item = 0; item < element.count; ++item) {
       const std::string where = element.name + " " + std::to_string(item);
       for (const Property& p : element.properties) {

@@ -114,4 +114,14 @@ Header parsePlyHeader(const std::string& path, const std::string& bytes,
   return header;
 }
 
+void checkCountFits(const std::string& path, const Element& element, const ValueReader& values) {
+  size_t binaryBytes = 0;
+  for (const Property& p : element.properties)
+    binaryBytes += sizeOf(p.isList ? p.countType : p.type);
+  const size_t perItem = values.isText() ? 2 * element.properties.size() : binaryBytes;
+  if (perItem > 0 && element.count > (values.remaining() + 1) / perItem)
+    fail(path, "element '" + element.name + "' announces " + std::to_string(element.count) +
+                   " items, more than the file can hold (truncated?)");
+}
+
 }  // namespace parallax::meshio

@@ -123,4 +123,9 @@ class ValueReader {
   TextTokens tokens_;
 };
 
+// An item needs, in binary, the bytes of its scalars and list lengths; in ASCII, at least one
+// character and one separator per value. A count that cannot fit in what is left of the file is
+// truncation, refused (naming the element) before any memory is reserved for it.
+void checkCountFits(const std::string& path, const Element& element, const ValueReader& values);
+
 }  // namespace parallax::meshio

@@ -81,15 +81,7 @@ GaussianCloud readSplats(const std::string& path, const std::string& bytes, cons
   cloud.shDegree = layout.degree;
   const size_t coefficients = size_t(shCoefficientCount(layout.degree));
   for (const Element& element : header.elements) {
-    // A count the rest of the file cannot hold is refused before anything is reserved for it:
-    // in binary each item needs its scalars' bytes, in ASCII a character and a separator each.
-    size_t itemBytes = 0;
-    for (const Property& p : element.properties)
-      itemBytes += sizeOf(p.isList ? p.countType : p.type);
-    const size_t perItem = values.isText() ? 2 * element.properties.size() : itemBytes;
-    if (perItem > 0 && element.count > (values.remaining() + 1) / perItem)
-      fail(path, "element '" + element.name + "' announces " + std::to_string(element.count) +
-                     " items, more than the file can hold (truncated?)");
+    checkCountFits(path, element, values);
     const bool splats = &element == &vertex;
     if (splats) {
       cloud.centres.resize(element.count);
