@@ -7,14 +7,6 @@
 
 #include "parallax/core/lane_kernel.h"
 
-#if PARALLAX_EMBREE_MAJOR == 4
-#include <embree4/rtcore.h>
-#elif PARALLAX_EMBREE_MAJOR == 3
-#include <embree3/rtcore.h>
-#else
-#error "PARALLAX_EMBREE_MAJOR must be 3 or 4 (src/parallax/accel/CMakeLists.txt)"
-#endif
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -27,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "parallax/accel/embree_backend.h"
 #include "parallax/core/error.h"
 
 namespace parallax {
@@ -78,92 +71,6 @@ void checkIsaName(const std::string& config, const char* source) {
   }
 }
 
-// Every ray query goes through one of these: the only place where Embree 3 and Embree 4 trace
-// differently. Embree 3 hands every query an RTCIntersectContext whose flags say whether the
-// rays are coherent; Embree 4 dropped the context from the call and takes
-// RTCIntersectArguments (closest hits) and RTCOccludedArguments (any hit) instead, with the
-// same flag as RTC_RAY_QUERY_FLAG_COHERENT. Neither has filter functions here. The geometry
-// mask default also differs (Embree 3: all bits; Embree 4: 1), which changes nothing: every
-// ray carries mask 0xffffffff, which meets either.
-class EmbreeQuery {
- public:
-  enum class Rays { Incoherent, Coherent };
-  explicit EmbreeQuery(Rays rays) {
-#if PARALLAX_EMBREE_MAJOR == 4
-    rtcInitIntersectArguments(&intersectArguments_);
-    rtcInitOccludedArguments(&occludedArguments_);
-    if (rays == Rays::Coherent)
-      intersectArguments_.flags = occludedArguments_.flags = RTC_RAY_QUERY_FLAG_COHERENT;
-#else
-    rtcInitIntersectContext(&context_);
-    if (rays == Rays::Coherent) context_.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-#endif
-  }
-
-#if PARALLAX_EMBREE_MAJOR == 4
-  void intersect(RTCScene scene, RTCRayHit& rayHit) {
-    rtcIntersect1(scene, &rayHit, &intersectArguments_);  // the arguments come last
-  }
-  void occluded(RTCScene scene, RTCRay& ray) {
-    rtcOccluded1(scene, &ray, &occludedArguments_);  // tfar = -infinity when occluded
-  }
-  // A packet query, `query` being rtcIntersect4/8/16 or rtcOccluded4/8/16.
-  template <class Packet, class Arguments>
-  void packet(void (*query)(const int*, RTCScene, Packet*, Arguments*), const int* valid,
-              RTCScene scene, Packet& rays) {
-    if constexpr (std::is_same_v<Arguments, RTCIntersectArguments>)
-      query(valid, scene, &rays, &intersectArguments_);
-    else
-      query(valid, scene, &rays, &occludedArguments_);
-  }
-#else
-  void intersect(RTCScene scene, RTCRayHit& rayHit) {
-    rtcIntersect1(scene, &context_, &rayHit);  // the context comes before the rays
-  }
-  void occluded(RTCScene scene, RTCRay& ray) {
-    rtcOccluded1(scene, &context_, &ray);  // tfar = -infinity when occluded
-  }
-  template <class Packet>
-  void packet(void (*query)(const int*, RTCScene, RTCIntersectContext*, Packet*), const int* valid,
-              RTCScene scene, Packet& rays) {
-    query(valid, scene, &context_, &rays);
-  }
-#endif
-
- private:
-#if PARALLAX_EMBREE_MAJOR == 4
-  RTCIntersectArguments intersectArguments_;
-  RTCOccludedArguments occludedArguments_;
-#else
-  RTCIntersectContext context_;
-#endif
-};
-
-struct Accelerator::Impl {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  uint32_t meshCount = 0;
-  uint32_t sphereCount = 0;
-  int packetWidth = 16, nativePacketWidth = 16;
-  BuildQuality quality = BuildQuality::High;
-  bool dynamic = false;
-  // What refit() must find again: each mesh's vertex and index counts.
-  std::vector<std::pair<size_t, size_t>> meshSizes;
-  std::mutex errorMutex;
-  std::string firstError;  // first message Embree reported through the error callback
-
-  ~Impl();
-  void throwIfError(const char* stage);
-
-  // Embree calls this from whichever thread hit the error; keep the first message.
-  static void recordError(void* userPtr, RTCError code, const char* message) {
-    auto& impl = *static_cast<Impl*>(userPtr);
-    std::lock_guard lock(impl.errorMutex);
-    if (impl.firstError.empty())
-      impl.firstError = std::string(errorName(code)) + ": " + (message ? message : "");
-  }
-};
-
 namespace {
 
 void checkMesh(const TriangleMesh& mesh, size_t meshIndex) {
@@ -211,40 +118,6 @@ RTCGeometry newSphereGeometry(RTCDevice device, const Sphere& sphere) {
     point[3] = sphere.radius;
   }
   return geometry;
-}
-
-void fillRay(const Ray& ray, RTCRay& out) {
-  out.org_x = ray.origin.x, out.org_y = ray.origin.y, out.org_z = ray.origin.z;
-  out.dir_x = ray.direction.x, out.dir_y = ray.direction.y, out.dir_z = ray.direction.z;
-  out.tnear = ray.tMin, out.tfar = ray.tMax;
-  out.time = 0.0f;
-  out.mask = 0xffffffffu;
-  out.id = 0;
-  out.flags = 0;
-}
-
-// The one seam between our rays and Embree's packet kernels. Embree 3 checks every ray it
-// traces (Debian's build asserts `ray.valid()`: finite origin and direction below FLT_LARGE,
-// tnear and tfar not NaN), and on CPUs without native 16-wide kernels (AVX2, SSE) it serves
-// rtcIntersect16 / rtcOccluded16 through a fallback that ignores the valid mask and traces
-// every lane whose tnear <= tfar. So every lane that is not to be traced gets a harmless ray
-// that no kernel traces (origin 0, direction +z, tnear 1 > tfar 0), and an active lane whose
-// ray Embree would reject (non-finite or huge numbers, an empty or negative interval) is
-// turned off and reads as a miss: it cannot hit anything meaningful. The same guard serves
-// Embree 4, whose packet and untraceable-lane tests pass the same way on every ISA.
-constexpr float kLargestCoordinate = 1e18f;  // below Embree's FLT_LARGE (1.844e18)
-
-bool traceable(float ox, float oy, float oz, float dx, float dy, float dz, float tMin, float tMax) {
-  auto small = [](float value) { return std::abs(value) <= kLargestCoordinate; };  // NaN: false
-  // Bitwise & and |: every test is cheap, and without short-circuit branches the lane loops
-  // that call this vectorise.
-  return small(ox) & small(oy) & small(oz) & small(dx) & small(dy) & small(dz) &
-         ((dx != 0.0f) | (dy != 0.0f) | (dz != 0.0f)) & (tMin >= 0.0f) & (tMin <= tMax);
-}
-
-bool traceable(const Ray& ray) {
-  return traceable(ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y,
-                   ray.direction.z, ray.tMin, ray.tMax);
 }
 
 void disableLane(RTCRay16& ray, int lane) {
@@ -398,7 +271,15 @@ const EmbreeLibrary& embreeLibrary() {
   return library;
 }
 
+void Accelerator::Impl::recordError(void* userPtr, RTCError code, const char* message) {
+  auto& impl = *static_cast<Impl*>(userPtr);
+  std::lock_guard lock(impl.errorMutex);
+  if (impl.firstError.empty())
+    impl.firstError = std::string(errorName(code)) + ": " + (message ? message : "");
+}
+
 Accelerator::Impl::~Impl() {
+  if (splats.scene) rtcReleaseScene(splats.scene);
   if (scene) rtcReleaseScene(scene);
   if (device) rtcReleaseDevice(device);
 }
@@ -483,6 +364,8 @@ Accelerator::Accelerator(const Scene& scene, const AcceleratorOptions& options)
 
   rtcCommitScene(impl.scene);
   impl.throwIfError("scene build");
+  buildSplatStore(impl.device, scene, impl.splats);
+  impl.throwIfError("splat build");
 }
 
 void Accelerator::refit(const Scene& scene) {

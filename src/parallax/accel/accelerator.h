@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -49,6 +50,22 @@ struct alignas(64) HitPacket16 {
   }
 };
 
+// A Gaussian splat met along a ray (docs/splats.md, "Tracing"): where its response peaks (t, in
+// units of the ray's direction), which Gaussian (its index over every set of Scene::splats in
+// order) and its alpha there (capped as 3DGS caps it).
+struct SplatHit {
+  float t = 0.0f;
+  uint32_t gaussian = 0;
+  float alpha = 0.0f;
+};
+// Where a ray's walk through the splats stands: hits are ordered by (t, gaussian), and a query
+// returns only those after the cursor's.
+struct SplatCursor {
+  float t = -std::numeric_limits<float>::infinity();
+  uint32_t gaussian = 0;
+  bool started = false;  // false: nothing is behind the cursor yet
+};
+
 // How good a BVH to build. High (Embree's spatial splits) traces a little faster and builds
 // about three times slower; it pays only when many rays meet each triangle.
 enum class BuildQuality { Auto, Medium, High };
@@ -92,8 +109,12 @@ inline AcceleratorOptions acceleratorForCameraRays(double cameraRays) {
 // triangle, fewer on larger meshes, on Embree 3.13 and 4.3.
 inline constexpr double kEmbreeDeviceBytes = 2.5e6;
 inline constexpr double kEmbreeBytesPerTriangle = 95.0;
+// And per Gaussian splat: our frame and opacity (52 bytes) and Embree's BVH over their boxes
+// (docs/splats.md, "Memory").
+inline constexpr double kAcceleratorBytesPerSplat = 52.0 + 64.0;
 inline double acceleratorBytes(const Scene& scene) {
-  return kEmbreeDeviceBytes + kEmbreeBytesPerTriangle * double(scene.triangleCount());
+  return kEmbreeDeviceBytes + kEmbreeBytesPerTriangle * double(scene.triangleCount()) +
+         kAcceleratorBytesPerSplat * double(scene.splatCount());
 }
 
 // The raw limit's counts: every ray traced, and the primary rays and how many of them missed.
@@ -176,6 +197,17 @@ class Accelerator {
   // AcceleratorOptions::dynamic, else rebuilt. Throws std::invalid_argument when the
   // topology differs.
   void refit(const Scene& scene);
+
+  // The Gaussian splats along `ray` within [ray.tMin, ray.tMax) whose alpha reaches
+  // kMinSplatAlpha, after `after`, nearest first (by t, then by index): at most `capacity` of
+  // them into `out`, their count returned. A full answer may leave more beyond its last; the
+  // walk goes on from there (SplatCursor{last.t, last.gaussian, true}). The same hits whatever
+  // order Embree visits them in (3DGRT's k-buffer, docs/splats.md). Adds the responses it
+  // evaluated (the walk's cost) to `evaluated` when given.
+  int nextSplats(const Ray& ray, const SplatCursor& after, SplatHit* out, int capacity,
+                 uint64_t* evaluated = nullptr) const;
+  // How many Gaussians the splat BVH holds (Scene::splatCount() of the scene it was built from).
+  size_t splatCount() const;
 
   // Throws std::out_of_range for an ID that is not in the scene (including kNoHit).
   SurfaceRef surface(uint32_t geometry) const;

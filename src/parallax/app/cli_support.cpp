@@ -252,9 +252,10 @@ void addImportOptions(Command& cmd) {
   const bool upFree = !cmd.hasOption("--up");
   cmd.addOption(upFree ? "--up,--mesh-up" : "--mesh-up", gUpAxis,
                 "Which axis of the mesh files points up: auto (Z for STL, 3MF, AMF, Blender and "
-                "FBX files that say so; Y otherwise), y, or z (turned Y-up); docs/import.md")
+                "FBX files that say so; -Y for Gaussian splat files; Y otherwise), y, z or -y "
+                "(turned Y-up); docs/import.md")
       ->captureDefault()
-      ->oneOf({"auto", "y", "z"});
+      ->oneOf({"auto", "y", "z", "-y"});
   cmd.addOption("--crease", gCreaseDegrees,
                 "Meshes without normals get smooth ones, split where faces meet at more than "
                 "this angle in degrees (0: faceted); docs/import.md")
@@ -266,7 +267,7 @@ void addImportOptions(Command& cmd) {
 ImportOptions importOptions() {
   ImportOptions options;
   if (!parseUpAxis(gUpAxis, options.up))  // the option's check lets no other value through
-    throw InputError("command line", "--up", "expected auto, y or z, got '" + gUpAxis + "'");
+    throw InputError("command line", "--up", "expected auto, y, z or -y, got '" + gUpAxis + "'");
   options.creaseDegrees = float(gCreaseDegrees);
   return options;
 }

@@ -42,6 +42,7 @@ void printJson(const Scene& scene) {
   json.set("/source", scene.source);
   json.set("/triangles", uint64_t(scene.triangleCount()));
   json.set("/spheres", uint64_t(scene.spheres.size()));
+  json.set("/gaussians", uint64_t(scene.splatCount()));
   const Bounds3f b = scene.bounds();
   json.set("/bounds/min", b.empty() ? Vec3f(0.0f) : b.lo);
   json.set("/bounds/max", b.empty() ? Vec3f(0.0f) : b.hi);
@@ -99,6 +100,15 @@ void printJson(const Scene& scene) {
     json.set(at + "/up", scene.imports[i].up);
     json.set(at + "/normals", scene.imports[i].normals);
     json.set(at + "/triangles", uint64_t(scene.imports[i].triangles));
+    json.set(at + "/splats", uint64_t(scene.imports[i].splats));
+  }
+  // Gaussian splat sets (docs/splats.md): what each file holds.
+  json.setEmptyArray("/splats");
+  for (size_t i = 0; i < scene.splats.size(); ++i) {
+    const std::string at = "/splats/" + std::to_string(i);
+    json.set(at + "/file", scene.splats[i].name);
+    json.set(at + "/gaussians", uint64_t(scene.splats[i].cloud.size()));
+    json.set(at + "/sh_degree", int64_t(scene.splats[i].cloud.shDegree));
   }
   std::printf("%s\n", json.dump().c_str());
 }
@@ -118,6 +128,9 @@ void printText(const Scene& scene) {
   for (const auto& s : scene.spheres)
     std::printf("  %-28s sphere r=%g, material %s\n", s.name.c_str(), s.radius,
                 scene.materials[s.material].name.c_str());
+  for (const SplatSet& set : scene.splats)
+    std::printf("  %-28s Gaussian splats: %zu, spherical harmonics of degree %d\n",
+                set.name.c_str(), set.cloud.size(), set.cloud.shDegree);
   std::printf("materials %zu, textures %zu, images %zu\n", scene.materials.size(),
               scene.textures.size(), scene.images.size());
   std::printf("lights:\n");

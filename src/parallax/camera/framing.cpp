@@ -166,7 +166,7 @@ Framing frameContent(const Scene& scene, const DisplayWindow& window, double dep
   f.depthOfFieldMm = depthOfFieldMm;
   f.budgetMm = given.depthBudgetMm.value_or(depthOfFieldMm);
 
-  const Bounds3f bounds = given.content ? *given.content : scene.bounds();
+  const Bounds3f bounds = given.content ? *given.content : scene.framingBounds();
   f.hasContent = !bounds.empty();
   const double givenScale = window.widthMm / double(fitDisplayWidth(given, window));
   double scale = givenScale, shift = given.focusMm.value_or(0.0);

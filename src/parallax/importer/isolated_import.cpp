@@ -256,7 +256,8 @@ FileContents parseContentsOrThrowGarbled(Reader& r) {
   contents.note = r.string("note");
   contents.droppedDegenerate = r.get<uint64_t>("dropped faces");
   const int32_t up = r.get<int32_t>("up axis");
-  if (up != int32_t(UpAxis::Auto) && up != int32_t(UpAxis::Y) && up != int32_t(UpAxis::Z))
+  if (up != int32_t(UpAxis::Auto) && up != int32_t(UpAxis::Y) && up != int32_t(UpAxis::Z) &&
+      up != int32_t(UpAxis::MinusY))
     throw Garbled{"up axis " + std::to_string(up)};
   contents.declaredUp = UpAxis(up);
   return contents;

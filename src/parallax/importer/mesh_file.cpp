@@ -523,23 +523,38 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
   // in the XY plane) and Blender are Z-up, and assimp leaves their axes alone; its Collada
   // (<up_axis>) and 3DS importers turn Z-up files Y-up themselves; glTF is Y-up by its
   // specification, and the scanned models in PLY and OBJ (Stanford's) are Y-up.
+  // Splat files are trained in COLMAP's frame (y down, the cameras looking along +z).
   UpAxis up = options.up;
   if (up == UpAxis::Auto) up = contents.declaredUp;
   if (up == UpAxis::Auto)
-    up = ext == ".stl" || ext == ".3mf" || ext == ".amf" || ext == ".blend" ? UpAxis::Z : UpAxis::Y;
-  // -90 degrees about X: (x, y, z) -> (x, z, -y), so that +Z becomes +Y (a rotation: the
-  // handedness and the winding stay).
-  Mat4 zToY = Mat4::identity();  // exact, where rotate() would leave cos(90 deg) = 6e-17
-  zToY.m[1] = {0, 0, 1, 0};
-  zToY.m[2] = {0, -1, 0, 0};
-  const Transform fileFromReader = up == UpAxis::Z ? Transform(zToY) : Transform();
+    up = contents.splats                                                           ? UpAxis::MinusY
+         : ext == ".stl" || ext == ".3mf" || ext == ".amf" || ext == ".blend" ? UpAxis::Z
+                                                                              : UpAxis::Y;
+  // Exact matrices, where rotate() would leave cos(90 deg) = 6e-17. Z up: -90 degrees about X,
+  // (x, y, z) -> (x, z, -y), so that +Z becomes +Y. -Y up: 180 degrees about X, (x, y, z) ->
+  // (x, -y, -z), so that a capture's cameras look along -z as the viewer of the display does.
+  // Both are rotations: the handedness and the winding stay.
+  Mat4 toY = Mat4::identity();
+  if (up == UpAxis::Z) {
+    toY.m[1] = {0, 0, 1, 0};
+    toY.m[2] = {0, -1, 0, 0};
+  } else if (up == UpAxis::MinusY) {
+    toY.m[1] = {0, -1, 0, 0};
+    toY.m[2] = {0, 0, -1, 0};
+  }
+  const Transform fileFromReader(toY);
 
-  // A splat file is read and checked whole; the renderer does not take splats yet.
-  if (contents.splats)
-    fail(path, "holds " + std::to_string(contents.splats->size()) +
-                   " Gaussian splats (3DGS, spherical harmonics of degree " +
-                   std::to_string(contents.splats->shDegree) +
-                   "): parallax reads splat files but does not render them yet (docs/splats.md)");
+  if (contents.splats) {
+    Scene::ImportRecord record;
+    record.file = path;
+    record.reader = reader;
+    record.up = upAxisName(up);
+    record.splats = contents.splats->size();
+    scene.splats.push_back({path, std::move(*contents.splats),
+                            options.worldFromFile * fileFromReader});
+    scene.imports.push_back(record);
+    return;
+  }
   // Validate everything before touching the scene, so a bad file leaves it unchanged.
   for (const FilePart& part : contents.parts) validate(path, part);
   SceneAppender appender(path, options, contents, scene);

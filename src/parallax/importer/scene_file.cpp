@@ -255,8 +255,9 @@ class SceneFileLoader {
   Scene load() {
     const JsonDocument document = JsonDocument::parseFile(path_);
     const JsonReader root = document.root();
-    root.expectObject({"version", "objects", "materials", "textures", "lights", "ambient",
-                       "background", "max_depth", "camera", "display", "animation", "look"});
+    root.expectObject({"version", "objects", "splats", "materials", "textures", "lights",
+                       "ambient", "background", "max_depth", "camera", "display", "animation",
+                       "look"});
     if (const auto version = root.find("version"))
       if (version->integer(0, INT_MAX) != kFormatVersion)
         version->fail("unsupported version " + version->dump() + " (this build reads version " +
@@ -280,9 +281,16 @@ class SceneFileLoader {
       const auto list = objects->elements();
       for (size_t i = 0; i < list.size(); ++i) readObject(list[i], i);
     }
-    if (scene_.meshes.empty() && scene_.spheres.empty())
+    if (const auto splats = root.find("splats")) {
+      if (splats->isObject()) {
+        addSplatFile(*splats);
+      } else {
+        for (const JsonReader& entry : splats->elements()) addSplatFile(entry);
+      }
+    }
+    if (scene_.meshes.empty() && scene_.spheres.empty() && scene_.splats.empty())
       scene_.warnings.push_back(path_ + ": the scene has no objects");
-    const Bounds3f objectBounds = scene_.bounds();  // before light quads are added
+    const Bounds3f objectBounds = scene_.framingBounds();  // before light quads are added
     if (const auto lights = root.find("lights"))
       for (const JsonReader& light : lights->elements()) readLight(light);
     addMeshLights();
@@ -573,6 +581,31 @@ class SceneFileLoader {
         scene_.meshes[i].material = defaultMaterial();
   }
 
+  // A "splats" entry (docs/scene-format.md, docs/splats.md): a Gaussian splat file, placed by
+  // its transform, turned from its own up axis first as a bare file is.
+  void addSplatFile(const JsonReader& entry) {
+    entry.expectObject({"file", "transform", "up"});
+    const JsonReader fileKey = entry["file"];
+    const std::string file = resolve(fileKey.string());
+    if (!fs::exists(file)) fileKey.fail("splat file not found: " + file);
+    try {
+      requireRegularFile(file);
+    } catch (const InputError& e) {
+      fileKey.fail(e.what());
+    }
+    MeshLoadOptions options;
+    options.up = import_.up;
+    if (const auto up = entry.find("up"); up && !parseUpAxis(up->string(), options.up))
+      up->fail("expected \"auto\", \"y\", \"z\" or \"-y\", found \"" + up->string() + "\"");
+    if (const auto transform = entry.find("transform")) options.worldFromFile = readTransform(*transform);
+    const size_t meshes = scene_.meshes.size(), sets = scene_.splats.size();
+    if (lowerExtension(file) != ".ply") fileKey.fail("not a splat file this build reads (.ply): " + file);
+    loadMeshFile(file, options, scene_);
+    if (scene_.meshes.size() != meshes || scene_.splats.size() == sets)
+      fileKey.fail("holds triangles, not Gaussian splats (place meshes under \"objects\"): " +
+                   file);
+  }
+
   void readLight(const JsonReader& value) {
     const JsonReader typeKey = value["type"];
     const std::string type = typeKey.string();
@@ -810,7 +843,7 @@ void useFileCamera(Scene& scene, size_t index) {
   scene.camera = camera.spec;
   const Vec3f eye = camera.spec.eye;
   const Vec3f forward = normalize(camera.spec.lookAt - eye);
-  const Bounds3f content = scene.display.content ? *scene.display.content : scene.bounds();
+  const Bounds3f content = scene.display.content ? *scene.display.content : scene.framingBounds();
   // The display faces the camera: its normal is -forward, its up the camera's up.
   const Vec3f up = normalize(camera.spec.up - forward * dot(camera.spec.up, forward));
   DisplayPlacement placement = placeDisplay(content, -forward, up);
@@ -870,7 +903,7 @@ Scene sceneFromMesh(const std::string& path, const SceneLoadOptions& load) {
   }
   for (TriangleMesh& mesh : scene.meshes)
     if (mesh.material >= scene.materials.size()) mesh.material = 0;
-  const Bounds3f bounds = scene.bounds();
+  const Bounds3f bounds = scene.framingBounds();
   if (bounds.empty()) throw InputError(path, "", "the file has no triangles");
   addEmissiveMeshLights(scene);
   if (scene.lights.empty()) {
@@ -1007,7 +1040,7 @@ Scene loadSceneAsRendered(const std::string& scenePath, const std::string& rende
     options.focusOn = focusOn->string();
   if (const auto imported = root.find("import_options")) {
     const JsonReader up = (*imported)["up"];
-    if (!parseUpAxis(up.string(), options.import.up)) up.fail("expected \"auto\", \"y\" or \"z\"");
+    if (!parseUpAxis(up.string(), options.import.up)) up.fail("expected \"auto\", \"y\", \"z\" or \"-y\"");
     options.import.creaseDegrees = float((*imported)["crease"].number(0, 180));
   }
   Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, options);

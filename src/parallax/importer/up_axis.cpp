@@ -8,6 +8,8 @@ const char* upAxisName(UpAxis up) {
       return "y";
     case UpAxis::Z:
       return "z";
+    case UpAxis::MinusY:
+      return "-y";
     case UpAxis::Auto:
       break;
   }
@@ -15,7 +17,7 @@ const char* upAxisName(UpAxis up) {
 }
 
 bool parseUpAxis(const std::string& text, UpAxis& up) {
-  for (UpAxis candidate : {UpAxis::Auto, UpAxis::Y, UpAxis::Z})
+  for (UpAxis candidate : {UpAxis::Auto, UpAxis::Y, UpAxis::Z, UpAxis::MinusY})
     if (text == upAxisName(candidate)) return up = candidate, true;
   return false;
 }

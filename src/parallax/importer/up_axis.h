@@ -6,10 +6,11 @@
 
 namespace parallax {
 
-// Auto: the format's convention: Z for STL, the FBX file's own UpAxis, Y otherwise (glTF is
-// Y-up by its specification).
-enum class UpAxis { Auto, Y, Z };
-// "auto", "y", "z"; parseUpAxis returns false for anything else.
+// Auto: the format's convention: Z for STL, the FBX file's own UpAxis, -Y for Gaussian splat
+// files (the COLMAP frame 3DGS captures are trained in: y down, the cameras looking along +z),
+// Y otherwise (glTF is Y-up by its specification). MinusY is turned Y-up by 180 degrees about X.
+enum class UpAxis { Auto, Y, Z, MinusY };
+// "auto", "y", "z", "-y"; parseUpAxis returns false for anything else.
 const char* upAxisName(UpAxis up);
 bool parseUpAxis(const std::string& text, UpAxis& up);
 

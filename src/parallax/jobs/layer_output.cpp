@@ -63,6 +63,7 @@ void startRenderRecord(JsonWriter& record, const std::string& method,
     record.set(at + "/up", imports[i].up);
     record.set(at + "/normals", imports[i].normals);
     record.set(at + "/triangles", uint64_t(imports[i].triangles));
+    if (imports[i].splats) record.set(at + "/splats", uint64_t(imports[i].splats));
   }
 }
 

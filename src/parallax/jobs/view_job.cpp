@@ -31,7 +31,7 @@ std::unique_ptr<Camera> displayEyeCamera(const ViewRequest& r, const Scene& scen
     throw RequestError("display_eye", "must be three finite numbers (display mm)");
   Scene placed;
   placed.display = scene.display;
-  if (!placed.display.content) placed.display.content = scene.bounds();
+  if (!placed.display.content) placed.display.content = scene.framingBounds();
   const BuiltDisplay display =
       frameDisplay(buildDisplay(r.display, description), r.framing, placed);
   int width = display->viewerPanel().width, height = display->viewerPanel().height;

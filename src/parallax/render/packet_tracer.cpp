@@ -35,6 +35,7 @@ PacketTracer::PacketTracer(const Scene& scene, const Accelerator& accelerator,
       accelerator_(accelerator),
       lights_(lights),
       surfaces_(scene, accelerator),
+      splats_(scene),
       bounces_(bounces) {
   // Each bounce is one level of recursion (a few KiB of packets on the stack): the range is
   // RenderSettings's, which the command line checks (--bounces).
@@ -58,16 +59,55 @@ PacketTracer::PacketTracer(const Scene& scene, const Accelerator& accelerator,
 
 void PacketTracer::trace(const RayPacket16& rays, const Color16& weight, std::array<Rng, 16>& rngs,
                          Color16& radiance, int depth, RenderStats& stats) const {
+  if (!splats_.empty() && depth == 0) return traceThroughSplats(rays, weight, rngs, radiance, stats);
   tracePath(rays, weight, rngs, radiance, PathState{depth, 0, false}, stats);
+}
+
+// Splats are seen by camera rays (docs/splats.md, "Blending"): the mesh hit bounds each ray's
+// walk through them, and the path behind is traced with unit weight, so that the two can be
+// composited in display values as 3DGS composites (not additive in radiance). Lanes whose
+// splats are opaque skip the path behind. Mirrors and diffuse bounces see the meshes alone,
+// and splats cast no shadows.
+void PacketTracer::traceThroughSplats(const RayPacket16& rays, const Color16& weight,
+                                      std::array<Rng, 16>& rngs, Color16& radiance,
+                                      RenderStats& stats) const {
+  HitPacket16 hits;
+  accelerator_.intersect16(rays, hits);
+  SplatBlend blends[16];
+  RayPacket16 behindRays = rays;
+  for (int lane = 0; lane < 16; ++lane) {
+    if (!rays.active[lane]) continue;
+    Ray ray = rays.ray(lane);
+    if (hits.geometry[lane] != kNoHit) ray.tMax = hits.t[lane];
+    blends[lane] = blendSplats(accelerator_, splats_, ray);
+    stats.splatsEvaluated += blends[lane].evaluated;
+    stats.splatsBlended += blends[lane].blended;
+    if (blends[lane].opaque) {
+      behindRays.deactivate(lane);
+      hits.geometry[lane] = kNoHit;
+    }
+  }
+  Color16 behind, unit;
+  behind.fill(0.0f);
+  unit.fill(1.0f);
+  tracePath(behindRays, unit, rngs, behind, PathState{0, 0, false}, stats, &hits);
+  for (int lane = 0; lane < 16; ++lane) {
+    if (!rays.active[lane]) continue;
+    const Vec3f seen = overBehind(blends[lane], behind.at(lane));
+    radiance.r[lane] += weight.r[lane] * seen.x;
+    radiance.g[lane] += weight.g[lane] * seen.y;
+    radiance.b[lane] += weight.b[lane] * seen.z;
+  }
 }
 
 PARALLAX_LANE_KERNEL void PacketTracer::tracePath(const RayPacket16& rays, const Color16& weight,
                                                   std::array<Rng, 16>& rngs, Color16& radiance,
-                                                  const PathState& state,
-                                                  RenderStats& stats) const {
+                                                  const PathState& state, RenderStats& stats,
+                                                  const HitPacket16* known) const {
   const bool cameraRays = state.mirrorDepth == 0 && state.diffuseDepth == 0;
-  HitPacket16 hits;
-  accelerator_.intersect16(rays, hits);
+  HitPacket16 traced;
+  if (!known) accelerator_.intersect16(rays, traced);
+  const HitPacket16& hits = known ? *known : traced;
   // A packet that met nothing (the sky around the subject: half the camera rays of the
   // built-in scene) only sees the background; it needs no surfaces and no light.
   int hitCount = 0;

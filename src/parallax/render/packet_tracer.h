@@ -13,6 +13,7 @@
 #include "parallax/render/light_sampler.h"
 #include "parallax/render/packet_types.h"
 #include "parallax/render/render_settings.h"
+#include "parallax/render/splat_blend.h"
 #include "parallax/render/surface.h"
 
 namespace parallax {
@@ -35,8 +36,14 @@ class PacketTracer {
     int diffuseDepth = 0;       // diffuse bounces so far (limited by bounces_)
     bool afterDiffuse = false;  // the rays left a diffuse bounce: light emitters are not counted
   };
+  // `known`: the rays' closest hits when the caller has traced them already.
   void tracePath(const RayPacket16& rays, const Color16& weight, std::array<Rng, 16>& rngs,
-                 Color16& radiance, const PathState& state, RenderStats& stats) const;
+                 Color16& radiance, const PathState& state, RenderStats& stats,
+                 const HitPacket16* known = nullptr) const;
+  // Camera rays in a scene with splats: the splats in front of each ray's first surface
+  // blended over what the path sees there (splat_blend.h, docs/splats.md).
+  void traceThroughSplats(const RayPacket16& rays, const Color16& weight,
+                          std::array<Rng, 16>& rngs, Color16& radiance, RenderStats& stats) const;
   // Sends each lane's path on (bounces_ > 0): mirror reflections and diffuse bounces.
   void continuePaths(const RayPacket16& rays, const SurfacePacket16& sp, const Color16& weight,
                      std::array<Rng, 16>& rngs, Color16& radiance, const PathState& state,
@@ -48,6 +55,7 @@ class PacketTracer {
   const Accelerator& accelerator_;
   const LightSampler& lights_;
   SurfaceShader surfaces_;
+  SplatColours splats_;
   int bounces_ = 0;
   // Per Embree geometry: 1 if it is the surface of a light that next-event estimation samples
   // (a quad light's quad, an emissive mesh), so a diffuse bounce that hits it adds no emission.

@@ -46,6 +46,10 @@ struct RenderStats {
   uint64_t secondaryRays = 0;  // mirror and diffuse bounces (closest-hit rays after the camera's)
   uint64_t bounceRays = 0;     // of which diffuse bounces (RenderSettings::bounces)
   uint64_t cameraMisses = 0;   // primary rays that met nothing (the background)
+  // Gaussian splats (docs/splats.md): responses evaluated along camera rays (what a walk
+  // costs) and Gaussians blended into them.
+  uint64_t splatsEvaluated = 0;
+  uint64_t splatsBlended = 0;
   double seconds = 0.0;
 
   uint64_t totalRays() const { return cameraRays + shadowRays + secondaryRays; }
@@ -56,6 +60,8 @@ struct RenderStats {
     secondaryRays += other.secondaryRays;
     bounceRays += other.bounceRays;
     cameraMisses += other.cameraMisses;
+    splatsEvaluated += other.splatsEvaluated;
+    splatsBlended += other.splatsBlended;
     seconds += other.seconds;
     return *this;
   }

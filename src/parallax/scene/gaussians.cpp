@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 namespace parallax {
 
@@ -53,18 +55,47 @@ float RayResponse::alpha(float opacity) const {
   return std::min(kMaxSplatAlpha, opacity * std::exp(-0.5f * distanceSquared));
 }
 
-RayResponse gaussianRayResponse(const Vec3f& centre, const Vec3f& scale, const Quatf& rotation,
-                                const Vec3f& origin, const Vec3f& direction) {
+namespace {
+
+// W = S^-1 R^T: row j is column j of R (row j of R^T) over scale j.
+void whitening(const Vec3f& scale, const Quatf& rotation, Vec3f whiten[3]) {
   Vec3f rows[3];
   rotationRows(rotation, rows);
-  const Vec3f o = origin - centre;
-  // x' = S^-1 R^T x: component j is column j of R (row j of R^T) dotted with x, over scale j.
-  Vec3f local, towards;
-  for (int j = 0; j < 3; ++j) {
-    const Vec3f column{rows[0][j], rows[1][j], rows[2][j]};
-    local[j] = dot(column, o) / scale[j];
-    towards[j] = dot(column, direction) / scale[j];
-  }
+  for (int j = 0; j < 3; ++j)
+    whiten[j] = Vec3f{rows[0][j], rows[1][j], rows[2][j]} * (1.0f / scale[j]);
+}
+
+}  // namespace
+
+GaussianFrame gaussianFrame(const GaussianCloud& cloud, size_t g, const Transform& worldFromFile) {
+  Vec3f local[3];
+  whitening(cloud.scales[g], cloud.rotations[g], local);
+  const Mat4& fileFromWorld = worldFromFile.inverseMatrix();
+  GaussianFrame frame;
+  frame.centre = worldFromFile.point(cloud.centres[g]);
+  for (int j = 0; j < 3; ++j)
+    for (int column = 0; column < 3; ++column)
+      frame.whiten[j][column] = local[j].x * fileFromWorld.m[0][column] +
+                                local[j].y * fileFromWorld.m[1][column] +
+                                local[j].z * fileFromWorld.m[2][column];
+  return frame;
+}
+
+RayResponse gaussianRayResponse(const Vec3f& centre, const Vec3f& scale, const Quatf& rotation,
+                                const Vec3f& origin, const Vec3f& direction) {
+  GaussianFrame frame;
+  frame.centre = centre;
+  whitening(scale, rotation, frame.whiten);
+  return gaussianRayResponse(frame, origin, direction);
+}
+
+RayResponse gaussianRayResponse(const GaussianFrame& gaussian, const Vec3f& origin,
+                                const Vec3f& direction) {
+  const Vec3f o = origin - gaussian.centre;
+  const Vec3f local{dot(gaussian.whiten[0], o), dot(gaussian.whiten[1], o),
+                    dot(gaussian.whiten[2], o)};
+  const Vec3f towards{dot(gaussian.whiten[0], direction), dot(gaussian.whiten[1], direction),
+                      dot(gaussian.whiten[2], direction)};
   RayResponse response;
   response.t = -dot(local, towards) / dot(towards, towards);
   // The closest point itself, not |o'|^2 - (o'.d')^2 / |d'|^2: no cancellation far away.
@@ -76,6 +107,32 @@ RayResponse gaussianRayResponse(const Vec3f& centre, const Vec3f& scale, const Q
 float boundingRadius(float opacity, float alphaMin) {
   if (!(opacity > alphaMin)) return 0.0f;
   return std::sqrt(2.0f * std::log(opacity / alphaMin));
+}
+
+Bounds3f splatCentreBounds(const SplatSet& set) {
+  Bounds3f bounds;
+  for (const Vec3f& centre : set.cloud.centres) bounds.extend(set.worldFromFile.point(centre));
+  return bounds;
+}
+
+Bounds3f splatFramingBounds(const SplatSet& set) {
+  constexpr size_t kAllBelow = 1000;
+  const size_t n = set.cloud.size();
+  if (n < kAllBelow) return splatCentreBounds(set);
+  std::vector<float> axis(n);
+  Bounds3f bounds;
+  Vec3f lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    for (size_t g = 0; g < n; ++g) axis[g] = set.worldFromFile.point(set.cloud.centres[g])[a];
+    const size_t low = n / 100, high = n - 1 - n / 100;
+    std::nth_element(axis.begin(), axis.begin() + std::ptrdiff_t(low), axis.end());
+    lo[a] = axis[low];
+    std::nth_element(axis.begin(), axis.begin() + std::ptrdiff_t(high), axis.end());
+    hi[a] = axis[high];
+  }
+  bounds.extend(lo);
+  bounds.extend(hi);
+  return bounds;
 }
 
 }  // namespace parallax

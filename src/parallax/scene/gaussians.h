@@ -5,9 +5,11 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "parallax/core/math.h"
+#include "parallax/core/transform.h"
 
 namespace parallax {
 
@@ -39,6 +41,33 @@ struct GaussianCloud {
   size_t size() const { return centres.size(); }
 };
 
+// Gaussian splats a file placed in the scene (docs/splats.md): the cloud as its file holds it,
+// in the file's frame, and the affine map from that frame to the world. A Gaussian stays a
+// Gaussian under any affine map (its whitening map composes with the inverse), and its colour is
+// looked up along the ray's direction taken back into the file's frame, so nothing is resampled.
+struct SplatSet {
+  std::string name;  // the file
+  GaussianCloud cloud;
+  Transform worldFromFile;
+};
+
+// The world-space bounds of the set's centres (what Scene::bounds counts).
+Bounds3f splatCentreBounds(const SplatSet& set);
+// The bounds a framing fits (docs/splats.md, "Framing"): per axis, the centres between the
+// 1st and 99th percentiles, so that the few stray Gaussians a capture keeps far out (its
+// "floaters" and distant background) do not shrink the subject; every centre for small sets.
+Bounds3f splatFramingBounds(const SplatSet& set);
+
+// A Gaussian as a ray tracer reads it: its centre and the whitening map to its own frame,
+// x' = W (x - centre) with W = S^-1 R^T (world axes to unit-deviation local axes), as rows.
+struct GaussianFrame {
+  Vec3f centre;
+  Vec3f whiten[3];
+};
+// Gaussian g of the cloud in the world: W' = W L^-1 and centre' = worldFromFile(centre), for the
+// linear part L of worldFromFile.
+GaussianFrame gaussianFrame(const GaussianCloud& cloud, size_t g, const Transform& worldFromFile);
+
 // The basis 3DGS's colours are written in: the real spherical harmonics with the Condon-Shortley
 // phase, Y_k(d) for k < shCoefficientCount(degree), at the unit direction d.
 void shBasis(int degree, const Vec3f& d, float* basis);
@@ -60,6 +89,9 @@ struct RayResponse {
 };
 RayResponse gaussianRayResponse(const Vec3f& centre, const Vec3f& scale, const Quatf& rotation,
                                 const Vec3f& origin, const Vec3f& direction);
+// The same for a Gaussian given by its frame.
+RayResponse gaussianRayResponse(const GaussianFrame& gaussian, const Vec3f& origin,
+                                const Vec3f& direction);
 
 // 3DGS's blending: a Gaussian whose alpha is below 1/255 is skipped, alpha is capped at 0.99, and
 // a ray stops once its transmittance falls below 1e-4.

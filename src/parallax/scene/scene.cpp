@@ -14,8 +14,27 @@ size_t Scene::triangleCount() const {
   return n;
 }
 
+size_t Scene::splatCount() const {
+  size_t n = 0;
+  for (const SplatSet& set : splats) n += set.cloud.size();
+  return n;
+}
+
+Bounds3f Scene::framingBounds() const {
+  Bounds3f b;
+  for (const SplatSet& set : splats) b.extend(splatFramingBounds(set));
+  for (const auto& m : meshes)
+    for (const auto& p : m.positions) b.extend(p);
+  for (const auto& s : spheres) {
+    b.extend(s.center - Vec3f(s.radius));
+    b.extend(s.center + Vec3f(s.radius));
+  }
+  return b;
+}
+
 Bounds3f Scene::bounds() const {
   Bounds3f b;
+  for (const SplatSet& set : splats) b.extend(splatCentreBounds(set));
   for (const auto& m : meshes)
     for (const auto& p : m.positions) b.extend(p);
   for (const auto& s : spheres) {
@@ -192,7 +211,7 @@ Scene defaultScene() {
 }
 
 CameraSpec frameScene(const Scene& scene, float fovDegrees) {
-  const Bounds3f b = scene.bounds();
+  const Bounds3f b = scene.framingBounds();
   CameraSpec camera;
   camera.fovDegrees = fovDegrees;
   if (b.empty()) return camera;

@@ -11,6 +11,7 @@
 #include "parallax/core/math.h"
 #include "parallax/core/transform.h"
 #include "parallax/image/image.h"
+#include "parallax/scene/gaussians.h"
 #include "parallax/scene/look.h"
 
 namespace parallax {
@@ -213,6 +214,7 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<Image> images;  // linear RGB texture images
   std::vector<Light> lights;
+  std::vector<SplatSet> splats;
   Vec3f ambient{0.0f};     // uniform ambient radiance reaching every surface (unshadowed)
   Vec3f background{0.0f};  // radiance of rays that escape
   Look look;               // exposure and view transform of every picture (look.h)
@@ -235,11 +237,17 @@ struct Scene {
     std::string up;  // the file's up axis as used: "y" or "z"
     std::string normals;  // "file", "generated (crease 60°)", "faceted", or a mix joined by " + "
     size_t triangles = 0;
+    size_t splats = 0;  // Gaussian splats (a splat file has no triangles)
   };
   std::vector<ImportRecord> imports;
 
   size_t triangleCount() const;
+  size_t splatCount() const;
+  // Meshes, spheres and the splats' centres.
   Bounds3f bounds() const;
+  // What a framing fits: the same, with each splat set's framing bounds (splatFramingBounds)
+  // for its centres.
+  Bounds3f framingBounds() const;
 };
 
 // The distance along the ray origin + t direction (t > 0, in units of |direction| = 1) to the

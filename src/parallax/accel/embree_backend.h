@@ -1,0 +1,153 @@
+// Internal to accel: the Embree back end's shared pieces, for the files that talk to Embree
+// (accelerator.cpp: meshes and spheres; splat_trace.cpp: Gaussian splats). Nothing outside
+// this module includes it.
+#pragma once
+
+#if PARALLAX_EMBREE_MAJOR == 4
+#include <embree4/rtcore.h>
+#elif PARALLAX_EMBREE_MAJOR == 3
+#include <embree3/rtcore.h>
+#else
+#error "PARALLAX_EMBREE_MAJOR must be 3 or 4 (src/parallax/accel/CMakeLists.txt)"
+#endif
+
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "parallax/accel/accelerator.h"
+#include "parallax/scene/gaussians.h"
+
+namespace parallax {
+
+// Every ray query goes through one of these: the only place where Embree 3 and Embree 4 trace
+// differently. Embree 3 hands every query an RTCIntersectContext whose flags say whether the
+// rays are coherent; Embree 4 dropped the context from the call and takes
+// RTCIntersectArguments (closest hits) and RTCOccludedArguments (any hit) instead, with the
+// same flag as RTC_RAY_QUERY_FLAG_COHERENT. Neither has filter functions here. The geometry
+// mask default also differs (Embree 3: all bits; Embree 4: 1), which changes nothing: every
+// ray carries mask 0xffffffff, which meets either.
+class EmbreeQuery {
+ public:
+  enum class Rays { Incoherent, Coherent };
+  explicit EmbreeQuery(Rays rays) {
+#if PARALLAX_EMBREE_MAJOR == 4
+    rtcInitIntersectArguments(&intersectArguments_);
+    rtcInitOccludedArguments(&occludedArguments_);
+    if (rays == Rays::Coherent)
+      intersectArguments_.flags = occludedArguments_.flags = RTC_RAY_QUERY_FLAG_COHERENT;
+#else
+    rtcInitIntersectContext(&context_);
+    if (rays == Rays::Coherent) context_.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+#endif
+  }
+
+#if PARALLAX_EMBREE_MAJOR == 4
+  void intersect(RTCScene scene, RTCRayHit& rayHit) {
+    rtcIntersect1(scene, &rayHit, &intersectArguments_);  // the arguments come last
+  }
+  void occluded(RTCScene scene, RTCRay& ray) {
+    rtcOccluded1(scene, &ray, &occludedArguments_);  // tfar = -infinity when occluded
+  }
+  // A packet query, `query` being rtcIntersect4/8/16 or rtcOccluded4/8/16.
+  template <class Packet, class Arguments>
+  void packet(void (*query)(const int*, RTCScene, Packet*, Arguments*), const int* valid,
+              RTCScene scene, Packet& rays) {
+    if constexpr (std::is_same_v<Arguments, RTCIntersectArguments>)
+      query(valid, scene, &rays, &intersectArguments_);
+    else
+      query(valid, scene, &rays, &occludedArguments_);
+  }
+#else
+  void intersect(RTCScene scene, RTCRayHit& rayHit) {
+    rtcIntersect1(scene, &context_, &rayHit);  // the context comes before the rays
+  }
+  void occluded(RTCScene scene, RTCRay& ray) {
+    rtcOccluded1(scene, &context_, &ray);  // tfar = -infinity when occluded
+  }
+  template <class Packet>
+  void packet(void (*query)(const int*, RTCScene, RTCIntersectContext*, Packet*), const int* valid,
+              RTCScene scene, Packet& rays) {
+    query(valid, scene, &context_, &rays);
+  }
+#endif
+
+ private:
+#if PARALLAX_EMBREE_MAJOR == 4
+  RTCIntersectArguments intersectArguments_;
+  RTCOccludedArguments occludedArguments_;
+#else
+  RTCIntersectContext context_;
+#endif
+};
+
+inline void fillRay(const Ray& ray, RTCRay& out) {
+  out.org_x = ray.origin.x, out.org_y = ray.origin.y, out.org_z = ray.origin.z;
+  out.dir_x = ray.direction.x, out.dir_y = ray.direction.y, out.dir_z = ray.direction.z;
+  out.tnear = ray.tMin, out.tfar = ray.tMax;
+  out.time = 0.0f;
+  out.mask = 0xffffffffu;
+  out.id = 0;
+  out.flags = 0;
+}
+
+// The one seam between our rays and Embree's packet kernels. Embree 3 checks every ray it
+// traces (Debian's build asserts `ray.valid()`: finite origin and direction below FLT_LARGE,
+// tnear and tfar not NaN), and on CPUs without native 16-wide kernels (AVX2, SSE) it serves
+// rtcIntersect16 / rtcOccluded16 through a fallback that ignores the valid mask and traces
+// every lane whose tnear <= tfar. So every lane that is not to be traced gets a harmless ray
+// that no kernel traces (origin 0, direction +z, tnear 1 > tfar 0), and an active lane whose
+// ray Embree would reject (non-finite or huge numbers, an empty or negative interval) is
+// turned off and reads as a miss: it cannot hit anything meaningful. The same guard serves
+// Embree 4, whose packet and untraceable-lane tests pass the same way on every ISA.
+constexpr float kLargestCoordinate = 1e18f;  // below Embree's FLT_LARGE (1.844e18)
+
+inline bool traceable(float ox, float oy, float oz, float dx, float dy, float dz, float tMin, float tMax) {
+  auto small = [](float value) { return std::abs(value) <= kLargestCoordinate; };  // NaN: false
+  // Bitwise & and |: every test is cheap, and without short-circuit branches the lane loops
+  // that call this vectorise.
+  return small(ox) & small(oy) & small(oz) & small(dx) & small(dy) & small(dz) &
+         ((dx != 0.0f) | (dy != 0.0f) | (dz != 0.0f)) & (tMin >= 0.0f) & (tMin <= tMax);
+}
+
+inline bool traceable(const Ray& ray) {
+  return traceable(ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y,
+                   ray.direction.z, ray.tMin, ray.tMax);
+}
+
+// The splats' own Embree scene (splat_trace.cpp): one user geometry whose primitives are the
+// Gaussians of every set in scene order, each bounded by its ellipsoid at alpha kMinSplatAlpha.
+struct SplatStore {
+  RTCScene scene = nullptr;
+  std::vector<GaussianFrame> frames;  // world space
+  std::vector<float> opacities;
+};
+// Builds the store for every splat set of `scene` on `device` (nothing when it has none).
+void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store);
+
+struct Accelerator::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  uint32_t meshCount = 0;
+  uint32_t sphereCount = 0;
+  int packetWidth = 16, nativePacketWidth = 16;
+  BuildQuality quality = BuildQuality::High;
+  bool dynamic = false;
+  // What refit() must find again: each mesh's vertex and index counts.
+  std::vector<std::pair<size_t, size_t>> meshSizes;
+  std::mutex errorMutex;
+  std::string firstError;  // first message Embree reported through the error callback
+  SplatStore splats;
+
+  ~Impl();
+  void throwIfError(const char* stage);
+
+  // Embree calls this from whichever thread hit the error; keep the first message.
+  static void recordError(void* userPtr, RTCError code, const char* message);
+};
+
+}  // namespace parallax

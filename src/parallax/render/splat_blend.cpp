@@ -1,0 +1,69 @@
+#include "parallax/render/splat_blend.h"
+
+#include <algorithm>
+
+#include "parallax/image/image.h"
+
+namespace parallax {
+
+SplatColours::SplatColours(const Scene& scene) {
+  for (const SplatSet& splats : scene.splats) {
+    Set set;
+    set.first = count_;
+    set.cloud = &splats.cloud;
+    const Mat4& fileFromWorld = splats.worldFromFile.inverseMatrix();
+    for (int r = 0; r < 3; ++r)
+      set.fileFromWorld[r] = {fileFromWorld.m[r][0], fileFromWorld.m[r][1], fileFromWorld.m[r][2]};
+    sets_.push_back(set);
+    count_ += uint32_t(splats.cloud.size());
+  }
+}
+
+Vec3f SplatColours::colour(uint32_t gaussian, const Vec3f& direction) const {
+  // The last set whose first index is at most `gaussian` (sets are few: a linear search).
+  size_t s = sets_.size() - 1;
+  while (sets_[s].first > gaussian) --s;
+  const Set& set = sets_[s];
+  const Vec3f local =
+      normalize(Vec3f{dot(set.fileFromWorld[0], direction), dot(set.fileFromWorld[1], direction),
+                      dot(set.fileFromWorld[2], direction)});
+  const int degree = set.cloud->shDegree;
+  const size_t perGaussian = size_t(shCoefficientCount(degree));
+  return shColour(&set.cloud->sh[size_t(gaussian - set.first) * perGaussian], degree, local);
+}
+
+SplatBlend blendSplats(const Accelerator& accelerator, const SplatColours& colours,
+                       const Ray& ray) {
+  SplatBlend blend;
+  SplatHit batch[kSplatBatch];
+  SplatCursor cursor;
+  for (;;) {
+    const int count = accelerator.nextSplats(ray, cursor, batch, kSplatBatch, &blend.evaluated);
+    for (int i = 0; i < count; ++i) {
+      // 3DGS's forward pass: a Gaussian that would leave less than kMinTransmittance ends
+      // the walk unblended.
+      const float next = blend.transmittance * (1.0f - batch[i].alpha);
+      if (next < kMinTransmittance) {
+        blend.opaque = true;
+        return blend;
+      }
+      blend.colour += colours.colour(batch[i].gaussian, ray.direction) *
+                      (batch[i].alpha * blend.transmittance);
+      blend.transmittance = next;
+      ++blend.blended;
+    }
+    if (count < kSplatBatch) return blend;
+    cursor = {batch[count - 1].t, batch[count - 1].gaussian, true};
+  }
+}
+
+Vec3f overBehind(const SplatBlend& blend, const Vec3f& behind) {
+  Vec3f out;
+  for (int c = 0; c < 3; ++c) {
+    const float seen = blend.opaque ? 0.0f : linearToSrgb(std::max(behind[c], 0.0f));
+    out[c] = srgbToLinear(blend.colour[c] + blend.transmittance * seen);
+  }
+  return out;
+}
+
+}  // namespace parallax
