@@ -109,9 +109,9 @@ inline AcceleratorOptions acceleratorForCameraRays(double cameraRays) {
 // triangle, fewer on larger meshes, on Embree 3.13 and 4.3.
 inline constexpr double kEmbreeDeviceBytes = 2.5e6;
 inline constexpr double kEmbreeBytesPerTriangle = 95.0;
-// And per Gaussian splat: our frame and opacity (52 bytes) and Embree's BVH over their boxes
+// And per Gaussian splat: our frame, opacity and reach (56 bytes) and Embree's BVH over their boxes
 // (docs/splats.md, "Memory").
-inline constexpr double kAcceleratorBytesPerSplat = 52.0 + 64.0;
+inline constexpr double kAcceleratorBytesPerSplat = 56.0 + 64.0;
 inline double acceleratorBytes(const Scene& scene) {
   return kEmbreeDeviceBytes + kEmbreeBytesPerTriangle * double(scene.triangleCount()) +
          kAcceleratorBytesPerSplat * double(scene.splatCount());

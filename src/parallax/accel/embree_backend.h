@@ -125,6 +125,9 @@ struct SplatStore {
   RTCScene scene = nullptr;
   std::vector<GaussianFrame> frames;  // world space
   std::vector<float> opacities;
+  // boundingRadius(opacity)^2: a ray farther than this (squared Mahalanobis distance) from the
+  // centre sees alpha below kMinSplatAlpha, so no exponential is needed to reject it.
+  std::vector<float> reachSquared;
 };
 // Builds the store for every splat set of `scene` on `device` (nothing when it has none).
 void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store);

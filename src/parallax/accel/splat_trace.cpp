@@ -36,6 +36,7 @@ struct SplatQuery {
   RTCIntersectContext context;
 #endif
   const SplatStore* store = nullptr;
+  Vec3f origin, direction;  // the ray's, kept here rather than read back from Embree's
   SplatCursor after;
   float tMin = 0.0f, tMax = 0.0f;  // [tMin, tMax): the caller's interval
   SplatHit* hits = nullptr;
@@ -87,33 +88,31 @@ void splatBounds(const RTCBoundsFunctionArguments* args) {
 // Offers Gaussian primID to the query's buffer; never reports a hit to Embree, only pulls the
 // ray's far end in once the buffer is full.
 void splatIntersect(const RTCIntersectFunctionNArguments* args) {
+  // Queries are single rays (rtcIntersect1): N is 1, and the ray is the query's own.
+  if (!args->valid[0]) return;
   auto& query = *reinterpret_cast<SplatQuery*>(args->context);
   const uint32_t gaussian = args->primID;
-  const GaussianFrame& frame = query.store->frames[gaussian];
-  const float opacity = query.store->opacities[gaussian];
-  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
-  for (unsigned lane = 0; lane < args->N; ++lane) {
-    if (!args->valid[lane]) continue;
-    const Vec3f origin{RTCRayN_org_x(rays, args->N, lane), RTCRayN_org_y(rays, args->N, lane),
-                       RTCRayN_org_z(rays, args->N, lane)};
-    const Vec3f direction{RTCRayN_dir_x(rays, args->N, lane), RTCRayN_dir_y(rays, args->N, lane),
-                          RTCRayN_dir_z(rays, args->N, lane)};
-    const RayResponse response = gaussianRayResponse(frame, origin, direction);
+  const SplatStore& store = *query.store;
+  {
+    const RayResponse response =
+        gaussianRayResponse(store.frames[gaussian], query.origin, query.direction);
     ++query.evaluated;
     const float t = response.t;
-    if (!(t >= query.tMin) || !(t < query.tMax)) continue;
-    if (query.after.started && !before(query.after.t, query.after.gaussian, t, gaussian)) continue;
+    if (!(t >= query.tMin) || !(t < query.tMax)) return;
+    if (!(response.distanceSquared <= store.reachSquared[gaussian])) return;
+    if (query.after.started && !before(query.after.t, query.after.gaussian, t, gaussian)) return;
     const int last = query.capacity - 1;
     if (query.count == query.capacity &&
         !before(t, gaussian, query.hits[last].t, query.hits[last].gaussian))
-      continue;
-    const float alpha = response.alpha(opacity);
-    if (!(alpha >= kMinSplatAlpha)) continue;
+      return;
+    const float alpha = response.alpha(store.opacities[gaussian]);
+    if (!(alpha >= kMinSplatAlpha)) return;
     int at = query.count < query.capacity ? query.count++ : last;
     for (; at > 0 && before(t, gaussian, query.hits[at - 1].t, query.hits[at - 1].gaussian); --at)
       query.hits[at] = query.hits[at - 1];
     query.hits[at] = {t, gaussian, alpha};
-    if (query.count == query.capacity) RTCRayN_tfar(rays, args->N, lane) = query.hits[last].t;
+    if (query.count == query.capacity)
+      RTCRayN_tfar(RTCRayHitN_RayN(args->rayhit, args->N), args->N, 0) = query.hits[last].t;
   }
 }
 
@@ -129,11 +128,15 @@ void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store) {
     throw std::runtime_error("Embree: too many Gaussian splats (" + std::to_string(count) + ")");
   store.frames.resize(count);
   store.opacities.resize(count);
+  store.reachSquared.resize(count);
   size_t at = 0;
   for (const SplatSet& set : scene.splats)
     for (size_t g = 0; g < set.cloud.size(); ++g, ++at) {
       store.frames[at] = gaussianFrame(set.cloud, g, set.worldFromFile);
       store.opacities[at] = set.cloud.opacities[g];
+      const float reach = boundingRadius(set.cloud.opacities[g]);
+      // A little beyond the bound, so that rounding leaves the exact test to alpha itself.
+      store.reachSquared[at] = reach * reach * 1.0001f + 1e-6f;
     }
   store.scene = rtcNewScene(device);
   if (!store.scene) return;  // the caller reads the device's error
@@ -156,6 +159,8 @@ int Accelerator::nextSplats(const Ray& ray, const SplatCursor& after, SplatHit* 
   if (!store.scene || capacity <= 0) return 0;
   SplatQuery query;
   query.store = &store;
+  query.origin = ray.origin;
+  query.direction = ray.direction;
   query.after = after;
   query.tMin = std::max(ray.tMin, after.started ? after.t : ray.tMin);
   query.tMax = ray.tMax;

@@ -67,6 +67,7 @@ int runCommandLine(int argc, char** argv) {
   registerShowCommand(program);
   registerInfoCommand(program);
   registerBenchCommand(program);
+  registerSplatsCommand(program);
   // A dry run: the commands that estimate their whole peak stop at the estimate and print it.
   program.addFlag("--estimate", jobs::limits().estimateOnly,
                   "Print the command's estimated peak memory (resident set size) and exit before "

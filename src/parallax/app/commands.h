@@ -19,5 +19,6 @@ void registerCalibrateCommand(Command& cli);
 void registerInterlaceCommand(Command& cli);
 void registerLenticularCommand(Command& cli);
 void registerShowCommand(Command& cli);
+void registerSplatsCommand(Command& cli);
 
 }  // namespace parallax::app

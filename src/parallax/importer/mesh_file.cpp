@@ -550,6 +550,7 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
     record.reader = reader;
     record.up = upAxisName(up);
     record.splats = contents.splats->size();
+    sortForLocality(*contents.splats);
     scene.splats.push_back({path, std::move(*contents.splats),
                             options.worldFromFile * fileFromReader});
     scene.imports.push_back(record);

@@ -1,7 +1,11 @@
 #include "parallax/importer/splat_ply.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
 
 namespace parallax::meshio {
 
@@ -139,6 +143,45 @@ GaussianCloud readSplats(const std::string& path, const std::string& bytes, cons
     }
   }
   return cloud;
+}
+
+std::string splatPlyBytes(const GaussianCloud& cloud) {
+  const size_t coefficients = size_t(shCoefficientCount(cloud.shDegree));
+  const size_t rest = 3 * (coefficients - 1);
+  std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex " +
+                       std::to_string(cloud.size()) + "\n";
+  std::vector<std::string> names = {"x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1", "f_dc_2"};
+  for (size_t k = 0; k < rest; ++k) names.push_back("f_rest_" + std::to_string(k));
+  for (const char* name : {"opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2",
+                           "rot_3"})
+    names.push_back(name);
+  for (const std::string& name : names) header += "property float " + name + "\n";
+  header += "end_header\n";
+  std::string bytes = header;
+  bytes.resize(header.size() + cloud.size() * names.size() * sizeof(float));
+  char* out = bytes.data() + header.size();
+  // Little-endian floats: this machine's own order on every platform Debian builds parallax for
+  // (amd64, arm64); memcpy keeps the bytes as they are.
+  static_assert(std::endian::native == std::endian::little);
+  auto put = [&out](double value) {
+    const float f = float(value);
+    std::memcpy(out, &f, sizeof f);
+    out += sizeof f;
+  };
+  for (size_t g = 0; g < cloud.size(); ++g) {
+    const Vec3f& c = cloud.centres[g];
+    put(c.x), put(c.y), put(c.z), put(0), put(0), put(0);
+    const Vec3f* sh = &cloud.sh[g * coefficients];
+    for (int channel = 0; channel < 3; ++channel) put(sh[0][channel]);
+    for (int channel = 0; channel < 3; ++channel)
+      for (size_t k = 1; k < coefficients; ++k) put(sh[k][channel]);
+    const double o = std::clamp(double(cloud.opacities[g]), 1e-7, 1.0 - 1e-7);
+    put(std::log(o / (1.0 - o)));
+    for (int a = 0; a < 3; ++a) put(std::log(double(cloud.scales[g][a])));
+    const Quatf& q = cloud.rotations[g];
+    put(q.w), put(q.x), put(q.y), put(q.z);
+  }
+  return bytes;
 }
 
 }  // namespace parallax::meshio

@@ -1,7 +1,8 @@
 // Gaussian splats in a PLY file, as 3DGS writes them (docs/splats.md, "Files"), internal to the
 // importer: a vertex element with x y z, f_dc_0..2, f_rest_0..3K-1 (K = 0, 3, 8 or 15: degree 0
 // to 3, channel-major), opacity (a logit), scale_0..2 (logs) and rot_0..3 (a quaternion w x y z),
-// in any order and beside other properties (normals), read by name.
+// in any order and beside other properties (normals), read by name. The reader is the importer's
+// own (loadMeshFile calls it); the writer serves the splat tools (jobs/splat_making.h).
 #pragma once
 
 #include <string>
@@ -20,5 +21,10 @@ bool holdsSplats(const Header& header);
 // [-30, 30] (no Gaussian is 10^13 times its neighbours), a zero quaternion, a count the file
 // cannot hold.
 GaussianCloud readSplats(const std::string& path, const std::string& bytes, const Header& header);
+
+// The cloud as 3DGS writes it: binary little-endian floats x y z nx ny nz (zero) f_dc_0..2
+// f_rest_* (channel-major) opacity (the logit) scale_0..2 (logs) rot_0..3 (w x y z), the file
+// readSplats reads back to the same values (to float rounding of the logs and the logit).
+std::string splatPlyBytes(const GaussianCloud& cloud);
 
 }  // namespace parallax::meshio

@@ -94,6 +94,14 @@ std::string formatDuration(double seconds) {
   return text;
 }
 
+std::string splatClause(uint64_t evaluated, uint64_t blended, uint64_t cameraRays) {
+  if (evaluated == 0 || cameraRays == 0) return "";
+  char text[96];
+  std::snprintf(text, sizeof text, ", %.1f Gaussians evaluated and %.1f blended a camera ray",
+                double(evaluated) / double(cameraRays), double(blended) / double(cameraRays));
+  return text;
+}
+
 std::string formatRate(double raysPerSecond) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f M rays/s", raysPerSecond / 1e6);

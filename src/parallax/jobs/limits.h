@@ -3,6 +3,7 @@
 // estimated at an optimistic rate), and the renderer's 2^31-pixel index.
 #pragma once
 
+#include <cstdint>
 #include <exception>
 #include <string>
 #include <utility>
@@ -74,5 +75,8 @@ void checkTimeEstimate(double samples, int threads, const std::string& field,
 std::string formatDuration(double seconds);
 // "12.3 M rays/s".
 std::string formatRate(double raysPerSecond);
+// What a camera ray met of the splats (docs/splats.md, "Speed"): ", 41.2 Gaussians evaluated
+// and 9.8 blended a camera ray", or "" when no splat was evaluated.
+std::string splatClause(uint64_t evaluated, uint64_t blended, uint64_t cameraRays);
 
 }  // namespace parallax::jobs

@@ -178,11 +178,16 @@ void recordSpeed(JsonWriter& record, const RenderStats& stats) {
   record.set("/seconds", stats.seconds);
   record.set("/rays", stats.totalRays());
   record.set("/rays_per_second", double(stats.totalRays()) / stats.seconds);
+  if (stats.splatsEvaluated) {
+    record.set("/splats_evaluated", stats.splatsEvaluated);
+    record.set("/splats_blended", stats.splatsBlended);
+  }
 }
 
 std::string speedLine(int spp, const RenderStats& stats) {
-  return printed("%d spp in %.2f s, %s", spp, stats.seconds,
-                 formatRate(double(stats.totalRays()) / stats.seconds).c_str());
+  return printed("%d spp in %.2f s, %s%s", spp, stats.seconds,
+                 formatRate(double(stats.totalRays()) / stats.seconds).c_str(),
+                 splatClause(stats.splatsEvaluated, stats.splatsBlended, stats.cameraRays).c_str());
 }
 
 // A frame's pictures and record, before they are written or handed over.

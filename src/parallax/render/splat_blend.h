@@ -23,7 +23,26 @@ class SplatColours {
   // (any length): its harmonics at that direction taken into its file's frame.
   Vec3f colour(uint32_t gaussian, const Vec3f& direction) const;
 
+  // The colours of many Gaussians along one ray: the basis at the ray's direction is the same
+  // for every Gaussian of a set, so it is evaluated once a set, not once a Gaussian.
+  class AlongRay {
+   public:
+    AlongRay(const SplatColours& colours, const Vec3f& direction)
+        : colours_(colours), direction_(direction) {}
+    Vec3f colour(uint32_t gaussian);
+
+   private:
+    const SplatColours& colours_;
+    Vec3f direction_;
+    size_t set_ = size_t(-1);  // the set whose basis `basis_` holds
+    int count_ = 0;
+    // The basis repeated for the three channels (basis_[3 k + c] = Y_k), to multiply a
+    // Gaussian's coefficient-major floats as they lie in memory.
+    alignas(64) float basis_[3 * shCoefficientCount(kMaxShDegree)];
+  };
+
  private:
+  size_t setOf(uint32_t gaussian) const;
   struct Set {
     uint32_t first = 0;
     const GaussianCloud* cloud = nullptr;
@@ -46,7 +65,7 @@ struct SplatBlend {
 };
 
 // The k-buffer's size: the Gaussians a query gathers before the walk blends them and goes on.
-inline constexpr int kSplatBatch = 16;
+inline constexpr int kSplatBatch = 64;
 
 // The splats along `ray` within [ray.tMin, ray.tMax) (tMax: the opaque surface's hit).
 SplatBlend blendSplats(const Accelerator& accelerator, const SplatColours& colours,

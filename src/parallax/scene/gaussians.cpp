@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace parallax {
@@ -109,6 +111,55 @@ float boundingRadius(float opacity, float alphaMin) {
   return std::sqrt(2.0f * std::log(opacity / alphaMin));
 }
 
+namespace {
+
+// The bits of v (below 2^21) spread to every third bit.
+uint64_t spreadBits(uint64_t v) {
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffull;
+  v = (v | v << 16) & 0x1f0000ff0000ffull;
+  v = (v | v << 8) & 0x100f00f00f00f00full;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+  v = (v | v << 2) & 0x1249249249249249ull;
+  return v;
+}
+
+template <class T>
+void permute(std::vector<T>& values, const std::vector<uint32_t>& order, size_t stride) {
+  std::vector<T> sorted(values.size());
+  for (size_t i = 0; i < order.size(); ++i)
+    std::copy_n(values.begin() + std::ptrdiff_t(order[i] * stride), stride,
+                sorted.begin() + std::ptrdiff_t(i * stride));
+  values.swap(sorted);
+}
+
+}  // namespace
+
+void sortForLocality(GaussianCloud& cloud) {
+  const size_t n = cloud.size();
+  if (n < 2) return;
+  Bounds3f bounds;
+  for (const Vec3f& c : cloud.centres) bounds.extend(c);
+  const Vec3f extent = bounds.diagonal();
+  std::vector<std::pair<uint64_t, uint32_t>> keys(n);
+  for (size_t g = 0; g < n; ++g) {
+    uint64_t code = 0;
+    for (int a = 0; a < 3; ++a) {
+      const float unit = extent[a] > 0 ? (cloud.centres[g][a] - bounds.lo[a]) / extent[a] : 0.0f;
+      code |= spreadBits(uint64_t(std::clamp(unit, 0.0f, 1.0f) * 2097151.0f)) << a;
+    }
+    keys[g] = {code, uint32_t(g)};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<uint32_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = keys[i].second;
+  permute(cloud.centres, order, 1);
+  permute(cloud.scales, order, 1);
+  permute(cloud.rotations, order, 1);
+  permute(cloud.opacities, order, 1);
+  permute(cloud.sh, order, size_t(shCoefficientCount(cloud.shDegree)));
+}
+
 Bounds3f splatCentreBounds(const SplatSet& set) {
   Bounds3f bounds;
   for (const Vec3f& centre : set.cloud.centres) bounds.extend(set.worldFromFile.point(centre));
@@ -119,19 +170,22 @@ Bounds3f splatFramingBounds(const SplatSet& set) {
   constexpr size_t kAllBelow = 1000;
   const size_t n = set.cloud.size();
   if (n < kAllBelow) return splatCentreBounds(set);
-  std::vector<float> axis(n);
-  Bounds3f bounds;
-  Vec3f lo, hi;
+  std::vector<Vec3f> centres(n);
+  for (size_t g = 0; g < n; ++g) centres[g] = set.worldFromFile.point(set.cloud.centres[g]);
+  std::vector<float> values(n);
+  Vec3f median;
   for (int a = 0; a < 3; ++a) {
-    for (size_t g = 0; g < n; ++g) axis[g] = set.worldFromFile.point(set.cloud.centres[g])[a];
-    const size_t low = n / 100, high = n - 1 - n / 100;
-    std::nth_element(axis.begin(), axis.begin() + std::ptrdiff_t(low), axis.end());
-    lo[a] = axis[low];
-    std::nth_element(axis.begin(), axis.begin() + std::ptrdiff_t(high), axis.end());
-    hi[a] = axis[high];
+    for (size_t g = 0; g < n; ++g) values[g] = centres[g][a];
+    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(n / 2), values.end());
+    median[a] = values[n / 2];
   }
-  bounds.extend(lo);
-  bounds.extend(hi);
+  for (size_t g = 0; g < n; ++g) values[g] = length(centres[g] - median);
+  const size_t at = n * 8 / 10;
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(at), values.end());
+  const float reach = 1.5f * values[at];
+  Bounds3f bounds;
+  for (const Vec3f& centre : centres)
+    if (length(centre - median) <= reach) bounds.extend(centre);
   return bounds;
 }
 

@@ -51,11 +51,20 @@ struct SplatSet {
   Transform worldFromFile;
 };
 
+// Puts the cloud's Gaussians in the order of their centres along a Morton (Z-order) curve, so
+// that Gaussians near in space are near in memory: a ray meets Gaussians that are near each
+// other, and a file's own order (a capture's: as training left it) scatters them, so that every
+// frame and colour a ray reads missed the caches (docs/splats.md, "Speed"). The same cloud
+// always gets the same order (ties by the old index).
+void sortForLocality(GaussianCloud& cloud);
+
 // The world-space bounds of the set's centres (what Scene::bounds counts).
 Bounds3f splatCentreBounds(const SplatSet& set);
-// The bounds a framing fits (docs/splats.md, "Framing"): per axis, the centres between the
-// 1st and 99th percentiles, so that the few stray Gaussians a capture keeps far out (its
-// "floaters" and distant background) do not shrink the subject; every centre for small sets.
+// The bounds a framing fits (docs/splats.md, "Framing"): the centres within 1.5 times the
+// distance from their median (per axis) that holds 80 % of them, so that what a capture keeps
+// far out (its distant background, its floaters) does not shrink the subject, while a compact
+// object keeps all of itself (a uniform ball's 80 % radius is 0.93 of its radius); every centre
+// for sets under 1000.
 Bounds3f splatFramingBounds(const SplatSet& set);
 
 // A Gaussian as a ray tracer reads it: its centre and the whitening map to its own frame,
