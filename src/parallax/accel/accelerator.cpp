@@ -120,44 +120,6 @@ RTCGeometry newSphereGeometry(RTCDevice device, const Sphere& sphere) {
   return geometry;
 }
 
-void disableLane(RTCRay16& ray, int lane) {
-  ray.org_x[lane] = 0.0f, ray.org_y[lane] = 0.0f, ray.org_z[lane] = 0.0f;
-  ray.dir_x[lane] = 0.0f, ray.dir_y[lane] = 0.0f, ray.dir_z[lane] = 1.0f;
-  ray.tnear[lane] = 1.0f, ray.tfar[lane] = 0.0f;
-}
-
-// Makes `ray` safe for rtcIntersect16 / rtcOccluded16 under any ISA: clears `valid` for lanes
-// Embree cannot trace and disarms every lane `valid` leaves out. Returns the active count.
-PARALLAX_LANE_KERNEL int guardPacket(RTCRay16& ray, int valid[16]) {
-  // The test lane by lane without branches (it vectorises), then the rare disarming.
-  int count = 0;
-  for (int lane = 0; lane < 16; ++lane) {
-    const bool trace = (valid[lane] != 0) &
-                       traceable(ray.org_x[lane], ray.org_y[lane], ray.org_z[lane], ray.dir_x[lane],
-                                 ray.dir_y[lane], ray.dir_z[lane], ray.tnear[lane], ray.tfar[lane]);
-    valid[lane] = trace ? -1 : 0;
-    count += int(trace);
-  }
-  if (count < 16)
-    for (int lane = 0; lane < 16; ++lane)
-      if (valid[lane] == 0) disableLane(ray, lane);
-  return count;
-}
-
-PARALLAX_LANE_KERNEL void fillRays(const RayPacket16& rays, RTCRay16& out) {
-  for (int lane = 0; lane < 16; ++lane) {
-    out.org_x[lane] = rays.ox[lane], out.org_y[lane] = rays.oy[lane];
-    out.org_z[lane] = rays.oz[lane];
-    out.dir_x[lane] = rays.dx[lane], out.dir_y[lane] = rays.dy[lane];
-    out.dir_z[lane] = rays.dz[lane];
-    out.tnear[lane] = rays.tMin[lane], out.tfar[lane] = rays.tMax[lane];
-    out.time[lane] = 0.0f;
-    out.mask[lane] = 0xffffffffu;
-    out.id[lane] = unsigned(lane);
-    out.flags[lane] = 0;
-  }
-}
-
 // A 16-ray packet traced as 16 / N queries of N rays (N = 4 or 8), each skipped when all its
 // lanes are inactive: the packet width Embree runs natively on AVX2 (8) or SSE (4). `RayN`
 // is RTCRay4/8 or RTCRayHit4/8; `copyIn` and `copyOut` move one lane between the two layouts.

@@ -206,6 +206,13 @@ class Accelerator {
   // evaluated (the walk's cost) to `evaluated` when given.
   int nextSplats(const Ray& ray, const SplatCursor& after, SplatHit* out, int capacity,
                  uint64_t* evaluated = nullptr) const;
+  // The same for the active lanes of a packet at once, each from its own cursor
+  // (`after[lane]`), its hits into out[lane * capacity ...] and their count into counts[lane]
+  // (0 for inactive lanes): one packet query, whose traversal Embree shares among the rays and
+  // whose responses are evaluated for all of them together. The same hits as nextSplats for
+  // each lane.
+  void nextSplats16(const RayPacket16& rays, const SplatCursor after[16], SplatHit* out,
+                    int capacity, int counts[16], uint64_t* evaluated = nullptr) const;
   // How many Gaussians the splat BVH holds (Scene::splatCount() of the scene it was built from).
   size_t splatCount() const;
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "parallax/accel/accelerator.h"
+#include "parallax/core/lane_kernel.h"
 #include "parallax/scene/gaussians.h"
 
 namespace parallax {
@@ -117,6 +118,44 @@ inline bool traceable(float ox, float oy, float oz, float dx, float dy, float dz
 inline bool traceable(const Ray& ray) {
   return traceable(ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y,
                    ray.direction.z, ray.tMin, ray.tMax);
+}
+
+inline void disableLane(RTCRay16& ray, int lane) {
+  ray.org_x[lane] = 0.0f, ray.org_y[lane] = 0.0f, ray.org_z[lane] = 0.0f;
+  ray.dir_x[lane] = 0.0f, ray.dir_y[lane] = 0.0f, ray.dir_z[lane] = 1.0f;
+  ray.tnear[lane] = 1.0f, ray.tfar[lane] = 0.0f;
+}
+
+// Makes `ray` safe for rtcIntersect16 / rtcOccluded16 under any ISA: clears `valid` for lanes
+// Embree cannot trace and disarms every lane `valid` leaves out. Returns the active count.
+PARALLAX_LANE_KERNEL static int guardPacket(RTCRay16& ray, int valid[16]) {
+  // The test lane by lane without branches (it vectorises), then the rare disarming.
+  int count = 0;
+  for (int lane = 0; lane < 16; ++lane) {
+    const bool trace = (valid[lane] != 0) &
+                       traceable(ray.org_x[lane], ray.org_y[lane], ray.org_z[lane], ray.dir_x[lane],
+                                 ray.dir_y[lane], ray.dir_z[lane], ray.tnear[lane], ray.tfar[lane]);
+    valid[lane] = trace ? -1 : 0;
+    count += int(trace);
+  }
+  if (count < 16)
+    for (int lane = 0; lane < 16; ++lane)
+      if (valid[lane] == 0) disableLane(ray, lane);
+  return count;
+}
+
+PARALLAX_LANE_KERNEL static void fillRays(const RayPacket16& rays, RTCRay16& out) {
+  for (int lane = 0; lane < 16; ++lane) {
+    out.org_x[lane] = rays.ox[lane], out.org_y[lane] = rays.oy[lane];
+    out.org_z[lane] = rays.oz[lane];
+    out.dir_x[lane] = rays.dx[lane], out.dir_y[lane] = rays.dy[lane];
+    out.dir_z[lane] = rays.dz[lane];
+    out.tnear[lane] = rays.tMin[lane], out.tfar[lane] = rays.tMax[lane];
+    out.time[lane] = 0.0f;
+    out.mask[lane] = 0xffffffffu;
+    out.id[lane] = unsigned(lane);
+    out.flags[lane] = 0;
+  }
 }
 
 // The splats' own Embree scene (splat_trace.cpp): one user geometry whose primitives are the

@@ -14,6 +14,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "parallax/accel/embree_backend.h"
 
@@ -25,25 +26,6 @@ namespace {
 inline bool before(float ta, uint32_t ga, float tb, uint32_t gb) {
   return ta < tb || (ta == tb && ga < gb);
 }
-
-// What one query carries into Embree's callbacks. Embree hands the callbacks the address of
-// the context it was given, which is this struct's first member (Embree's documented way to
-// pass per-query data: RTCIntersectContext in Embree 3, RTCRayQueryContext in Embree 4).
-struct SplatQuery {
-#if PARALLAX_EMBREE_MAJOR == 4
-  RTCRayQueryContext context;
-#else
-  RTCIntersectContext context;
-#endif
-  const SplatStore* store = nullptr;
-  Vec3f origin, direction;  // the ray's, kept here rather than read back from Embree's
-  SplatCursor after;
-  float tMin = 0.0f, tMax = 0.0f;  // [tMin, tMax): the caller's interval
-  SplatHit* hits = nullptr;
-  int capacity = 0;
-  int count = 0;
-  uint64_t evaluated = 0;
-};
 
 // The box of Gaussian g's ellipsoid |W (x - c)| <= r: x = c + W^-1 u with |u| <= r reaches
 // r |row a of W^-1| along world axis a. Padded a little, so that rounding in Embree's box test
@@ -85,34 +67,77 @@ void splatBounds(const RTCBoundsFunctionArguments* args) {
   box.lower_z = frame.centre.z - half[2], box.upper_z = frame.centre.z + half[2];
 }
 
-// Offers Gaussian primID to the query's buffer; never reports a hit to Embree, only pulls the
-// ray's far end in once the buffer is full.
-void splatIntersect(const RTCIntersectFunctionNArguments* args) {
-  // Queries are single rays (rtcIntersect1): N is 1, and the ray is the query's own.
-  if (!args->valid[0]) return;
-  auto& query = *reinterpret_cast<SplatQuery*>(args->context);
+// A packet's query: the same for sixteen rays, each with its own interval, cursor and buffer.
+struct SplatQuery16 {
+#if PARALLAX_EMBREE_MAJOR == 4
+  RTCRayQueryContext context;
+#else
+  RTCIntersectContext context;
+#endif
+  const SplatStore* store = nullptr;
+  const RayPacket16* rays = nullptr;
+  float tMin[16] = {}, tMax[16] = {};
+  const SplatCursor* after = nullptr;
+  SplatHit* hits = nullptr;  // capacity a lane
+  int capacity = 0;
+  int* count = nullptr;
+  uint64_t evaluated = 0;
+};
+
+// Offers one Gaussian to every valid ray of the packet Embree hands over. The responses are
+// computed for all lanes in one loop (vectorised); the few that are seen are then offered to
+// their lane's buffer one by one. Embree may hand over the packet whole or in parts: a ray's
+// lane is found from its id, which fillRays set to the lane.
+PARALLAX_LANE_KERNEL void splatIntersect16(const RTCIntersectFunctionNArguments* args) {
+  auto& query = *reinterpret_cast<SplatQuery16*>(args->context);
   const uint32_t gaussian = args->primID;
   const SplatStore& store = *query.store;
-  {
-    const RayResponse response =
-        gaussianRayResponse(store.frames[gaussian], query.origin, query.direction);
+  const GaussianFrame& f = store.frames[gaussian];
+  const float reach = store.reachSquared[gaussian];
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  const RayPacket16& packet = *query.rays;
+  const unsigned n = args->N;
+  alignas(64) float t[16], q[16];
+  alignas(64) int lanes[16];
+  for (unsigned i = 0; i < n && i < 16; ++i) lanes[i] = int(RTCRayN_id(rays, n, i)) & 15;
+  const unsigned width = n < 16 ? n : 16;
+  PARALLAX_SIMD
+  for (unsigned i = 0; i < width; ++i) {
+    const int lane = lanes[i];
+    const float ox = packet.ox[lane] - f.centre.x, oy = packet.oy[lane] - f.centre.y,
+                oz = packet.oz[lane] - f.centre.z;
+    const float dx = packet.dx[lane], dy = packet.dy[lane], dz = packet.dz[lane];
+    const float l0 = f.whiten[0].x * ox + f.whiten[0].y * oy + f.whiten[0].z * oz;
+    const float l1 = f.whiten[1].x * ox + f.whiten[1].y * oy + f.whiten[1].z * oz;
+    const float l2 = f.whiten[2].x * ox + f.whiten[2].y * oy + f.whiten[2].z * oz;
+    const float w0 = f.whiten[0].x * dx + f.whiten[0].y * dy + f.whiten[0].z * dz;
+    const float w1 = f.whiten[1].x * dx + f.whiten[1].y * dy + f.whiten[1].z * dz;
+    const float w2 = f.whiten[2].x * dx + f.whiten[2].y * dy + f.whiten[2].z * dz;
+    const float along = -(l0 * w0 + l1 * w1 + l2 * w2) / (w0 * w0 + w1 * w1 + w2 * w2);
+    const float c0 = l0 + w0 * along, c1 = l1 + w1 * along, c2 = l2 + w2 * along;
+    t[i] = along;
+    q[i] = c0 * c0 + c1 * c1 + c2 * c2;
+  }
+  const int last = query.capacity - 1;
+  for (unsigned i = 0; i < width; ++i) {
+    if (!args->valid[i]) continue;
     ++query.evaluated;
-    const float t = response.t;
-    if (!(t >= query.tMin) || !(t < query.tMax)) return;
-    if (!(response.distanceSquared <= store.reachSquared[gaussian])) return;
-    if (query.after.started && !before(query.after.t, query.after.gaussian, t, gaussian)) return;
-    const int last = query.capacity - 1;
-    if (query.count == query.capacity &&
-        !before(t, gaussian, query.hits[last].t, query.hits[last].gaussian))
-      return;
-    const float alpha = response.alpha(store.opacities[gaussian]);
-    if (!(alpha >= kMinSplatAlpha)) return;
-    int at = query.count < query.capacity ? query.count++ : last;
-    for (; at > 0 && before(t, gaussian, query.hits[at - 1].t, query.hits[at - 1].gaussian); --at)
-      query.hits[at] = query.hits[at - 1];
-    query.hits[at] = {t, gaussian, alpha};
-    if (query.count == query.capacity)
-      RTCRayN_tfar(RTCRayHitN_RayN(args->rayhit, args->N), args->N, 0) = query.hits[last].t;
+    const int lane = lanes[i];
+    const float ti = t[i];
+    if (!(ti >= query.tMin[lane]) || !(ti < query.tMax[lane]) || !(q[i] <= reach)) continue;
+    const SplatCursor& after = query.after[lane];
+    if (after.started && !before(after.t, after.gaussian, ti, gaussian)) continue;
+    SplatHit* hits = query.hits + size_t(lane) * size_t(query.capacity);
+    int& count = query.count[lane];
+    if (count == query.capacity && !before(ti, gaussian, hits[last].t, hits[last].gaussian))
+      continue;
+    const float alpha = RayResponse{ti, q[i]}.alpha(store.opacities[gaussian]);
+    if (!(alpha >= kMinSplatAlpha)) continue;
+    int at = count < query.capacity ? count++ : last;
+    for (; at > 0 && before(ti, gaussian, hits[at - 1].t, hits[at - 1].gaussian); --at)
+      hits[at] = hits[at - 1];
+    hits[at] = {ti, gaussian, alpha};
+    if (count == query.capacity) RTCRayN_tfar(rays, n, i) = hits[last].t;
   }
 }
 
@@ -145,7 +170,7 @@ void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store) {
   rtcSetGeometryUserPrimitiveCount(geometry, unsigned(count));
   rtcSetGeometryUserData(geometry, &store);
   rtcSetGeometryBoundsFunction(geometry, splatBounds, nullptr);
-  rtcSetGeometryIntersectFunction(geometry, splatIntersect);
+  rtcSetGeometryIntersectFunction(geometry, splatIntersect16);
   rtcSetGeometryOccludedFunction(geometry, splatOccluded);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(store.scene, geometry);
@@ -155,36 +180,55 @@ void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store) {
 
 int Accelerator::nextSplats(const Ray& ray, const SplatCursor& after, SplatHit* out,
                             int capacity, uint64_t* evaluated) const {
+  // One lane of a packet: the single-ray walk and the packet's are then one code path.
+  RayPacket16 packet{};
+  for (int lane = 0; lane < 16; ++lane) packet.deactivate(lane);
+  packet.set(0, ray);
+  SplatCursor cursors[16];
+  cursors[0] = after;
+  std::vector<SplatHit> hits(size_t(capacity) * 16);
+  int counts[16];
+  nextSplats16(packet, cursors, hits.data(), capacity, counts, evaluated);
+  std::copy_n(hits.begin(), counts[0], out);
+  return counts[0];
+}
+
+void Accelerator::nextSplats16(const RayPacket16& rays, const SplatCursor after[16], SplatHit* out,
+                               int capacity, int counts[16], uint64_t* evaluated) const {
+  for (int lane = 0; lane < 16; ++lane) counts[lane] = 0;
   const SplatStore& store = impl_->splats;
-  if (!store.scene || capacity <= 0) return 0;
-  SplatQuery query;
+  if (!store.scene || capacity <= 0) return;
+  SplatQuery16 query;
   query.store = &store;
-  query.origin = ray.origin;
-  query.direction = ray.direction;
+  query.rays = &rays;
   query.after = after;
-  query.tMin = std::max(ray.tMin, after.started ? after.t : ray.tMin);
-  query.tMax = ray.tMax;
   query.hits = out;
   query.capacity = capacity;
-  Ray bounded = ray;
-  bounded.tMin = query.tMin;
-  if (!traceable(bounded)) return 0;
-  RTCRayHit rayHit;
-  fillRay(bounded, rayHit.ray);
-  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  query.count = counts;
+  alignas(64) RTCRayHit16 rayHit;
+  fillRays(rays, rayHit.ray);
+  alignas(64) int valid[16];
+  for (int lane = 0; lane < 16; ++lane) {
+    query.tMin[lane] = std::max(rays.tMin[lane], after[lane].started ? after[lane].t : rays.tMin[lane]);
+    query.tMax[lane] = rays.tMax[lane];
+    rayHit.ray.tnear[lane] = query.tMin[lane];
+    rayHit.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+    rayHit.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+    valid[lane] = rays.active[lane] ? -1 : 0;
+  }
+  if (guardPacket(rayHit.ray, valid) == 0) return;
 #if PARALLAX_EMBREE_MAJOR == 4
   rtcInitRayQueryContext(&query.context);
   RTCIntersectArguments arguments;
   rtcInitIntersectArguments(&arguments);
   arguments.context = &query.context;
-  rtcIntersect1(store.scene, &rayHit, &arguments);
+  arguments.intersect = nullptr;
+  rtcIntersect16(valid, store.scene, &rayHit, &arguments);
 #else
   rtcInitIntersectContext(&query.context);
-  rtcIntersect1(store.scene, &query.context, &rayHit);
+  rtcIntersect16(valid, store.scene, &query.context, &rayHit);
 #endif
   if (evaluated) *evaluated += query.evaluated;
-  return query.count;
 }
 
 size_t Accelerator::splatCount() const {

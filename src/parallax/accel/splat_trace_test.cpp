@@ -1,6 +1,6 @@
 // The splat walk (Accelerator::nextSplats) against brute force: every Gaussian's response along
 // the ray, those reaching kMinSplatAlpha kept and sorted by (t, index). The walk, a buffer at a
-// time, must give exactly that list, whatever the buffer's size.
+// time, must give that list, whatever the buffer's size.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -95,8 +95,10 @@ TEST(SplatTrace, TheWalkFindsWhatBruteForceFindsInTheSameOrder) {
       ASSERT_EQ(found.size(), expected.size()) << "ray " << r << ", buffer " << capacity;
       for (size_t i = 0; i < found.size(); ++i) {
         EXPECT_EQ(found[i].gaussian, expected[i].gaussian) << "ray " << r << " hit " << i;
-        EXPECT_EQ(found[i].t, expected[i].t);
-        EXPECT_EQ(found[i].alpha, expected[i].alpha);
+        // The walk's responses are computed for a packet's lanes together, where the compiler
+        // may fuse multiplies and adds: the same to float rounding.
+        EXPECT_NEAR(found[i].t, expected[i].t, 1e-5f * std::abs(expected[i].t));
+        EXPECT_NEAR(found[i].alpha, expected[i].alpha, 1e-5f);
       }
     }
   }

@@ -74,12 +74,13 @@ void PacketTracer::traceThroughSplats(const RayPacket16& rays, const Color16& we
   HitPacket16 hits;
   accelerator_.intersect16(rays, hits);
   SplatBlend blends[16];
+  RayPacket16 walked = rays;
+  for (int lane = 0; lane < 16; ++lane)
+    if (hits.geometry[lane] != kNoHit) walked.tMax[lane] = hits.t[lane];
+  blendSplats16(accelerator_, splats_, walked, blends);
   RayPacket16 behindRays = rays;
   for (int lane = 0; lane < 16; ++lane) {
     if (!rays.active[lane]) continue;
-    Ray ray = rays.ray(lane);
-    if (hits.geometry[lane] != kNoHit) ray.tMax = hits.t[lane];
-    blends[lane] = blendSplats(accelerator_, splats_, ray);
     stats.splatsEvaluated += blends[lane].evaluated;
     stats.splatsBlended += blends[lane].blended;
     if (blends[lane].opaque) {

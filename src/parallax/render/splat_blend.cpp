@@ -1,6 +1,7 @@
 #include "parallax/render/splat_blend.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "parallax/image/image.h"
 
@@ -66,6 +67,29 @@ Vec3f SplatColours::colour(uint32_t gaussian, const Vec3f& direction) const {
   return shColour(&set.cloud->sh[size_t(gaussian - set.first) * perGaussian], degree, local);
 }
 
+namespace {
+
+// Blends a batch of hits (nearest first) into `blend`; false once the walk is over (the batch
+// was not full, or the splats became opaque).
+bool blendBatch(const SplatHit* batch, int count, SplatColours::AlongRay& along,
+                SplatBlend& blend) {
+  for (int i = 0; i < count; ++i) {
+    // 3DGS's forward pass: a Gaussian that would leave less than kMinTransmittance ends the
+    // walk unblended.
+    const float next = blend.transmittance * (1.0f - batch[i].alpha);
+    if (next < kMinTransmittance) {
+      blend.opaque = true;
+      return false;
+    }
+    blend.colour += along.colour(batch[i].gaussian) * (batch[i].alpha * blend.transmittance);
+    blend.transmittance = next;
+    ++blend.blended;
+  }
+  return count == kSplatBatch;
+}
+
+}  // namespace
+
 SplatBlend blendSplats(const Accelerator& accelerator, const SplatColours& colours,
                        const Ray& ray) {
   SplatBlend blend;
@@ -73,26 +97,51 @@ SplatBlend blendSplats(const Accelerator& accelerator, const SplatColours& colou
   SplatHit batch[kSplatBatch];
   SplatCursor cursor;
   for (;;) {
-    const int count = accelerator.nextSplats(ray, cursor, batch, kSplatBatch, &blend.evaluated);
-    for (int i = 0; i < count; ++i) {
-      // 3DGS's forward pass: a Gaussian that would leave less than kMinTransmittance ends
-      // the walk unblended.
-      const float next = blend.transmittance * (1.0f - batch[i].alpha);
-      if (next < kMinTransmittance) {
-        blend.opaque = true;
-        return blend;
-      }
-      blend.colour += along.colour(batch[i].gaussian) *
-                      (batch[i].alpha * blend.transmittance);
-      blend.transmittance = next;
-      ++blend.blended;
-    }
-    if (count < kSplatBatch) return blend;
-    cursor = {batch[count - 1].t, batch[count - 1].gaussian, true};
+    const int count =
+        accelerator.nextSplats(ray, cursor, batch, kSplatBatch, &blend.evaluated);
+    if (!blendBatch(batch, count, along, blend)) return blend;
+    cursor = {batch[kSplatBatch - 1].t, batch[kSplatBatch - 1].gaussian, true};
   }
 }
 
+void blendSplats16(const Accelerator& accelerator, const SplatColours& colours,
+                   const RayPacket16& rays, SplatBlend blends[16]) {
+  RayPacket16 walking = rays;
+  SplatCursor cursors[16];
+  std::optional<SplatColours::AlongRay> along[16];
+  int remaining = 0;
+  for (int lane = 0; lane < 16; ++lane) {
+    blends[lane] = SplatBlend{};
+    if (!rays.active[lane]) continue;
+    along[lane].emplace(colours, rays.ray(lane).direction);
+    ++remaining;
+  }
+  SplatHit hits[16 * kSplatBatch];
+  int counts[16];
+  uint64_t evaluated = 0;
+  while (remaining > 0) {
+    accelerator.nextSplats16(walking, cursors, hits, kSplatBatch, counts, &evaluated);
+    for (int lane = 0; lane < 16; ++lane) {
+      if (!walking.active[lane]) continue;
+      const SplatHit* batch = hits + lane * kSplatBatch;
+      if (blendBatch(batch, counts[lane], *along[lane], blends[lane])) {
+        cursors[lane] = {batch[kSplatBatch - 1].t, batch[kSplatBatch - 1].gaussian, true};
+      } else {
+        walking.deactivate(lane);
+        --remaining;
+      }
+    }
+  }
+  // The packet's evaluations, charged to its first lane (the totals are what is reported).
+  for (int lane = 0; lane < 16; ++lane)
+    if (rays.active[lane]) {
+      blends[lane].evaluated = evaluated;
+      break;
+    }
+}
+
 Vec3f overBehind(const SplatBlend& blend, const Vec3f& behind) {
+  if (blend.blended == 0 && !blend.opaque) return behind;  // no splat in front
   Vec3f out;
   for (int c = 0; c < 3; ++c) {
     const float seen = blend.opaque ? 0.0f : linearToSrgb(std::max(behind[c], 0.0f));
