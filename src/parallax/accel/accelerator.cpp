@@ -363,6 +363,13 @@ void Accelerator::refit(const Scene& scene) {
   }
   rtcCommitScene(impl.scene);
   impl.throwIfError("refit");
+  // Splat sets move by their placement (a turntable): their frames again, their boxes rebuilt.
+  if (scene.splatCount() != impl.splats.frames.size())
+    throw std::invalid_argument("refit: the scene has other splats than the BVH");
+  if (impl.splats.scene) {
+    rebuildSplatStore(scene, impl.splats);
+    impl.throwIfError("splat refit");
+  }
 }
 
 Accelerator::~Accelerator() = default;

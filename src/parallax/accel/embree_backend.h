@@ -170,6 +170,8 @@ struct SplatStore {
 };
 // Builds the store for every splat set of `scene` on `device` (nothing when it has none).
 void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store);
+// The same Gaussians placed anew (the sets' worldFromFile changed): frames and BVH again.
+void rebuildSplatStore(const Scene& scene, SplatStore& store);
 
 struct Accelerator::Impl {
   RTCDevice device = nullptr;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "parallax/accel/embree_backend.h"
+#include "parallax/core/parallel.h"
 
 namespace parallax {
 
@@ -146,6 +147,35 @@ void splatOccluded(const RTCOccludedFunctionNArguments*) {}
 
 }  // namespace
 
+namespace {
+
+// Every Gaussian's frame in the world, opacity and reach, in scene order, on every core.
+void placeSplats(const Scene& scene, SplatStore& store) {
+  size_t first = 0;
+  for (const SplatSet& set : scene.splats) {
+    parallelFor(int64_t(set.cloud.size()), 0, 16384, [&](int64_t begin, int64_t end) {
+      for (int64_t g = begin; g < end; ++g) {
+        const size_t at = first + size_t(g);
+        store.frames[at] = gaussianFrame(set.cloud, size_t(g), set.worldFromFile);
+        store.opacities[at] = set.cloud.opacities[size_t(g)];
+        const float reach = boundingRadius(set.cloud.opacities[size_t(g)]);
+        // A little beyond the bound, so that rounding leaves the exact test to alpha itself.
+        store.reachSquared[at] = reach * reach * 1.0001f + 1e-6f;
+      }
+    });
+    first += set.cloud.size();
+  }
+}
+
+}  // namespace
+
+void rebuildSplatStore(const Scene& scene, SplatStore& store) {
+  placeSplats(scene, store);
+  RTCGeometry geometry = rtcGetGeometry(store.scene, 0);
+  rtcCommitGeometry(geometry);
+  rtcCommitScene(store.scene);
+}
+
 void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store) {
   const size_t count = scene.splatCount();
   if (count == 0) return;
@@ -154,15 +184,7 @@ void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store) {
   store.frames.resize(count);
   store.opacities.resize(count);
   store.reachSquared.resize(count);
-  size_t at = 0;
-  for (const SplatSet& set : scene.splats)
-    for (size_t g = 0; g < set.cloud.size(); ++g, ++at) {
-      store.frames[at] = gaussianFrame(set.cloud, g, set.worldFromFile);
-      store.opacities[at] = set.cloud.opacities[g];
-      const float reach = boundingRadius(set.cloud.opacities[g]);
-      // A little beyond the bound, so that rounding leaves the exact test to alpha itself.
-      store.reachSquared[at] = reach * reach * 1.0001f + 1e-6f;
-    }
+  placeSplats(scene, store);
   store.scene = rtcNewScene(device);
   if (!store.scene) return;  // the caller reads the device's error
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);

@@ -196,12 +196,16 @@ GaussianCloud captureLikeGaussians(const CaptureLikeOptions& options) {
                      {0.5f + 0.4f * std::cos(2 * kPi * hue), 0.5f + 0.4f * std::cos(2 * kPi * (hue - 1.0f / 3)),
                       0.5f + 0.4f * std::cos(2 * kPi * (hue - 2.0f / 3))}});
   }
+  const float sizeScale = 0.012f * std::sqrt(1e5f / float(options.count));
   parallelFor(int64_t(options.count), 0, 4096, [&](int64_t begin, int64_t end) {
     for (int64_t g = begin; g < end; ++g) {
       Rng rng(options.seed, uint64_t(g));
       const float kind = rng.uniform();
       Vec3f centre, n, colour;
-      float size = 0.012f * std::exp(0.7f * normal01(rng));  // log-normal, most of them small
+      // Log-normal, most of them small; as many layers deep whatever the count (a capture's
+      // Gaussians shrink where there are more of them): about 24 blended along a ray through
+      // the subject, as 3DGS reports for its captures.
+      float size = sizeScale * std::exp(0.7f * normal01(rng));
       float flat = 0.05f + 0.25f * rng.uniform();
       if (kind < 0.6f) {  // the spheres
         const Ball& ball = balls[size_t(rng.uniform() * 7) % 7];

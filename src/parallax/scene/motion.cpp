@@ -232,6 +232,9 @@ void poseScene(const Scene& rest, const SceneMotion& motion, double seconds, Sce
       const Transform worldFromRest = turntableAt(*motion.turntable, seconds);
       for (size_t s = 0; s < rest.spheres.size(); ++s)
         posed.spheres[s].center = worldFromRest.point(rest.spheres[s].center);
+      // A splat set turns as a whole: its placement, not its Gaussians (scene.h, SplatSet).
+      for (size_t s = 0; s < rest.splats.size(); ++s)
+        posed.splats[s].worldFromFile = worldFromRest * rest.splats[s].worldFromFile;
     }
   }
   if (!motion.cameraKeys.empty()) posed.camera = cameraAt(motion.cameraKeys, seconds);
@@ -266,6 +269,15 @@ Bounds3f movedBounds(const Scene& rest, const SceneMotion& motion, const Bounds3
         moved.extend(c - Vec3f(s.radius));
         moved.extend(c + Vec3f(s.radius));
       }
+    // A splat set's framing box, clipped to the box framed at rest, by its corners.
+    for (const SplatSet& set : rest.splats) {
+      const Bounds3f framed = splatFramingBounds(set);
+      for (int corner = 0; corner < 8; ++corner) {
+        const Vec3f p{corner & 1 ? framed.hi.x : framed.lo.x, corner & 2 ? framed.hi.y : framed.lo.y,
+                      corner & 4 ? framed.hi.z : framed.lo.z};
+        if (inside(p)) moved.extend(turn.point(p));
+      }
+    }
   }
   return moved.lo.x <= moved.hi.x ? moved : restBox;
 }
