@@ -896,3 +896,20 @@ def test_tool_errors_name_their_keywords(small, cli_quilt, tmp_path):
         parallax.interlace(quilt=np.zeros((36, 64, 3), np.float32), display=small)
     with pytest.raises(TypeError):
         parallax.calibration_patterns(small, steps=3)
+
+
+def test_splats_are_the_cli_splats_and_render(tmp_path):
+    """make_splats writes the command's file byte for byte; a splat file loads as a scene whose
+    Gaussians show over the background in view, and render takes it as any scene."""
+    made = parallax.make_splats(tmp_path / "py.ply", "mesh", count=2000, seed=3)
+    assert made["gaussians"] == 2000 and made["sh_degree"] == 0
+    cli("splats", "from-mesh", "--count", "2000", "--seed", "3", "-o", str(tmp_path / "cli.ply"))
+    assert (tmp_path / "py.ply").read_bytes() == (tmp_path / "cli.ply").read_bytes()
+    scene = parallax.load_scene(str(tmp_path / "py.ply"))
+    picture = parallax.view(scene, size=(64, 36), spp=1)
+    background = parallax.view(parallax.load_scene(str(tmp_path / "py.ply")), size=(64, 36),
+                               spp=1, eye=(0.0, 0.0, -1e4))  # looking away: the background
+    covered = (np.abs(picture - background).max(axis=2) > 0.01).mean()
+    assert covered > 0.03  # the built-in scene's box and floor, as splats (7.5 %)
+    with pytest.raises(parallax.Error, match="source"):
+        parallax.make_splats(tmp_path / "bad.ply", "video")

@@ -17,6 +17,7 @@
 #include "parallax/jobs/calibrate_job.h"
 #include "parallax/jobs/calibrate_photo_job.h"
 #include "parallax/jobs/interlace_job.h"
+#include "parallax/jobs/splat_making.h"
 #include "parallax/python/bindings_internal.h"
 
 namespace parallax::python {
@@ -193,7 +194,35 @@ py::array_t<float> lenticularSimulate(const py::array& image, const DisplayDescr
 
 }  // namespace
 
+// `parallax splats from-mesh|capture-like`: the file written; its figures returned.
+py::dict makeSplats(const std::string& output, const std::string& source,
+                    const std::optional<std::string>& scene, size_t count, uint64_t seed) {
+  jobs::SplatMakingRequest r;
+  if (source == "mesh")
+    r.source = jobs::SplatMakingRequest::Source::Surfaces;
+  else if (source != "capture-like")
+    throw RequestError("source", "expected \"mesh\" or \"capture-like\"", source);
+  else if (scene)
+    throw RequestError("scene", "is for source=\"mesh\"");
+  r.scene.path = scene.value_or("");
+  r.count = count;
+  r.seed = seed;
+  r.output = output;
+  jobs::SplatMakingResult result;
+  {
+    py::gil_scoped_release released;
+    result = jobs::runSplatMaking(r, jobs::silentReporter());
+  }
+  py::dict figures;
+  figures["gaussians"] = result.gaussians;
+  figures["sh_degree"] = result.shDegree;
+  figures["file_bytes"] = result.fileBytes;
+  return figures;
+}
+
 void bindTools(py::module_& module) {
+  module.def("_make_splats", &makeSplats, py::arg("output"), py::arg("source"), py::arg("scene"),
+             py::arg("count"), py::arg("seed"));
   module.def("_interlace", &interlace, py::arg("views"), py::arg("quilt"), py::arg("display"),
              py::kw_only(), py::arg("quilt_layout") = py::none(), py::arg("subpixels") = false,
              py::arg("view_resampling") = "linear", py::arg("lens_spot") = py::none(),

@@ -256,6 +256,16 @@ def interlace(views: Optional[Sequence[np.ndarray]] = None, display: Optional[Di
     return RenderResult(image, mask, json.loads(record), [(image, mask)])
 
 
+def make_splats(output: str, source: str = "capture-like", *, scene: Optional[str] = None,
+                count: int = 0, seed: int = 1) -> dict:
+    """`parallax splats capture-like|from-mesh -o OUTPUT`: the same file, byte for byte
+    (docs/splats.md). source "mesh" covers `scene`'s surfaces (None: the built-in scene);
+    count 0 is the command's default. Returns the Gaussians' count, degree and the file's
+    bytes."""
+    return _parallax._make_splats(str(output), source, None if scene is None else str(scene),
+                                  count, seed)
+
+
 def interlace_files(output: str, views: Optional[Sequence[str]] = None,
                     display: Optional[str] = None, *, quilt: Optional[str] = None,
                     quilt_layout: Optional[Tuple[int, int]] = None, subpixels: bool = False,
