@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "parallax/accel/embree_backend.h"
+#include "parallax/accel/embree_internal.h"
 #include "parallax/core/error.h"
 
 namespace parallax {
@@ -70,6 +70,89 @@ void checkIsaName(const std::string& config, const char* source) {
                        "unknown Embree ISA '" + name + "'; use sse2, sse4.2, avx, avx2 or avx512");
   }
 }
+
+// Every ray query goes through one of these: the only place where Embree 3 and Embree 4 trace
+// differently. Embree 3 hands every query an RTCIntersectContext whose flags say whether the
+// rays are coherent; Embree 4 dropped the context from the call and takes
+// RTCIntersectArguments (closest hits) and RTCOccludedArguments (any hit) instead, with the
+// same flag as RTC_RAY_QUERY_FLAG_COHERENT. Neither has filter functions here. The geometry
+// mask default also differs (Embree 3: all bits; Embree 4: 1), which changes nothing: every
+// ray carries mask 0xffffffff, which meets either. (The splat walk, splat_trace.cpp, hands its
+// user geometry a context of its own, the same way in both.)
+class EmbreeQuery {
+ public:
+  enum class Rays { Incoherent, Coherent };
+  explicit EmbreeQuery(Rays rays) {
+#if PARALLAX_EMBREE_MAJOR == 4
+    rtcInitIntersectArguments(&intersectArguments_);
+    rtcInitOccludedArguments(&occludedArguments_);
+    if (rays == Rays::Coherent)
+      intersectArguments_.flags = occludedArguments_.flags = RTC_RAY_QUERY_FLAG_COHERENT;
+#else
+    rtcInitIntersectContext(&context_);
+    if (rays == Rays::Coherent) context_.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+#endif
+  }
+
+#if PARALLAX_EMBREE_MAJOR == 4
+  void intersect(RTCScene scene, RTCRayHit& rayHit) {
+    rtcIntersect1(scene, &rayHit, &intersectArguments_);  // the arguments come last
+  }
+  void occluded(RTCScene scene, RTCRay& ray) {
+    rtcOccluded1(scene, &ray, &occludedArguments_);  // tfar = -infinity when occluded
+  }
+  // A packet query, `query` being rtcIntersect4/8/16 or rtcOccluded4/8/16.
+  template <class Packet, class Arguments>
+  void packet(void (*query)(const int*, RTCScene, Packet*, Arguments*), const int* valid,
+              RTCScene scene, Packet& rays) {
+    if constexpr (std::is_same_v<Arguments, RTCIntersectArguments>)
+      query(valid, scene, &rays, &intersectArguments_);
+    else
+      query(valid, scene, &rays, &occludedArguments_);
+  }
+#else
+  void intersect(RTCScene scene, RTCRayHit& rayHit) {
+    rtcIntersect1(scene, &context_, &rayHit);  // the context comes before the rays
+  }
+  void occluded(RTCScene scene, RTCRay& ray) {
+    rtcOccluded1(scene, &context_, &ray);  // tfar = -infinity when occluded
+  }
+  template <class Packet>
+  void packet(void (*query)(const int*, RTCScene, RTCIntersectContext*, Packet*), const int* valid,
+              RTCScene scene, Packet& rays) {
+    query(valid, scene, &context_, &rays);
+  }
+#endif
+
+ private:
+#if PARALLAX_EMBREE_MAJOR == 4
+  RTCIntersectArguments intersectArguments_;
+  RTCOccludedArguments occludedArguments_;
+#else
+  RTCIntersectContext context_;
+#endif
+};
+
+struct Accelerator::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  uint32_t meshCount = 0;
+  uint32_t sphereCount = 0;
+  int packetWidth = 16, nativePacketWidth = 16;
+  BuildQuality quality = BuildQuality::High;
+  bool dynamic = false;
+  // What refit() must find again: each mesh's vertex and index counts.
+  std::vector<std::pair<size_t, size_t>> meshSizes;
+  std::mutex errorMutex;
+  std::string firstError;  // first message Embree reported through the error callback
+  SplatStore splats;
+
+  ~Impl();
+  void throwIfError(const char* stage);
+
+  // Embree calls this from whichever thread hit the error; keep the first message.
+  static void recordError(void* userPtr, RTCError code, const char* message);
+};
 
 namespace {
 
@@ -374,6 +457,30 @@ void Accelerator::refit(const Scene& scene) {
 
 Accelerator::~Accelerator() = default;
 Accelerator::Accelerator(Accelerator&&) noexcept = default;
+
+int Accelerator::nextSplats(const Ray& ray, const SplatCursor& after, SplatHit* out, int capacity,
+                            uint64_t* evaluated) const {
+  // One lane of a packet: the single-ray walk and the packet's are then one code path.
+  RayPacket16 packet{};
+  for (int lane = 0; lane < 16; ++lane) packet.deactivate(lane);
+  packet.set(0, ray);
+  SplatCursor cursors[16];
+  cursors[0] = after;
+  std::vector<SplatHit> hits(size_t(std::max(capacity, 0)) * 16);
+  int counts[16];
+  walkSplats16(impl_->splats, packet, cursors, hits.data(), capacity, counts, evaluated);
+  std::copy_n(hits.begin(), counts[0], out);
+  return counts[0];
+}
+
+void Accelerator::nextSplats16(const RayPacket16& rays, const SplatCursor after[16], SplatHit* out,
+                               int capacity, int counts[16], uint64_t* evaluated) const {
+  walkSplats16(impl_->splats, rays, after, out, capacity, counts, evaluated);
+}
+
+size_t Accelerator::splatCount() const {
+  return impl_->splats.frames.size();
+}
 
 int Accelerator::packetWidth() const {
   return impl_->packetWidth;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "parallax/accel/splat_hits.h"
 #include "parallax/core/math.h"
 #include "parallax/core/ray.h"
 #include "parallax/scene/scene.h"
@@ -48,22 +49,6 @@ struct alignas(64) HitPacket16 {
     const Vec3f normal{ngx[lane], ngy[lane], ngz[lane]};
     return {t[lane], geometry[lane], primitive[lane], u[lane], v[lane], normal};
   }
-};
-
-// A Gaussian splat met along a ray (docs/splats.md, "Tracing"): where its response peaks (t, in
-// units of the ray's direction), which Gaussian (its index over every set of Scene::splats in
-// order) and its alpha there (capped as 3DGS caps it).
-struct SplatHit {
-  float t = 0.0f;
-  uint32_t gaussian = 0;
-  float alpha = 0.0f;
-};
-// Where a ray's walk through the splats stands: hits are ordered by (t, gaussian), and a query
-// returns only those after the cursor's.
-struct SplatCursor {
-  float t = -std::numeric_limits<float>::infinity();
-  uint32_t gaussian = 0;
-  bool started = false;  // false: nothing is behind the cursor yet
 };
 
 // How good a BVH to build. High (Embree's spatial splits) traces a little faster and builds

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "parallax/accel/embree_backend.h"
+#include "parallax/accel/embree_internal.h"
 #include "parallax/core/parallel.h"
 
 namespace parallax {
@@ -49,13 +49,12 @@ void splatBounds(const RTCBoundsFunctionArguments* args) {
   const double c01 = w[1][2] * w[2][0] - w[1][0] * w[2][2];
   const double c02 = w[1][0] * w[2][1] - w[1][1] * w[2][0];
   const double det = w[0][0] * c00 + w[0][1] * c01 + w[0][2] * c02;
-  const double inverse[3][3] = {
-      {c00 / det, (w[0][2] * w[2][1] - w[0][1] * w[2][2]) / det,
-       (w[0][1] * w[1][2] - w[0][2] * w[1][1]) / det},
-      {c01 / det, (w[0][0] * w[2][2] - w[0][2] * w[2][0]) / det,
-       (w[0][2] * w[1][0] - w[0][0] * w[1][2]) / det},
-      {c02 / det, (w[0][1] * w[2][0] - w[0][0] * w[2][1]) / det,
-       (w[0][0] * w[1][1] - w[0][1] * w[1][0]) / det}};
+  const double inverse[3][3] = {{c00 / det, (w[0][2] * w[2][1] - w[0][1] * w[2][2]) / det,
+                                 (w[0][1] * w[1][2] - w[0][2] * w[1][1]) / det},
+                                {c01 / det, (w[0][0] * w[2][2] - w[0][2] * w[2][0]) / det,
+                                 (w[0][2] * w[1][0] - w[0][0] * w[1][2]) / det},
+                                {c02 / det, (w[0][1] * w[2][0] - w[0][0] * w[2][1]) / det,
+                                 (w[0][0] * w[1][1] - w[0][1] * w[1][0]) / det}};
   float half[3];
   for (int a = 0; a < 3; ++a) {
     const double extent = std::sqrt(inverse[a][0] * inverse[a][0] + inverse[a][1] * inverse[a][1] +
@@ -200,25 +199,9 @@ void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store) {
   rtcCommitScene(store.scene);
 }
 
-int Accelerator::nextSplats(const Ray& ray, const SplatCursor& after, SplatHit* out,
-                            int capacity, uint64_t* evaluated) const {
-  // One lane of a packet: the single-ray walk and the packet's are then one code path.
-  RayPacket16 packet{};
-  for (int lane = 0; lane < 16; ++lane) packet.deactivate(lane);
-  packet.set(0, ray);
-  SplatCursor cursors[16];
-  cursors[0] = after;
-  std::vector<SplatHit> hits(size_t(capacity) * 16);
-  int counts[16];
-  nextSplats16(packet, cursors, hits.data(), capacity, counts, evaluated);
-  std::copy_n(hits.begin(), counts[0], out);
-  return counts[0];
-}
-
-void Accelerator::nextSplats16(const RayPacket16& rays, const SplatCursor after[16], SplatHit* out,
-                               int capacity, int counts[16], uint64_t* evaluated) const {
+void walkSplats16(const SplatStore& store, const RayPacket16& rays, const SplatCursor after[16],
+                  SplatHit* out, int capacity, int counts[16], uint64_t* evaluated) {
   for (int lane = 0; lane < 16; ++lane) counts[lane] = 0;
-  const SplatStore& store = impl_->splats;
   if (!store.scene || capacity <= 0) return;
   SplatQuery16 query;
   query.store = &store;
@@ -231,7 +214,8 @@ void Accelerator::nextSplats16(const RayPacket16& rays, const SplatCursor after[
   fillRays(rays, rayHit.ray);
   alignas(64) int valid[16];
   for (int lane = 0; lane < 16; ++lane) {
-    query.tMin[lane] = std::max(rays.tMin[lane], after[lane].started ? after[lane].t : rays.tMin[lane]);
+    query.tMin[lane] =
+        std::max(rays.tMin[lane], after[lane].started ? after[lane].t : rays.tMin[lane]);
     query.tMax[lane] = rays.tMax[lane];
     rayHit.ray.tnear[lane] = query.tMin[lane];
     rayHit.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
@@ -251,10 +235,6 @@ void Accelerator::nextSplats16(const RayPacket16& rays, const SplatCursor after[
   rtcIntersect16(valid, store.scene, &query.context, &rayHit);
 #endif
   if (evaluated) *evaluated += query.evaluated;
-}
-
-size_t Accelerator::splatCount() const {
-  return impl_->splats.frames.size();
 }
 
 }  // namespace parallax

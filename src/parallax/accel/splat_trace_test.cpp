@@ -21,8 +21,7 @@ GaussianCloud randomCloud(size_t count, uint64_t seed) {
   Rng rng(seed);
   GaussianCloud cloud;
   for (size_t g = 0; g < count; ++g) {
-    cloud.centres.push_back(
-        {4 * rng.uniform() - 2, 4 * rng.uniform() - 2, 4 * rng.uniform() - 2});
+    cloud.centres.push_back({4 * rng.uniform() - 2, 4 * rng.uniform() - 2, 4 * rng.uniform() - 2});
     cloud.scales.push_back({0.02f * std::pow(10.0f, 1.5f * rng.uniform()),
                             0.02f * std::pow(10.0f, 1.5f * rng.uniform()),
                             0.02f * std::pow(10.0f, 1.5f * rng.uniform())});
@@ -51,9 +50,8 @@ std::vector<SplatHit> bruteForce(const Scene& scene, const Ray& ray) {
   uint32_t index = 0;
   for (const SplatSet& set : scene.splats)
     for (size_t g = 0; g < set.cloud.size(); ++g, ++index) {
-      const RayResponse response =
-          gaussianRayResponse(gaussianFrame(set.cloud, g, set.worldFromFile), ray.origin,
-                              ray.direction);
+      const RayResponse response = gaussianRayResponse(
+          gaussianFrame(set.cloud, g, set.worldFromFile), ray.origin, ray.direction);
       const float alpha = response.alpha(set.cloud.opacities[g]);
       if (response.t >= ray.tMin && response.t < ray.tMax && alpha >= kMinSplatAlpha)
         hits.push_back({response.t, index, alpha});

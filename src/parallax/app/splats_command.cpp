@@ -12,7 +12,8 @@ namespace {
 void addMakingOptions(Command& cmd, jobs::SplatMakingRequest& request, const char* countHelp) {
   cmd.addOption("-o,--output", request.output, "The splat file to write (.ply, 3DGS's layout)")
       ->required();
-  cmd.addOption("--count", request.count, countHelp)->check(integerIn(1, int64_t(jobs::kMaxMadeSplats)));
+  cmd.addOption("--count", request.count, countHelp)
+      ->check(integerIn(1, int64_t(jobs::kMaxMadeSplats)));
   cmd.addOption("--seed", request.seed, "Seed of the random placement")
       ->captureDefault()
       ->check(seedValue());
@@ -29,7 +30,8 @@ void registerSplatsCommand(Command& cli) {
   fromMesh->source = jobs::SplatMakingRequest::Source::Surfaces;
   Command* mesh = splats->addSubcommand(
       "from-mesh", "Cover a scene's surfaces with flat Gaussians coloured by its albedo, lit");
-  mesh->addOption("scene", fromMesh->scene.path, "Scene or mesh file (the built-in scene if omitted)");
+  mesh->addOption("scene", fromMesh->scene.path,
+                  "Scene or mesh file (the built-in scene if omitted)");
   addImportOptions(*mesh);
   addMakingOptions(*mesh, *fromMesh, "Gaussians over all the triangles, by area (default 200000)");
   mesh->callback([fromMesh] {
@@ -39,7 +41,8 @@ void registerSplatsCommand(Command& cli) {
 
   auto capture = std::make_shared<jobs::SplatMakingRequest>();
   Command* like = splats->addSubcommand(
-      "capture-like", "A capture-like cloud: many small, semi-transparent, view-dependent Gaussians");
+      "capture-like",
+      "A capture-like cloud: many small, semi-transparent, view-dependent Gaussians");
   addMakingOptions(*like, *capture, "Gaussians (default 1000000)");
   like->callback([capture] { jobs::runSplatMaking(*capture, cliReporter()); });
 }

@@ -527,7 +527,7 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
   UpAxis up = options.up;
   if (up == UpAxis::Auto) up = contents.declaredUp;
   if (up == UpAxis::Auto)
-    up = contents.splats                                                           ? UpAxis::MinusY
+    up = contents.splats                                                      ? UpAxis::MinusY
          : ext == ".stl" || ext == ".3mf" || ext == ".amf" || ext == ".blend" ? UpAxis::Z
                                                                               : UpAxis::Y;
   // Exact matrices, where rotate() would leave cos(90 deg) = 6e-17. Z up: -90 degrees about X,
@@ -551,8 +551,8 @@ void loadMeshFile(const std::string& path, const MeshLoadOptions& options, Scene
     record.up = upAxisName(up);
     record.splats = contents.splats->size();
     sortForLocality(*contents.splats);
-    scene.splats.push_back({path, std::move(*contents.splats),
-                            options.worldFromFile * fileFromReader});
+    scene.splats.push_back(
+        {path, std::move(*contents.splats), options.worldFromFile * fileFromReader});
     scene.imports.push_back(record);
     return;
   }

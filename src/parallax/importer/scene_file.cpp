@@ -255,9 +255,8 @@ class SceneFileLoader {
   Scene load() {
     const JsonDocument document = JsonDocument::parseFile(path_);
     const JsonReader root = document.root();
-    root.expectObject({"version", "objects", "splats", "materials", "textures", "lights",
-                       "ambient", "background", "max_depth", "camera", "display", "animation",
-                       "look"});
+    root.expectObject({"version", "objects", "splats", "materials", "textures", "lights", "ambient",
+                       "background", "max_depth", "camera", "display", "animation", "look"});
     if (const auto version = root.find("version"))
       if (version->integer(0, INT_MAX) != kFormatVersion)
         version->fail("unsupported version " + version->dump() + " (this build reads version " +
@@ -597,9 +596,11 @@ class SceneFileLoader {
     options.up = import_.up;
     if (const auto up = entry.find("up"); up && !parseUpAxis(up->string(), options.up))
       up->fail("expected \"auto\", \"y\", \"z\" or \"-y\", found \"" + up->string() + "\"");
-    if (const auto transform = entry.find("transform")) options.worldFromFile = readTransform(*transform);
+    if (const auto transform = entry.find("transform"))
+      options.worldFromFile = readTransform(*transform);
     const size_t meshes = scene_.meshes.size(), sets = scene_.splats.size();
-    if (lowerExtension(file) != ".ply") fileKey.fail("not a splat file this build reads (.ply): " + file);
+    if (lowerExtension(file) != ".ply")
+      fileKey.fail("not a splat file this build reads (.ply): " + file);
     loadMeshFile(file, options, scene_);
     if (scene_.meshes.size() != meshes || scene_.splats.size() == sets)
       fileKey.fail("holds triangles, not Gaussian splats (place meshes under \"objects\"): " +
@@ -1040,7 +1041,8 @@ Scene loadSceneAsRendered(const std::string& scenePath, const std::string& rende
     options.focusOn = focusOn->string();
   if (const auto imported = root.find("import_options")) {
     const JsonReader up = (*imported)["up"];
-    if (!parseUpAxis(up.string(), options.import.up)) up.fail("expected \"auto\", \"y\", \"z\" or \"-y\"");
+    if (!parseUpAxis(up.string(), options.import.up))
+      up.fail("expected \"auto\", \"y\", \"z\" or \"-y\"");
     options.import.creaseDegrees = float((*imported)["crease"].number(0, 180));
   }
   Scene scene = scenePath.empty() ? defaultScene() : loadScene(scenePath, options);

@@ -148,12 +148,12 @@ GaussianCloud readSplats(const std::string& path, const std::string& bytes, cons
 std::string splatPlyBytes(const GaussianCloud& cloud) {
   const size_t coefficients = size_t(shCoefficientCount(cloud.shDegree));
   const size_t rest = 3 * (coefficients - 1);
-  std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex " +
-                       std::to_string(cloud.size()) + "\n";
+  std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(cloud.size()) + "\n";
   std::vector<std::string> names = {"x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1", "f_dc_2"};
   for (size_t k = 0; k < rest; ++k) names.push_back("f_rest_" + std::to_string(k));
-  for (const char* name : {"opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2",
-                           "rot_3"})
+  for (const char* name :
+       {"opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3"})
     names.push_back(name);
   for (const std::string& name : names) header += "property float " + name + "\n";
   header += "end_header\n";

@@ -98,8 +98,8 @@ struct Triangle {
 }  // namespace
 
 double splatCloudBytes(size_t count, int degree) {
-  return double(count) * (sizeof(Vec3f) * (2 + size_t(shCoefficientCount(degree))) +
-                          sizeof(Quatf) + sizeof(float));
+  return double(count) *
+         (sizeof(Vec3f) * (2 + size_t(shCoefficientCount(degree))) + sizeof(Quatf) + sizeof(float));
 }
 
 double splatPlyFileBytes(size_t count, int degree) {
@@ -143,8 +143,7 @@ GaussianCloud surfaceGaussians(const Scene& scene, const SurfaceSplatOptions& op
       Vec3f n = normalize(
           cross(mesh.positions[i1] - mesh.positions[i0], mesh.positions[i2] - mesh.positions[i0]));
       if (!mesh.normals.empty()) {
-        const Vec3f shading =
-            mesh.normals[i0] * w0 + mesh.normals[i1] * w1 + mesh.normals[i2] * w2;
+        const Vec3f shading = mesh.normals[i0] * w0 + mesh.normals[i1] * w1 + mesh.normals[i2] * w2;
         if (dot(shading, n) < 0) n = -n;  // the normals say which side is outside
       }
       const Material& material = scene.materials[mesh.material];
@@ -154,8 +153,8 @@ GaussianCloud surfaceGaussians(const Scene& scene, const SurfaceSplatOptions& op
         if (!mesh.uvs.empty())
           uv = {mesh.uvs[i0].x * w0 + mesh.uvs[i1].x * w1 + mesh.uvs[i2].x * w2,
                 mesh.uvs[i0].y * w0 + mesh.uvs[i1].y * w1 + mesh.uvs[i2].y * w2};
-        albedo = albedo * evaluateTexture(scene, scene.textures[size_t(material.diffuseTexture)],
-                                          p, uv);
+        albedo =
+            albedo * evaluateTexture(scene, scene.textures[size_t(material.diffuseTexture)], p, uv);
       }
       if (!mesh.colors.empty())
         albedo = albedo * (mesh.colors[i0] * w0 + mesh.colors[i1] * w1 + mesh.colors[i2] * w2);
@@ -192,9 +191,11 @@ GaussianCloud captureLikeGaussians(const CaptureLikeOptions& options) {
     const Vec3f knot{std::sin(s) + 2 * std::sin(2 * s), std::cos(s) - 2 * std::cos(2 * s),
                      -std::sin(3 * s)};
     const float hue = float(i) / 7;
-    balls.push_back({knot * 0.3f + Vec3f(0, 0.2f, 0), 0.25f + 0.05f * float(i % 3),
-                     {0.5f + 0.4f * std::cos(2 * kPi * hue), 0.5f + 0.4f * std::cos(2 * kPi * (hue - 1.0f / 3)),
-                      0.5f + 0.4f * std::cos(2 * kPi * (hue - 2.0f / 3))}});
+    balls.push_back(
+        {knot * 0.3f + Vec3f(0, 0.2f, 0),
+         0.25f + 0.05f * float(i % 3),
+         {0.5f + 0.4f * std::cos(2 * kPi * hue), 0.5f + 0.4f * std::cos(2 * kPi * (hue - 1.0f / 3)),
+          0.5f + 0.4f * std::cos(2 * kPi * (hue - 2.0f / 3))}});
   }
   const float sizeScale = 0.012f * std::sqrt(1e5f / float(options.count));
   parallelFor(int64_t(options.count), 0, 4096, [&](int64_t begin, int64_t end) {
@@ -237,10 +238,11 @@ GaussianCloud captureLikeGaussians(const CaptureLikeOptions& options) {
       }
       // Training leaves opacities bimodal: a third nearly opaque, many faint, the rest between.
       const float pick = rng.uniform();
-      const float opacity = kind >= 0.95f ? 0.01f + 0.2f * rng.uniform()
+      const float opacity = kind >= 0.95f  ? 0.01f + 0.2f * rng.uniform()
                             : pick < 0.35f ? 0.9f + 0.099f * rng.uniform()
-                            : pick < 0.75f ? std::exp(std::log(0.01f) + std::log(30.0f) * rng.uniform())
-                                           : 0.3f + 0.6f * rng.uniform();
+                            : pick < 0.75f
+                                ? std::exp(std::log(0.01f) + std::log(30.0f) * rng.uniform())
+                                : 0.3f + 0.6f * rng.uniform();
       Vec3f coefficients[kPerGaussian];
       for (int c = 0; c < 3; ++c)
         coefficients[0][c] =
@@ -261,9 +263,9 @@ GaussianCloud captureLikeGaussians(const CaptureLikeOptions& options) {
 
 SplatMakingResult runSplatMaking(const SplatMakingRequest& request, Reporter& reporter) {
   const bool surfaces = request.source == SplatMakingRequest::Source::Surfaces;
-  const size_t count =
-      request.count ? request.count
-                    : (surfaces ? SurfaceSplatOptions{}.count : CaptureLikeOptions{}.count);
+  const size_t count = request.count
+                           ? request.count
+                           : (surfaces ? SurfaceSplatOptions{}.count : CaptureLikeOptions{}.count);
   if (count > kMaxMadeSplats)
     throw RequestError("count", "is at most " + std::to_string(kMaxMadeSplats) + " Gaussians",
                        std::to_string(count));
@@ -280,7 +282,7 @@ SplatMakingResult runSplatMaking(const SplatMakingRequest& request, Reporter& re
   if (surfaces) {
     const Scene scene = loadScene(request.scene, reporter);
     reporter.note("covering " + std::to_string(scene.triangleCount()) + " triangles with " +
-                    std::to_string(count) + " Gaussians");
+                  std::to_string(count) + " Gaussians");
     SurfaceSplatOptions options;
     options.count = count;
     options.seed = request.seed;

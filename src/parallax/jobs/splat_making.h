@@ -39,9 +39,9 @@ struct CaptureLikeOptions {
 
 // A capture-like cloud of `count` Gaussians (degree 3): 80 % on the surfaces of a subject (a
 // knot of spheres and a ground disc), 15 % on a distant backdrop (the far half of a shell: a
-// forward-facing capture's), 5 % floating between; log-normal sizes over two decades, most of them small and flat; opacities
-// bimodal, as training leaves them (a third near 1, many faint); view-dependent colour in the
-// harmonics' higher bands. Deterministic from the seed.
+// forward-facing capture's), 5 % floating between; log-normal sizes over two decades, most of them
+// small and flat; opacities bimodal, as training leaves them (a third near 1, many faint);
+// view-dependent colour in the harmonics' higher bands. Deterministic from the seed.
 GaussianCloud captureLikeGaussians(const CaptureLikeOptions& options);
 
 // The estimated bytes a cloud of `count` Gaussians of `degree` takes in memory (GaussianCloud)

@@ -177,11 +177,11 @@ void runView(const ViewRequest& request, Reporter& reporter) {
     }
     if (split && !mergeFrameShares({&image}, stats, reporter)) return;
     writeImage(output, image);
-    reporter.result(printed(
-        "wrote %s (%dx%d, %d spp) in %.2f s, %s%s", output.c_str(), frameCamera.width(),
-        frameCamera.height(), r.sampling.spp, stats.seconds,
-        formatRate(double(stats.totalRays()) / stats.seconds).c_str(),
-        splatClause(stats.splatsEvaluated, stats.splatsBlended, stats.cameraRays).c_str()));
+    reporter.result(
+        printed("wrote %s (%dx%d, %d spp) in %.2f s, %s%s", output.c_str(), frameCamera.width(),
+                frameCamera.height(), r.sampling.spp, stats.seconds,
+                formatRate(double(stats.totalRays()) / stats.seconds).c_str(),
+                splatClause(stats.splatsEvaluated, stats.splatsBlended, stats.cameraRays).c_str()));
   };
   if (!r.sequence.given()) {
     const Accelerator accelerator(scene, viewAccelerator(r, *camera));

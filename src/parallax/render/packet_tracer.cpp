@@ -59,7 +59,8 @@ PacketTracer::PacketTracer(const Scene& scene, const Accelerator& accelerator,
 
 void PacketTracer::trace(const RayPacket16& rays, const Color16& weight, std::array<Rng, 16>& rngs,
                          Color16& radiance, int depth, RenderStats& stats) const {
-  if (!splats_.empty() && depth == 0) return traceThroughSplats(rays, weight, rngs, radiance, stats);
+  if (!splats_.empty() && depth == 0)
+    return traceThroughSplats(rays, weight, rngs, radiance, stats);
   tracePath(rays, weight, rngs, radiance, PathState{depth, 0, false}, stats);
 }
 

@@ -42,8 +42,8 @@ class PacketTracer {
                  const HitPacket16* known = nullptr) const;
   // Camera rays in a scene with splats: the splats in front of each ray's first surface
   // blended over what the path sees there (splat_blend.h, docs/splats.md).
-  void traceThroughSplats(const RayPacket16& rays, const Color16& weight,
-                          std::array<Rng, 16>& rngs, Color16& radiance, RenderStats& stats) const;
+  void traceThroughSplats(const RayPacket16& rays, const Color16& weight, std::array<Rng, 16>& rngs,
+                          Color16& radiance, RenderStats& stats) const;
   // Sends each lane's path on (bounces_ > 0): mirror reflections and diffuse bounces.
   void continuePaths(const RayPacket16& rays, const SurfacePacket16& sp, const Color16& weight,
                      std::array<Rng, 16>& rngs, Color16& radiance, const PathState& state,

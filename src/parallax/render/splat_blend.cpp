@@ -37,7 +37,8 @@ Vec3f SplatColours::AlongRay::colour(uint32_t gaussian) {
     float basis[shCoefficientCount(kMaxShDegree)];
     shBasis(set.cloud->shDegree, local, basis);
     count_ = shCoefficientCount(set.cloud->shDegree);
-    for (int k = 0; k < count_; ++k) basis_[3 * k] = basis_[3 * k + 1] = basis_[3 * k + 2] = basis[k];
+    for (int k = 0; k < count_; ++k)
+      basis_[3 * k] = basis_[3 * k + 1] = basis_[3 * k + 2] = basis[k];
     set_ = s;
   }
   // shColour's sum with the basis already made, four coefficients (twelve floats, whole RGB
@@ -51,9 +52,8 @@ Vec3f SplatColours::AlongRay::colour(uint32_t gaussian) {
   for (int i = 0; at + i < floats; ++i) sums[i] += c[at + i] * basis_[at + i];
   Vec3f colour;
   for (int channel = 0; channel < 3; ++channel)
-    colour[channel] = std::max(0.5f + sums[channel] + sums[channel + 3] + sums[channel + 6] +
-                                   sums[channel + 9],
-                               0.0f);
+    colour[channel] = std::max(
+        0.5f + sums[channel] + sums[channel + 3] + sums[channel + 6] + sums[channel + 9], 0.0f);
   return colour;
 }
 
@@ -97,8 +97,7 @@ SplatBlend blendSplats(const Accelerator& accelerator, const SplatColours& colou
   SplatHit batch[kSplatBatch];
   SplatCursor cursor;
   for (;;) {
-    const int count =
-        accelerator.nextSplats(ray, cursor, batch, kSplatBatch, &blend.evaluated);
+    const int count = accelerator.nextSplats(ray, cursor, batch, kSplatBatch, &blend.evaluated);
     if (!blendBatch(batch, count, along, blend)) return blend;
     cursor = {batch[kSplatBatch - 1].t, batch[kSplatBatch - 1].gaussian, true};
   }

@@ -68,8 +68,7 @@ struct SplatBlend {
 inline constexpr int kSplatBatch = 64;
 
 // The splats along `ray` within [ray.tMin, ray.tMax) (tMax: the opaque surface's hit).
-SplatBlend blendSplats(const Accelerator& accelerator, const SplatColours& colours,
-                       const Ray& ray);
+SplatBlend blendSplats(const Accelerator& accelerator, const SplatColours& colours, const Ray& ray);
 // The same for the active lanes of a packet, walked together (Accelerator::nextSplats16):
 // blends[lane] is what blendSplats gives for rays.ray(lane).
 void blendSplats16(const Accelerator& accelerator, const SplatColours& colours,

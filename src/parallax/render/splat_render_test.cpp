@@ -99,10 +99,10 @@ GaussianCloud randomCloud(size_t count, uint64_t seed, float sizeScale) {
         {rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f});
     cloud.opacities.push_back(0.05f + 0.94f * rng.uniform());
     for (int k = 0; k < 16; ++k)
-      cloud.sh.push_back(k == 0 ? Vec3f(rng.uniform() - 0.5f, rng.uniform() - 0.5f,
-                                        rng.uniform() - 0.5f) * 3.0f
-                                : Vec3f(rng.uniform() - 0.5f, rng.uniform() - 0.5f,
-                                        rng.uniform() - 0.5f) * (0.3f / float(k)));
+      cloud.sh.push_back(
+          k == 0 ? Vec3f(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f) * 3.0f
+                 : Vec3f(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f) *
+                       (0.3f / float(k)));
   }
   return cloud;
 }
@@ -164,10 +164,11 @@ TEST(SplatRender, ThePictureIsTheRasterisersWhereItsApproximationsHold) {
     const Image point = render(scene, accelerator, camera, settings);
     const double pointDb =
         psnr(point, splat_truth::rasteriseSplats(scene.splats[0].cloud, view, Vec3f(0.0f), 0.0));
-    std::printf("splats: traced against the 3DGS rasteriser, %s Gaussians: PSNR %.1f dB "
-                "(16 rays a pixel; the rasteriser's 0.3 px^2 low-pass), %.1f dB (one ray at each "
-                "pixel's centre; no low-pass)\n",
-                c.name, db, pointDb);
+    std::printf(
+        "splats: traced against the 3DGS rasteriser, %s Gaussians: PSNR %.1f dB "
+        "(16 rays a pixel; the rasteriser's 0.3 px^2 low-pass), %.1f dB (one ray at each "
+        "pixel's centre; no low-pass)\n",
+        c.name, db, pointDb);
     EXPECT_GT(db, c.floorDb) << c.name;
     EXPECT_GT(pointDb, c.pointFloorDb) << c.name;
   }

@@ -14,15 +14,14 @@
 
 #include "parallax/image/image.h"
 #include "parallax/scene/gaussians.h"
-#include "parallax/scene/scene.h"
 
 namespace parallax::splat_truth {
 
 // The rotation matrix of a quaternion (w, x, y, z), unnormalised, in rows: written here again,
 // not shared with the renderer.
 inline void rotation(const Quatf& q, double r[3][3]) {
-  const double n = std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y +
-                             double(q.z) * q.z);
+  const double n =
+      std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
   const double w = q.w / n, x = q.x / n, y = q.y / n, z = q.z / n;
   const double rows[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
                              {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
@@ -117,9 +116,10 @@ inline Vec3f bruteForceSplatPixel(const GaussianCloud& cloud, const Vec3f& origi
     const double a = sigma[0][0], b = sigma[0][1], c = sigma[0][2], d = sigma[1][1],
                  e = sigma[1][2], f = sigma[2][2];
     const double det = a * (d * f - e * e) - b * (b * f - c * e) + c * (b * e - c * d);
-    const double inv[3][3] = {{(d * f - e * e) / det, (c * e - b * f) / det, (b * e - c * d) / det},
-                              {(c * e - b * f) / det, (a * f - c * c) / det, (b * c - a * e) / det},
-                              {(b * e - c * d) / det, (b * c - a * e) / det, (a * d - b * b) / det}};
+    const double inv[3][3] = {
+        {(d * f - e * e) / det, (c * e - b * f) / det, (b * e - c * d) / det},
+        {(c * e - b * f) / det, (a * f - c * c) / det, (b * c - a * e) / det},
+        {(b * e - c * d) / det, (b * c - a * e) / det, (a * d - b * b) / det}};
     const double o[3] = {double(origin.x) - cloud.centres[g].x,
                          double(origin.y) - cloud.centres[g].y,
                          double(origin.z) - cloud.centres[g].z};
@@ -155,8 +155,8 @@ struct View {
 // The 3DGS rasteriser's picture of `cloud` over `background` (display values), in linear
 // values. `lowPass`: the variance in px^2 added to every projected Gaussian (3DGS: 0.3; 0 leaves
 // the projection alone, to tell its other approximations from the filter).
-inline Image rasteriseSplats(const GaussianCloud& cloud, const View& view,
-                             const Vec3f& background, double lowPass = 0.3) {
+inline Image rasteriseSplats(const GaussianCloud& cloud, const View& view, const Vec3f& background,
+                             double lowPass = 0.3) {
   const Vec3f forward = normalize(view.lookAt - view.eye);
   const Vec3f right = normalize(cross(forward, view.up));
   const Vec3f down = cross(forward, right);  // image y grows downwards
@@ -179,8 +179,8 @@ inline Image rasteriseSplats(const GaussianCloud& cloud, const View& view,
     const double tx = std::clamp(cx / cz, -lx, lx) * cz, ty = std::clamp(cy / cz, -ly, ly) * cz;
     const double j[2][3] = {{focal / cz, 0, -focal * tx / (cz * cz)},
                             {0, focal / cz, -focal * ty / (cz * cz)}};
-    const double w[3][3] = {{right.x, right.y, right.z}, {down.x, down.y, down.z},
-                            {forward.x, forward.y, forward.z}};
+    const double w[3][3] = {
+        {right.x, right.y, right.z}, {down.x, down.y, down.z}, {forward.x, forward.y, forward.z}};
     double sigma[3][3];
     covariance(cloud, g, sigma);
     double t[2][3] = {};  // T = J W

@@ -273,7 +273,8 @@ Bounds3f movedBounds(const Scene& rest, const SceneMotion& motion, const Bounds3
     for (const SplatSet& set : rest.splats) {
       const Bounds3f framed = splatFramingBounds(set);
       for (int corner = 0; corner < 8; ++corner) {
-        const Vec3f p{corner & 1 ? framed.hi.x : framed.lo.x, corner & 2 ? framed.hi.y : framed.lo.y,
+        const Vec3f p{corner & 1 ? framed.hi.x : framed.lo.x,
+                      corner & 2 ? framed.hi.y : framed.lo.y,
                       corner & 4 ? framed.hi.z : framed.lo.z};
         if (inside(p)) moved.extend(turn.point(p));
       }

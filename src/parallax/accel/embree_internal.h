@@ -1,6 +1,6 @@
-// Internal to accel: the Embree back end's shared pieces, for the files that talk to Embree
-// (accelerator.cpp: meshes and spheres; splat_trace.cpp: Gaussian splats). Nothing outside
-// this module includes it.
+// Internal to accel: the Embree back end's shared pieces, for the two files that talk to Embree
+// (accelerator.cpp: meshes and spheres, the device; splat_trace.cpp: Gaussian splats). Nothing
+// outside this module includes it.
 #pragma once
 
 #if PARALLAX_EMBREE_MAJOR == 4
@@ -19,72 +19,13 @@
 #include <utility>
 #include <vector>
 
-#include "parallax/accel/accelerator.h"
+#include "parallax/accel/splat_hits.h"
 #include "parallax/core/lane_kernel.h"
+#include "parallax/core/ray.h"
 #include "parallax/scene/gaussians.h"
+#include "parallax/scene/scene.h"
 
 namespace parallax {
-
-// Every ray query goes through one of these: the only place where Embree 3 and Embree 4 trace
-// differently. Embree 3 hands every query an RTCIntersectContext whose flags say whether the
-// rays are coherent; Embree 4 dropped the context from the call and takes
-// RTCIntersectArguments (closest hits) and RTCOccludedArguments (any hit) instead, with the
-// same flag as RTC_RAY_QUERY_FLAG_COHERENT. Neither has filter functions here. The geometry
-// mask default also differs (Embree 3: all bits; Embree 4: 1), which changes nothing: every
-// ray carries mask 0xffffffff, which meets either.
-class EmbreeQuery {
- public:
-  enum class Rays { Incoherent, Coherent };
-  explicit EmbreeQuery(Rays rays) {
-#if PARALLAX_EMBREE_MAJOR == 4
-    rtcInitIntersectArguments(&intersectArguments_);
-    rtcInitOccludedArguments(&occludedArguments_);
-    if (rays == Rays::Coherent)
-      intersectArguments_.flags = occludedArguments_.flags = RTC_RAY_QUERY_FLAG_COHERENT;
-#else
-    rtcInitIntersectContext(&context_);
-    if (rays == Rays::Coherent) context_.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-#endif
-  }
-
-#if PARALLAX_EMBREE_MAJOR == 4
-  void intersect(RTCScene scene, RTCRayHit& rayHit) {
-    rtcIntersect1(scene, &rayHit, &intersectArguments_);  // the arguments come last
-  }
-  void occluded(RTCScene scene, RTCRay& ray) {
-    rtcOccluded1(scene, &ray, &occludedArguments_);  // tfar = -infinity when occluded
-  }
-  // A packet query, `query` being rtcIntersect4/8/16 or rtcOccluded4/8/16.
-  template <class Packet, class Arguments>
-  void packet(void (*query)(const int*, RTCScene, Packet*, Arguments*), const int* valid,
-              RTCScene scene, Packet& rays) {
-    if constexpr (std::is_same_v<Arguments, RTCIntersectArguments>)
-      query(valid, scene, &rays, &intersectArguments_);
-    else
-      query(valid, scene, &rays, &occludedArguments_);
-  }
-#else
-  void intersect(RTCScene scene, RTCRayHit& rayHit) {
-    rtcIntersect1(scene, &context_, &rayHit);  // the context comes before the rays
-  }
-  void occluded(RTCScene scene, RTCRay& ray) {
-    rtcOccluded1(scene, &context_, &ray);  // tfar = -infinity when occluded
-  }
-  template <class Packet>
-  void packet(void (*query)(const int*, RTCScene, RTCIntersectContext*, Packet*), const int* valid,
-              RTCScene scene, Packet& rays) {
-    query(valid, scene, &context_, &rays);
-  }
-#endif
-
- private:
-#if PARALLAX_EMBREE_MAJOR == 4
-  RTCIntersectArguments intersectArguments_;
-  RTCOccludedArguments occludedArguments_;
-#else
-  RTCIntersectContext context_;
-#endif
-};
 
 inline void fillRay(const Ray& ray, RTCRay& out) {
   out.org_x = ray.origin.x, out.org_y = ray.origin.y, out.org_z = ray.origin.z;
@@ -107,7 +48,8 @@ inline void fillRay(const Ray& ray, RTCRay& out) {
 // Embree 4, whose packet and untraceable-lane tests pass the same way on every ISA.
 constexpr float kLargestCoordinate = 1e18f;  // below Embree's FLT_LARGE (1.844e18)
 
-inline bool traceable(float ox, float oy, float oz, float dx, float dy, float dz, float tMin, float tMax) {
+inline bool traceable(float ox, float oy, float oz, float dx, float dy, float dz, float tMin,
+                      float tMax) {
   auto small = [](float value) { return std::abs(value) <= kLargestCoordinate; };  // NaN: false
   // Bitwise & and |: every test is cheap, and without short-circuit branches the lane loops
   // that call this vectorise.
@@ -172,26 +114,8 @@ struct SplatStore {
 void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store);
 // The same Gaussians placed anew (the sets' worldFromFile changed): frames and BVH again.
 void rebuildSplatStore(const Scene& scene, SplatStore& store);
-
-struct Accelerator::Impl {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  uint32_t meshCount = 0;
-  uint32_t sphereCount = 0;
-  int packetWidth = 16, nativePacketWidth = 16;
-  BuildQuality quality = BuildQuality::High;
-  bool dynamic = false;
-  // What refit() must find again: each mesh's vertex and index counts.
-  std::vector<std::pair<size_t, size_t>> meshSizes;
-  std::mutex errorMutex;
-  std::string firstError;  // first message Embree reported through the error callback
-  SplatStore splats;
-
-  ~Impl();
-  void throwIfError(const char* stage);
-
-  // Embree calls this from whichever thread hit the error; keep the first message.
-  static void recordError(void* userPtr, RTCError code, const char* message);
-};
+// Accelerator::nextSplats16 on the store (nothing when it holds no scene).
+void walkSplats16(const SplatStore& store, const RayPacket16& rays, const SplatCursor after[16],
+                  SplatHit* out, int capacity, int counts[16], uint64_t* evaluated);
 
 }  // namespace parallax
