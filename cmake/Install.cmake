@@ -2,7 +2,8 @@
 #   bin/parallax                        the CLI (statically linked to the module libraries)
 #   lib/libparallax.so.0                every library module in one shared library
 #   include/parallax/MODULE/*.h         their public headers (no third-party header among them:
-#                                       the module_dependencies test keeps those in .cpp files)
+#                                       the module_dependencies test keeps those in .cpp files
+#                                       and a module's own *_internal.h, which are not installed)
 #   lib/cmake/parallax/                 find_package(parallax) -> parallax::parallax
 #   lib/pkgconfig/parallax.pc           pkg-config --cflags --libs parallax
 #   share/doc/parallax/                 README, docs/, examples/ (examples/library: a consumer)
@@ -47,6 +48,7 @@ install(TARGETS parallax_library EXPORT parallaxTargets
 foreach(module ${PARALLAX_LIBRARY_MODULES})
   file(GLOB headers "${CMAKE_SOURCE_DIR}/src/parallax/${module}/*.h")
   list(FILTER headers EXCLUDE REGEX "_test_support\\.h$")
+  list(FILTER headers EXCLUDE REGEX "_internal\\.h$")  # a module's own, third-party inside
   install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/parallax/${module}
           COMPONENT development)
 endforeach()

@@ -230,6 +230,15 @@ class PlyParser {
 }  // namespace
 
 FileContents readPly(const std::string& path) {
+  {
+    std::vector<std::string> warnings;
+    if (std::optional<GaussianCloud> splats = readSplatsInBlocks(path, warnings)) {
+      FileContents contents;
+      contents.warnings = std::move(warnings);
+      contents.splats = std::move(splats);
+      return contents;
+    }
+  }
   const std::string bytes = readFileBytes(path);
   // A mesh or Gaussian splats, by the vertex element's properties (docs/splats.md, "Files").
   std::vector<std::string> warnings;

@@ -71,6 +71,29 @@ class ValueReader {
     return decode(type, bits);
   }
 
+  // A binary value's bits (assembled in the file's byte order) as the number they encode.
+  static double decode(Type type, uint64_t bits) {
+    switch (type) {
+      case Type::Int8:
+        return double(int8_t(uint8_t(bits)));
+      case Type::UInt8:
+        return double(uint8_t(bits));
+      case Type::Int16:
+        return double(int16_t(uint16_t(bits)));
+      case Type::UInt16:
+        return double(uint16_t(bits));
+      case Type::Int32:
+        return double(int32_t(uint32_t(bits)));
+      case Type::UInt32:
+        return double(uint32_t(bits));
+      case Type::Float32:
+        return double(std::bit_cast<float>(uint32_t(bits)));
+      case Type::Float64:
+        return std::bit_cast<double>(bits);
+    }
+    return 0;
+  }
+
   // Bytes not yet read (for ASCII: all data bytes), to reject absurd element counts before
   // allocating for them.
   size_t remaining() const { return bytes_.size() - pos_; }
@@ -94,27 +117,6 @@ class ValueReader {
     return value;
   }
 
-  static double decode(Type type, uint64_t bits) {
-    switch (type) {
-      case Type::Int8:
-        return double(int8_t(uint8_t(bits)));
-      case Type::UInt8:
-        return double(uint8_t(bits));
-      case Type::Int16:
-        return double(int16_t(uint16_t(bits)));
-      case Type::UInt16:
-        return double(uint16_t(bits));
-      case Type::Int32:
-        return double(int32_t(uint32_t(bits)));
-      case Type::UInt32:
-        return double(uint32_t(bits));
-      case Type::Float32:
-        return double(std::bit_cast<float>(uint32_t(bits)));
-      case Type::Float64:
-        return std::bit_cast<double>(bits);
-    }
-    return 0;
-  }
 
   const std::string& path_;
   const std::string& bytes_;

@@ -1,9 +1,17 @@
 #include "parallax/importer/splat_ply.h"
 
+#include "parallax/core/error.h"
+#include "parallax/core/parallel.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +75,46 @@ std::string splatName(uint64_t g) {
   return "splat " + std::to_string(g);
 }
 
+// Splat `item` from its record of property values (in the vertex element's order) into the
+// cloud, which has room for it: the encodings undone, every field checked in one fixed order,
+// so that both readers name the same field of the same splat.
+void decodeSplat(const std::string& path, const Element& vertex, const SplatLayout& layout,
+                 const double* record, uint64_t item, GaussianCloud& cloud) {
+  const size_t coefficients = size_t(shCoefficientCount(layout.degree));
+  const auto field = [&](int index) {
+    const double value = record[size_t(index)];
+    if (!std::isfinite(value))
+      fail(path, splatName(item) + ": " + vertex.properties[size_t(index)].name +
+                     " is not a finite number");
+    return value;
+  };
+  Vec3f centre, scale;
+  for (int c = 0; c < 3; ++c) {
+    centre[c] = float(field(layout.position[c]));
+    const double logScale = field(layout.scale[c]);
+    if (std::abs(logScale) > kMaxLogScale)
+      fail(path, splatName(item) + ": scale_" + std::to_string(c) + " is " +
+                     std::to_string(logScale) +
+                     ", a log scale beyond +-30 (a size of e^30 = 1e13 or its inverse)");
+    scale[c] = float(std::exp(logScale));
+  }
+  const Quatf rotation{float(field(layout.rotation[0])), float(field(layout.rotation[1])),
+                       float(field(layout.rotation[2])), float(field(layout.rotation[3]))};
+  if (rotation.w == 0 && rotation.x == 0 && rotation.y == 0 && rotation.z == 0)
+    fail(path, splatName(item) + ": rot_0..3 is the zero quaternion (no rotation)");
+  cloud.centres[item] = centre;
+  cloud.scales[item] = scale;
+  cloud.rotations[item] = rotation;
+  cloud.opacities[item] = float(1.0 / (1.0 + std::exp(-field(layout.opacity))));
+  Vec3f* sh = &cloud.sh[item * coefficients];
+  for (int c = 0; c < 3; ++c) {
+    sh[0][c] = float(field(layout.dc[c]));
+    // f_rest is channel-major: channel c's coefficients 1.. are f_rest_{c (K - 1) + k - 1}.
+    for (size_t k = 1; k < coefficients; ++k)
+      sh[k][c] = float(field(layout.rest[size_t(c) * (coefficients - 1) + k - 1]));
+  }
+}
+
 }  // namespace
 
 bool holdsSplats(const Header& header) {
@@ -108,39 +156,101 @@ GaussianCloud readSplats(const std::string& path, const std::string& bytes, cons
         }
       }
       if (!splats) continue;
-      const auto field = [&](int index) {
-        const double value = record[size_t(index)];
-        if (!std::isfinite(value))
-          fail(path, splatName(item) + ": " + vertex.properties[size_t(index)].name +
-                         " is not a finite number");
-        return value;
-      };
-      Vec3f centre, scale;
-      for (int c = 0; c < 3; ++c) {
-        centre[c] = float(field(layout.position[c]));
-        const double logScale = field(layout.scale[c]);
-        if (std::abs(logScale) > kMaxLogScale)
-          fail(path, splatName(item) + ": scale_" + std::to_string(c) + " is " +
-                         std::to_string(logScale) +
-                         ", a log scale beyond +-30 (a size of e^30 = 1e13 or its inverse)");
-        scale[c] = float(std::exp(logScale));
-      }
-      const Quatf rotation{float(field(layout.rotation[0])), float(field(layout.rotation[1])),
-                           float(field(layout.rotation[2])), float(field(layout.rotation[3]))};
-      if (rotation.w == 0 && rotation.x == 0 && rotation.y == 0 && rotation.z == 0)
-        fail(path, splatName(item) + ": rot_0..3 is the zero quaternion (no rotation)");
-      cloud.centres[item] = centre;
-      cloud.scales[item] = scale;
-      cloud.rotations[item] = rotation;
-      cloud.opacities[item] = float(1.0 / (1.0 + std::exp(-field(layout.opacity))));
-      Vec3f* sh = &cloud.sh[item * coefficients];
-      for (int c = 0; c < 3; ++c) {
-        sh[0][c] = float(field(layout.dc[c]));
-        // f_rest is channel-major: channel c's coefficients 1.. are f_rest_{c (K - 1) + k - 1}.
-        for (size_t k = 1; k < coefficients; ++k)
-          sh[k][c] = float(field(layout.rest[size_t(c) * (coefficients - 1) + k - 1]));
-      }
+      decodeSplat(path, vertex, layout, record.data(), item, cloud);
     }
+  }
+  return cloud;
+}
+
+std::optional<GaussianCloud> readSplatsInBlocks(const std::string& path,
+                                               std::vector<std::string>& warnings) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code error;
+  const uintmax_t size = std::filesystem::file_size(path, error);
+  if (!in || error) return std::nullopt;  // the whole-file reader says what is wrong
+  constexpr uintmax_t kHeaderBytes = 4 << 20;
+  std::string prefix(size_t(std::min(size, kHeaderBytes)), '\0');
+  in.read(prefix.data(), std::streamsize(prefix.size()));
+  if (size_t(in.gcount()) != prefix.size() || prefix.find("end_header") == std::string::npos)
+    return std::nullopt;
+  std::vector<std::string> headerWarnings;
+  const Header header = parsePlyHeader(path, prefix, headerWarnings);
+  if (!holdsSplats(header) || header.format == Format::Ascii) return std::nullopt;
+  for (const Element& element : header.elements)
+    for (const Property& p : element.properties)
+      if (p.isList) return std::nullopt;
+  warnings.insert(warnings.end(), headerWarnings.begin(), headerWarnings.end());
+  const Element& vertex = *vertexElement(header);
+  const SplatLayout layout(path, vertex);
+  const bool little = header.format == Format::BinaryLittleEndian;
+  GaussianCloud cloud;
+  cloud.shDegree = layout.degree;
+  uint64_t pos = header.dataOffset, remaining = size - std::min<uint64_t>(size, pos);
+  for (const Element& element : header.elements) {
+    std::vector<size_t> offsets;
+    size_t stride = 0;
+    for (const Property& p : element.properties) offsets.push_back(stride), stride += sizeOf(p.type);
+    // As checkCountFits and ValueReader do for the whole-file reader, with the same messages.
+    if (stride > 0 && element.count > (remaining + 1) / stride)
+      fail(path, "element '" + element.name + "' announces " + std::to_string(element.count) +
+                     " items, more than the file can hold (truncated?)");
+    const uint64_t whole = stride > 0 ? std::min<uint64_t>(element.count, remaining / stride)
+                                      : element.count;
+    const auto truncated = [&] {
+      fail(path, element.name + " " + std::to_string(whole) +
+                     ": the file ends inside the data (truncated)");
+    };
+    if (&element != &vertex) {
+      if (whole < element.count) truncated();
+      pos += element.count * stride, remaining -= element.count * stride;
+      continue;
+    }
+    const size_t coefficients = size_t(shCoefficientCount(layout.degree));
+    cloud.centres.resize(element.count);
+    cloud.scales.resize(element.count);
+    cloud.rotations.resize(element.count);
+    cloud.opacities.resize(element.count);
+    cloud.sh.resize(element.count * coefficients);
+    // Blocks of whole records, each decoded on every core; the first bad splat of a block (by
+    // index, not by which thread saw it first) is reported, as the whole-file reader would.
+    constexpr uint64_t kBlockBytes = 32 << 20;
+    const uint64_t perBlock = std::max<uint64_t>(1, kBlockBytes / stride);
+    std::string block;
+    in.clear();
+    in.seekg(std::streamoff(pos));
+    for (uint64_t first = 0; first < whole; first += perBlock) {
+      const uint64_t count = std::min(perBlock, whole - first);
+      block.resize(size_t(count * stride));
+      in.read(block.data(), std::streamsize(block.size()));
+      if (size_t(in.gcount()) != block.size()) fail(path, "error while reading the file");
+      std::mutex failedMutex;
+      uint64_t failedItem = std::numeric_limits<uint64_t>::max();
+      std::optional<InputError> failed;
+      parallelFor(int64_t(count), 0, 4096, [&](int64_t begin, int64_t end) {
+        std::vector<double> record(element.properties.size());
+        for (int64_t r = begin; r < end; ++r) {
+          const auto* raw = reinterpret_cast<const unsigned char*>(block.data()) + size_t(r) * stride;
+          for (size_t i = 0; i < record.size(); ++i) {
+            const size_t bytes = sizeOf(element.properties[i].type);
+            uint64_t bits = 0;
+            for (size_t b = 0; b < bytes; ++b)
+              bits |= uint64_t(raw[offsets[i] + b]) << (8 * (little ? b : bytes - 1 - b));
+            record[i] = ValueReader::decode(element.properties[i].type, bits);
+          }
+          const uint64_t item = first + uint64_t(r);
+          try {
+            decodeSplat(path, vertex, layout, record.data(), item, cloud);
+          } catch (const InputError& e) {
+            std::lock_guard lock(failedMutex);
+            if (item < failedItem) failedItem = item, failed = e;
+            return;  // this chunk's later splats cannot come first
+          }
+        }
+      });
+      if (failed) throw *failed;
+    }
+    if (whole < element.count) truncated();
+    pos += element.count * stride, remaining -= element.count * stride;
   }
   return cloud;
 }

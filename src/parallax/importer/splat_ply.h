@@ -5,7 +5,9 @@
 // own (loadMeshFile calls it); the writer serves the splat tools (jobs/splat_making.h).
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "parallax/importer/ply_format.h"
 #include "parallax/scene/gaussians.h"
@@ -21,6 +23,14 @@ bool holdsSplats(const Header& header);
 // [-30, 30] (no Gaussian is 10^13 times its neighbours), a zero quaternion, a count the file
 // cannot hold.
 GaussianCloud readSplats(const std::string& path, const std::string& bytes, const Header& header);
+
+// The same from a file, without holding its bytes: a binary splat file (no list properties) is
+// read after its header in blocks of whole records, each decoded on every core, so that the
+// peak is the cloud and one block (docs/splats.md, "Memory"); the same cloud and the same
+// refusals as readSplats. nullopt for any other file (a mesh, ASCII, lists, a header longer than
+// 4 MiB): the caller reads it whole.
+std::optional<GaussianCloud> readSplatsInBlocks(const std::string& path,
+                                               std::vector<std::string>& warnings);
 
 // The cloud as 3DGS writes it: binary little-endian floats x y z nx ny nz (zero) f_dc_0..2
 // f_rest_* (channel-major) opacity (the logit) scale_0..2 (logs) rot_0..3 (w x y z), the file

@@ -124,15 +124,6 @@ uint64_t spreadBits(uint64_t v) {
   return v;
 }
 
-template <class T>
-void permute(std::vector<T>& values, const std::vector<uint32_t>& order, size_t stride) {
-  std::vector<T> sorted(values.size());
-  for (size_t i = 0; i < order.size(); ++i)
-    std::copy_n(values.begin() + std::ptrdiff_t(order[i] * stride), stride,
-                sorted.begin() + std::ptrdiff_t(i * stride));
-  values.swap(sorted);
-}
-
 }  // namespace
 
 void sortForLocality(GaussianCloud& cloud) {
@@ -151,13 +142,36 @@ void sortForLocality(GaussianCloud& cloud) {
     keys[g] = {code, uint32_t(g)};
   }
   std::sort(keys.begin(), keys.end());
-  std::vector<uint32_t> order(n);
-  for (size_t i = 0; i < n; ++i) order[i] = keys[i].second;
-  permute(cloud.centres, order, 1);
-  permute(cloud.scales, order, 1);
-  permute(cloud.rotations, order, 1);
-  permute(cloud.opacities, order, 1);
-  permute(cloud.sh, order, size_t(shCoefficientCount(cloud.shDegree)));
+  // In place, cycle by cycle (position i takes the Gaussian keys[i] names), so that sorting a
+  // capture needs no second copy of it (docs/splats.md, "Memory").
+  const size_t stride = size_t(shCoefficientCount(cloud.shDegree));
+  std::vector<bool> placed(n, false);
+  std::vector<Vec3f> heldSh(stride);
+  for (size_t start = 0; start < n; ++start) {
+    if (placed[start] || keys[start].second == start) continue;
+    const Vec3f heldCentre = cloud.centres[start], heldScale = cloud.scales[start];
+    const Quatf heldRotation = cloud.rotations[start];
+    const float heldOpacity = cloud.opacities[start];
+    std::copy_n(cloud.sh.begin() + std::ptrdiff_t(start * stride), stride, heldSh.begin());
+    size_t at = start;
+    for (;;) {
+      placed[at] = true;
+      const size_t from = keys[at].second;
+      if (from == start) break;
+      cloud.centres[at] = cloud.centres[from];
+      cloud.scales[at] = cloud.scales[from];
+      cloud.rotations[at] = cloud.rotations[from];
+      cloud.opacities[at] = cloud.opacities[from];
+      std::copy_n(cloud.sh.begin() + std::ptrdiff_t(from * stride), stride,
+                  cloud.sh.begin() + std::ptrdiff_t(at * stride));
+      at = from;
+    }
+    cloud.centres[at] = heldCentre;
+    cloud.scales[at] = heldScale;
+    cloud.rotations[at] = heldRotation;
+    cloud.opacities[at] = heldOpacity;
+    std::copy(heldSh.begin(), heldSh.end(), cloud.sh.begin() + std::ptrdiff_t(at * stride));
+  }
 }
 
 Bounds3f splatCentreBounds(const SplatSet& set) {
