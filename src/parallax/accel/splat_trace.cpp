@@ -186,6 +186,7 @@ void buildSplatStore(RTCDevice device, const Scene& scene, SplatStore& store) {
   placeSplats(scene, store);
   store.scene = rtcNewScene(device);
   if (!store.scene) return;  // the caller reads the device's error
+  rtcSetSceneFlags(store.scene, RTC_SCENE_FLAG_COMPACT);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
   if (!geometry) return;
   rtcSetGeometryUserPrimitiveCount(geometry, unsigned(count));
