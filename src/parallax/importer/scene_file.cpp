@@ -551,22 +551,29 @@ class SceneFileLoader {
     }
   }
 
-  void addMeshFile(const JsonReader& object, const std::string& name,
-                   const Transform& worldFromObject, std::optional<uint32_t> material) {
-    const JsonReader fileKey = object["file"];
+  // The file `fileKey` names, relative to the scene file: a regular file, else a refusal naming
+  // the key ("mesh file not found: ...", `what` being "mesh").
+  std::string existingFile(const JsonReader& fileKey, const char* what) {
     const std::string file = resolve(fileKey.string());
-    if (!fs::exists(file)) fileKey.fail("mesh file not found: " + file);
+    if (!fs::exists(file)) fileKey.fail(std::string(what) + " file not found: " + file);
     try {
       requireRegularFile(file);
     } catch (const InputError& e) {
       fileKey.fail(e.what());
     }
+    return file;
+  }
+
+  void addMeshFile(const JsonReader& object, const std::string& name,
+                   const Transform& worldFromObject, std::optional<uint32_t> material) {
+    const JsonReader fileKey = object["file"];
+    const std::string file = existingFile(fileKey, "mesh");
     if (!isMeshFile(file))
       fileKey.fail("not a mesh file this build reads (docs/import.md lists the formats): " + file);
     MeshLoadOptions options;
     options.up = import_.up;
     if (const auto up = object.find("up"); up && !parseUpAxis(up->string(), options.up))
-      up->fail("expected \"auto\", \"y\" or \"z\", found \"" + up->string() + "\"");
+      up->fail("expected \"auto\", \"y\", \"z\" or \"-y\", found \"" + up->string() + "\"");
     options.creaseDegrees = import_.creaseDegrees;
     if (const auto crease = object.find("crease"))
       options.creaseDegrees = float(crease->number(0, 180));
@@ -585,13 +592,7 @@ class SceneFileLoader {
   void addSplatFile(const JsonReader& entry) {
     entry.expectObject({"file", "transform", "up"});
     const JsonReader fileKey = entry["file"];
-    const std::string file = resolve(fileKey.string());
-    if (!fs::exists(file)) fileKey.fail("splat file not found: " + file);
-    try {
-      requireRegularFile(file);
-    } catch (const InputError& e) {
-      fileKey.fail(e.what());
-    }
+    const std::string file = existingFile(fileKey, "splat");
     MeshLoadOptions options;
     options.up = import_.up;
     if (const auto up = entry.find("up"); up && !parseUpAxis(up->string(), options.up))

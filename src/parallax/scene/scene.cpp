@@ -20,28 +20,29 @@ size_t Scene::splatCount() const {
   return n;
 }
 
-Bounds3f Scene::framingBounds() const {
+namespace {
+
+// The meshes' and spheres' bounds with each splat set's `splatBounds`.
+Bounds3f boundsWith(const Scene& scene, Bounds3f (*splatBounds)(const SplatSet&)) {
   Bounds3f b;
-  for (const SplatSet& set : splats) b.extend(splatFramingBounds(set));
-  for (const auto& m : meshes)
+  for (const SplatSet& set : scene.splats) b.extend(splatBounds(set));
+  for (const auto& m : scene.meshes)
     for (const auto& p : m.positions) b.extend(p);
-  for (const auto& s : spheres) {
+  for (const auto& s : scene.spheres) {
     b.extend(s.center - Vec3f(s.radius));
     b.extend(s.center + Vec3f(s.radius));
   }
   return b;
 }
 
+}  // namespace
+
+Bounds3f Scene::framingBounds() const {
+  return boundsWith(*this, splatFramingBounds);
+}
+
 Bounds3f Scene::bounds() const {
-  Bounds3f b;
-  for (const SplatSet& set : splats) b.extend(splatCentreBounds(set));
-  for (const auto& m : meshes)
-    for (const auto& p : m.positions) b.extend(p);
-  for (const auto& s : spheres) {
-    b.extend(s.center - Vec3f(s.radius));
-    b.extend(s.center + Vec3f(s.radius));
-  }
-  return b;
+  return boundsWith(*this, splatCentreBounds);
 }
 
 namespace {
