@@ -117,7 +117,6 @@ class ValueReader {
     return value;
   }
 
-
   const std::string& path_;
   const std::string& bytes_;
   Format format_;

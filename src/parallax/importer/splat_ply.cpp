@@ -163,7 +163,7 @@ GaussianCloud readSplats(const std::string& path, const std::string& bytes, cons
 }
 
 std::optional<GaussianCloud> readSplatsInBlocks(const std::string& path,
-                                               std::vector<std::string>& warnings) {
+                                                std::vector<std::string>& warnings) {
   std::ifstream in(path, std::ios::binary);
   std::error_code error;
   const uintmax_t size = std::filesystem::file_size(path, error);
@@ -189,13 +189,14 @@ std::optional<GaussianCloud> readSplatsInBlocks(const std::string& path,
   for (const Element& element : header.elements) {
     std::vector<size_t> offsets;
     size_t stride = 0;
-    for (const Property& p : element.properties) offsets.push_back(stride), stride += sizeOf(p.type);
+    for (const Property& p : element.properties)
+      offsets.push_back(stride), stride += sizeOf(p.type);
     // As checkCountFits and ValueReader do for the whole-file reader, with the same messages.
     if (stride > 0 && element.count > (remaining + 1) / stride)
       fail(path, "element '" + element.name + "' announces " + std::to_string(element.count) +
                      " items, more than the file can hold (truncated?)");
-    const uint64_t whole = stride > 0 ? std::min<uint64_t>(element.count, remaining / stride)
-                                      : element.count;
+    const uint64_t whole =
+        stride > 0 ? std::min<uint64_t>(element.count, remaining / stride) : element.count;
     const auto truncated = [&] {
       fail(path, element.name + " " + std::to_string(whole) +
                      ": the file ends inside the data (truncated)");
@@ -229,7 +230,8 @@ std::optional<GaussianCloud> readSplatsInBlocks(const std::string& path,
       parallelFor(int64_t(count), 0, 4096, [&](int64_t begin, int64_t end) {
         std::vector<double> record(element.properties.size());
         for (int64_t r = begin; r < end; ++r) {
-          const auto* raw = reinterpret_cast<const unsigned char*>(block.data()) + size_t(r) * stride;
+          const auto* raw =
+              reinterpret_cast<const unsigned char*>(block.data()) + size_t(r) * stride;
           for (size_t i = 0; i < record.size(); ++i) {
             const size_t bytes = sizeOf(element.properties[i].type);
             uint64_t bits = 0;

@@ -30,7 +30,7 @@ GaussianCloud readSplats(const std::string& path, const std::string& bytes, cons
 // refusals as readSplats. nullopt for any other file (a mesh, ASCII, lists, a header longer than
 // 4 MiB): the caller reads it whole.
 std::optional<GaussianCloud> readSplatsInBlocks(const std::string& path,
-                                               std::vector<std::string>& warnings);
+                                                std::vector<std::string>& warnings);
 
 // The cloud as 3DGS writes it: binary little-endian floats x y z nx ny nz (zero) f_dc_0..2
 // f_rest_* (channel-major) opacity (the logit) scale_0..2 (logs) rot_0..3 (w x y z), the file
