@@ -106,13 +106,14 @@ void decodeSplat(const std::string& path, const Element& vertex, const SplatLayo
   cloud.scales[item] = scale;
   cloud.rotations[item] = rotation;
   cloud.opacities[item] = float(1.0 / (1.0 + std::exp(-field(layout.opacity))));
-  Vec3f* sh = &cloud.sh[item * coefficients];
+  Vec3f sh[shCoefficientCount(kMaxShDegree)];
   for (int c = 0; c < 3; ++c) {
     sh[0][c] = float(field(layout.dc[c]));
     // f_rest is channel-major: channel c's coefficients 1.. are f_rest_{c (K - 1) + k - 1}.
     for (size_t k = 1; k < coefficients; ++k)
       sh[k][c] = float(field(layout.rest[size_t(c) * (coefficients - 1) + k - 1]));
   }
+  for (size_t k = 0; k < coefficients; ++k) cloud.sh.set(item * coefficients + k, sh[k]);
 }
 
 }  // namespace
@@ -283,10 +284,10 @@ std::string splatPlyBytes(const GaussianCloud& cloud) {
   for (size_t g = 0; g < cloud.size(); ++g) {
     const Vec3f& c = cloud.centres[g];
     put(c.x), put(c.y), put(c.z), put(0), put(0), put(0);
-    const Vec3f* sh = &cloud.sh[g * coefficients];
-    for (int channel = 0; channel < 3; ++channel) put(sh[0][channel]);
+    const auto sh = [&](size_t k, int channel) { return cloud.sh[g * coefficients + k][channel]; };
+    for (int channel = 0; channel < 3; ++channel) put(sh(0, channel));
     for (int channel = 0; channel < 3; ++channel)
-      for (size_t k = 1; k < coefficients; ++k) put(sh[k][channel]);
+      for (size_t k = 1; k < coefficients; ++k) put(sh(k, channel));
     const double o = std::clamp(double(cloud.opacities[g]), 1e-7, 1.0 - 1e-7);
     put(std::log(o / (1.0 - o)));
     for (int a = 0; a < 3; ++a) put(std::log(double(cloud.scales[g][a])));

@@ -98,8 +98,9 @@ struct Triangle {
 }  // namespace
 
 double splatCloudBytes(size_t count, int degree) {
-  return double(count) *
-         (sizeof(Vec3f) * (2 + size_t(shCoefficientCount(degree))) + sizeof(Quatf) + sizeof(float));
+  // Centre and scale, rotation, opacity, and the coefficients in half floats.
+  return double(count) * (2 * sizeof(Vec3f) + sizeof(Quatf) + sizeof(float) +
+                          3 * sizeof(uint16_t) * size_t(shCoefficientCount(degree)));
 }
 
 double splatPlyFileBytes(size_t count, int degree) {

@@ -1,8 +1,11 @@
 #include "parallax/render/splat_blend.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <optional>
 
+#include "parallax/core/lane_kernel.h"
 #include "parallax/image/image.h"
 
 namespace parallax {
@@ -27,7 +30,7 @@ size_t SplatColours::setOf(uint32_t gaussian) const {
   return s;
 }
 
-Vec3f SplatColours::AlongRay::colour(uint32_t gaussian) {
+PARALLAX_LANE_KERNEL Vec3f SplatColours::AlongRay::colour(uint32_t gaussian) {
   const size_t s = colours_.setOf(gaussian);
   const Set& set = colours_.sets_[s];
   if (s != set_) {
@@ -43,13 +46,26 @@ Vec3f SplatColours::AlongRay::colour(uint32_t gaussian) {
   }
   // shColour's sum with the basis already made, four coefficients (twelve floats, whole RGB
   // triples) at a time into independent sums: one short dependency chain, not sixteen.
-  const float* c = &set.cloud->sh[size_t(gaussian - set.first) * size_t(count_)].x;
+  const uint16_t* c = set.cloud->sh.halves(size_t(gaussian - set.first) * size_t(count_));
   const int floats = 3 * count_;
+  // The halves widened first, in one plain loop that vectorises (integer shifts, a compare, a
+  // select: fromHalf's steps), then summed as floats (measured: 9.3 s for the 100 k capture's
+  // 960x540 view, against 12.6 s widening inside the sums and 9.3 s with a table of all halves;
+  // floats throughout took 7.0 s, at 96 more bytes a Gaussian).
+  alignas(64) float wide[3 * shCoefficientCount(kMaxShDegree)];
+  for (int i = 0; i < floats; ++i) {
+    const int32_t half = c[i];
+    const int32_t magnitude = half & 0x7fff;
+    const float normal = std::bit_cast<float>((magnitude << 13) + ((127 - 15) << 23));
+    const float subnormal = float(magnitude) * 0x1p-24f;
+    const float value = magnitude < 0x400 ? subnormal : normal;
+    wide[i] = std::bit_cast<float>(std::bit_cast<int32_t>(value) | ((half & 0x8000) << 16));
+  }
   float sums[12] = {};
   int at = 0;
   for (; at + 12 <= floats; at += 12)
-    for (int i = 0; i < 12; ++i) sums[i] += c[at + i] * basis_[at + i];
-  for (int i = 0; at + i < floats; ++i) sums[i] += c[at + i] * basis_[at + i];
+    for (int i = 0; i < 12; ++i) sums[i] += wide[at + i] * basis_[at + i];
+  for (int i = 0; at + i < floats; ++i) sums[i] += wide[at + i] * basis_[at + i];
   Vec3f colour;
   for (int channel = 0; channel < 3; ++channel)
     colour[channel] = std::max(
@@ -64,7 +80,10 @@ Vec3f SplatColours::colour(uint32_t gaussian, const Vec3f& direction) const {
                       dot(set.fileFromWorld[2], direction)});
   const int degree = set.cloud->shDegree;
   const size_t perGaussian = size_t(shCoefficientCount(degree));
-  return shColour(&set.cloud->sh[size_t(gaussian - set.first) * perGaussian], degree, local);
+  Vec3f coefficients[shCoefficientCount(kMaxShDegree)];
+  for (size_t k = 0; k < perGaussian; ++k)
+    coefficients[k] = set.cloud->sh[size_t(gaussian - set.first) * perGaussian + k];
+  return shColour(coefficients, degree, local);
 }
 
 namespace {

@@ -47,7 +47,7 @@ inline void covariance(const GaussianCloud& cloud, size_t g, double sigma[3][3])
 // The display-value colour of Gaussian g along the unit direction d (3DGS's basis constants).
 inline Vec3f colourAlong(const GaussianCloud& cloud, size_t g, const Vec3f& d) {
   const size_t count = size_t(shCoefficientCount(cloud.shDegree));
-  const Vec3f* c = &cloud.sh[g * count];
+  const auto c = [&](size_t k) { return cloud.sh[g * count + k]; };
   const double x = d.x, y = d.y, z = d.z;
   double basis[16] = {0.28209479177387814};
   if (cloud.shDegree >= 1) {
@@ -71,7 +71,7 @@ inline Vec3f colourAlong(const GaussianCloud& cloud, size_t g, const Vec3f& d) {
   Vec3f out;
   for (int ch = 0; ch < 3; ++ch) {
     double v = 0.5;
-    for (size_t k = 0; k < count; ++k) v += double(c[k][ch]) * basis[k];
+    for (size_t k = 0; k < count; ++k) v += double(c(k)[ch]) * basis[k];
     out[ch] = float(std::max(v, 0.0));
   }
   return out;

@@ -1,6 +1,7 @@
 #include "parallax/scene/gaussians.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -8,6 +9,25 @@
 #include <vector>
 
 namespace parallax {
+
+uint16_t toHalf(float value) {
+  const uint32_t bits = std::bit_cast<uint32_t>(value);
+  const uint16_t sign = uint16_t((bits >> 16) & 0x8000u);
+  const float magnitude = std::abs(value);
+  if (!(magnitude < 65520.0f)) return uint16_t(sign | 0x7bffu);  // clamped to 65504
+  if (magnitude < 0x1p-14f) {
+    // Subnormal halves are multiples of 2^-24: round the magnitude to one (nearest, ties to
+    // even, as the float to integer conversion of nearbyint does).
+    return uint16_t(sign | uint16_t(std::nearbyint(magnitude * 0x1p24f)));
+  }
+  // Normal: keep 10 of the float's 23 mantissa bits, rounding on the 13 dropped.
+  const uint32_t m = std::bit_cast<uint32_t>(magnitude);
+  const uint32_t rebiased = m - ((127u - 15u) << 23);
+  const uint32_t dropped = rebiased & 0x1fffu;
+  uint32_t half = rebiased >> 13;
+  if (dropped > 0x1000u || (dropped == 0x1000u && (half & 1u))) ++half;  // may carry into 0x7c00
+  return uint16_t(sign | std::min<uint32_t>(half, 0x7bffu));
+}
 
 void rotationRows(const Quatf& q, Vec3f rows[3]) {
   const float n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
@@ -145,14 +165,15 @@ void sortForLocality(GaussianCloud& cloud) {
   // In place, cycle by cycle (position i takes the Gaussian keys[i] names), so that sorting a
   // capture needs no second copy of it (docs/splats.md, "Memory").
   const size_t stride = size_t(shCoefficientCount(cloud.shDegree));
+  const size_t halves = 3 * stride;
   std::vector<bool> placed(n, false);
-  std::vector<Vec3f> heldSh(stride);
+  std::vector<uint16_t> heldSh(halves);
   for (size_t start = 0; start < n; ++start) {
     if (placed[start] || keys[start].second == start) continue;
     const Vec3f heldCentre = cloud.centres[start], heldScale = cloud.scales[start];
     const Quatf heldRotation = cloud.rotations[start];
     const float heldOpacity = cloud.opacities[start];
-    std::copy_n(cloud.sh.begin() + std::ptrdiff_t(start * stride), stride, heldSh.begin());
+    std::copy_n(cloud.sh.halves(start * stride), halves, heldSh.begin());
     size_t at = start;
     for (;;) {
       placed[at] = true;
@@ -162,15 +183,14 @@ void sortForLocality(GaussianCloud& cloud) {
       cloud.scales[at] = cloud.scales[from];
       cloud.rotations[at] = cloud.rotations[from];
       cloud.opacities[at] = cloud.opacities[from];
-      std::copy_n(cloud.sh.begin() + std::ptrdiff_t(from * stride), stride,
-                  cloud.sh.begin() + std::ptrdiff_t(at * stride));
+      std::copy_n(cloud.sh.halves(from * stride), halves, cloud.sh.halves(at * stride));
       at = from;
     }
     cloud.centres[at] = heldCentre;
     cloud.scales[at] = heldScale;
     cloud.rotations[at] = heldRotation;
     cloud.opacities[at] = heldOpacity;
-    std::copy(heldSh.begin(), heldSh.end(), cloud.sh.begin() + std::ptrdiff_t(at * stride));
+    std::copy(heldSh.begin(), heldSh.end(), cloud.sh.halves(at * stride));
   }
 }
 

@@ -4,7 +4,10 @@
 // (3DGRT: Moenne-Loccoz et al., SIGGRAPH Asia 2024).
 #pragma once
 
+#include <bit>
 #include <cstddef>
+#include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -27,6 +30,53 @@ struct Quatf {
 // The rotation matrix of a quaternion, normalised first (files keep it unnormalised): rows.
 void rotationRows(const Quatf& q, Vec3f rows[3]);
 
+// IEEE 754 half floats (binary16), as a capture's coefficients are kept (docs/splats.md,
+// "Memory"): toHalf rounds to nearest, ties to even, and clamps beyond the largest finite half
+// (65504; a non-finite value never reaches it, the readers refuse those); fromHalf is exact.
+uint16_t toHalf(float value);
+// Branch-free (a select), so that loops of it vectorise: a normal half's bits moved into a
+// float's places with the exponent rebiased (15 to 127), a subnormal half (below 2^-14) its
+// integer mantissa times 2^-24. No step passes through a subnormal float, whose value would
+// depend on the thread's flush-to-zero mode (TBB's workers and the main thread differ).
+inline float fromHalf(uint16_t half) {
+  const uint32_t magnitude = half & 0x7fffu;
+  const float normal = std::bit_cast<float>((magnitude << 13) + ((127u - 15u) << 23));
+  const float subnormal = float(magnitude) * 0x1p-24f;
+  const float value = magnitude < 0x400u ? subnormal : normal;
+  return std::bit_cast<float>(std::bit_cast<uint32_t>(value) | (uint32_t(half & 0x8000u) << 16));
+}
+
+// RGB triples in half floats: 6 bytes where floats take 12. A Gaussian's spherical-harmonic
+// coefficients are most of its memory (48 of them at degree 3), and their relative precision of
+// 2^-11 is a fifteenth of an 8-bit step in the colour they make.
+class HalfRgbArray {
+ public:
+  HalfRgbArray() = default;
+  HalfRgbArray(std::initializer_list<Vec3f> values) {
+    for (const Vec3f& v : values) push_back(v);
+  }
+  size_t size() const { return halves_.size() / 3; }
+  bool empty() const { return halves_.empty(); }
+  void resize(size_t count) { halves_.resize(3 * count); }
+  void push_back(const Vec3f& v) {
+    halves_.push_back(toHalf(v.x)), halves_.push_back(toHalf(v.y));
+    halves_.push_back(toHalf(v.z));
+  }
+  Vec3f operator[](size_t i) const {
+    return {fromHalf(halves_[3 * i]), fromHalf(halves_[3 * i + 1]), fromHalf(halves_[3 * i + 2])};
+  }
+  void set(size_t i, const Vec3f& v) {
+    halves_[3 * i] = toHalf(v.x), halves_[3 * i + 1] = toHalf(v.y);
+    halves_[3 * i + 2] = toHalf(v.z);
+  }
+  // Triple i's halves (R, G, B, then triple i + 1's).
+  const uint16_t* halves(size_t i) const { return halves_.data() + 3 * i; }
+  uint16_t* halves(size_t i) { return halves_.data() + 3 * i; }
+
+ private:
+  std::vector<uint16_t> halves_;
+};
+
 // Gaussians in world space, the values a 3DGS file's encodings stand for (its logs exponentiated,
 // its logits through the sigmoid).
 struct GaussianCloud {
@@ -36,8 +86,8 @@ struct GaussianCloud {
   std::vector<Quatf> rotations;  // local axes to world
   std::vector<float> opacities;  // the peak's alpha, in (0, 1]
   // shCoefficientCount(shDegree) RGB coefficients a Gaussian, coefficient-major: Gaussian g's
-  // coefficient k (k = l (l + 1) + m, m from -l to l) is sh[g * count + k].
-  std::vector<Vec3f> sh;
+  // coefficient k (k = l (l + 1) + m, m from -l to l) is sh[g * count + k]; in half floats.
+  HalfRgbArray sh;
   size_t size() const { return centres.size(); }
 };
 

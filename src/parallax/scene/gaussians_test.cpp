@@ -141,5 +141,41 @@ TEST(Gaussians, TheBoundingRadiusIsWhereTheAlphaFallsToTheThreshold) {
   EXPECT_EQ(boundingRadius(std::nanf("")), 0.0f);
 }
 
+TEST(HalfFloat, EveryFiniteHalfIsReadExactlyAndWrittenBackTheSame) {
+  for (uint32_t bits = 0; bits < 0x10000u; ++bits) {
+    const uint16_t half = uint16_t(bits);
+    const uint32_t exponent = (bits >> 10) & 0x1fu, mantissa = bits & 0x3ffu;
+    if (exponent == 0x1fu) continue;  // infinities and NaNs are never kept
+    // The value by its definition: (-1)^s 2^(e - 15) (1 + m / 1024), or 2^-14 m / 1024.
+    const double magnitude = exponent == 0 ? std::ldexp(double(mantissa), -24)
+                                           : std::ldexp(1024.0 + mantissa, int(exponent) - 25);
+    const double expected = (bits & 0x8000u) ? -magnitude : magnitude;
+    ASSERT_EQ(double(fromHalf(half)), expected) << std::hex << bits;
+    ASSERT_EQ(toHalf(fromHalf(half)), half) << std::hex << bits;
+  }
+}
+
+TEST(HalfFloat, WritingRoundsToTheNearestTiesToEvenAndClampsBeyondTheLargest) {
+  // Between 1 and 1 + 2^-10 (the next half): below, at and above the midpoint.
+  EXPECT_EQ(toHalf(1.0f + 0x1p-12f), 0x3c00u);
+  EXPECT_EQ(toHalf(1.0f + 0x1p-11f), 0x3c00u);  // a tie: to the even mantissa, 1
+  EXPECT_EQ(toHalf(1.0f + 0x1p-11f + 0x1p-20f), 0x3c01u);
+  EXPECT_EQ(toHalf(1.0f + 0x1p-10f + 0x1p-11f), 0x3c02u);  // a tie: up to the even one
+  EXPECT_EQ(toHalf(0x1p-25f), 0x0000u);                    // half the smallest subnormal: even
+  EXPECT_EQ(toHalf(0x1p-24f * 1.5f), 0x0002u);             // a subnormal tie: up to even
+  EXPECT_EQ(toHalf(-2.0f), 0xc000u);
+  EXPECT_EQ(toHalf(65504.0f), 0x7bffu);
+  EXPECT_EQ(toHalf(1e9f), 0x7bffu);
+  EXPECT_EQ(toHalf(-1e9f), 0xfbffu);
+  // Every float in a sweep lands on one of its two neighbouring halves, the nearer.
+  for (float x = 1e-6f; x < 6e4f; x *= 1.0137f) {
+    const float back = fromHalf(toHalf(x));
+    const uint16_t h = toHalf(x);
+    const float below = fromHalf(uint16_t(h - 1)), above = fromHalf(uint16_t(h + 1));
+    EXPECT_LE(std::abs(back - x), std::abs(below - x)) << x;
+    EXPECT_LE(std::abs(back - x), std::abs(above - x)) << x;
+  }
+}
+
 }  // namespace
 }  // namespace parallax
