@@ -135,6 +135,9 @@ GaussianCloud readSplats(const std::string& path, const std::string& bytes, cons
   const size_t coefficients = size_t(shCoefficientCount(layout.degree));
   for (const Element& element : header.elements) {
     checkCountFits(path, element, values);
+    // Each element's own record: another element (even one also called "vertex") may have more
+    // properties than the splats' (a fuzzer's find: the record was the splats' size).
+    record.assign(element.properties.size(), 0.0);
     const bool splats = &element == &vertex;
     if (splats) {
       cloud.centres.resize(element.count);

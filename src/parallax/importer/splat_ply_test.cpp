@@ -230,5 +230,27 @@ TEST(SplatPly, WhatTheWriterWritesTheReaderReads) {
   }
 }
 
+TEST(SplatPly, AnElementAfterTheSplatsWithMorePropertiesIsReadPast) {
+  // The splats, then another element called "vertex" with more properties than theirs: a
+  // fuzzer's find, where the reader wrote the second element's values past a record of the
+  // splats' size. The splats are the first vertex element; the rest is read past.
+  const TempDir dir;
+  const std::string path = dir.file("two.ply");
+  std::string text =
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float f_dc_0\nproperty float f_dc_1\nproperty float f_dc_2\n"
+      "property float opacity\nproperty float scale_0\nproperty float scale_1\n"
+      "property float scale_2\nproperty float rot_0\nproperty float rot_1\n"
+      "property float rot_2\nproperty float rot_3\nelement vertex 1\n";
+  for (int p = 0; p < 40; ++p) text += "property float p" + std::to_string(p) + "\n";
+  text += "end_header\n0 0 0 0 0 0 0 0 0 0 1 0 0 0\n";
+  for (int p = 0; p < 40; ++p) text += "1 ";
+  text += "\n";
+  writeFile(path, text);
+  const Scene scene = meshtest::load(path);
+  ASSERT_EQ(scene.splats.size(), 1u);
+  EXPECT_EQ(scene.splats[0].cloud.size(), 1u);
+}
+
 }  // namespace
 }  // namespace parallax::meshio
