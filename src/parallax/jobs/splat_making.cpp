@@ -70,7 +70,7 @@ struct CloudWriter {
     // The file frame's axes: the same rotation by 180 degrees about X, still right-handed.
     cloud.rotations[g] = quaternionOfColumns(toFileFrame(t), toFileFrame(b), toFileFrame(n));
     cloud.opacities[g] = opacity;
-    for (size_t k = 0; k < perGaussian; ++k) cloud.sh[g * perGaussian + k] = coefficients[k];
+    for (size_t k = 0; k < perGaussian; ++k) cloud.sh.set(g * perGaussian + k, coefficients[k]);
   }
 };
 

@@ -62,7 +62,8 @@ class HalfRgbArray {
     halves_.push_back(toHalf(v.x)), halves_.push_back(toHalf(v.y));
     halves_.push_back(toHalf(v.z));
   }
-  Vec3f operator[](size_t i) const {
+  // A copy, const so that `sh[i] = v` (which would change nothing) does not compile: set() writes.
+  const Vec3f operator[](size_t i) const {
     return {fromHalf(halves_[3 * i]), fromHalf(halves_[3 * i + 1]), fromHalf(halves_[3 * i + 2])};
   }
   void set(size_t i, const Vec3f& v) {

@@ -1,6 +1,7 @@
-// Splats through the renderer (docs/splats.md): what one Gaussian's pixel holds, splats over and
-// behind a surface, and the picture against the two truths of splat_truth_test_support.h:
-// brute force along the same rays, and the 3DGS rasteriser's algorithm.
+// Splats through the renderer (docs/splats.md, render/splat_blend.h): what one Gaussian's pixel
+// holds, splats over and behind a surface, and the picture against the two truths of
+// splat_truth_test_support.h: brute force along the same rays, and the 3DGS rasteriser's
+// algorithm.
 #include <gtest/gtest.h>
 
 #include <cmath>
